@@ -1,0 +1,53 @@
+// gusuku-bake: the offline baker's command line. Subcommands live in cmd_*.cpp; this file only dispatches and
+// turns any escaped exception into a message and a non-zero exit (never a crash).
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "gusuku/input_error.h"
+
+namespace {
+
+void printUsage() {
+    std::fprintf(stderr,
+                 "usage: gusuku-bake <command> [options]\n"
+                 "\n"
+                 "commands:\n"
+                 "  sun       print the sun's position for a place and time (NREL SPA)\n"
+                 "  sample    write the bundled sample site (terrain, house, skies, site.json) into a folder\n"
+                 "  check     validate a site.json and load everything it names\n"
+                 "  bake      bake a site's lightmaps and ground terms into a bake set\n"
+                 "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
+                 "\n"
+                 "`gusuku-bake <command> --help` describes each.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+        printUsage();
+        return argc < 2 ? 2 : 0;
+    }
+    const std::string command = argv[1];
+    const std::vector<std::string> args(argv + 2, argv + argc);
+    try {
+        using namespace gusuku::bake_cli;
+        if (command == "sun") return runSunCommand(args);
+        if (command == "sample") return runSampleCommand(args);
+        if (command == "check") return runCheckCommand(args);
+        if (command == "bake") return runBakeCommand(args);
+        if (command == "converge") return runConvergeCommand(args);
+        std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
+        printUsage();
+        return 2;
+    } catch (const gusuku::InputError& error) {
+        std::fprintf(stderr, "gusuku-bake: error: %s\n", error.what());
+        return 1;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "gusuku-bake: error: %s\n", error.what());
+        return 1;
+    }
+}

@@ -1,0 +1,89 @@
+#pragma once
+// Minimal compute helpers over VulkanContext: storage buffers and compute pipelines whose descriptor set 0
+// holds only storage buffers at bindings 0..N-1 plus one push-constant block. That is all the baker needs:
+// textures, sky maps and the BVH travel as storage buffers (lavapipe lacks descriptor indexing, DESIGN.md 5).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gusuku/vulkan_context.h"
+
+namespace gusuku {
+
+/// A storage buffer in host-visible, host-coherent memory (on lavapipe all memory is host memory, and the
+/// baker's buffers are read back every pass, so one kind of memory keeps the code small).
+class GpuBuffer {
+public:
+    GpuBuffer() = default;
+    /// byte_count is rounded up to 4; a zero-sized request allocates 4 bytes so bindings stay valid.
+    GpuBuffer(VulkanContext& context, size_t byte_count,
+              VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    ~GpuBuffer();
+    GpuBuffer(GpuBuffer&& other) noexcept;
+    GpuBuffer& operator=(GpuBuffer&& other) noexcept;
+    GpuBuffer(const GpuBuffer&) = delete;
+    GpuBuffer& operator=(const GpuBuffer&) = delete;
+
+    void upload(const void* bytes, size_t byte_count, size_t offset = 0);
+    void download(void* bytes, size_t byte_count, size_t offset = 0) const;
+    template <typename T> void uploadVector(const std::vector<T>& values) {
+        upload(values.data(), values.size() * sizeof(T));
+    }
+    template <typename T> std::vector<T> downloadVector(size_t count) const {
+        std::vector<T> values(count);
+        download(values.data(), count * sizeof(T));
+        return values;
+    }
+
+    VkBuffer handle() const { return buffer_; }
+    size_t size() const { return byte_count_; }
+
+private:
+    void release();
+    VulkanContext* context_ = nullptr;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    void* mapped_ = nullptr;
+    size_t byte_count_ = 0;
+};
+
+/// A compute pipeline from embedded SPIR-V with `storage_buffer_count` storage buffers at set 0, bindings
+/// 0..count-1, and a push-constant block of push_constant_bytes (<= 128).
+class ComputePipeline {
+public:
+    ComputePipeline(VulkanContext& context, const uint32_t* spirv, size_t spirv_bytes,
+                    uint32_t storage_buffer_count, uint32_t push_constant_bytes);
+    ~ComputePipeline();
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    /// Points the descriptor set at these buffers (size must equal storage_buffer_count).
+    void bindBuffers(const std::vector<const GpuBuffer*>& buffers);
+
+    /// Records bind + push constants + dispatch into cmd.
+    void recordDispatch(VkCommandBuffer cmd, const void* push_constants, uint32_t groups_x, uint32_t groups_y = 1,
+                        uint32_t groups_z = 1) const;
+
+    /// Records, submits and waits: one synchronous dispatch.
+    void dispatchAndWait(const void* push_constants, uint32_t groups_x, uint32_t groups_y = 1,
+                         uint32_t groups_z = 1);
+
+private:
+    VulkanContext& context_;
+    uint32_t storage_buffer_count_;
+    uint32_t push_constant_bytes_;
+    VkShaderModule module_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet descriptor_set_ = VK_NULL_HANDLE;
+};
+
+/// Inserts a compute-to-compute (and compute-to-host) memory barrier.
+void recordComputeBarrier(VkCommandBuffer cmd);
+
+}  // namespace gusuku
