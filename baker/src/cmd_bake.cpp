@@ -1,9 +1,130 @@
-// PLACEHOLDER until its owner writes it: keeps gusuku-bake linking while the parts are built in parallel.
+// gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops after the current
+// chunk with everything checkpointed; the same command resumes.
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
+
 #include "commands.h"
+#include "gusuku/site.h"
+#include "gusuku/vulkan_context.h"
+#include "gusuku_bake/bake_job.h"
+#include "gusuku_bake/bake_progress.h"
+
 namespace gusuku::bake_cli {
-int runBakeCommand(const std::vector<std::string>&) {
-    std::fprintf(stderr, "gusuku-bake: not built yet\n");
-    return 1;
+
+namespace {
+
+volatile std::sig_atomic_t g_stop_requested = 0;
+
+void requestStop(int) { g_stop_requested = 1; }
+
+void printBakeHelp() {
+    std::printf(
+        "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
+        "\n"
+        "Path-traces the building's indirect irradiance and the ground's sky-and-bounce irradiance (with and\n"
+        "without the building) for every slot of SITE.json, and writes a bake set (docs/bakeset.md).\n"
+        "\n"
+        "options:\n"
+        "  -o, --output DIR   bake set folder (created)\n"
+        "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
+        "  --no-denoise       skip the edge-keeping lightmap filter\n"
+        "  --force            bake even if DIR/manifest.json already matches these inputs\n"
+        "  --quiet            no progress bar\n"
+        "\n"
+        "Ctrl-C stops after the current chunk of samples; everything traced so far is kept in DIR/.checkpoint,\n"
+        "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
+        "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n");
 }
+
+}  // namespace
+
+int runBakeCommand(const std::vector<std::string>& args) {
+    std::string site_path;
+    bake::BakeOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        const auto needValue = [&](const char* name) -> const std::string* {
+            if (i + 1 >= args.size()) {
+                std::fprintf(stderr, "gusuku-bake bake: %s needs a value\n", name);
+                return nullptr;
+            }
+            return &args[++i];
+        };
+        if (arg == "--help" || arg == "-h") {
+            printBakeHelp();
+            return 0;
+        } else if (arg == "-o" || arg == "--output") {
+            const std::string* value = needValue("--output");
+            if (!value) return 2;
+            options.output_dir = *value;
+        } else if (arg == "--samples") {
+            const std::string* value = needValue("--samples");
+            if (!value) return 2;
+            char* end = nullptr;
+            const long samples = std::strtol(value->c_str(), &end, 10);
+            if (end == value->c_str() || *end != '\0' || samples < 1 || samples > 1000000) {
+                std::fprintf(stderr, "gusuku-bake bake: --samples: '%s' is not an integer in [1, 1000000]\n",
+                             value->c_str());
+                return 2;
+            }
+            options.samples_override = int(samples);
+        } else if (arg == "--no-denoise") {
+            options.denoise = false;
+        } else if (arg == "--force") {
+            options.force = true;
+        } else if (arg == "--quiet") {
+            options.show_progress = false;
+        } else if (!arg.empty() && arg[0] == '-') {
+            std::fprintf(stderr, "gusuku-bake bake: unknown option '%s' (see --help)\n", arg.c_str());
+            return 2;
+        } else if (site_path.empty()) {
+            site_path = arg;
+        } else {
+            std::fprintf(stderr, "gusuku-bake bake: one site.json only ('%s' is extra)\n", arg.c_str());
+            return 2;
+        }
+    }
+    if (site_path.empty() || options.output_dir.empty()) {
+        std::fprintf(stderr, "gusuku-bake bake: needs SITE.json and -o BAKESET_DIR (see --help)\n");
+        return 2;
+    }
+
+    const SiteConfig site = loadSiteConfig(site_path);
+    VulkanContext context(vulkanOptionsFromEnvironment());
+    std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
+
+    std::signal(SIGINT, requestStop);
+    std::signal(SIGTERM, requestStop);
+    options.should_stop = [] { return g_stop_requested != 0; };
+    const bake::BakeReport report = bake::runBake(context, site, options);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+
+    if (report.up_to_date) {
+        std::printf("bake set %s is up to date with its inputs (use --force to bake again)\n",
+                    options.output_dir.c_str());
+        return 0;
+    }
+    if (!report.completed) {
+        std::fprintf(stderr,
+                     "gusuku-bake: interrupted; the work done is saved in %s/.checkpoint. Run the same command "
+                     "again to resume.\n",
+                     options.output_dir.c_str());
+        return 130;
+    }
+    const double rays_per_second = report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0;
+    std::printf("bake set:        %s\n", report.manifest_path.c_str());
+    std::printf("slots:           %zu\n", site.bake.slots.size());
+    std::printf("samples:         %u per texel and per ground cell\n", report.samples_per_point);
+    std::printf("building:        %zu lightmap texels (%dx%d)\n", report.building_texels, report.lightmap_resolution,
+                report.lightmap_resolution);
+    std::printf("ground:          %zu cells\n", report.ground_cells);
+    std::printf("rays:            %.3g traced, %.3f Mrays/s\n", double(report.rays_traced), rays_per_second / 1e6);
+    std::printf("wall time:       %s (tracing %s)\n", bake::formatDuration(report.wall_seconds).c_str(),
+                bake::formatDuration(report.trace_seconds).c_str());
+    return 0;
+}
+
 }  // namespace gusuku::bake_cli

@@ -6,6 +6,7 @@
 //   when the folder is absent (a fresh clone without the shared assets).
 
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -22,6 +23,9 @@ protected:
     void SetUp() override;     ///< creates/gets the context, remembers the validation message count
     void TearDown() override;  ///< ADD_FAILURE for every validation message that appeared during the test
     VulkanContext& context() { return *context_; }
+    /// For tests that provoke validation messages on purpose: returns the messages that appeared since SetUp
+    /// (or the previous call) and accepts them, so TearDown does not fail the test for them.
+    std::vector<std::string> takeValidationMessages();
 
 private:
     VulkanContext* context_ = nullptr;

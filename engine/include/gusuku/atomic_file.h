@@ -12,6 +12,11 @@ namespace gusuku {
 void writeFileAtomically(const std::string& final_path,
                          const std::function<void(const std::string& temporary_path)>& write);
 
+/// Like writeFileAtomically, but the temporary path keeps final_path's extension ("out.tmp-<pid>-<n>.exr"),
+/// for writers such as OpenImageIO that choose the file format from the extension.
+void writeFileAtomicallyKeepingExtension(const std::string& final_path,
+                                         const std::function<void(const std::string& temporary_path)>& write);
+
 /// Writes bytes to final_path through writeFileAtomically.
 void writeBytesAtomically(const std::string& final_path, const void* bytes, size_t byte_count);
 

@@ -19,6 +19,8 @@ class GpuBuffer {
 public:
     GpuBuffer() = default;
     /// byte_count is rounded up to 4; a zero-sized request allocates 4 bytes so bindings stay valid.
+    /// Throws std::runtime_error when a storage buffer would exceed the device's maxStorageBufferRange
+    /// (128 MiB on lavapipe) or memory runs out. Transfer src/dst usage is always added.
     GpuBuffer(VulkanContext& context, size_t byte_count,
               VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     ~GpuBuffer();
@@ -27,6 +29,8 @@ public:
     GpuBuffer(const GpuBuffer&) = delete;
     GpuBuffer& operator=(const GpuBuffer&) = delete;
 
+    /// Plain memcpy into/out of the persistently mapped memory; no GPU work may be using the bytes meanwhile.
+    /// Throws std::out_of_range when [offset, offset + byte_count) is not inside the buffer.
     void upload(const void* bytes, size_t byte_count, size_t offset = 0);
     void download(void* bytes, size_t byte_count, size_t offset = 0) const;
     template <typename T> void uploadVector(const std::vector<T>& values) {
@@ -60,18 +64,23 @@ public:
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
 
-    /// Points the descriptor set at these buffers (size must equal storage_buffer_count).
+    /// Points the descriptor set at these buffers (size must equal storage_buffer_count). There is one set per
+    /// pipeline: rebinding while a recorded command buffer that uses it is still to be submitted changes what
+    /// that command buffer reads, so record one dispatch per binding (dispatchAndWait) or use several pipelines.
     void bindBuffers(const std::vector<const GpuBuffer*>& buffers);
 
-    /// Records bind + push constants + dispatch into cmd.
+    /// Records bind + push constants + dispatch into cmd (no barrier: add recordComputeBarrier between dependent
+    /// dispatches). push_constants must point at push_constant_bytes bytes when that is non-zero.
     void recordDispatch(VkCommandBuffer cmd, const void* push_constants, uint32_t groups_x, uint32_t groups_y = 1,
                         uint32_t groups_z = 1) const;
 
-    /// Records, submits and waits: one synchronous dispatch.
+    /// Records, submits and waits: one synchronous dispatch, followed by a barrier that makes its writes
+    /// visible to the host.
     void dispatchAndWait(const void* push_constants, uint32_t groups_x, uint32_t groups_y = 1,
                          uint32_t groups_z = 1);
 
 private:
+    void destroy() noexcept;
     VulkanContext& context_;
     uint32_t storage_buffer_count_;
     uint32_t push_constant_bytes_;
@@ -83,7 +92,8 @@ private:
     VkDescriptorSet descriptor_set_ = VK_NULL_HANDLE;
 };
 
-/// Inserts a compute-to-compute (and compute-to-host) memory barrier.
+/// Inserts a compute-to-compute (and compute-to-host) memory barrier: shader writes before it are visible to
+/// shader reads and writes after it and to host reads after the submission's fence.
 void recordComputeBarrier(VkCommandBuffer cmd);
 
 }  // namespace gusuku

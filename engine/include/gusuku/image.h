@@ -46,11 +46,23 @@ void writeExr(const std::string& path, const ImageRGBA& image, bool with_alpha =
 /// Writes an 8-bit sRGB-encoded PNG (linear values are encoded, clamped to [0, 1]), atomically.
 void writePngSrgb(const std::string& path, const ImageRGBA& image, bool with_alpha = true);
 
+/// Encodes linear RGBA as an 8-bit sRGB PNG in memory (as writePngSrgb does to a file), e.g. to embed in a .glb.
+std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha = true);
+
 /// Writes a Radiance .hdr (RGBE), atomically. Values are linear.
 void writeHdr(const std::string& path, const ImageRGBA& image);
 
 /// sRGB transfer function (IEC 61966-2-1) and its inverse, per channel.
 float srgbEncode(float linear);
 float srgbDecode(float encoded);
+
+/// Whole-image sRGB transfer through OpenColorIO (the one place colour conversions go, DESIGN.md 2): RGB
+/// decoded to linear / encoded from linear in place, alpha untouched. Encoding expects values in [0, 1].
+void srgbDecodeImage(ImageRGBA& image);
+void srgbEncodeImage(ImageRGBA& image);
+
+/// Box-downsamples by the smallest integer factor that brings both sides to at most max_size (averaging
+/// linear values, so no energy is lost). Returns the image unchanged when it already fits or max_size <= 0.
+ImageRGBA boxDownsample(const ImageRGBA& image, int max_size);
 
 }  // namespace gusuku

@@ -1,0 +1,35 @@
+#pragma once
+// Everything geometric a bake needs, loaded once: the building (with lightmap UVs, its own or generated), its
+// lightmap texels, the site mesh (or a flat stand-in), the combined trace scene and the ground grid.
+
+#include <string>
+#include <vector>
+
+#include "gusuku/mesh.h"
+#include "gusuku/site.h"
+#include "gusuku_bake/bvh.h"
+#include "gusuku_bake/ground_grid.h"
+#include "gusuku_bake/lightmap_uv.h"
+#include "gusuku_bake/trace_scene.h"
+
+namespace gusuku::bake {
+
+struct BakeGeometry {
+    TriangleMesh building;                 ///< ENU, with uv1
+    std::string lightmap_uv_source;        ///< "TEXCOORD_1 from the glTF" or "generated charts (...)"
+    int lightmap_resolution = 0;
+    double effective_texels_per_metre = 0.0;
+    std::vector<LightmapTexel> texels;     ///< the building's lightmap texels
+    bool site_mesh_is_stand_in = false;    ///< no sfm_mesh in site.json: a flat ground plane was used
+    TraceScene scene;                      ///< building + site
+    Bvh cpu_bvh;                           ///< over scene.mesh, for the ground grid and visibility on the CPU
+    GroundRegion ground_region;
+    std::vector<GroundCell> ground_cells;
+    std::vector<std::string> warnings;
+};
+
+/// Loads and prepares. lowest_sun_elevation_deg sizes the ground grid (negative: overcast only).
+/// Bad input throws InputError naming the file and field.
+BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size);
+
+}  // namespace gusuku::bake

@@ -1,0 +1,48 @@
+#pragma once
+// A whole bake: site.json in, bake set out (manifest.json, the building with its lightmap UVs, per-slot
+// lightmaps and ground terms as EXR). Progress on stderr; interruptible and resumable through checkpoints;
+// every output written to a temporary name and renamed. The bake set format is documented in docs/bakeset.md.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gusuku/site.h"
+#include "gusuku/vulkan_context.h"
+
+namespace gusuku::bake {
+
+/// Version of the bake set layout written into manifest.json ("format").
+inline constexpr const char* kBakeSetFormat = "gusuku-bakeset/1";
+
+struct BakeOptions {
+    std::string output_dir;
+    bool force = false;             ///< bake even when the manifest says the bake set is up to date
+    int samples_override = 0;       ///< > 0: use instead of bake.samples_per_texel
+    bool denoise = true;            ///< edge-keeping filter on the building lightmap
+    bool show_progress = true;
+    int max_texture_size = 512;     ///< albedo textures are downsampled to this for tracing
+    double target_chunk_seconds = 1.0;  ///< dispatch length the sample chunks adapt to
+    /// Polled between chunks; returning true checkpoints and stops (BakeReport::completed = false).
+    std::function<bool()> should_stop;
+};
+
+struct BakeReport {
+    bool completed = false;         ///< false: stopped by should_stop; rerun to resume
+    bool up_to_date = false;        ///< nothing to do: the manifest matches these inputs
+    std::string manifest_path;
+    uint32_t samples_per_point = 0;
+    size_t building_texels = 0;
+    size_t ground_cells = 0;
+    int lightmap_resolution = 0;
+    uint64_t rays_traced = 0;       ///< this run's rays (not those of resumed work)
+    double trace_seconds = 0.0;     ///< this run's time in the trace loop
+    double wall_seconds = 0.0;      ///< this run, all of it
+    double resumed_fraction = 0.0;  ///< share of the work taken from checkpoints
+    std::vector<std::string> warnings;
+};
+
+BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options);
+
+}  // namespace gusuku::bake

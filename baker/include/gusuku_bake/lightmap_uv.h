@@ -1,0 +1,116 @@
+#pragma once
+// Lightmap UVs (TEXCOORD_1) for the building's baked indirect irradiance: checking the ones a glTF brings,
+// making our own charts when it brings none (or bad ones), finding which surface point each lightmap texel
+// stands for, and dilating the baked texels so bilinear filtering at chart edges never reads black.
+//
+// Texel convention, shared by every function here: a lightmap of `resolution` x `resolution` texels covers
+// uv1 in [0,1]^2; texel (x, y) covers u in [x, x+1] / resolution and v in [y, y+1] / resolution, its sample
+// point is the centre ((x + 0.5) / resolution, (y + 0.5) / resolution), and it is stored at index
+// y * resolution + x. v = 0 is row 0, the top row of the image, as glTF's texture coordinates have it.
+//
+// Coverage rule (the one rasterizeLightmapTexels and checkLightmapUvs share): a triangle covers a texel when
+// the texel's centre lies inside it; a centre exactly on an edge belongs to exactly one of the two triangles
+// sharing that edge (the edge is evaluated once, in a canonical vertex order, so the two sides agree bit for
+// bit). A triangle that covers no centre at all (thin or tiny in UV) still claims the texel under its UV
+// centroid, so every triangle gets lit; such a claim yields to any centre claim.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "gusuku/mesh.h"
+
+namespace gusuku::bake {
+
+/// Side of a square lightmap holding the mesh's world surface at `texels_per_metre`:
+/// ceil(sqrt(area_m2 * texels_per_metre^2 * kLightmapPackingOverhead)), rounded UP to a multiple of 4 and
+/// clamped to [4, max_resolution] (rounded DOWN to a multiple of 4 when the cap is hit). The overhead allows
+/// for chart rectangles, shelf packing and padding; when the charts still do not fit, generateLightmapCharts
+/// lowers the density and says so. O(triangles). Throws InputError when texels_per_metre is not finite and
+/// positive or max_resolution < 4.
+inline constexpr double kLightmapPackingOverhead = 2.0;
+int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, int max_resolution = 2048);
+
+/// What checkLightmapUvs found. Counts are of triangles unless named texels.
+struct UvCheckReport {
+    int resolution = 0;
+    size_t triangle_count = 0;
+    size_t outside_unit_square = 0;  ///< triangles with a uv1 outside [0,1] (or not finite)
+    size_t degenerate = 0;           ///< triangles whose uv1 area is below 1e-6 texel^2 (they claim one texel)
+    size_t chart_count = 0;          ///< groups of triangles connected through shared uv1 edges
+    size_t overlapping_texels = 0;   ///< texel centres claimed by two charts, or twice within one chart (a fold)
+    size_t overlapping_triangles = 0;  ///< triangles that take part in such a claim
+    /// Texels whose area two different charts both touch (by more than 1e-3 of a texel) without either
+    /// necessarily owning its centre: bilinear filtering there mixes two charts. A warning, not a failure.
+    size_t shared_edge_texels = 0;
+    bool ok = false;      ///< has uv1, nothing outside [0,1], no overlapping texels
+    std::string message;  ///< one line for an error or warning: the verdict and the non-zero counts
+};
+
+/// Checks mesh.uv1 for use as a lightmap at `resolution` (coverage rule above). Charts are found by
+/// connecting triangles that share an edge in uv1 (both end points equal in uv1 to 2^-24), so triangles
+/// sharing an edge within one chart are never flagged; only centre claims count as overlap, so charts that
+/// merely come closer than a texel are reported in shared_edge_texels instead. Degenerate triangles are
+/// counted but take no part in the overlap count. A mesh without uv1 (or with a uv1 count that does not
+/// match its vertices) is reported not ok. O(triangles + texels covered); allocates resolution^2 ints.
+/// Throws InputError when resolution < 1 or > 16384.
+UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution);
+
+/// The result of generateLightmapCharts.
+struct LightmapCharts {
+    /// The input mesh with has_uv1 = true. Triangle i is input triangle i (same material, same winding);
+    /// vertices are duplicated where a chart seam crosses them; positions, normals and uv0 are copied unchanged.
+    TriangleMesh mesh;
+    double texels_per_metre = 0.0;  ///< density actually used: the requested one, or lower if it did not fit
+    size_t chart_count = 0;
+    std::vector<uint32_t> triangle_chart;  ///< chart index of every triangle
+};
+
+/// Makes lightmap charts for `mesh` at `texels_per_metre` in a `resolution`^2 lightmap.
+/// - Positions are welded within 1e-6 of the bounding-box diagonal (glTF splits vertices at normal and uv0
+///   seams), and triangles are joined across an edge shared by exactly two triangles with opposite winding
+///   (so duplicated and back-to-back faces never share a chart) while the normal stays within 40 degrees of
+///   the chart's seed normal (seeds: largest triangles first). A triangle whose projection would overlap the
+///   chart's existing triangles is left for a later chart, so no chart folds over itself.
+/// - Each chart is projected onto the plane of its seed normal, rotated in that plane to the smallest bounding
+///   rectangle (5 degree steps), and scaled to texels.
+/// - Rectangles are shelf-packed, tallest first, each with `padding_texels` empty texels on every side of the
+///   texels its triangles touch, so two charts' touched texels are at least 2 * padding_texels apart. If they
+///   do not fit, the density is lowered uniformly until they do (texels_per_metre reports it).
+/// About linear in triangles (hash maps for welding, adjacency and overlap tests); 50k triangles take well
+/// under a second or two. Throws InputError for a mesh without triangles, a bad density or resolution, or
+/// when even a one-texel footprint per chart cannot fit.
+LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
+                                      int padding_texels = 2);
+
+/// One lightmap texel that stands for a point on the building.
+struct LightmapTexel {
+    int x = 0;
+    int y = 0;
+    uint32_t triangle = 0;         ///< index of the triangle that owns the texel
+    glm::vec3 position{0.0f};      ///< ENU metres: the texel centre mapped through the triangle (clamped into it)
+    glm::vec3 shading_normal{0.0f};    ///< interpolated vertex normal, normalised (geometric if that is zero)
+    glm::vec3 geometric_normal{0.0f};  ///< unit normal of the triangle from its counter-clockwise winding
+};
+
+/// Every texel the mesh's uv1 covers (coverage rule above), one triangle per texel, sorted by y then x.
+/// When two triangles claim one centre (overlapping UVs, or a centre on a shared vertex), the one whose
+/// clipped area inside the texel is larger wins; fallback (centroid) claims yield to centre claims. A texel
+/// taken by a fallback claim maps to the point of the triangle nearest its centre in uv1, so positions always
+/// lie on the triangle. Triangles with zero world area are skipped. uv1 outside [0,1] is clipped away.
+/// Throws InputError when the mesh has no uv1 or resolution is out of [1, 16384].
+std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh_with_uv1, int resolution);
+
+/// Fills empty texels from their neighbours, `iterations` rings deep, so bilinear filtering at chart edges
+/// reads the chart's own values instead of black. A texel is valid when its alpha > 0. Each iteration, every
+/// invalid texel with at least one valid 8-neighbour (valid at the start of that iteration) gets the plain
+/// average of those neighbours' RGBA (so it becomes valid, with alpha the neighbours' mean alpha). Valid texels
+/// never change. Stops early when nothing changes. O(iterations * resolution^2). Throws InputError when the
+/// vector does not hold resolution^2 texels.
+void dilateLightmap(std::vector<glm::vec4>& rgba_texels, int resolution, int iterations);
+
+}  // namespace gusuku::bake

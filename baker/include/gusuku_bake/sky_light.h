@@ -1,0 +1,190 @@
+#pragma once
+// Sky light for the bake (DESIGN.md 3): the baked E_ind sees the 360 sky photo WITH ITS SUN DISC REMOVED, and the
+// direct sun is added in real time with an irradiance E_sun measured from the removed disc (HDR maps) or taken
+// from a clear-sky model of the sun's elevation (clipped or sunless maps). This header holds the three CPU parts:
+//   - sun disc extraction            (sun_disc.cpp)
+//   - clear-sky direct sun model     (clear_sky_sun.cpp)
+//   - sky importance-sampling tables (sky_importance.cpp), and their CPU twins of shaders/include/sky_sampling.glsl
+// and a GPU probe of that GLSL for tests (sky_probe.cpp).
+//
+// Conventions: equirect maps as in gusuku/equirect.h (row 0 zenith, azimuth = 360 u - north_azimuth_in_image_deg),
+// directions are unit vectors in the site's east-north-up frame, radiance in the map's linear Rec.709 units,
+// irradiance = radiance units * sr. Luminance is Rec.709 Y = 0.2126 R + 0.7152 G + 0.0722 B.
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "gusuku/image.h"
+
+namespace gusuku {
+class VulkanContext;
+}
+
+namespace gusuku::bake {
+
+// ------------------------------------------------------------------------------------------------------------
+// Sun disc extraction (sun_disc.cpp)
+// ------------------------------------------------------------------------------------------------------------
+
+/// Solid angle of the mean solar disc (angular radius 0.2675 deg): 2 pi (1 - cos r), about 6.8e-5 sr.
+inline constexpr double kSunDiscAngularRadiusDeg = 0.2675;
+double sunDiscSolidAngleSr();
+
+/// What extractSunDisc found and removed.
+struct SunDiscEstimate {
+    bool found = false;  ///< false: no sun in the map (overcast, sun behind cloud); the map is unchanged
+    /// Unit ENU direction of the luminance-weighted centroid of (L - L_fill) over the removed texels.
+    glm::dvec3 direction_enu{0.0, 0.0, 1.0};
+    /// Irradiance of the removed light on a plane facing direction_enu: sum over removed texels of
+    /// (L - L_fill) * texel solid angle * cos(angle to direction_enu), per channel, clamped to >= 0.
+    /// Meaningful as E_sun only when clipped is false.
+    glm::dvec3 irradiance_rgb{0.0};
+    /// True when the map cannot hold the sun's true radiance, so irradiance_rgb underestimates E_sun and the
+    /// clear-sky model must be used instead. Either rule makes it true:
+    ///  (a) flat top: the texels connected to the peak whose luminance is within 1e-6 (relative) of the peak
+    ///      number 3 or more AND cover more solid angle than the whole sun disc (sunDiscSolidAngleSr()); an
+    ///      unclipped disc can only be flat over at most its own solid angle (a real one is limb-darkened), and
+    ///      two equal texels are what a disc centred on a texel edge gives. (A disc centred exactly on a texel
+    ///      corner at the horizon of a low-resolution map can still light 4 texels equally: a false positive
+    ///      that only costs using the clear-sky model.)
+    ///  (b) too faint: the removed luminance irradiance is below 1% of pi * ring median luminance; a real clear
+    ///      sun's direct normal irradiance is of the order of (or above) the circumsolar sky's pi * L, so a disc
+    ///      100x fainter than that is a capped one.
+    bool clipped = false;
+    int texel_count = 0;                  ///< texels replaced in the map
+    double angular_radius_deg = 0.0;      ///< largest angle from direction_enu to a replaced texel centre
+    double peak_luminance = 0.0;          ///< brightest texel's luminance (before removal)
+    double ring_median_luminance = 0.0;   ///< median luminance of the ring around the bright core
+    glm::dvec3 fill_radiance_rgb{0.0};    ///< the value written into the replaced texels (the ring's mean)
+};
+
+/// Finds the sun in an equirect sky map and removes it, in place.
+/// Rule: take the brightest texel (luminance); its bright core is the connected set (8-neighbours, columns
+/// wrap) with luminance >= half the peak; if that core reaches beyond 10 deg it is not a disc (bright cloud,
+/// clipped overcast) -> not found. A ring of angular radii [r_core + g, r_core + g + w], g = w = max(2 deg,
+/// 3 texels), gives the background: its median luminance m and mean RGB (the fill). The sun is found when
+/// peak > 50 m (an HDR sun), or when the top is flat (rule (a) of `clipped`) and peak > 1.25 m (a clipped sun
+/// in an LDR-range map). The removed region is the connected set from the peak with luminance > m + min(m,
+/// (peak - m) / 2), kept inside the ring's inner radius, dilated by 2 texels; each of its texels becomes the
+/// fill. A sunless map (no texel standing out like that) -> found = false and the map is untouched.
+/// Callers should still compare direction_enu with the sun position from the date (a clipped white cloud can
+/// pass the flat-top rule). Throws InputError when the map is empty or its texel vector has the wrong size.
+/// Cost: O(texels) for the peak search, plus O(texels in the band of rows around the sun).
+SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_image_deg);
+
+// ------------------------------------------------------------------------------------------------------------
+// Clear-sky direct sun (clear_sky_sun.cpp)
+// ------------------------------------------------------------------------------------------------------------
+
+/// Relative optical air mass, Kasten and Young (1989): m = 1 / (sin h + 0.50572 (h + 6.07995)^-1.6364), h the
+/// (refraction-corrected, i.e. apparent) sun elevation in degrees. m(90) = 0.9997 (about 1), m(30) = 1.9943.
+/// Elevation below 0 -> +infinity (no direct beam). Throws std::invalid_argument on NaN.
+double kastenYoungAirMass(double elevation_deg);
+
+/// Direct normal irradiance of a clear sky, W m^-2, per Rec.709 channel, at sea level.
+/// Broadband: ESRA beam model (Rigollier, Bauer and Wald 2000): B_n = I0 exp(-0.8662 T_L m dR(m)) with
+/// I0 = 1367 W m^-2, m Kasten-Young, dR the Rayleigh optical thickness of Kasten (1996) as fitted in ESRA:
+/// 1/dR = 6.6296 + 1.7513 m - 0.1202 m^2 + 0.0065 m^3 - 0.00013 m^4 (m <= 20), 10.4 + 0.718 m (m > 20).
+/// Colour: each channel's optical depth is tau_c = k_c tau with k_c = (lambda_c / 550 nm)^-2 (lambda 610, 550,
+/// 465 nm; exponent 2 between aerosol's ~1.3 and Rayleigh's 4), normalised so that the sun at the zenith is
+/// neutral: E_c = B_n(m) exp(-(k_c - 1)(tau(m) - tau(1))). So G is the broadband value, R rises and B falls
+/// as the sun gets lower (about +25% / -20% at 5 deg elevation with T_L = 3). Elevation <= 0 -> (0, 0, 0).
+/// Throws std::invalid_argument when elevation is NaN or linke_turbidity is not finite and > 0.
+glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity = 3.0);
+
+/// Luminance (Rec.709 Y) of the model at to_elevation_deg divided by that at from_elevation_deg: carries an
+/// E_sun measured at the photo's sun elevation to a slot's sun elevation. 0 when either elevation is <= 0
+/// (no direct beam to carry from or to).
+double sunElevationScale(double from_elevation_deg, double to_elevation_deg, double linke_turbidity = 3.0);
+
+/// The same per channel (carries the colour shift too); 0 per channel when either elevation is <= 0.
+glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_deg, double linke_turbidity = 3.0);
+
+// ------------------------------------------------------------------------------------------------------------
+// Sky importance sampling (sky_importance.cpp); GPU twin: shaders/include/sky_sampling.glsl
+// ------------------------------------------------------------------------------------------------------------
+
+/// Floats before the CDFs in SkySamplingTables::table.
+inline constexpr size_t kSkyTableHeaderFloats = 4;
+
+/// Everything the GPU needs to evaluate and importance-sample the sky; upload radiance_rgba and table as two
+/// storage buffers (std430, bindings SKY_RADIANCE_BINDING and SKY_TABLE_BINDING of set 0).
+///
+/// radiance_rgba: width * height * 4 floats, the sky map (sun removed), row 0 the zenith; a non-finite or
+///   negative channel is stored as 0.
+/// table (all float32):
+///   [0] width  [1] height  [2] north_azimuth_in_image_deg
+///   [3] integral = sum over texels of luminance * texel solid angle (the sky's luminance integrated over the
+///       sphere; 0 for a black map)
+///   [4 .. 4 + height]                    marginal CDF over rows, height + 1 entries, first 0, last exactly 1
+///   [4 + (height + 1) + y (width + 1) + x], x = 0..width: row y's conditional CDF over columns, first 0,
+///                                        last exactly 1
+/// The sampled density over the unit square (u, v) is piecewise constant: f(x, y) = luminance(x, y) sin(theta_y)
+/// (theta_y the polar angle of row y's centre), normalised. Its value is read back from the CDFs alone:
+///   p(u, v) = (M[y+1] - M[y]) * height * (C_y[x+1] - C_y[x]) * width
+/// and over solid angle: pdf = p(u, v) / (2 pi^2 sin theta), sin theta of the direction itself (so pdf
+/// integrates to 1 over the sphere exactly when summed as pdf(texel centre) * texel solid angle).
+/// Guards: a row whose luminance sums to 0 gets a uniform conditional CDF (never chosen by the marginal); a map
+/// whose luminance is 0 everywhere (or non-finite / negative texels, which count as 0) falls back to f = sin
+/// theta, i.e. uniform over the sphere. Nothing is ever NaN.
+struct SkySamplingTables {
+    int width = 0;
+    int height = 0;
+    float north_azimuth_in_image_deg = 0.0f;
+    std::vector<float> radiance_rgba;
+    std::vector<float> table;
+};
+
+/// Builds the tables from a sky map with the sun already removed (extractSunDisc). Throws InputError when the
+/// map is empty, its texel vector has the wrong size, or it has more than 2^24 texels per side (the table
+/// stores sizes as float). Cost: O(texels), double-precision sums.
+SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg);
+
+/// A direction drawn from the sky's tables with its density.
+struct SkySample {
+    glm::dvec3 direction_enu{0.0, 0.0, 1.0};
+    double pdf_solid_angle = 0.0;  ///< per steradian
+};
+
+/// CPU twin of sampleSkyDirection(): xi in [0, 1)^2; xi.x picks the row (marginal), xi.y the column in it,
+/// each by binary search for the last CDF entry <= xi (compared in float, exactly as on the GPU), then the
+/// remainder places the point continuously inside the texel. direction = equirectDirection(u, v, north).
+/// pdf as documented on SkySamplingTables with sin theta = sin(pi v) (v measured from the nearer pole's side
+/// of the row, for precision), floored at 1e-7.
+SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2);
+
+/// CPU twin of skyPdf(): density per steradian of sampleSkyCpu at a direction (need not be unit; a zero
+/// vector reads as the zenith). The texel is the one containing the direction (nearest-texel lookup, as
+/// skyRadianceCpu); sin theta = |xy| / |direction|, floored at 1e-7.
+double skyPdfCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu);
+
+/// CPU twin of skyRadiance(): the texel containing the direction, no filtering. u from the azimuth as in
+/// equirect.h (azimuth 0 where x = y = 0), v = theta / pi with theta = atan2(|xy|, z); x = min(int(u w), w-1),
+/// y = min(int(v h), h-1).
+glm::dvec3 skyRadianceCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu);
+
+// ------------------------------------------------------------------------------------------------------------
+// GPU probe of sky_sampling.glsl (sky_probe.cpp, shaders/sky_probe.comp), for tests and diagnostics
+// ------------------------------------------------------------------------------------------------------------
+
+/// One probe's results, all computed by the GLSL include on the device.
+struct SkyProbeResult {
+    glm::vec3 sampled_direction_enu{0.0f};  ///< sampleSkyDirection(xi)
+    float sampled_pdf = 0.0f;               ///< its pdf_solid_angle out-parameter
+    glm::vec3 radiance_at_direction{0.0f};  ///< skyRadiance(direction)
+    float pdf_at_direction = 0.0f;          ///< skyPdf(direction)
+    glm::vec3 radiance_at_sample{0.0f};     ///< skyRadiance(sampled direction)
+    float pdf_at_sample = 0.0f;             ///< skyPdf(sampled direction)
+};
+
+/// Runs shaders/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).
+/// One synchronous dispatch; throws std::runtime_error on Vulkan failure.
+std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamplingTables& tables,
+                                           const std::vector<glm::vec2>& xi,
+                                           const std::vector<glm::vec3>& directions_enu);
+
+}  // namespace gusuku::bake

@@ -1,0 +1,46 @@
+#pragma once
+// What lights each bake slot: the sky map (sun disc removed) and the sun, placed by NREL SPA from the slot's
+// time and the site's position, with an irradiance E_sun measured from the map's disc where the map holds it
+// unclipped, else from the clear-sky model (DESIGN.md 3). The source is recorded in the manifest.
+
+#include <string>
+#include <vector>
+
+#include "gusuku/site.h"
+#include "gusuku/sun.h"
+#include "gusuku_bake/irradiance_tracer.h"
+#include "gusuku_bake/sky_light.h"
+
+namespace gusuku::bake {
+
+/// A sky map ready to trace: loaded, checked (no NaN or negative texels), its sun disc removed.
+struct PreparedSky {
+    std::string path;
+    SunDiscEstimate disc;
+    SkySamplingTables tables;
+    /// Diffuse horizontal irradiance of the map without its sun (luminance, upper hemisphere).
+    double diffuse_horizontal_luminance = 0.0;
+};
+
+/// Reads the map (readRadianceMap: bad texels are an InputError naming the file), removes the disc.
+PreparedSky prepareSky(const SkyConfig& sky);
+
+/// E_sun on a plane facing the sun (direct normal irradiance, the map's units) when the map's disc is clipped
+/// or missing: the clear-sky model's colour and elevation dependence, scaled so that at 60 degrees elevation
+/// the direct normal irradiance is kClearSkyDirectToDiffuseRatio times the map's diffuse horizontal
+/// irradiance (a typical clear day; it calibrates the model to the photo's unknown exposure).
+inline constexpr double kClearSkyDirectToDiffuseRatio = 6.0;
+
+struct SlotLighting {
+    BakeSlot slot;
+    SunPosition sun_position;        ///< SPA at the slot's instant (meaningless for overcast)
+    SunLight sun;                    ///< present only for a sunny slot with the sun above the horizon
+    std::string sun_irradiance_source;  ///< "sky map sun disc", "clear-sky model", "none: overcast", ...
+    const PreparedSky* sky = nullptr;
+    std::vector<std::string> warnings;
+};
+
+SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const PreparedSky& sunny,
+                       const PreparedSky* overcast);
+
+}  // namespace gusuku::bake

@@ -1,0 +1,75 @@
+#include "gusuku_bake/bake_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gusuku/gltf_loader.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+// Lightmap UVs: the glTF's own when they pass the check at the chosen resolution, else our charts.
+void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, double texels_per_metre) {
+    const int resolution = chooseLightmapResolution(loaded, texels_per_metre);
+    geometry.lightmap_resolution = resolution;
+    if (loaded.has_uv1) {
+        const UvCheckReport report = checkLightmapUvs(loaded, resolution);
+        if (report.ok) {
+            geometry.building = loaded;
+            geometry.lightmap_uv_source = "TEXCOORD_1 from the glTF";
+            geometry.effective_texels_per_metre = texels_per_metre;
+            return;
+        }
+        geometry.warnings.push_back("building TEXCOORD_1 not usable as a lightmap (" + report.message +
+                                    "); generating charts instead");
+    }
+    LightmapCharts charts = generateLightmapCharts(loaded, texels_per_metre, resolution);
+    geometry.building = std::move(charts.mesh);
+    geometry.effective_texels_per_metre = charts.texels_per_metre;
+    geometry.lightmap_uv_source = "generated charts (" + std::to_string(charts.chart_count) + " charts)";
+    if (charts.texels_per_metre < texels_per_metre * 0.999)
+        geometry.warnings.push_back("lightmap density lowered from " + std::to_string(texels_per_metre) + " to " +
+                                    std::to_string(charts.texels_per_metre) + " texels/m to fit " +
+                                    std::to_string(resolution) + "^2");
+}
+
+}  // namespace
+
+BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size) {
+    BakeGeometry geometry;
+    GltfLoadOptions building_options;
+    building_options.enu_from_model = site.building.enuFromModel(site.site.reference);
+    building_options.max_texture_size = max_texture_size;
+    const TriangleMesh building = loadGltf(site.building.path, building_options, &geometry.warnings);
+    chooseLightmapUvs(geometry, building, site.bake.texels_per_metre);
+    geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
+
+    const Bounds3 building_bounds = meshBounds(geometry.building);
+    TriangleMesh site_mesh;
+    if (site.sfm_mesh) {
+        GltfLoadOptions site_options;
+        site_options.enu_from_model = site.sfm_mesh->enuFromModel();
+        site_options.max_texture_size = max_texture_size;
+        site_mesh = loadGltf(site.sfm_mesh->path, site_options, &geometry.warnings);
+    } else {
+        const glm::vec3 extent = building_bounds.max - building_bounds.min;
+        const double half_size = 4.0 * std::max({double(extent.x), double(extent.y), double(extent.z), 10.0});
+        site_mesh = makeFlatGround(half_size);
+        geometry.site_mesh_is_stand_in = true;
+        geometry.warnings.push_back("site.json has no sfm_mesh: the ground is a flat grey plane at z = 0");
+    }
+    geometry.scene = makeTraceScene(geometry.building, &site_mesh);
+    geometry.cpu_bvh = buildBvh(geometry.scene.mesh, geometry.scene.triangle_flags);
+    if (geometry.cpu_bvh.dropped_triangle_count > 0)
+        geometry.warnings.push_back(std::to_string(geometry.cpu_bvh.dropped_triangle_count) +
+                                    " degenerate or non-finite triangles were left out of the trace");
+
+    geometry.ground_region = chooseGroundRegion(building_bounds, lowest_sun_elevation_deg, site.bake.ground_cell_m);
+    const Bounds3 scene_bounds = meshBounds(geometry.scene.mesh);
+    geometry.ground_cells = sampleGround(geometry.ground_region, geometry.cpu_bvh, geometry.scene.mesh,
+                                         kTriangleFlagBuilding, scene_bounds.max.z + 1.0f);
+    return geometry;
+}
+
+}  // namespace gusuku::bake

@@ -1,0 +1,52 @@
+#pragma once
+// Writes a bake set's files (layout in docs/bakeset.md): building.glb with its lightmap UVs, ground_geometry.exr,
+// per slot building_<slot>.exr, ground_<slot>_with.exr and ground_<slot>_without.exr, and manifest.json last,
+// so a bake set with a manifest is always complete. Every file is written atomically.
+
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+#include <nlohmann/json.hpp>
+
+#include "gusuku_bake/bake_geometry.h"
+#include "gusuku_bake/bake_job.h"
+#include "gusuku_bake/slot_lighting.h"
+
+namespace gusuku::bake {
+
+/// A texel is invalid (inside geometry, seen from behind a wall) when more than this share of its first rays
+/// hit back faces; invalid texels are filled by dilation from their valid neighbours.
+inline constexpr float kMaxBackfaceFraction = 0.1f;
+
+/// Averages, validity, denoise and dilation of the building lightmap. Returns resolution^2 RGBA texels (alpha
+/// 1 for valid, the dilation's neighbour mean for filled texels, 0 outside every chart), and per texel of
+/// geometry.texels the irradiance with alpha 1/0 for validity (for statistics).
+struct ProcessedLightmap {
+    std::vector<glm::vec4> image;
+    std::vector<glm::vec4> per_texel;
+    size_t invalid_texels = 0;
+};
+ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const std::vector<glm::vec4>& sums,
+                                          uint32_t samples, bool denoise);
+
+class BakeOutputWriter {
+public:
+    BakeOutputWriter(std::string output_dir, const BakeGeometry& geometry, uint32_t samples, bool denoise);
+
+    void writeGeometry();
+    void writeSlot(const SlotLighting& lighting, const std::vector<glm::vec4>& building_sums,
+                   const std::vector<glm::vec4>& ground_with_sums, const std::vector<glm::vec4>& ground_without_sums);
+    void writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report);
+
+private:
+    void writeGroundImage(const std::string& file, const std::vector<glm::vec4>& sums);
+
+    std::string output_dir_;
+    const BakeGeometry& geometry_;
+    uint32_t samples_;
+    bool denoise_;
+    nlohmann::json slot_entries_ = nlohmann::json::array();
+};
+
+}  // namespace gusuku::bake

@@ -1,0 +1,82 @@
+// Clear-sky direct sun: what E_sun is when the sky photo cannot say (clipped or sunless maps), and how a
+// measured E_sun changes between the photo's sun elevation and a slot's (DESIGN.md 3). The model is the
+// ESRA beam model (Rigollier, Bauer and Wald 2000, Solar Energy 68(1)), with Kasten and Young's (1989) air mass;
+// the per-channel reddening is ours and is documented in gusuku_bake/sky_light.h.
+
+#include <cmath>
+#include <stdexcept>
+
+#include "gusuku_bake/sky_light.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+constexpr double kSolarConstantWm2 = 1367.0;  // ESRA's I0 (no Sun-Earth distance correction: bake-date agnostic)
+// Effective wavelengths of the Rec.709 primaries' channels, nm, and the spectral exponent of the optical depth.
+constexpr double kChannelWavelengthNm[3] = {610.0, 550.0, 465.0};
+constexpr double kReferenceWavelengthNm = 550.0;
+constexpr double kOpticalDepthSpectralExponent = 2.0;
+
+/// Rayleigh optical thickness at air mass m, Kasten (1996) as fitted in ESRA.
+double rayleighOpticalThickness(double air_mass) {
+    const double m = air_mass;
+    if (m <= 20.0)
+        return 1.0 / (6.6296 + m * (1.7513 + m * (-0.1202 + m * (0.0065 - m * 0.00013))));
+    return 1.0 / (10.4 + 0.718 * m);
+}
+
+/// ESRA's broadband beam optical depth: 0.8662 T_L m dR(m).
+double beamOpticalDepth(double air_mass, double linke_turbidity) {
+    return 0.8662 * linke_turbidity * air_mass * rayleighOpticalThickness(air_mass);
+}
+
+void checkArguments(double elevation_deg, double linke_turbidity) {
+    if (std::isnan(elevation_deg)) throw std::invalid_argument("clear-sky sun: elevation_deg is NaN");
+    if (!std::isfinite(linke_turbidity) || !(linke_turbidity > 0.0))
+        throw std::invalid_argument("clear-sky sun: linke_turbidity must be finite and > 0");
+}
+
+double luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
+
+}  // namespace
+
+double kastenYoungAirMass(double elevation_deg) {
+    if (std::isnan(elevation_deg)) throw std::invalid_argument("kastenYoungAirMass: elevation_deg is NaN");
+    if (elevation_deg < 0.0) return INFINITY;
+    const double h = std::fmin(elevation_deg, 90.0);
+    constexpr double kPi = 3.14159265358979323846;
+    return 1.0 / (std::sin(h * kPi / 180.0) + 0.50572 * std::pow(h + 6.07995, -1.6364));
+}
+
+glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity) {
+    checkArguments(elevation_deg, linke_turbidity);
+    if (elevation_deg <= 0.0) return glm::dvec3(0.0);
+    const double air_mass = kastenYoungAirMass(elevation_deg);
+    const double optical_depth = beamOpticalDepth(air_mass, linke_turbidity);
+    const double zenith_optical_depth = beamOpticalDepth(kastenYoungAirMass(90.0), linke_turbidity);
+    const double broadband = kSolarConstantWm2 * std::exp(-optical_depth);
+    glm::dvec3 irradiance;
+    for (int c = 0; c < 3; ++c) {
+        const double k = std::pow(kChannelWavelengthNm[c] / kReferenceWavelengthNm, -kOpticalDepthSpectralExponent);
+        // Neutral at the zenith; each channel's extra (or missing) depth grows with the path beyond it.
+        irradiance[c] = broadband * std::exp(-(k - 1.0) * (optical_depth - zenith_optical_depth));
+    }
+    return irradiance;
+}
+
+double sunElevationScale(double from_elevation_deg, double to_elevation_deg, double linke_turbidity) {
+    const double from = luminance(clearSkySunIrradianceRgb(from_elevation_deg, linke_turbidity));
+    const double to = luminance(clearSkySunIrradianceRgb(to_elevation_deg, linke_turbidity));
+    return (from > 0.0 && to > 0.0) ? to / from : 0.0;
+}
+
+glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_deg, double linke_turbidity) {
+    const glm::dvec3 from = clearSkySunIrradianceRgb(from_elevation_deg, linke_turbidity);
+    const glm::dvec3 to = clearSkySunIrradianceRgb(to_elevation_deg, linke_turbidity);
+    glm::dvec3 scale(0.0);
+    for (int c = 0; c < 3; ++c) scale[c] = (from[c] > 0.0 && to[c] > 0.0) ? to[c] / from[c] : 0.0;
+    return scale;
+}
+
+}  // namespace gusuku::bake

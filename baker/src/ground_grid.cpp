@@ -1,0 +1,73 @@
+#include "gusuku_bake/ground_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace gusuku::bake {
+
+GroundRegion chooseGroundRegion(const Bounds3& building_bounds, double lowest_sun_elevation_deg, double cell_m,
+                                int max_cells_per_side) {
+    const double height = std::max(0.0, double(building_bounds.max.z - building_bounds.min.z));
+    double shadow_reach = 0.0;
+    if (lowest_sun_elevation_deg >= 0.0) {
+        const double elevation = std::max(lowest_sun_elevation_deg, 10.0) * 3.14159265358979323846 / 180.0;
+        shadow_reach = height / std::tan(elevation);
+    }
+    const double margin = shadow_reach + std::max(1.0, 0.5 * height);
+    GroundRegion region;
+    region.origin_enu_m = {double(building_bounds.min.x) - margin, double(building_bounds.min.y) - margin};
+    const double width = double(building_bounds.max.x - building_bounds.min.x) + 2.0 * margin;
+    const double depth = double(building_bounds.max.y - building_bounds.min.y) + 2.0 * margin;
+    region.cell_m = std::max(cell_m, std::max(width, depth) / double(max_cells_per_side));
+    region.columns = std::max(1, int(std::ceil(width / region.cell_m)));
+    region.rows = std::max(1, int(std::ceil(depth / region.cell_m)));
+    return region;
+}
+
+glm::dvec2 groundCellCentre(const GroundRegion& region, int column, int row) {
+    return {region.origin_enu_m.x + (column + 0.5) * region.cell_m,
+            region.origin_enu_m.y + (region.rows - row - 0.5) * region.cell_m};
+}
+
+std::vector<GroundCell> sampleGround(const GroundRegion& region, const Bvh& bvh, const TriangleMesh& mesh,
+                                     uint32_t skip_flags, float top_z) {
+    std::vector<GroundCell> cells(size_t(region.columns) * size_t(region.rows));
+    const glm::vec3 down(0.0f, 0.0f, -1.0f);
+    for (int row = 0; row < region.rows; ++row)
+        for (int column = 0; column < region.columns; ++column) {
+            const glm::dvec2 centre = groundCellCentre(region, column, row);
+            const glm::vec3 origin(float(centre.x), float(centre.y), top_z);
+            const auto hit = traceClosestCpu(bvh, origin, down, 1e30f, skip_flags);
+            GroundCell& cell = cells[size_t(row) * size_t(region.columns) + size_t(column)];
+            if (!hit) continue;
+            const uint32_t t = hit->triangle_index;
+            const glm::vec3 p0 = mesh.positions[mesh.indices[3 * t]];
+            const glm::vec3 p1 = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::vec3 p2 = mesh.positions[mesh.indices[3 * t + 2]];
+            glm::vec3 normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+            if (normal.z < 0.0f) normal = -normal;  // the ground faces the sky whichever way it was wound
+            cell.valid = std::isfinite(normal.x);
+            cell.height_m = top_z - hit->t;
+            cell.normal = cell.valid ? normal : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    return cells;
+}
+
+TriangleMesh makeFlatGround(double half_size_m, const glm::vec3& albedo) {
+    TriangleMesh ground;
+    const float h = float(half_size_m);
+    ground.positions = {{-h, -h, 0.0f}, {h, -h, 0.0f}, {h, h, 0.0f}, {-h, h, 0.0f}};
+    ground.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+    ground.uv0.assign(4, glm::vec2(0.0f));
+    ground.indices = {0, 1, 2, 0, 2, 3};
+    ground.triangle_material = {0, 0};
+    Material material;
+    material.name = "flat ground stand-in";
+    material.base_color_factor = glm::vec4(albedo, 1.0f);
+    ground.materials.push_back(material);
+    return ground;
+}
+
+}  // namespace gusuku::bake

@@ -1,0 +1,139 @@
+#include "gusuku_bake/irradiance_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "bake_irradiance_spv.h"
+#include "gusuku_bake/bvh.h"
+#include "gusuku_bake/content_hash.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+// Must match the push-constant block of shaders/bake_irradiance.comp.
+struct BakePushConstants {
+    uint32_t point_count;
+    uint32_t first_sample;
+    uint32_t sample_count;
+    uint32_t max_bounces;
+    uint32_t seed;
+    uint32_t skip_flags;
+    uint32_t mode;
+    uint32_t sun_present;
+    float sun_direction_cos_max[4];
+    float sun_irradiance_ray_offset[4];
+};
+static_assert(sizeof(BakePushConstants) == 64);
+
+constexpr uint32_t kWorkgroupSize = 64;  // local_size_x of bake_irradiance.comp
+constexpr uint32_t kBufferCount = 10;
+
+template <typename T> GpuBuffer uploadedBuffer(VulkanContext& context, const std::vector<T>& values) {
+    GpuBuffer buffer(context, std::max<size_t>(values.size() * sizeof(T), 16));
+    if (!values.empty()) buffer.uploadVector(values);
+    return buffer;
+}
+
+}  // namespace
+
+uint64_t tracerCodeHash() {
+    return ContentHash().addBytes(kBakeIrradianceSpirv, sizeof(kBakeIrradianceSpirv)).value();
+}
+
+IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& scene, const SkySamplingTables& sky,
+                                   int max_texture_size)
+    : context_(context) {
+    const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
+    triangle_count_ = scene.mesh.triangleCount();
+    dropped_triangle_count_ = bvh.dropped_triangle_count;
+    const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
+    bvh_nodes_ = uploadedBuffer(context, bvh.nodes);
+    bvh_triangles_ = uploadedBuffer(context, bvh.triangles);
+    shading_ = uploadedBuffer(context, shading.triangles);
+    materials_ = uploadedBuffer(context, shading.materials);
+    textures_ = uploadedBuffer(context, shading.texture_words);
+    ray_counter_ = GpuBuffer(context, 16);
+    setSky(sky);
+    pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceSpirv, sizeof(kBakeIrradianceSpirv),
+                                                  kBufferCount, uint32_t(sizeof(BakePushConstants)));
+}
+
+IrradianceTracer::~IrradianceTracer() = default;
+
+void IrradianceTracer::setSky(const SkySamplingTables& sky) {
+    sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba);
+    sky_table_ = uploadedBuffer(context_, sky.table);
+}
+
+PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPointGpu>& points) {
+    PointAccumulator accumulator;
+    accumulator.point_count = uint32_t(points.size());
+    accumulator.points = uploadedBuffer(context_, points);
+    accumulator.sums = GpuBuffer(context_, std::max<size_t>(points.size() * sizeof(glm::vec4), 16));
+    const std::vector<glm::vec4> zeros(points.size(), glm::vec4(0.0f));
+    if (!zeros.empty()) accumulator.sums.uploadVector(zeros);
+    return accumulator;
+}
+
+uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass) {
+    if (accumulator.point_count == 0 || sample_count == 0) return 0;
+    BakePushConstants push{};
+    push.point_count = accumulator.point_count;
+    push.first_sample = accumulator.samples_done;
+    push.sample_count = sample_count;
+    push.max_bounces = pass.max_bounces;
+    push.seed = pass.seed;
+    push.skip_flags = pass.skip_flags;
+    push.mode = uint32_t(pass.mode);
+    push.sun_present = pass.sun.present ? 1u : 0u;
+    const glm::dvec3 sun_direction = pass.sun.present ? glm::normalize(pass.sun.direction_enu)
+                                                      : glm::dvec3(0.0, 0.0, 1.0);
+    const double cos_max = std::cos(pass.sun.angular_radius_deg * 3.14159265358979323846 / 180.0);
+    push.sun_direction_cos_max[0] = float(sun_direction.x);
+    push.sun_direction_cos_max[1] = float(sun_direction.y);
+    push.sun_direction_cos_max[2] = float(sun_direction.z);
+    push.sun_direction_cos_max[3] = float(cos_max);
+    push.sun_irradiance_ray_offset[0] = float(pass.sun.irradiance_rgb.x);
+    push.sun_irradiance_ray_offset[1] = float(pass.sun.irradiance_rgb.y);
+    push.sun_irradiance_ray_offset[2] = float(pass.sun.irradiance_rgb.z);
+    push.sun_irradiance_ray_offset[3] = pass.ray_offset_m;
+
+    const uint32_t zero_counter[4] = {0, 0, 0, 0};
+    ray_counter_.upload(zero_counter, sizeof zero_counter);
+    pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
+                            &sky_table_, &accumulator.points, &accumulator.sums, &ray_counter_});
+    pipeline_->dispatchAndWait(&push, (accumulator.point_count + kWorkgroupSize - 1) / kWorkgroupSize);
+    accumulator.samples_done += sample_count;
+    uint32_t rays = 0;
+    ray_counter_.download(&rays, sizeof rays);
+    return rays;
+}
+
+std::vector<glm::vec4> IrradianceTracer::readSums(const PointAccumulator& accumulator) const {
+    return accumulator.sums.downloadVector<glm::vec4>(accumulator.point_count);
+}
+
+void IrradianceTracer::restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums,
+                                   uint32_t samples_done) {
+    if (sums.size() != accumulator.point_count)
+        throw std::invalid_argument("restoreSums: point count differs from the accumulator's");
+    if (!sums.empty()) accumulator.sums.uploadVector(sums);
+    accumulator.samples_done = samples_done;
+}
+
+std::vector<glm::vec3> IrradianceTracer::traceIrradiance(const std::vector<QueryPointGpu>& points,
+                                                         uint32_t samples, const TracePass& pass) {
+    PointAccumulator accumulator = createAccumulator(points);
+    // Chunks keep each dispatch short (a long one can trip a driver watchdog on real GPUs).
+    const uint32_t chunk = 16;
+    while (accumulator.samples_done < samples)
+        addSamples(accumulator, std::min(chunk, samples - accumulator.samples_done), pass);
+    const std::vector<glm::vec4> sums = readSums(accumulator);
+    std::vector<glm::vec3> irradiance(sums.size());
+    for (size_t i = 0; i < sums.size(); ++i) irradiance[i] = glm::vec3(sums[i]) / float(std::max(samples, 1u));
+    return irradiance;
+}
+
+}  // namespace gusuku::bake

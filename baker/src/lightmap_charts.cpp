@@ -1,0 +1,480 @@
+// generateLightmapCharts: cut the building's surface into nearly planar charts, flatten each onto a plane at
+// the requested texel density, and pack them into the lightmap (see lightmap_uv.h for the contract).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <numbers>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "gusuku/input_error.h"
+#include "gusuku_bake/lightmap_uv.h"
+#include "lightmap_pack.h"
+
+namespace gusuku::bake {
+namespace {
+
+constexpr double kMaxNormalDeviationDeg = 40.0;  // beyond this, projection stretches a texel by over 1/cos(40)
+constexpr double kWeldToleranceOfDiagonal = 1e-6;
+constexpr int kRotationSteps = 18;  // 5 degree steps over a quarter turn: a rectangle repeats after 90 degrees
+
+uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) * 73856093ull) ^ (uint64_t(y) * 19349663ull) ^ (uint64_t(z) * 83492791ull);
+}
+
+// Welded vertex id for every vertex: vertices within `tolerance` (per axis) of an earlier one share its id.
+std::vector<uint32_t> weldPositions(const std::vector<glm::vec3>& positions, double tolerance) {
+    std::unordered_map<uint64_t, std::vector<uint32_t>> representatives_by_cell;
+    representatives_by_cell.reserve(positions.size());
+    std::vector<uint32_t> welded(positions.size());
+    std::vector<glm::dvec3> representative_positions;
+    for (size_t vertex = 0; vertex < positions.size(); ++vertex) {
+        const glm::dvec3 position(positions[vertex]);
+        const glm::dvec3 cell = glm::floor(position / tolerance);
+        int64_t found = -1;
+        for (int dz = -1; dz <= 1 && found < 0; ++dz)
+            for (int dy = -1; dy <= 1 && found < 0; ++dy)
+                for (int dx = -1; dx <= 1 && found < 0; ++dx) {
+                    auto it = representatives_by_cell.find(
+                        cellKey(int64_t(cell.x) + dx, int64_t(cell.y) + dy, int64_t(cell.z) + dz));
+                    if (it == representatives_by_cell.end()) continue;
+                    for (uint32_t candidate : it->second) {
+                        const glm::dvec3 offset = glm::abs(representative_positions[candidate] - position);
+                        if (offset.x <= tolerance && offset.y <= tolerance && offset.z <= tolerance) {
+                            found = candidate;
+                            break;
+                        }
+                    }
+                }
+        if (found < 0) {
+            found = int64_t(representative_positions.size());
+            representative_positions.push_back(position);
+            representatives_by_cell[cellKey(int64_t(cell.x), int64_t(cell.y), int64_t(cell.z))].push_back(
+                uint32_t(found));
+        }
+        welded[vertex] = uint32_t(found);
+    }
+    return welded;
+}
+
+struct TriangleInfo {
+    uint32_t welded[3];
+    glm::dvec3 normal{0.0};  // unit; zero when degenerate
+    double area = 0.0;
+    bool degenerate = true;
+};
+
+// Which triangle lies across each edge, for edges a chart may cross: shared by exactly two triangles that run
+// it in opposite directions (a consistently wound, manifold surface). -1 elsewhere.
+std::vector<int64_t> findChartableNeighbours(const std::vector<TriangleInfo>& triangles) {
+    struct EdgeUse {
+        uint32_t count = 0;
+        int64_t first_slot = -1;  // triangle * 3 + edge
+        bool first_forward = false;
+        int64_t second_slot = -1;
+        bool second_forward = false;
+    };
+    std::unordered_map<uint64_t, EdgeUse> uses;
+    uses.reserve(triangles.size() * 2);
+    for (size_t triangle = 0; triangle < triangles.size(); ++triangle) {
+        for (int edge = 0; edge < 3; ++edge) {
+            const uint32_t a = triangles[triangle].welded[edge];
+            const uint32_t b = triangles[triangle].welded[(edge + 1) % 3];
+            if (a == b) continue;
+            const bool forward = a < b;
+            const uint64_t key = forward ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
+            EdgeUse& use = uses[key];
+            if (use.count == 0) {
+                use.first_slot = int64_t(triangle * 3 + edge);
+                use.first_forward = forward;
+            } else if (use.count == 1) {
+                use.second_slot = int64_t(triangle * 3 + edge);
+                use.second_forward = forward;
+            }
+            ++use.count;
+        }
+    }
+    std::vector<int64_t> neighbour(triangles.size() * 3, -1);
+    for (const auto& [key, use] : uses) {
+        if (use.count != 2 || use.first_forward == use.second_forward) continue;
+        neighbour[size_t(use.first_slot)] = use.second_slot / 3;
+        neighbour[size_t(use.second_slot)] = use.first_slot / 3;
+    }
+    return neighbour;
+}
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+struct FlatTriangle {
+    glm::dvec2 corner[3];
+    uint32_t welded[3];
+    glm::dvec2 min, max;
+};
+
+// True when two flattened triangles of one chart overlap by more than `tolerance` (metres): duplicated faces,
+// triangles folded over a shared edge, or separate parts of the surface that land on each other.
+bool flatTrianglesOverlap(const FlatTriangle& a, const FlatTriangle& b, double tolerance) {
+    if (a.max.x <= b.min.x + tolerance || b.max.x <= a.min.x + tolerance || a.max.y <= b.min.y + tolerance ||
+        b.max.y <= a.min.y + tolerance)
+        return false;
+    int shared = 0;
+    int a_shared[3] = {-1, -1, -1};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (a.welded[i] == b.welded[j]) {
+                a_shared[i] = j;
+                ++shared;
+            }
+    const double a_area = std::abs(cross2(a.corner[1] - a.corner[0], a.corner[2] - a.corner[0]));
+    const double b_area = std::abs(cross2(b.corner[1] - b.corner[0], b.corner[2] - b.corner[0]));
+    if (shared >= 3) return a_area > tolerance * tolerance && b_area > tolerance * tolerance;
+    if (shared == 2) {
+        // Across a shared edge they overlap exactly when their third corners lie on the same side of it.
+        int edge_start = -1, a_third = -1;
+        for (int i = 0; i < 3; ++i) {
+            if (a_shared[i] < 0) a_third = i;
+            else if (edge_start < 0) edge_start = i;
+        }
+        int edge_end = -1;
+        for (int i = 0; i < 3; ++i)
+            if (a_shared[i] >= 0 && i != edge_start) edge_end = i;
+        int b_third = 3 - a_shared[edge_start] - a_shared[edge_end];
+        const glm::dvec2 p = a.corner[edge_start], q = a.corner[edge_end];
+        const double edge_length = glm::length(q - p);
+        const double a_side = cross2(q - p, a.corner[a_third] - p) / std::max(edge_length, 1e-300);
+        const double b_side = cross2(q - p, b.corner[b_third] - p) / std::max(edge_length, 1e-300);
+        return (a_side > tolerance && b_side > tolerance) || (a_side < -tolerance && b_side < -tolerance);
+    }
+    // Separating axes: the six edge normals. Touching (depth <= tolerance) is not overlapping.
+    for (const FlatTriangle* owner : {&a, &b}) {
+        for (int edge = 0; edge < 3; ++edge) {
+            const glm::dvec2 direction = owner->corner[(edge + 1) % 3] - owner->corner[edge];
+            const double length = glm::length(direction);
+            if (!(length > 0.0)) continue;
+            const glm::dvec2 axis(-direction.y / length, direction.x / length);
+            double a_min = INFINITY, a_max = -INFINITY, b_min = INFINITY, b_max = -INFINITY;
+            for (int i = 0; i < 3; ++i) {
+                const double a_projection = glm::dot(a.corner[i], axis);
+                const double b_projection = glm::dot(b.corner[i], axis);
+                a_min = std::min(a_min, a_projection);
+                a_max = std::max(a_max, a_projection);
+                b_min = std::min(b_min, b_projection);
+                b_max = std::max(b_max, b_projection);
+            }
+            if (std::min(a_max, b_max) - std::max(a_min, b_min) <= tolerance) return false;
+        }
+    }
+    return true;
+}
+
+// The flattened triangles of the chart being grown, bucketed on a grid for overlap queries. Triangles much
+// larger than a cell go to a list every query scans, so one big floor triangle does not fill thousands of cells.
+class FlatChartIndex {
+public:
+    FlatChartIndex(double cell_size, double tolerance) : cell_size_(cell_size), tolerance_(tolerance) {}
+
+    bool overlapsAny(const FlatTriangle& candidate) {
+        ++query_stamp_;
+        auto test = [&](uint32_t member) {
+            if (tested_stamp_[member] == query_stamp_) return false;
+            tested_stamp_[member] = query_stamp_;
+            return flatTrianglesOverlap(members_[member], candidate, tolerance_);
+        };
+        for (uint32_t member : large_members_)
+            if (test(member)) return true;
+        if (isLarge(candidate)) {
+            for (uint32_t member = 0; member < members_.size(); ++member)
+                if (test(member)) return true;
+            return false;
+        }
+        const glm::ivec4 cells = cellRange(candidate);
+        for (int y = cells.y; y <= cells.w; ++y)
+            for (int x = cells.x; x <= cells.z; ++x) {
+                auto it = cells_.find(key(x, y));
+                if (it == cells_.end()) continue;
+                for (uint32_t member : it->second)
+                    if (test(member)) return true;
+            }
+        return false;
+    }
+
+    void add(const FlatTriangle& triangle) {
+        const uint32_t member = uint32_t(members_.size());
+        members_.push_back(triangle);
+        tested_stamp_.push_back(0);
+        if (isLarge(triangle)) {
+            large_members_.push_back(member);
+            return;
+        }
+        const glm::ivec4 cells = cellRange(triangle);
+        for (int y = cells.y; y <= cells.w; ++y)
+            for (int x = cells.x; x <= cells.z; ++x) cells_[key(x, y)].push_back(member);
+    }
+
+private:
+    static constexpr int kLargeCells = 16;
+    static uint64_t key(int x, int y) { return uint64_t(uint32_t(x)) << 32 | uint32_t(y); }
+    glm::ivec4 cellRange(const FlatTriangle& triangle) const {
+        return glm::ivec4(int(std::floor(triangle.min.x / cell_size_)), int(std::floor(triangle.min.y / cell_size_)),
+                          int(std::floor(triangle.max.x / cell_size_)), int(std::floor(triangle.max.y / cell_size_)));
+    }
+    bool isLarge(const FlatTriangle& triangle) const {
+        const glm::ivec4 cells = cellRange(triangle);
+        return cells.z - cells.x >= kLargeCells || cells.w - cells.y >= kLargeCells;
+    }
+
+    double cell_size_;
+    double tolerance_;
+    std::vector<FlatTriangle> members_;
+    std::vector<uint32_t> large_members_;
+    std::vector<uint64_t> tested_stamp_;
+    uint64_t query_stamp_ = 0;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+// An orthonormal tangent basis of the plane with this unit normal.
+void planeBasis(const glm::dvec3& normal, glm::dvec3* tangent, glm::dvec3* bitangent) {
+    const glm::dvec3 helper = std::abs(normal.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    *tangent = glm::normalize(glm::cross(helper, normal));
+    *bitangent = glm::cross(normal, *tangent);
+}
+
+// Where to start a chart of `extent` texels inside its `inner` texels (inner > extent): as far as the slack
+// allows from putting either chart edge on a row of texel centres, so that float noise in the projection cannot
+// flip whether a border row of centres is covered (a 1 m face at 8 texels/m then covers exactly 8 x 8 centres).
+// Keeps a tenth of a texel (or half the slack) clear of the inner rectangle's sides.
+double marginAwayFromCentres(double extent, int inner) {
+    const double slack = double(inner) - extent;
+    const double guard = std::min(0.1, 0.5 * slack);
+    auto distanceFromCentre = [](double coordinate) { return std::abs(coordinate - std::floor(coordinate) - 0.5); };
+    double best_margin = 0.5 * slack, best_distance = -1.0;
+    constexpr int kSteps = 32;
+    for (int step = 0; step <= kSteps; ++step) {
+        const double margin = guard + (slack - 2.0 * guard) * step / kSteps;
+        const double distance = std::min(distanceFromCentre(margin), distanceFromCentre(margin + extent));
+        if (distance > best_distance + 1e-9) {
+            best_distance = distance;
+            best_margin = margin;
+        }
+    }
+    return best_margin;
+}
+
+struct Chart {
+    std::vector<uint32_t> triangles;
+    glm::dvec3 tangent{1, 0, 0}, bitangent{0, 1, 0};  // the plane, already rotated to the smallest rectangle
+    glm::dvec2 min{0.0}, max{0.0};                    // of the flattened vertices, metres
+};
+
+}  // namespace
+
+LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
+                                      int padding_texels) {
+    if (mesh.triangleCount() == 0) throw InputError("lightmap", "mesh", "has no triangles to chart");
+    if (!(texels_per_metre > 0.0) || !std::isfinite(texels_per_metre))
+        throw InputError("lightmap", "texels_per_metre",
+                         "must be finite and positive, got " + std::to_string(texels_per_metre));
+    if (resolution < 4 || resolution > 16384)
+        throw InputError("lightmap", "resolution", "must be in [4, 16384], got " + std::to_string(resolution));
+    if (padding_texels < 0 || padding_texels > 64)
+        throw InputError("lightmap", "padding_texels", "must be in [0, 64], got " + std::to_string(padding_texels));
+    for (uint32_t index : mesh.indices)
+        if (index >= mesh.positions.size())
+            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
+
+    // Scale of the scene, for tolerances that do not depend on its units or placement.
+    glm::dvec3 low(INFINITY), high(-INFINITY);
+    for (const glm::vec3& position : mesh.positions) {
+        if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
+            throw InputError("lightmap", "mesh positions", "a position is not finite");
+        low = glm::min(low, glm::dvec3(position));
+        high = glm::max(high, glm::dvec3(position));
+    }
+    const double diagonal = std::max(glm::length(high - low), 1e-9);
+    const double magnitude = std::max(glm::length(high), glm::length(low));
+    const std::vector<uint32_t> welded = weldPositions(mesh.positions, kWeldToleranceOfDiagonal * diagonal);
+
+    const size_t triangle_count = mesh.triangleCount();
+    std::vector<TriangleInfo> triangles(triangle_count);
+    std::vector<double> edge_lengths;
+    edge_lengths.reserve(triangle_count);
+    for (size_t triangle = 0; triangle < triangle_count; ++triangle) {
+        TriangleInfo& info = triangles[triangle];
+        glm::dvec3 corner[3];
+        for (int i = 0; i < 3; ++i) {
+            info.welded[i] = welded[mesh.indices[triangle * 3 + i]];
+            corner[i] = glm::dvec3(mesh.positions[mesh.indices[triangle * 3 + i]]);
+        }
+        const glm::dvec3 scaled_normal = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
+        const double double_area = glm::length(scaled_normal);
+        info.area = 0.5 * double_area;
+        info.degenerate = !(double_area > 1e-12 * diagonal * diagonal) || info.welded[0] == info.welded[1] ||
+                          info.welded[1] == info.welded[2] || info.welded[0] == info.welded[2];
+        if (!info.degenerate) {
+            info.normal = scaled_normal / double_area;
+            edge_lengths.push_back(glm::length(corner[1] - corner[0]));
+        }
+    }
+    const std::vector<int64_t> neighbour = findChartableNeighbours(triangles);
+
+    double typical_edge = diagonal * 1e-3;
+    if (!edge_lengths.empty()) {
+        std::nth_element(edge_lengths.begin(), edge_lengths.begin() + edge_lengths.size() / 2, edge_lengths.end());
+        typical_edge = std::max(edge_lengths[edge_lengths.size() / 2], diagonal * 1e-6);
+    }
+    // Overlaps thinner than a ten-thousandth of a texel, or than float noise at this distance from the origin,
+    // are touching, not overlapping.
+    const double overlap_tolerance = std::max(1e-4 / texels_per_metre, 4e-7 * magnitude);
+
+    // Grow charts from the largest triangles first, so big flat walls seed big charts.
+    std::vector<uint32_t> seed_order(triangle_count);
+    std::iota(seed_order.begin(), seed_order.end(), 0u);
+    std::stable_sort(seed_order.begin(), seed_order.end(), [&](uint32_t a, uint32_t b) {
+        if (triangles[a].degenerate != triangles[b].degenerate) return !triangles[a].degenerate;
+        return triangles[a].area > triangles[b].area;
+    });
+    const double min_normal_dot = std::cos(kMaxNormalDeviationDeg * std::numbers::pi / 180.0);
+    std::vector<int64_t> chart_of(triangle_count, -1);
+    std::vector<int64_t> rejected_by_chart(triangle_count, -1);
+    std::vector<Chart> charts;
+    for (uint32_t seed : seed_order) {
+        if (chart_of[seed] >= 0) continue;
+        const int64_t chart_index = int64_t(charts.size());
+        Chart chart;
+        const glm::dvec3 seed_normal = triangles[seed].degenerate ? glm::dvec3(0, 0, 1) : triangles[seed].normal;
+        planeBasis(seed_normal, &chart.tangent, &chart.bitangent);
+        auto flatten = [&](uint32_t triangle) {
+            FlatTriangle flat;
+            flat.min = glm::dvec2(INFINITY);
+            flat.max = glm::dvec2(-INFINITY);
+            for (int i = 0; i < 3; ++i) {
+                const glm::dvec3 position(mesh.positions[mesh.indices[size_t(triangle) * 3 + i]]);
+                flat.corner[i] = glm::dvec2(glm::dot(position, chart.tangent), glm::dot(position, chart.bitangent));
+                flat.welded[i] = triangles[triangle].welded[i];
+                flat.min = glm::min(flat.min, flat.corner[i]);
+                flat.max = glm::max(flat.max, flat.corner[i]);
+            }
+            return flat;
+        };
+        FlatChartIndex index(4.0 * typical_edge, overlap_tolerance);
+        std::deque<uint32_t> frontier{seed};
+        chart_of[seed] = chart_index;
+        index.add(flatten(seed));
+        while (!frontier.empty()) {
+            const uint32_t triangle = frontier.front();
+            frontier.pop_front();
+            chart.triangles.push_back(triangle);
+            for (int edge = 0; edge < 3; ++edge) {
+                const int64_t next = neighbour[size_t(triangle) * 3 + edge];
+                if (next < 0 || chart_of[next] >= 0 || rejected_by_chart[next] == chart_index) continue;
+                const TriangleInfo& info = triangles[size_t(next)];
+                // Degenerate triangles have no normal to disagree with; they go wherever a neighbour goes.
+                const bool similar = info.degenerate || glm::dot(info.normal, seed_normal) >= min_normal_dot;
+                const FlatTriangle flat = flatten(uint32_t(next));
+                if (!similar || index.overlapsAny(flat)) {
+                    rejected_by_chart[next] = chart_index;
+                    continue;
+                }
+                chart_of[next] = chart_index;
+                index.add(flat);
+                frontier.push_back(uint32_t(next));
+            }
+        }
+        charts.push_back(std::move(chart));
+    }
+
+    // Turn each chart in its plane to the smallest bounding rectangle (fewer wasted texels).
+    std::vector<glm::dvec2> extents(charts.size());
+    std::vector<glm::dvec3> chart_points;
+    for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
+        Chart& chart = charts[chart_index];
+        chart_points.clear();
+        for (uint32_t triangle : chart.triangles)
+            for (int i = 0; i < 3; ++i) chart_points.push_back(glm::dvec3(mesh.positions[mesh.indices[size_t(triangle) * 3 + i]]));
+        double best_area = INFINITY;
+        glm::dvec3 best_tangent = chart.tangent, best_bitangent = chart.bitangent;
+        for (int step = 0; step < kRotationSteps; ++step) {
+            const double angle = (std::numbers::pi / 2.0) * step / kRotationSteps;
+            const glm::dvec3 tangent = std::cos(angle) * chart.tangent + std::sin(angle) * chart.bitangent;
+            const glm::dvec3 bitangent = -std::sin(angle) * chart.tangent + std::cos(angle) * chart.bitangent;
+            glm::dvec2 min(INFINITY), max(-INFINITY);
+            for (const glm::dvec3& point : chart_points) {
+                const glm::dvec2 flat(glm::dot(point, tangent), glm::dot(point, bitangent));
+                min = glm::min(min, flat);
+                max = glm::max(max, flat);
+            }
+            const double area = (max.x - min.x) * (max.y - min.y);
+            if (area < best_area) {
+                best_area = area;
+                best_tangent = tangent;
+                best_bitangent = bitangent;
+                chart.min = min;
+                chart.max = max;
+            }
+        }
+        chart.tangent = best_tangent;
+        chart.bitangent = best_bitangent;
+        extents[chart_index] = chart.max - chart.min;
+    }
+
+    const detail::ChartPacking packing =
+        detail::packChartRectangles(extents, texels_per_metre, resolution, padding_texels);
+    const double scale = packing.texels_per_metre;
+
+    LightmapCharts result;
+    result.texels_per_metre = scale;
+    result.chart_count = charts.size();
+    result.triangle_chart.resize(triangle_count);
+    TriangleMesh& out = result.mesh;
+    out.materials = mesh.materials;
+    out.textures = mesh.textures;
+    out.texture_names = mesh.texture_names;
+    out.triangle_material = mesh.triangle_material;
+    out.indices.resize(mesh.indices.size());
+    out.has_uv1 = true;
+    const bool has_normals = mesh.normals.size() == mesh.positions.size();
+    const bool has_uv0 = mesh.uv0.size() == mesh.positions.size();
+    std::vector<int64_t> copy_chart(mesh.positions.size(), -1);  // which chart a vertex was last copied for
+    std::vector<uint32_t> copy_index(mesh.positions.size(), 0);
+    for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
+        const Chart& chart = charts[chart_index];
+        const detail::ChartPlacement& placement = packing.placements[chart_index];
+        const glm::ivec2 inner = detail::innerTexelSize(extents[chart_index], scale);
+        const glm::dvec2 extent_texels = extents[chart_index] * scale;
+        const glm::dvec2 margin(marginAwayFromCentres(extent_texels.x, inner.x),
+                                marginAwayFromCentres(extent_texels.y, inner.y));
+        for (uint32_t triangle : chart.triangles) {
+            result.triangle_chart[triangle] = uint32_t(chart_index);
+            for (int i = 0; i < 3; ++i) {
+                const uint32_t vertex = mesh.indices[size_t(triangle) * 3 + i];
+                if (copy_chart[vertex] != int64_t(chart_index)) {
+                    copy_chart[vertex] = int64_t(chart_index);
+                    copy_index[vertex] = uint32_t(out.positions.size());
+                    const glm::dvec3 position(mesh.positions[vertex]);
+                    const glm::dvec2 local = (glm::dvec2(glm::dot(position, chart.tangent),
+                                                         glm::dot(position, chart.bitangent)) -
+                                              chart.min) * scale + margin;
+                    // A quarter turn (not a mirror) when the packer laid the rectangle on its side.
+                    const glm::dvec2 texel = placement.rotated
+                                                 ? glm::dvec2(placement.x + double(inner.y) - local.y,
+                                                              placement.y + local.x)
+                                                 : glm::dvec2(placement.x + local.x, placement.y + local.y);
+                    out.positions.push_back(mesh.positions[vertex]);
+                    out.normals.push_back(has_normals ? mesh.normals[vertex] : glm::vec3(0.0f));
+                    out.uv0.push_back(has_uv0 ? mesh.uv0[vertex] : glm::vec2(0.0f));
+                    out.uv1.push_back(glm::vec2(texel / double(resolution)));
+                }
+                out.indices[size_t(triangle) * 3 + i] = copy_index[vertex];
+            }
+        }
+    }
+    return result;
+}
+
+}  // namespace gusuku::bake

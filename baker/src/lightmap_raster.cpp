@@ -1,0 +1,106 @@
+// The coverage rule shared by the lightmap UV checker and the texel rasteriser (see lightmap_raster.h).
+
+#include "lightmap_raster.h"
+
+#include <cmath>
+#include <vector>
+
+namespace gusuku::bake::detail {
+namespace {
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+bool lexicographicallyLess(const glm::dvec2& a, const glm::dvec2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+// Keeps the part of `polygon` where sign * (coordinate[axis] - bound) >= 0.
+std::vector<glm::dvec2> clipAgainst(const std::vector<glm::dvec2>& polygon, int axis, double bound, double sign) {
+    std::vector<glm::dvec2> clipped;
+    const size_t count = polygon.size();
+    for (size_t i = 0; i < count; ++i) {
+        const glm::dvec2& current = polygon[i];
+        const glm::dvec2& next = polygon[(i + 1) % count];
+        const double current_distance = sign * (current[axis] - bound);
+        const double next_distance = sign * (next[axis] - bound);
+        if (current_distance >= 0.0) clipped.push_back(current);
+        if ((current_distance >= 0.0) != (next_distance >= 0.0)) {
+            const double t = current_distance / (current_distance - next_distance);
+            clipped.push_back(current + (next - current) * t);
+        }
+    }
+    return clipped;
+}
+
+}  // namespace
+
+double signedDoubleArea(const UvTriangle& triangle) {
+    return cross2(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+}
+
+bool containsPoint(const UvTriangle& triangle, const glm::dvec2& point) {
+    const double double_area = signedDoubleArea(triangle);
+    if (double_area == 0.0 || !std::isfinite(double_area)) return false;
+    const double orientation = double_area > 0.0 ? 1.0 : -1.0;
+    for (int edge = 0; edge < 3; ++edge) {
+        const glm::dvec2& start = triangle[edge];
+        const glm::dvec2& end = triangle[(edge + 1) % 3];
+        // Evaluate in canonical order so that the neighbour across this edge gets exactly the negated value.
+        const bool runs_low_to_high = lexicographicallyLess(start, end);
+        const glm::dvec2& low = runs_low_to_high ? start : end;
+        const glm::dvec2& high = runs_low_to_high ? end : start;
+        const double canonical = cross2(high - low, point - low);
+        const double side = runs_low_to_high ? canonical : -canonical;
+        if (orientation * side < 0.0) return false;
+        if (side == 0.0 && !runs_low_to_high) return false;
+    }
+    return true;
+}
+
+double areaInsideTexel(const UvTriangle& triangle, int x, int y) {
+    std::vector<glm::dvec2> polygon(triangle.begin(), triangle.end());
+    polygon = clipAgainst(polygon, 0, double(x), 1.0);
+    if (polygon.empty()) return 0.0;
+    polygon = clipAgainst(polygon, 0, double(x + 1), -1.0);
+    if (polygon.empty()) return 0.0;
+    polygon = clipAgainst(polygon, 1, double(y), 1.0);
+    if (polygon.empty()) return 0.0;
+    polygon = clipAgainst(polygon, 1, double(y + 1), -1.0);
+    if (polygon.size() < 3) return 0.0;
+    double double_area = 0.0;
+    for (size_t i = 0; i < polygon.size(); ++i)
+        double_area += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
+    return std::abs(double_area) * 0.5;
+}
+
+glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& point) {
+    const double double_area = signedDoubleArea(triangle);
+    if (double_area != 0.0 && std::isfinite(double_area)) {
+        const double w0 = cross2(triangle[2] - triangle[1], point - triangle[1]) / double_area;
+        const double w1 = cross2(triangle[0] - triangle[2], point - triangle[2]) / double_area;
+        const double w2 = 1.0 - w0 - w1;
+        if (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) return {w0, w1, w2};
+    }
+    // Outside (or zero area): the nearest point lies on one of the edges.
+    glm::dvec3 best_weights{1.0 / 3.0};
+    double best_distance2 = INFINITY;
+    for (int edge = 0; edge < 3; ++edge) {
+        const glm::dvec2& start = triangle[edge];
+        const glm::dvec2& end = triangle[(edge + 1) % 3];
+        const glm::dvec2 direction = end - start;
+        const double length2 = direction.x * direction.x + direction.y * direction.y;
+        double t = length2 > 0.0 ? ((point - start).x * direction.x + (point - start).y * direction.y) / length2 : 0.0;
+        t = std::fmin(1.0, std::fmax(0.0, t));
+        const glm::dvec2 nearest = start + direction * t;
+        const double distance2 = (point - nearest).x * (point - nearest).x + (point - nearest).y * (point - nearest).y;
+        if (distance2 < best_distance2) {
+            best_distance2 = distance2;
+            best_weights = glm::dvec3(0.0);
+            best_weights[edge] = 1.0 - t;
+            best_weights[(edge + 1) % 3] = t;
+        }
+    }
+    return best_weights;
+}
+
+}  // namespace gusuku::bake::detail

@@ -1,0 +1,31 @@
+#pragma once
+// Private to the lightmap code: the one coverage rule (texel centre inside a triangle, with a tie rule that
+// gives a centre on a shared edge to exactly one triangle) and the geometry the checker and the texel
+// rasteriser share. All coordinates are in texel units (uv1 * resolution), in double.
+
+#include <array>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace gusuku::bake::detail {
+
+using UvTriangle = std::array<glm::dvec2, 3>;
+
+/// Twice the signed area (positive when counter-clockwise in u right, v down... i.e. by the cross product).
+double signedDoubleArea(const UvTriangle& triangle);
+
+/// True when `point` lies inside the triangle. Each edge is evaluated with its end points in a canonical
+/// (lexicographic) order, so two triangles sharing an edge compute exactly opposite values; a point exactly on
+/// an edge belongs to the triangle that runs that edge from the lexicographically smaller end point.
+/// Zero-area triangles contain nothing.
+bool containsPoint(const UvTriangle& triangle, const glm::dvec2& point);
+
+/// Area of the triangle inside the unit texel square [x, x+1] x [y, y+1] (Sutherland-Hodgman clipping).
+double areaInsideTexel(const UvTriangle& triangle, int x, int y);
+
+/// Barycentric weights of the point of the triangle nearest `point` (the point itself when inside); for a
+/// zero-area triangle, the nearest point on its longest edge.
+glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& point);
+
+}  // namespace gusuku::bake::detail

@@ -1,0 +1,214 @@
+// Sky importance-sampling tables and their CPU twins of shaders/include/sky_sampling.glsl.
+// Every step here is mirrored line for line in the GLSL (same clamps, same search, same sin theta), so that a
+// test can hold the two to each other; see the layout contract in gusuku_bake/sky_light.h.
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "gusuku/equirect.h"
+#include "gusuku/input_error.h"
+#include "gusuku_bake/sky_light.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// The largest float below 1: xi == 1 would pick the last entry even when it has no mass.
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+// sin theta floor: keeps the pdf finite at the poles (a sample lands there with probability ~0).
+constexpr double kMinSinTheta = 1e-7;
+
+double sanitizedChannel(float value) { return (std::isfinite(value) && value > 0.0f) ? double(value) : 0.0; }
+
+double luminanceOf(const float* rgba) {
+    return 0.2126 * sanitizedChannel(rgba[0]) + 0.7152 * sanitizedChannel(rgba[1]) +
+           0.0722 * sanitizedChannel(rgba[2]);
+}
+
+size_t marginalOffset() { return kSkyTableHeaderFloats; }
+size_t conditionalOffset(const SkySamplingTables& tables, int row) {
+    return kSkyTableHeaderFloats + size_t(tables.height) + 1 + size_t(row) * (size_t(tables.width) + 1);
+}
+
+/// Largest i in [0, n-1] with cdf[i] <= xi (cdf has n + 1 entries). Same loop as skyFindInterval() in GLSL.
+int findInterval(const float* cdf, int n, float xi) {
+    int lo = 0;
+    int hi = n - 1;
+    while (lo < hi) {
+        const int mid = (lo + hi + 1) / 2;
+        if (cdf[mid] <= xi)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+void checkTables(const SkySamplingTables& tables) {
+    if (tables.width <= 0 || tables.height <= 0 ||
+        tables.table.size() != conditionalOffset(tables, tables.height) ||
+        tables.radiance_rgba.size() != size_t(tables.width) * size_t(tables.height) * 4)
+        throw std::invalid_argument("SkySamplingTables: sizes do not match width and height");
+}
+
+struct TexelIndex {
+    int x;
+    int y;
+    double sin_theta;
+};
+
+/// Texel containing a direction, as skyTexelOf() in GLSL.
+TexelIndex texelOf(const SkySamplingTables& tables, const glm::dvec3& direction_enu) {
+    const double horizontal = std::hypot(direction_enu.x, direction_enu.y);
+    const double length = std::sqrt(horizontal * horizontal + direction_enu.z * direction_enu.z);
+    const double theta = length > 0.0 ? std::atan2(horizontal, direction_enu.z) : 0.0;
+    const double azimuth_rad = horizontal > 0.0 ? std::atan2(direction_enu.x, direction_enu.y) : 0.0;
+    double u = (azimuth_rad * 180.0 / kPi + double(tables.north_azimuth_in_image_deg)) / 360.0;
+    u -= std::floor(u);
+    const double v = theta / kPi;
+    TexelIndex index;
+    index.x = std::clamp(int(u * tables.width), 0, tables.width - 1);
+    index.y = std::clamp(int(v * tables.height), 0, tables.height - 1);
+    index.sin_theta = length > 0.0 ? horizontal / length : 0.0;
+    return index;
+}
+
+/// p(u, v) over the unit square for texel (x, y), from the CDFs alone.
+double unitSquareDensity(const SkySamplingTables& tables, int x, int y) {
+    const float* marginal = tables.table.data() + marginalOffset();
+    const float* conditional = tables.table.data() + conditionalOffset(tables, y);
+    const double row_probability = double(marginal[y + 1]) - double(marginal[y]);
+    const double column_probability = double(conditional[x + 1]) - double(conditional[x]);
+    return row_probability * tables.height * column_probability * tables.width;
+}
+
+double solidAnglePdf(double unit_square_density, double sin_theta) {
+    return unit_square_density / (2.0 * kPi * kPi * std::max(sin_theta, kMinSinTheta));
+}
+
+/// Writes a CDF of n + 1 entries from n non-negative weights; uniform when they sum to 0. Sums in double, then
+/// rounds to float (rounding keeps it non-decreasing); the last entry is exactly 1.
+void writeCdf(const std::vector<double>& weights, float* cdf) {
+    const int n = int(weights.size());
+    double total = 0.0;
+    for (double w : weights) total += w;
+    cdf[0] = 0.0f;
+    if (!(total > 0.0) || !std::isfinite(total)) {
+        for (int i = 1; i <= n; ++i) cdf[i] = float(double(i) / double(n));
+    } else {
+        double running = 0.0;
+        for (int i = 1; i <= n; ++i) {
+            running += weights[size_t(i - 1)];
+            cdf[i] = float(std::min(1.0, running / total));
+        }
+    }
+    cdf[n] = 1.0f;
+}
+
+}  // namespace
+
+SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg) {
+    const int width = sky_without_sun.width;
+    const int height = sky_without_sun.height;
+    if (width <= 0 || height <= 0)
+        throw InputError("sky map", "size", "empty image (" + std::to_string(width) + " x " +
+                                                std::to_string(height) + ")");
+    if (width > (1 << 24) || height > (1 << 24))
+        throw InputError("sky map", "size", "more than 2^24 texels per side");
+    if (sky_without_sun.texels.size() != size_t(width) * size_t(height) * 4)
+        throw InputError("sky map", "texels", "texel count does not match width * height * 4");
+    if (!std::isfinite(north_azimuth_in_image_deg))
+        throw InputError("sky map", "north_azimuth_in_image_deg", "not finite");
+
+    SkySamplingTables tables;
+    tables.width = width;
+    tables.height = height;
+    tables.north_azimuth_in_image_deg = float(north_azimuth_in_image_deg);
+    tables.radiance_rgba.resize(sky_without_sun.texels.size());
+    for (size_t i = 0; i < sky_without_sun.texels.size(); ++i)
+        tables.radiance_rgba[i] = float(sanitizedChannel(sky_without_sun.texels[i]));
+
+    std::vector<double> luminance(static_cast<size_t>(width) * static_cast<size_t>(height));
+    double integral = 0.0;
+    double any_luminance = 0.0;
+    for (int y = 0; y < height; ++y) {
+        const double texel_solid_angle = equirectTexelSolidAngle(y, width, height);
+        for (int x = 0; x < width; ++x) {
+            const double lum = luminanceOf(sky_without_sun.texel(x, y));
+            luminance[size_t(y) * size_t(width) + size_t(x)] = lum;
+            integral += lum * texel_solid_angle;
+            any_luminance += lum;
+        }
+    }
+    // A black (or all-invalid) map: sample uniformly over the sphere rather than divide by zero.
+    const bool uniform_fallback = !(any_luminance > 0.0) || !std::isfinite(any_luminance);
+    if (uniform_fallback) std::fill(luminance.begin(), luminance.end(), 1.0);
+
+    tables.table.assign(kSkyTableHeaderFloats + size_t(height) + 1 + size_t(height) * (size_t(width) + 1), 0.0f);
+    tables.table[0] = float(width);
+    tables.table[1] = float(height);
+    tables.table[2] = float(north_azimuth_in_image_deg);
+    tables.table[3] = uniform_fallback ? 0.0f : float(integral);
+
+    std::vector<double> row_weights(static_cast<size_t>(height));
+    std::vector<double> column_weights(static_cast<size_t>(width));
+    for (int y = 0; y < height; ++y) {
+        const double sin_theta = std::sin((double(y) + 0.5) / double(height) * kPi);
+        double row_sum = 0.0;
+        for (int x = 0; x < width; ++x) {
+            column_weights[size_t(x)] = luminance[size_t(y) * size_t(width) + size_t(x)];
+            row_sum += column_weights[size_t(x)];
+        }
+        row_weights[size_t(y)] = row_sum * sin_theta;
+        writeCdf(column_weights, tables.table.data() + conditionalOffset(tables, y));
+    }
+    writeCdf(row_weights, tables.table.data() + marginalOffset());
+    return tables;
+}
+
+SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2) {
+    checkTables(tables);
+    xi1 = std::clamp(xi1, 0.0f, kOneMinusEpsilon);
+    xi2 = std::clamp(xi2, 0.0f, kOneMinusEpsilon);
+    const float* marginal = tables.table.data() + marginalOffset();
+    const int y = findInterval(marginal, tables.height, xi1);
+    const float* conditional = tables.table.data() + conditionalOffset(tables, y);
+    const int x = findInterval(conditional, tables.width, xi2);
+
+    const double row_fraction = (double(xi1) - double(marginal[y])) / (double(marginal[y + 1]) - double(marginal[y]));
+    const double column_fraction =
+        (double(xi2) - double(conditional[x])) / (double(conditional[x + 1]) - double(conditional[x]));
+    const double u = (double(x) + column_fraction) / double(tables.width);
+    const double v = (double(y) + row_fraction) / double(tables.height);
+
+    SkySample sample;
+    sample.direction_enu = equirectDirection(u, v, double(tables.north_azimuth_in_image_deg));
+    // sin theta from the distance to the nearer pole, measured as the GLSL does (float precision at the poles).
+    const double v_from_pole =
+        (2 * y + 1 < tables.height)
+            ? v
+            : (double(tables.height - 1 - y) + (double(marginal[y + 1]) - double(xi1)) /
+                                                    (double(marginal[y + 1]) - double(marginal[y]))) /
+                  double(tables.height);
+    const double sin_theta = std::sin(kPi * v_from_pole);
+    sample.pdf_solid_angle = solidAnglePdf(unitSquareDensity(tables, x, y), sin_theta);
+    return sample;
+}
+
+double skyPdfCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu) {
+    checkTables(tables);
+    const TexelIndex index = texelOf(tables, direction_enu);
+    return solidAnglePdf(unitSquareDensity(tables, index.x, index.y), index.sin_theta);
+}
+
+glm::dvec3 skyRadianceCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu) {
+    checkTables(tables);
+    const TexelIndex index = texelOf(tables, direction_enu);
+    const float* rgba = tables.radiance_rgba.data() + (size_t(index.y) * size_t(tables.width) + size_t(index.x)) * 4;
+    return {rgba[0], rgba[1], rgba[2]};
+}
+
+}  // namespace gusuku::bake

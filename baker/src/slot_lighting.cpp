@@ -1,0 +1,88 @@
+#include "gusuku_bake/slot_lighting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gusuku/colour.h"
+#include "gusuku/equirect.h"
+#include "gusuku/image.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+
+double diffuseHorizontalLuminance(const ImageRGBA& sky) {
+    double irradiance = 0.0;
+    for (int y = 0; y < sky.height / 2; ++y) {
+        const double cos_zenith = std::cos((y + 0.5) / sky.height * 3.14159265358979323846);
+        const double solid_angle = equirectTexelSolidAngle(y, sky.width, sky.height);
+        for (int x = 0; x < sky.width; ++x) {
+            const float* texel = sky.texel(x, y);
+            irradiance += luminanceRec709({texel[0], texel[1], texel[2]}) * solid_angle * cos_zenith;
+        }
+    }
+    return irradiance;
+}
+
+}  // namespace
+
+PreparedSky prepareSky(const SkyConfig& sky) {
+    PreparedSky prepared;
+    prepared.path = sky.path;
+    ImageRGBA radiance = readRadianceMap(sky.path);
+    prepared.disc = extractSunDisc(radiance, sky.north_azimuth_in_image_deg);
+    prepared.diffuse_horizontal_luminance = diffuseHorizontalLuminance(radiance);
+    prepared.tables = buildSkySamplingTables(radiance, sky.north_azimuth_in_image_deg);
+    return prepared;
+}
+
+SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const PreparedSky& sunny,
+                       const PreparedSky* overcast) {
+    SlotLighting lighting;
+    lighting.slot = slot;
+    if (slot.sky == SlotSky::Overcast) {
+        if (overcast == nullptr) throw std::invalid_argument("slot " + slot.name + " is overcast but no overcast sky");
+        lighting.sky = overcast;
+        lighting.sun_irradiance_source = "none: overcast";
+        return lighting;
+    }
+    lighting.sky = &sunny;
+    SunObserver observer;
+    observer.latitude_deg = site.site.reference.latitude_deg;
+    observer.longitude_deg = site.site.reference.longitude_deg;
+    observer.height_m = site.site.reference.height_m;
+    observer.pressure_mbar = site.site.pressure_mbar;
+    observer.temperature_c = site.site.temperature_c;
+    lighting.sun_position = computeSunPosition(observer, slot.utc_seconds);
+    const double elevation = lighting.sun_position.apparent_elevation_deg;
+    if (!lighting.sun_position.above_horizon) {
+        lighting.sun_irradiance_source = "none: sun below the horizon";
+        lighting.warnings.push_back("slot " + slot.name + ": the sun is below the horizon (apparent elevation " +
+                                    std::to_string(elevation) + " deg); baked with sky light only");
+        return lighting;
+    }
+    lighting.sun.present = true;
+    lighting.sun.direction_enu = lighting.sun_position.direction_enu;
+    const SunDiscEstimate& disc = sunny.disc;
+    const double photo_elevation = disc.found ? std::asin(std::clamp(disc.direction_enu.z, -1.0, 1.0)) * kDegrees
+                                              : -90.0;
+    if (disc.found && !disc.clipped && photo_elevation > 0.5) {
+        lighting.sun.irradiance_rgb = disc.irradiance_rgb * sunElevationScaleRgb(photo_elevation, elevation);
+        lighting.sun_irradiance_source = "sky map sun disc (measured at " + std::to_string(photo_elevation) +
+                                         " deg elevation, carried by the clear-sky model)";
+    } else {
+        const glm::dvec3 model = clearSkySunIrradianceRgb(elevation);
+        const double model_at_60 = clearSkySunIrradianceRgb(60.0).y;
+        const double scale = kClearSkyDirectToDiffuseRatio * sunny.diffuse_horizontal_luminance / model_at_60;
+        lighting.sun.irradiance_rgb = model * scale;
+        lighting.sun_irradiance_source = disc.found ? "clear-sky model (map's sun disc is clipped)"
+                                                    : "clear-sky model (no sun disc in the map)";
+        lighting.warnings.push_back("slot " + slot.name + ": E_sun from the " + lighting.sun_irradiance_source);
+    }
+    return lighting;
+}
+
+}  // namespace gusuku::bake

@@ -1,0 +1,90 @@
+#include "gusuku/atomic_file.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "gusuku/input_error.h"
+
+namespace gusuku {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A per-process counter next to the pid keeps temporary names unique across processes and across threads
+// writing the same final path at once.
+std::atomic<unsigned> temporary_counter{0};
+
+std::string temporaryPathFor(const std::string& final_path, bool keep_extension) {
+    const std::string tag = ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(temporary_counter++);
+    if (!keep_extension) return final_path + tag;
+    const fs::path final_fs(final_path);
+    const std::string extension = final_fs.extension().string();
+    const std::string stem_path = final_path.substr(0, final_path.size() - extension.size());
+    return stem_path + tag + extension;
+}
+
+void writeThroughTemporary(const std::string& final_path, const std::string& temporary_path,
+                           const std::function<void(const std::string&)>& write) {
+    const fs::path parent = fs::path(final_path).parent_path();
+    if (!parent.empty()) {
+        std::error_code error;
+        fs::create_directories(parent, error);
+        if (error) throw std::runtime_error(final_path + ": cannot create directory " + parent.string() + ": " +
+                                            error.message());
+    }
+    try {
+        write(temporary_path);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(temporary_path, ignored);
+        throw;
+    }
+    std::error_code error;
+    fs::rename(temporary_path, final_path, error);
+    if (error) {
+        std::error_code ignored;
+        fs::remove(temporary_path, ignored);
+        throw std::runtime_error(final_path + ": cannot rename " + temporary_path + " onto it: " + error.message());
+    }
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::string& final_path,
+                         const std::function<void(const std::string& temporary_path)>& write) {
+    writeThroughTemporary(final_path, temporaryPathFor(final_path, false), write);
+}
+
+void writeFileAtomicallyKeepingExtension(const std::string& final_path,
+                                         const std::function<void(const std::string& temporary_path)>& write) {
+    writeThroughTemporary(final_path, temporaryPathFor(final_path, true), write);
+}
+
+void writeBytesAtomically(const std::string& final_path, const void* bytes, size_t byte_count) {
+    writeFileAtomically(final_path, [&](const std::string& temporary_path) {
+        std::ofstream out(temporary_path, std::ios::binary | std::ios::trunc);
+        if (!out) throw std::runtime_error(temporary_path + ": cannot open for writing: " + std::strerror(errno));
+        out.write(static_cast<const char*>(bytes), std::streamsize(byte_count));
+        out.flush();
+        if (!out) throw std::runtime_error(temporary_path + ": write failed: " + std::strerror(errno));
+    });
+}
+
+std::string readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+    std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path, "", "read failed");
+    return contents;
+}
+
+}  // namespace gusuku

@@ -1,0 +1,260 @@
+// Storage buffers and storage-buffer-only compute pipelines (see gpu_compute.h for the contract).
+
+#include "gusuku/gpu_compute.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace gusuku {
+namespace {
+
+std::string mebibytes(VkDeviceSize bytes) {
+    return std::to_string(static_cast<double>(bytes) / (1024.0 * 1024.0)) + " MiB (" + std::to_string(bytes) + " bytes)";
+}
+
+void checkRange(size_t offset, size_t byte_count, size_t buffer_bytes, const char* what) {
+    if (offset > buffer_bytes || byte_count > buffer_bytes - offset)
+        throw std::out_of_range(std::string("GpuBuffer::") + what + ": bytes [" + std::to_string(offset) + ", " +
+                                std::to_string(offset + byte_count) + ") lie outside the buffer's " +
+                                std::to_string(buffer_bytes) + " bytes");
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+// GpuBuffer
+
+GpuBuffer::GpuBuffer(VulkanContext& context, size_t byte_count, VkBufferUsageFlags usage) : context_(&context) {
+    // Rounded to 4 so shaders may read whole uint words; never 0 so the buffer can always be bound.
+    byte_count_ = byte_count == 0 ? 4 : (byte_count + 3) / 4 * 4;
+    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && byte_count_ > limits.maxStorageBufferRange)
+        throw std::runtime_error("GpuBuffer: a storage buffer of " + mebibytes(byte_count_) +
+                                " exceeds this device's maxStorageBufferRange of " +
+                                mebibytes(limits.maxStorageBufferRange) + " (" + context.properties().deviceName +
+                                "); split the data over several buffers or dispatches");
+
+    VkDevice device = context.device();
+    VkBufferCreateInfo buffer_info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    buffer_info.size = byte_count_;
+    // Transfer usage costs nothing and lets callers copy or fill buffers with vkCmdCopyBuffer/vkCmdFillBuffer.
+    buffer_info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    buffer_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    try {
+        checkVk(vkCreateBuffer(device, &buffer_info, nullptr, &buffer_), "vkCreateBuffer");
+        VkMemoryRequirements requirements;
+        vkGetBufferMemoryRequirements(device, buffer_, &requirements);
+        VkMemoryAllocateInfo allocate_info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        allocate_info.allocationSize = requirements.size;
+        allocate_info.memoryTypeIndex = context.findMemoryType(
+            requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        const VkResult allocated = vkAllocateMemory(device, &allocate_info, nullptr, &memory_);
+        if (allocated == VK_ERROR_OUT_OF_HOST_MEMORY || allocated == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+            throw std::runtime_error("GpuBuffer: out of memory allocating " + mebibytes(requirements.size));
+        checkVk(allocated, "vkAllocateMemory");
+        checkVk(vkBindBufferMemory(device, buffer_, memory_, 0), "vkBindBufferMemory");
+        // Mapped once for the buffer's life: host-coherent, so no flushes or invalidates are needed.
+        checkVk(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+GpuBuffer::~GpuBuffer() { release(); }
+
+GpuBuffer::GpuBuffer(GpuBuffer&& other) noexcept
+    : context_(std::exchange(other.context_, nullptr)),
+      buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
+      memory_(std::exchange(other.memory_, VK_NULL_HANDLE)),
+      mapped_(std::exchange(other.mapped_, nullptr)),
+      byte_count_(std::exchange(other.byte_count_, 0)) {}
+
+GpuBuffer& GpuBuffer::operator=(GpuBuffer&& other) noexcept {
+    if (this != &other) {
+        release();
+        context_ = std::exchange(other.context_, nullptr);
+        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+        byte_count_ = std::exchange(other.byte_count_, 0);
+    }
+    return *this;
+}
+
+void GpuBuffer::release() {
+    if (context_ != nullptr) {
+        VkDevice device = context_->device();
+        if (mapped_ != nullptr) vkUnmapMemory(device, memory_);
+        if (buffer_ != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer_, nullptr);
+        if (memory_ != VK_NULL_HANDLE) vkFreeMemory(device, memory_, nullptr);
+    }
+    mapped_ = nullptr;
+    buffer_ = VK_NULL_HANDLE;
+    memory_ = VK_NULL_HANDLE;
+    byte_count_ = 0;
+}
+
+void GpuBuffer::upload(const void* bytes, size_t byte_count, size_t offset) {
+    checkRange(offset, byte_count, byte_count_, "upload");
+    if (byte_count > 0) std::memcpy(static_cast<char*>(mapped_) + offset, bytes, byte_count);
+}
+
+void GpuBuffer::download(void* bytes, size_t byte_count, size_t offset) const {
+    checkRange(offset, byte_count, byte_count_, "download");
+    if (byte_count > 0) std::memcpy(bytes, static_cast<const char*>(mapped_) + offset, byte_count);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// ComputePipeline
+
+ComputePipeline::ComputePipeline(VulkanContext& context, const uint32_t* spirv, size_t spirv_bytes,
+                                 uint32_t storage_buffer_count, uint32_t push_constant_bytes)
+    : context_(context), storage_buffer_count_(storage_buffer_count), push_constant_bytes_(push_constant_bytes) {
+    if (spirv == nullptr || spirv_bytes == 0 || spirv_bytes % 4 != 0)
+        throw std::invalid_argument("ComputePipeline: SPIR-V must be a non-empty array of 32-bit words");
+    const uint32_t push_constant_limit = std::min<uint32_t>(128, context.properties().limits.maxPushConstantsSize);
+    if (push_constant_bytes % 4 != 0 || push_constant_bytes > push_constant_limit)
+        throw std::invalid_argument("ComputePipeline: push constants must be a multiple of 4 bytes and at most " +
+                                    std::to_string(push_constant_limit) + "; got " +
+                                    std::to_string(push_constant_bytes));
+    if (storage_buffer_count > context.properties().limits.maxPerStageDescriptorStorageBuffers)
+        throw std::invalid_argument("ComputePipeline: " + std::to_string(storage_buffer_count) +
+                                    " storage buffers exceed the device's per-stage limit of " +
+                                    std::to_string(context.properties().limits.maxPerStageDescriptorStorageBuffers));
+
+    VkDevice device = context.device();
+    try {
+        VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        module_info.codeSize = spirv_bytes;
+        module_info.pCode = spirv;
+        checkVk(vkCreateShaderModule(device, &module_info, nullptr, &module_), "vkCreateShaderModule");
+
+        std::vector<VkDescriptorSetLayoutBinding> bindings(storage_buffer_count);
+        for (uint32_t binding = 0; binding < storage_buffer_count; ++binding) {
+            bindings[binding].binding = binding;
+            bindings[binding].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            bindings[binding].descriptorCount = 1;
+            bindings[binding].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+        }
+        VkDescriptorSetLayoutCreateInfo set_layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        set_layout_info.bindingCount = storage_buffer_count;
+        set_layout_info.pBindings = bindings.data();
+        checkVk(vkCreateDescriptorSetLayout(device, &set_layout_info, nullptr, &set_layout_),
+                "vkCreateDescriptorSetLayout");
+
+        VkPushConstantRange push_range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes};
+        VkPipelineLayoutCreateInfo pipeline_layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        pipeline_layout_info.setLayoutCount = 1;
+        pipeline_layout_info.pSetLayouts = &set_layout_;
+        pipeline_layout_info.pushConstantRangeCount = push_constant_bytes > 0 ? 1 : 0;
+        pipeline_layout_info.pPushConstantRanges = &push_range;
+        checkVk(vkCreatePipelineLayout(device, &pipeline_layout_info, nullptr, &pipeline_layout_),
+                "vkCreatePipelineLayout");
+
+        VkComputePipelineCreateInfo pipeline_info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        pipeline_info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        pipeline_info.stage.module = module_;
+        pipeline_info.stage.pName = "main";
+        pipeline_info.layout = pipeline_layout_;
+        checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline_),
+                "vkCreateComputePipelines");
+
+        // A pool of exactly one set; with no buffers the (empty) set layout still needs no pool.
+        if (storage_buffer_count > 0) {
+            VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_buffer_count};
+            VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+            pool_info.maxSets = 1;
+            pool_info.poolSizeCount = 1;
+            pool_info.pPoolSizes = &pool_size;
+            checkVk(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
+            VkDescriptorSetAllocateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            set_info.descriptorPool = descriptor_pool_;
+            set_info.descriptorSetCount = 1;
+            set_info.pSetLayouts = &set_layout_;
+            checkVk(vkAllocateDescriptorSets(device, &set_info, &descriptor_set_), "vkAllocateDescriptorSets");
+        }
+    } catch (...) {
+        destroy();
+        throw;
+    }
+}
+
+ComputePipeline::~ComputePipeline() { destroy(); }
+
+void ComputePipeline::destroy() noexcept {
+    VkDevice device = context_.device();
+    // The descriptor set goes with its pool.
+    if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    if (pipeline_ != VK_NULL_HANDLE) vkDestroyPipeline(device, pipeline_, nullptr);
+    if (pipeline_layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
+    if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
+    if (module_ != VK_NULL_HANDLE) vkDestroyShaderModule(device, module_, nullptr);
+    descriptor_pool_ = VK_NULL_HANDLE;
+    descriptor_set_ = VK_NULL_HANDLE;
+    pipeline_ = VK_NULL_HANDLE;
+    pipeline_layout_ = VK_NULL_HANDLE;
+    set_layout_ = VK_NULL_HANDLE;
+    module_ = VK_NULL_HANDLE;
+}
+
+void ComputePipeline::bindBuffers(const std::vector<const GpuBuffer*>& buffers) {
+    if (buffers.size() != storage_buffer_count_)
+        throw std::invalid_argument("ComputePipeline::bindBuffers: " + std::to_string(buffers.size()) +
+                                    " buffers given for " + std::to_string(storage_buffer_count_) + " bindings");
+    std::vector<VkDescriptorBufferInfo> buffer_infos(buffers.size());
+    std::vector<VkWriteDescriptorSet> writes(buffers.size());
+    for (size_t binding = 0; binding < buffers.size(); ++binding) {
+        if (buffers[binding] == nullptr || buffers[binding]->handle() == VK_NULL_HANDLE)
+            throw std::invalid_argument("ComputePipeline::bindBuffers: binding " + std::to_string(binding) +
+                                        " has no buffer");
+        buffer_infos[binding] = {buffers[binding]->handle(), 0, VK_WHOLE_SIZE};
+        writes[binding] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[binding].dstSet = descriptor_set_;
+        writes[binding].dstBinding = static_cast<uint32_t>(binding);
+        writes[binding].descriptorCount = 1;
+        writes[binding].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[binding].pBufferInfo = &buffer_infos[binding];
+    }
+    if (!writes.empty())
+        vkUpdateDescriptorSets(context_.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void ComputePipeline::recordDispatch(VkCommandBuffer cmd, const void* push_constants, uint32_t groups_x,
+                                     uint32_t groups_y, uint32_t groups_z) const {
+    if (push_constant_bytes_ > 0 && push_constants == nullptr)
+        throw std::invalid_argument("ComputePipeline::recordDispatch: the pipeline has " +
+                                    std::to_string(push_constant_bytes_) + " bytes of push constants but none given");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    if (descriptor_set_ != VK_NULL_HANDLE)
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout_, 0, 1, &descriptor_set_, 0,
+                                nullptr);
+    if (push_constant_bytes_ > 0)
+        vkCmdPushConstants(cmd, pipeline_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes_, push_constants);
+    vkCmdDispatch(cmd, groups_x, groups_y, groups_z);
+}
+
+void ComputePipeline::dispatchAndWait(const void* push_constants, uint32_t groups_x, uint32_t groups_y,
+                                      uint32_t groups_z) {
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        recordDispatch(cmd, push_constants, groups_x, groups_y, groups_z);
+        // Makes the shader's writes visible to the host reads that follow the fence.
+        recordComputeBarrier(cmd);
+    });
+}
+
+void recordComputeBarrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    // Read-after-write and write-after-write for the next dispatch, and host reads after the fence.
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr,
+                         0, nullptr);
+}
+
+}  // namespace gusuku

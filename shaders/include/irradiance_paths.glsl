@@ -1,0 +1,101 @@
+// The baker's light-transport core: an irradiance estimate at a point with a normal, from paths that gather
+// sky light (importance-sampled map, MIS with the cosine lobe), sun light at every surface they reach (next-event
+// estimation to the disc; the disc is taken out of the sky map so only this estimator sees it) and emission,
+// over up to max_bounces diffuse reflections with Russian roulette.
+//
+// Units: the estimator returns irradiance E = integral of L cos over the hemisphere. At a diffuse surface of
+// albedo rho the outgoing radiance is rho / pi * E, so a cosine-sampled bounce multiplies the path weight by
+// rho: pi (cos / pdf) * rho / pi.
+//
+// The includer provides, before including: sampling.glsl, bvh_traverse.glsl, scene_shading.glsl,
+// sky_sampling.glsl, and the uniforms below through a struct `PathSettings`.
+#ifndef GUSUKU_IRRADIANCE_PATHS_GLSL
+#define GUSUKU_IRRADIANCE_PATHS_GLSL
+
+struct PathSettings {
+    uint max_bounces;       // surface reflections whose light counts (0: sky and emitters seen directly only)
+    uint skip_flags;        // triangles with any of these flags are invisible (the "without building" pass)
+    bool sun_present;
+    vec3 sun_direction;     // unit, ENU
+    float sun_cos_max;      // cosine of the disc's angular radius
+    vec3 sun_irradiance;    // irradiance on a plane facing the sun (normal incidence), linear RGB
+    float ray_offset;       // metres along the normal, to leave the surface a ray starts on
+};
+
+uint g_rays_traced = 0u;
+
+bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
+    g_rays_traced++;
+    return bvhOccluded(origin, direction, 1e30, settings.skip_flags);
+}
+
+// Sun irradiance at a surface point: disc sampled uniformly, one shadow ray. Its own code path so that tests
+// can check it in isolation (E = I_sun cos theta on a plane tilted by theta, 0 in shadow).
+vec3 sunIrradianceAt(vec3 position, vec3 normal, inout Rng rng, PathSettings settings) {
+    if (!settings.sun_present) return vec3(0.0);
+    vec3 direction = sampleCone(settings.sun_direction, settings.sun_cos_max, rngNext2(rng));
+    float cos_theta = dot(normal, direction);
+    if (cos_theta <= 0.0) return vec3(0.0);
+    if (traceOccluded(position + normal * settings.ray_offset, direction, settings)) return vec3(0.0);
+    return settings.sun_irradiance * cos_theta;
+}
+
+// One-sample estimate of the indirect irradiance E_ind at (position, normal): everything but the direct sun
+// at this point. `backface_hit` is set when the first ray hits the back of a one-sided surface: the point then
+// lies inside geometry (a texel behind a wall) and the caller treats it as invalid.
+vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathSettings settings,
+                                out bool backface_hit) {
+    backface_hit = false;
+    vec3 irradiance = vec3(0.0);
+    vec3 path_weight = vec3(1.0);
+    vec3 vertex_position = position;
+    vec3 vertex_normal = normal;
+    for (uint depth = 0u;; ++depth) {
+        vec3 origin = vertex_position + vertex_normal * settings.ray_offset;
+
+        // Sky by importance sampling the map, weighted against the cosine lobe (power heuristic).
+        float sky_pdf;
+        vec3 sky_direction = sampleSkyDirection(rngNext2(rng), sky_pdf);
+        float sky_cos = dot(vertex_normal, sky_direction);
+        if (sky_cos > 0.0 && sky_pdf > 0.0 && !traceOccluded(origin, sky_direction, settings)) {
+            float mis = powerHeuristic(sky_pdf, sky_cos / kPi);
+            irradiance += path_weight * skyRadiance(sky_direction) * (sky_cos / sky_pdf * mis);
+        }
+        // The sun lights every surface the path reaches; at the query point itself it is the real-time term.
+        if (depth > 0u) irradiance += path_weight * sunIrradianceAt(vertex_position, vertex_normal, rng, settings);
+
+        // Cosine-sampled continuation: sky on a miss (the other MIS half), emission and a bounce on a hit.
+        vec3 direction = sampleCosineHemisphere(vertex_normal, rngNext2(rng));
+        float cos_pdf = max(dot(vertex_normal, direction), 0.0) / kPi;
+        BvhHit hit;
+        g_rays_traced++;
+        if (!bvhTraceClosest(origin, direction, 1e30, settings.skip_flags, hit)) {
+            float mis = powerHeuristic(cos_pdf, skyPdf(direction));
+            irradiance += path_weight * kPi * skyRadiance(direction) * mis;
+            break;
+        }
+        SurfacePoint surface = evaluateSurface(hit.triangle_index, hit.barycentric_u, hit.barycentric_v, direction);
+        if (!surface.front_face && !surface.double_sided) {
+            // Inside a closed solid: no light arrives from here.
+            if (depth == 0u) backface_hit = true;
+            break;
+        }
+        irradiance += path_weight * kPi * surface.emission;
+        if (depth >= settings.max_bounces) break;
+
+        path_weight *= surface.albedo;
+        if (depth >= 1u) {
+            // Russian roulette on the path weight: unbiased, and ends dark paths early.
+            float survival = clamp(max(path_weight.r, max(path_weight.g, path_weight.b)), 0.05, 0.95);
+            if (rngNext(rng) >= survival) break;
+            path_weight /= survival;
+        }
+        vertex_position = origin + direction * hit.t;
+        vertex_normal = surface.shading_normal;
+        // Keep the continuation on the geometric side the ray arrived from.
+        vertex_position += surface.geometric_normal * settings.ray_offset;
+    }
+    return irradiance;
+}
+
+#endif

@@ -1,0 +1,95 @@
+// Surface attributes at a ray hit: interpolated normal, base colour (factor times texture) and emission.
+// The includer #defines SHADING_TRIANGLE_BINDING, MATERIAL_BINDING and TEXTURE_BINDING first. Layouts match
+// baker/include/gusuku_bake/trace_scene.h (TriangleShadingGpu, MaterialGpu). Textures are packed RGBA8 sRGB
+// words in one storage buffer because lavapipe has no descriptor indexing (DESIGN.md 5).
+#ifndef GUSUKU_SCENE_SHADING_GLSL
+#define GUSUKU_SCENE_SHADING_GLSL
+
+struct TriangleShadingGpu {
+    vec4 normal0_u0;        // vertex 0 normal, xyz; w: vertex 0 uv0.x
+    vec4 normal1_v0;        // vertex 1 normal; w: vertex 0 uv0.y
+    vec4 normal2_material;  // vertex 2 normal; w: material index (float bits)
+    vec4 uv0_vertex1_vertex2;
+    vec4 geometric_normal;  // unit face normal of the counter-clockwise winding; w unused
+};
+
+struct MaterialGpu {
+    vec4 base_color_factor;  // linear RGBA
+    vec4 emission;           // linear emitted radiance, xyz
+    uvec4 texture_info;      // x: first word in the texture buffer, y: width, z: height (0: no texture),
+                             // w: bit 0 double-sided
+};
+
+layout(std430, set = 0, binding = SHADING_TRIANGLE_BINDING) readonly buffer TriangleShadingBuffer {
+    TriangleShadingGpu triangle_shading[];
+};
+layout(std430, set = 0, binding = MATERIAL_BINDING) readonly buffer MaterialBuffer {
+    MaterialGpu materials[];
+};
+layout(std430, set = 0, binding = TEXTURE_BINDING) readonly buffer TextureBuffer {
+    uint texture_words[];
+};
+
+float srgbToLinear(float encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+vec3 fetchTexel(uvec4 info, int x, int y) {
+    uint word = texture_words[info.x + uint(y) * info.y + uint(x)];
+    vec3 encoded = vec3(float(word & 255u), float((word >> 8u) & 255u), float((word >> 16u) & 255u)) / 255.0;
+    return vec3(srgbToLinear(encoded.r), srgbToLinear(encoded.g), srgbToLinear(encoded.b));
+}
+
+// Bilinear lookup with repeat wrapping (glTF's default sampler).
+vec3 sampleBaseColorTexture(uvec4 info, vec2 uv) {
+    vec2 texel_coordinate = uv * vec2(info.yz) - 0.5;
+    vec2 base = floor(texel_coordinate);
+    vec2 weight = texel_coordinate - base;
+    int w = int(info.y), h = int(info.z);
+    int x0 = int(mod(base.x, float(w))), y0 = int(mod(base.y, float(h)));
+    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
+    vec3 top = mix(fetchTexel(info, x0, y0), fetchTexel(info, x1, y0), weight.x);
+    vec3 bottom = mix(fetchTexel(info, x0, y1), fetchTexel(info, x1, y1), weight.x);
+    return mix(top, bottom, weight.y);
+}
+
+struct SurfacePoint {
+    vec3 shading_normal;    // interpolated, flipped to the side the ray came from
+    vec3 geometric_normal;  // flipped to the side the ray came from
+    vec3 albedo;            // diffuse reflectance, linear, clamped below 1 so no bounce gains energy
+    vec3 emission;
+    bool front_face;        // the ray hit the counter-clockwise side
+    bool double_sided;
+};
+
+SurfacePoint evaluateSurface(uint triangle_index, float barycentric_u, float barycentric_v, vec3 ray_direction) {
+    TriangleShadingGpu shading = triangle_shading[triangle_index];
+    float w0 = 1.0 - barycentric_u - barycentric_v;
+    SurfacePoint surface;
+    vec3 geometric = shading.geometric_normal.xyz;
+    surface.front_face = dot(geometric, ray_direction) < 0.0;
+    float side = surface.front_face ? 1.0 : -1.0;
+    surface.geometric_normal = geometric * side;
+    vec3 interpolated = w0 * shading.normal0_u0.xyz + barycentric_u * shading.normal1_v0.xyz +
+                        barycentric_v * shading.normal2_material.xyz;
+    float interpolated_length = length(interpolated);
+    surface.shading_normal = interpolated_length > 1e-6 ? interpolated * (side / interpolated_length)
+                                                        : surface.geometric_normal;
+    // A shading normal bent below the surface would send light through it: fall back to the face normal.
+    if (dot(surface.shading_normal, surface.geometric_normal) <= 0.0) surface.shading_normal = surface.geometric_normal;
+
+    MaterialGpu material = materials[floatBitsToUint(shading.normal2_material.w)];
+    vec3 albedo = material.base_color_factor.rgb;
+    if (material.texture_info.z > 0u) {
+        vec2 uv0 = vec2(shading.normal0_u0.w, shading.normal1_v0.w);
+        vec2 uv = w0 * uv0 + barycentric_u * shading.uv0_vertex1_vertex2.xy +
+                  barycentric_v * shading.uv0_vertex1_vertex2.zw;
+        albedo *= sampleBaseColorTexture(material.texture_info, uv);
+    }
+    surface.albedo = clamp(albedo, vec3(0.0), vec3(0.98));
+    surface.emission = material.emission.xyz;
+    surface.double_sided = (material.texture_info.w & 1u) != 0u;
+    return surface;
+}
+
+#endif

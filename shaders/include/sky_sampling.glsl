@@ -1,0 +1,122 @@
+// Sky radiance lookup and importance sampling on the GPU: the twin of sky_importance.cpp (gusuku_bake/sky_light.h
+// documents the buffers' layout and the densities; keep the two in step, tests/test_sky_light.cpp holds them to
+// each other through shaders/sky_probe.comp).
+//
+// The includer defines, before including:
+//   SKY_RADIANCE_BINDING  set-0 binding of SkySamplingTables::radiance_rgba (width * height vec4, row 0 zenith)
+//   SKY_TABLE_BINDING     set-0 binding of SkySamplingTables::table (header, marginal CDF, conditional CDFs)
+// and gets, for unit ENU directions (east, north, up):
+//   vec3  skyRadiance(vec3 direction_enu)                       texel containing the direction, unfiltered
+//   vec3  sampleSkyDirection(vec2 xi, out float pdf_solid_angle) xi in [0, 1)^2; pdf per steradian
+//   float skyPdf(vec3 direction_enu)                            density of sampleSkyDirection per steradian
+// Equirect convention (gusuku/equirect.h): azimuth = 360 u - north_azimuth_in_image_deg, v = theta / pi.
+#ifndef GUSUKU_SKY_SAMPLING_GLSL
+#define GUSUKU_SKY_SAMPLING_GLSL
+
+#if !defined(SKY_RADIANCE_BINDING) || !defined(SKY_TABLE_BINDING)
+#error "define SKY_RADIANCE_BINDING and SKY_TABLE_BINDING before including sky_sampling.glsl"
+#endif
+
+layout(std430, set = 0, binding = SKY_RADIANCE_BINDING) readonly buffer SkyRadianceBuffer {
+    vec4 sky_radiance_rgba[];
+};
+layout(std430, set = 0, binding = SKY_TABLE_BINDING) readonly buffer SkyTableBuffer {
+    float sky_table[];
+};
+
+const float SKY_PI = 3.14159265358979;
+const int SKY_TABLE_HEADER_FLOATS = 4;
+// Largest float below 1: xi == 1 would pick the last CDF entry even when it has no mass.
+const float SKY_ONE_MINUS_EPSILON = 0.99999994;
+// sin theta floor: keeps the pdf finite at the poles.
+const float SKY_MIN_SIN_THETA = 1e-7;
+
+int skyWidth() { return int(sky_table[0]); }
+int skyHeight() { return int(sky_table[1]); }
+float skyNorthAzimuthDeg() { return sky_table[2]; }
+int skyMarginalOffset() { return SKY_TABLE_HEADER_FLOATS; }
+int skyConditionalOffset(int row) { return SKY_TABLE_HEADER_FLOATS + skyHeight() + 1 + row * (skyWidth() + 1); }
+
+// Largest i in [0, n-1] with cdf[offset + i] <= xi (the CDF has n + 1 entries).
+int skyFindInterval(int offset, int n, float xi) {
+    int lo = 0;
+    int hi = n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (sky_table[offset + mid] <= xi)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+// p(u, v) over the unit square for texel (x, y), from the CDFs alone.
+float skyUnitSquareDensity(int x, int y) {
+    int marginal = skyMarginalOffset();
+    int conditional = skyConditionalOffset(y);
+    float row_probability = sky_table[marginal + y + 1] - sky_table[marginal + y];
+    float column_probability = sky_table[conditional + x + 1] - sky_table[conditional + x];
+    return row_probability * float(skyHeight()) * column_probability * float(skyWidth());
+}
+
+float skySolidAnglePdf(float unit_square_density, float sin_theta) {
+    return unit_square_density / (2.0 * SKY_PI * SKY_PI * max(sin_theta, SKY_MIN_SIN_THETA));
+}
+
+// Texel containing a direction; also returns sin theta of the direction.
+ivec2 skyTexelOf(vec3 direction_enu, out float sin_theta) {
+    float horizontal = length(direction_enu.xy);
+    float len = length(direction_enu);
+    // atan(y, x) is undefined at (0, 0): a vertical (or zero) direction reads azimuth 0 / the zenith.
+    float theta = len > 0.0 ? atan(horizontal, direction_enu.z) : 0.0;
+    float azimuth_rad = horizontal > 0.0 ? atan(direction_enu.x, direction_enu.y) : 0.0;
+    float u = (degrees(azimuth_rad) + skyNorthAzimuthDeg()) / 360.0;
+    u -= floor(u);
+    float v = theta / SKY_PI;
+    sin_theta = len > 0.0 ? horizontal / len : 0.0;
+    int width = skyWidth();
+    int height = skyHeight();
+    return ivec2(clamp(int(u * float(width)), 0, width - 1), clamp(int(v * float(height)), 0, height - 1));
+}
+
+vec3 skyRadiance(vec3 direction_enu) {
+    float sin_theta;
+    ivec2 texel = skyTexelOf(direction_enu, sin_theta);
+    return sky_radiance_rgba[texel.y * skyWidth() + texel.x].rgb;
+}
+
+float skyPdf(vec3 direction_enu) {
+    float sin_theta;
+    ivec2 texel = skyTexelOf(direction_enu, sin_theta);
+    return skySolidAnglePdf(skyUnitSquareDensity(texel.x, texel.y), sin_theta);
+}
+
+vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
+    xi = clamp(xi, vec2(0.0), vec2(SKY_ONE_MINUS_EPSILON));
+    int width = skyWidth();
+    int height = skyHeight();
+    int marginal = skyMarginalOffset();
+    int y = skyFindInterval(marginal, height, xi.x);
+    int conditional = skyConditionalOffset(y);
+    int x = skyFindInterval(conditional, width, xi.y);
+
+    float row_low = sky_table[marginal + y];
+    float row_high = sky_table[marginal + y + 1];
+    float column_low = sky_table[conditional + x];
+    float row_fraction = (xi.x - row_low) / (row_high - row_low);
+    float column_fraction = (xi.y - column_low) / (sky_table[conditional + x + 1] - column_low);
+    float u = (float(x) + column_fraction) / float(width);
+    float v = (float(y) + row_fraction) / float(height);
+
+    // sin theta from the distance to the nearer pole, measured from that pole's side of the row, and z through
+    // the elevation: both keep float precision at the poles (1 - v would not).
+    float v_from_pole = (2 * y + 1 < height) ? v : (float(height - 1 - y) + (row_high - xi.x) / (row_high - row_low)) / float(height);
+    float sin_theta = sin(SKY_PI * v_from_pole);
+    float azimuth_rad = radians(360.0 * u - skyNorthAzimuthDeg());
+    vec3 direction_enu = vec3(sin_theta * sin(azimuth_rad), sin_theta * cos(azimuth_rad), sin((0.5 - v) * SKY_PI));
+    pdf_solid_angle = skySolidAnglePdf(skyUnitSquareDensity(x, y), sin_theta);
+    return direction_enu;
+}
+
+#endif  // GUSUKU_SKY_SAMPLING_GLSL

@@ -1,0 +1,28 @@
+#pragma once
+// Small meshes and skies built in code for analytic tests: planes, walls, closed boxes, uniform skies.
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/image.h"
+#include "gusuku/mesh.h"
+
+namespace gusuku::testing {
+
+/// A one-material mesh with the given albedo (and emission), no textures.
+TriangleMesh emptyMesh(const glm::vec3& albedo, const glm::vec3& emission = glm::vec3(0.0f));
+
+/// Appends a quad with corners a, b, c, d (counter-clockwise seen from the front, which faces
+/// cross(b - a, d - a)), flat normals, uv0 = corners of the unit square.
+void addQuad(TriangleMesh& mesh, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d);
+
+/// A horizontal square at height z, facing up, of half size h centred at the origin.
+TriangleMesh horizontalPlane(float half_size, float z, const glm::vec3& albedo);
+
+/// An axis-aligned closed box whose faces face INWARD (a furnace) or outward.
+TriangleMesh closedBox(const glm::vec3& min, const glm::vec3& max, bool facing_inward, const glm::vec3& albedo,
+                       const glm::vec3& emission = glm::vec3(0.0f));
+
+/// An equirect map of constant radiance (both hemispheres).
+ImageRGBA uniformSky(int width, int height, const glm::vec3& radiance);
+
+}  // namespace gusuku::testing

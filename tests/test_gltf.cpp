@@ -1,0 +1,456 @@
+// glTF loading (gusuku/gltf_loader.h) and writing. Small glTF files are built here as JSON text plus a .bin, so
+// each expected position, normal and error comes from the test's own arithmetic, not from a previous run.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "gpu_test_support.h"
+#include "gusuku/atomic_file.h"
+#include "gusuku/gltf_loader.h"
+#include "gusuku/image.h"
+#include "gusuku/input_error.h"
+
+namespace {
+
+using gusuku::InputError;
+using gusuku::TriangleMesh;
+using nlohmann::json;
+
+constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
+
+// Builds a glTF document with one external .bin buffer.
+class GltfBuilder {
+public:
+    GltfBuilder() {
+        document_["asset"] = {{"version", "2.0"}};
+        document_["bufferViews"] = json::array();
+        document_["accessors"] = json::array();
+        document_["meshes"] = json::array();
+        document_["nodes"] = json::array();
+    }
+
+    int addView(const void* bytes, size_t byte_count, size_t stride = 0) {
+        while (binary_.size() % 4) binary_.push_back(0);
+        json view = {{"buffer", 0}, {"byteOffset", binary_.size()}, {"byteLength", byte_count}};
+        if (stride) view["byteStride"] = stride;
+        const auto* first = static_cast<const unsigned char*>(bytes);
+        binary_.insert(binary_.end(), first, first + byte_count);
+        document_["bufferViews"].push_back(view);
+        return int(document_["bufferViews"].size() - 1);
+    }
+
+    int addAccessor(int view, int component_type, size_t count, const char* type, size_t byte_offset = 0,
+                    bool normalized = false) {
+        json accessor = {{"bufferView", view}, {"componentType", component_type}, {"count", count},
+                         {"type", type},       {"byteOffset", byte_offset}};
+        if (normalized) accessor["normalized"] = true;
+        document_["accessors"].push_back(accessor);
+        return int(document_["accessors"].size() - 1);
+    }
+
+    template <typename T>
+    int addAccessorOf(const std::vector<T>& values, int component_type, const char* type, size_t components) {
+        const int view = addView(values.data(), values.size() * sizeof(T));
+        return addAccessor(view, component_type, values.size() / components, type);
+    }
+
+    int addFloats(const std::vector<float>& values, const char* type, size_t components) {
+        return addAccessorOf(values, kFloat, type, components);
+    }
+
+    // A primitive on a new mesh from positions (xyz triples) and optional u32 indices; returns the mesh index.
+    int addTriangleMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices = {},
+                        const std::vector<float>& normals = {}, int material = -1) {
+        json primitive = {{"attributes", {{"POSITION", addFloats(positions, "VEC3", 3)}}}};
+        if (!normals.empty()) primitive["attributes"]["NORMAL"] = addFloats(normals, "VEC3", 3);
+        if (!indices.empty()) primitive["indices"] = addAccessorOf(indices, kUnsignedInt, "SCALAR", 1);
+        if (material >= 0) primitive["material"] = material;
+        document_["meshes"].push_back({{"primitives", json::array({primitive})}});
+        return int(document_["meshes"].size() - 1);
+    }
+
+    int addNode(json node) {
+        document_["nodes"].push_back(node);
+        return int(document_["nodes"].size() - 1);
+    }
+
+    void setScene(const std::vector<int>& roots) {
+        document_["scenes"] = json::array({{{"nodes", roots}}});
+        document_["scene"] = 0;
+    }
+
+    json& document() { return document_; }
+
+    std::string write(const std::string& dir, const std::string& name) {
+        document_["buffers"] = json::array({{{"uri", name + ".bin"}, {"byteLength", binary_.size()}}});
+        gusuku::writeBytesAtomically(dir + "/" + name + ".bin", binary_.data(), binary_.size());
+        const std::string text = document_.dump(1);
+        const std::string path = dir + "/" + name + ".gltf";
+        gusuku::writeBytesAtomically(path, text.data(), text.size());
+        return path;
+    }
+
+private:
+    json document_;
+    std::vector<unsigned char> binary_;
+};
+
+const std::vector<float> kTriangle = {1, 2, 3, 4, 5, 6, 7, 8, 10};
+
+void expectVec3Near(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+InputError expectInputError(const std::function<void()>& action) {
+    try {
+        action();
+    } catch (const InputError& error) {
+        return error;
+    }
+    ADD_FAILURE() << "no InputError thrown";
+    return InputError("", "", "");
+}
+
+glm::vec3 faceNormal(const TriangleMesh& mesh, size_t triangle) {
+    const glm::vec3 a = mesh.positions[mesh.indices[3 * triangle]];
+    const glm::vec3 b = mesh.positions[mesh.indices[3 * triangle + 1]];
+    const glm::vec3 c = mesh.positions[mesh.indices[3 * triangle + 2]];
+    return glm::normalize(glm::cross(b - a, c - a));
+}
+
+class GltfTest : public ::testing::Test {
+protected:
+    std::string dir_ = gusuku::testing::makeTemporaryDirectory("gusuku_gltf");
+};
+
+TEST(GltfAxes, EnuFromGltfYUpIsARotation) {
+    const glm::dmat4 m = gusuku::enuFromGltfYUp();
+    const glm::dvec4 p = m * glm::dvec4(1.0, 2.0, 3.0, 1.0);
+    EXPECT_EQ(glm::dvec3(p), glm::dvec3(1.0, -3.0, 2.0));
+    EXPECT_DOUBLE_EQ(glm::determinant(glm::dmat3(m)), 1.0);
+}
+
+TEST_F(GltfTest, YUpTriangleLandsAtEnuXMinusZY) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {0, 1, 0, 0, 1, 0, 0, 1, 0});
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    gusuku::GltfLoadOptions options;
+    options.enu_from_model = gusuku::enuFromGltfYUp();
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "yup"), options);
+    ASSERT_EQ(loaded.triangleCount(), 1u);
+    ASSERT_EQ(loaded.vertexCount(), 3u);
+    for (size_t v = 0; v < 3; ++v) {
+        const float x = kTriangle[3 * v], y = kTriangle[3 * v + 1], z = kTriangle[3 * v + 2];
+        expectVec3Near(loaded.positions[v], {x, -z, y});
+        expectVec3Near(loaded.normals[v], {0, 0, 1});  // glTF up is ENU up
+        EXPECT_EQ(loaded.uv0[v], glm::vec2(0.0f));
+    }
+    EXPECT_FALSE(loaded.has_uv1);
+    ASSERT_EQ(loaded.materials.size(), 1u);  // the default material
+    EXPECT_EQ(loaded.materials[0].base_color_factor, glm::vec4(1.0f));
+}
+
+TEST_F(GltfTest, NodeHierarchyComposesTranslationRotationScale) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh({1, 0, 0, 0, 1, 0, 0, 0, 1});
+    const double s = std::sqrt(0.5);
+    // child: 90 degrees about +y maps (x, y, z) -> (z, y, -x); parent: scale 2, then translate (10, 0, 0).
+    const int child = builder.addNode({{"mesh", mesh}, {"rotation", {0.0, s, 0.0, s}}});
+    const int parent = builder.addNode({{"children", {child}}, {"translation", {10, 0, 0}}, {"scale", {2, 2, 2}}});
+    builder.setScene({parent});
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "nodes"), {});
+    ASSERT_EQ(loaded.vertexCount(), 3u);
+    expectVec3Near(loaded.positions[0], {10, 0, -2});
+    expectVec3Near(loaded.positions[1], {10, 2, 0});
+    expectVec3Near(loaded.positions[2], {12, 0, 0});
+}
+
+TEST_F(GltfTest, NodeMatrixIsColumnMajorAndInstancesRepeat) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    // Column-major translation by (5, 6, 7) as glTF stores it, and a second plain instance.
+    const int moved = builder.addNode({{"mesh", mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1}}});
+    const int plain = builder.addNode({{"mesh", mesh}});
+    builder.setScene({moved, plain});
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "matrix"), {});
+    ASSERT_EQ(loaded.triangleCount(), 2u);
+    expectVec3Near(loaded.positions[0], {6, 8, 10});
+    expectVec3Near(loaded.positions[3], {1, 2, 3});
+}
+
+TEST_F(GltfTest, MirroringTransformFlipsWindingAndNormalsUseInverseTranspose) {
+    GltfBuilder builder;
+    // Counter-clockwise seen from +z, normal +z.
+    const int mesh = builder.addTriangleMesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {}, {0, 0, 1, 0, 0, 1, 0, 0, 1});
+    const int mirrored = builder.addNode({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+    // A slanted triangle with normal (1, 1, 0)/sqrt2 under scale (2, 1, 1): the inverse transpose gives
+    // (0.5, 1, 0) normalised; transforming the normal like a position would give (2, 1, 0).
+    const float r = std::sqrt(0.5f);
+    const int slanted_mesh = builder.addTriangleMesh({1, 0, 0, 0, 1, 0, 1, 0, 1}, {}, {r, r, 0, r, r, 0, r, r, 0});
+    const int stretched = builder.addNode({{"mesh", slanted_mesh}, {"scale", {2, 1, 1}}});
+    builder.setScene({mirrored, stretched});
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "mirror"), {});
+    ASSERT_EQ(loaded.triangleCount(), 2u);
+    expectVec3Near(loaded.normals[0], {0, 0, 1});
+    EXPECT_GT(glm::dot(faceNormal(loaded, 0), glm::vec3(0, 0, 1)), 0.999f) << "winding not flipped";
+    expectVec3Near(loaded.normals[3], glm::normalize(glm::vec3(0.5f, 1.0f, 0.0f)));
+    EXPECT_GT(glm::dot(faceNormal(loaded, 1), loaded.normals[3]), 0.999f);
+}
+
+TEST_F(GltfTest, MissingNormalsAreFlatFaceNormals) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1}, {0, 1, 2, 1, 3, 2});
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "flat"), {});
+    ASSERT_EQ(loaded.triangleCount(), 2u);
+    for (size_t t = 0; t < 2; ++t)
+        for (size_t corner = 0; corner < 3; ++corner)
+            expectVec3Near(loaded.normals[loaded.indices[3 * t + corner]], faceNormal(loaded, t));
+    expectVec3Near(loaded.normals[loaded.indices[0]], {0, 0, 1});
+}
+
+TEST_F(GltfTest, ReadsSmallIndicesInterleavedStrideAndNormalizedUvs) {
+    GltfBuilder builder;
+    // Interleaved: position (3 floats) + 4 bytes of padding per vertex, stride 16.
+    struct Vertex {
+        float position[3];
+        uint32_t padding;
+    };
+    const std::vector<Vertex> vertices = {{{0, 0, 0}, 0}, {{1, 0, 0}, 0}, {{0, 1, 0}, 0}};
+    const int view = builder.addView(vertices.data(), vertices.size() * sizeof(Vertex), sizeof(Vertex));
+    const int positions = builder.addAccessor(view, kFloat, 3, "VEC3");
+    const std::vector<uint16_t> uv_values = {0, 0, 65535, 0, 0, 32768};
+    const int uv_view = builder.addView(uv_values.data(), uv_values.size() * 2);
+    const int uvs = builder.addAccessor(uv_view, kUnsignedShort, 3, "VEC2", 0, true);
+    const std::vector<uint8_t> small_indices = {0, 1, 2};
+    const int index_view = builder.addView(small_indices.data(), small_indices.size());
+    const int indices8 = builder.addAccessor(index_view, kUnsignedByte, 3, "SCALAR");
+    const std::vector<uint16_t> short_indices = {2, 1, 0};
+    const int indices16 = builder.addAccessorOf(short_indices, kUnsignedShort, "SCALAR", 1);
+    builder.document()["meshes"].push_back(
+        {{"primitives",
+          {{{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}}, {"indices", indices8}},
+           {{"attributes", {{"POSITION", positions}}}, {"indices", indices16}}}}});
+    builder.setScene({builder.addNode({{"mesh", 0}})});
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "stride"), {});
+    ASSERT_EQ(loaded.triangleCount(), 2u);
+    expectVec3Near(loaded.positions[loaded.indices[1]], {1, 0, 0});
+    expectVec3Near(loaded.positions[loaded.indices[2]], {0, 1, 0});
+    EXPECT_FLOAT_EQ(loaded.uv0[1].x, 1.0f);
+    EXPECT_NEAR(loaded.uv0[2].y, 32768.0f / 65535.0f, 1e-7f);
+    // The second primitive's first index is 2: vertex (0, 1, 0).
+    expectVec3Near(loaded.positions[loaded.indices[3]], {0, 1, 0});
+}
+
+TEST_F(GltfTest, CorruptJsonIsInputError) {
+    const std::string path = dir_ + "/corrupt.gltf";
+    const std::string text = "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ {";
+    gusuku::writeBytesAtomically(path, text.data(), text.size());
+    const InputError error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_EQ(error.file(), path);
+    EXPECT_FALSE(error.problem().empty());
+}
+
+TEST_F(GltfTest, TruncatedGlbIsInputError) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const TriangleMesh source = gusuku::loadGltf(builder.write(dir_, "whole"), {});
+    const std::string path = dir_ + "/whole.glb";
+    gusuku::writeGlb(path, source, glm::dmat4(1.0));
+    ASSERT_EQ(gusuku::loadGltf(path, {}).triangleCount(), 1u);
+    std::string bytes = gusuku::readWholeFile(path);
+    bytes.resize(bytes.size() / 2);
+    const std::string truncated = dir_ + "/truncated.glb";
+    gusuku::writeBytesAtomically(truncated, bytes.data(), bytes.size());
+    const InputError error = expectInputError([&] { gusuku::loadGltf(truncated, {}); });
+    EXPECT_EQ(error.file(), truncated);
+    EXPECT_FALSE(error.problem().empty());
+    EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(dir_ + "/absent.glb", {}); }).file(), dir_ + "/absent.glb");
+}
+
+TEST_F(GltfTest, IndexOutOfRangeNamesPrimitiveAndIndex) {
+    GltfBuilder builder;
+    const int good = builder.addTriangleMesh(kTriangle, {0, 1, 2});
+    builder.addTriangleMesh(kTriangle, {0, 1, 5});
+    // Put the bad primitive second on mesh 0.
+    auto& meshes = builder.document()["meshes"];
+    meshes[good]["primitives"].push_back(meshes[1]["primitives"][0]);
+    meshes.erase(1);
+    builder.setScene({builder.addNode({{"mesh", good}})});
+    const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "index"), {}); });
+    EXPECT_EQ(error.field(), "meshes[0].primitives[1].indices");
+    EXPECT_EQ(error.problem(), "index 5 >= vertex count 3");
+}
+
+TEST_F(GltfTest, NaNPositionIsInputError) {
+    GltfBuilder builder;
+    std::vector<float> positions = kTriangle;
+    positions[4] = std::numeric_limits<float>::quiet_NaN();
+    builder.setScene({builder.addNode({{"mesh", builder.addTriangleMesh(positions)}})});
+    const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "nan"), {}); });
+    EXPECT_EQ(error.field(), "meshes[0].primitives[0].attributes.POSITION");
+    EXPECT_NE(error.problem().find("vertex 1"), std::string::npos) << error.what();
+}
+
+TEST_F(GltfTest, AccessorBeyondBufferViewIsInputError) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    builder.document()["accessors"][0]["count"] = 4;  // 48 bytes from a 36-byte view
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "range"), {}); });
+    EXPECT_NE(error.field().find("meshes[0].primitives[0].attributes.POSITION"), std::string::npos) << error.what();
+}
+
+TEST_F(GltfTest, NonTrianglePrimitivesAreSkippedWithWarning) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    json points = builder.document()["meshes"][mesh]["primitives"][0];
+    points["mode"] = 0;
+    builder.document()["meshes"][mesh]["primitives"].push_back(points);
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    std::vector<std::string> warnings;
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "points"), {}, &warnings);
+    EXPECT_EQ(loaded.triangleCount(), 1u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("meshes[0].primitives[1]"), std::string::npos) << warnings[0];
+}
+
+TEST_F(GltfTest, MeshWithoutTrianglesIsInputError) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    builder.document()["meshes"][mesh]["primitives"][0]["mode"] = 1;  // LINES
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "lines"), {}); });
+}
+
+json texturedMaterial(const std::string& uri) {
+    return {{"images", {{{"uri", uri}}}},
+            {"textures", {{{"source", 0}}}},
+            {"materials",
+             {{{"name", "plaster"},
+               {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"baseColorTexture", {{"index", 0}}}}},
+               {"emissiveFactor", {0.0, 0.5, 0.0}},
+               {"doubleSided", true}}}}};
+}
+
+TEST_F(GltfTest, MissingTextureIsWarningAndFactorOnly) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {}, 0);
+    builder.document().update(texturedMaterial("no_such_texture.png"));
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    std::vector<std::string> warnings;
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "notexture"), {}, &warnings);
+    ASSERT_EQ(loaded.materials.size(), 1u);
+    const gusuku::Material& material = loaded.materials[0];
+    EXPECT_EQ(material.name, "plaster");
+    EXPECT_EQ(material.base_color_texture, -1);
+    EXPECT_EQ(material.base_color_factor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+    EXPECT_EQ(material.emissive_factor, glm::vec3(0.0f, 0.5f, 0.0f));
+    EXPECT_TRUE(material.double_sided);
+    EXPECT_TRUE(loaded.textures.empty());
+    bool named = false;
+    for (const std::string& warning : warnings) named |= warning.find("no_such_texture.png") != std::string::npos;
+    EXPECT_TRUE(named) << "no warning names the missing texture";
+}
+
+TEST_F(GltfTest, TextureIsDecodedAsSrgbAndDownsampled) {
+    // 8 x 4 PNG: left half sRGB-encoded 0.5 (stored byte 128 after encoding linear srgbDecode(128/255)),
+    // right half white. max_texture_size 4 halves it to 4 x 2.
+    gusuku::ImageRGBA image;
+    image.width = 8;
+    image.height = 4;
+    image.texels.resize(8 * 4 * 4);
+    const float grey = gusuku::srgbDecode(128.0f / 255.0f);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x)
+            for (int c = 0; c < 4; ++c) image.texel(x, y)[c] = c == 3 ? 1.0f : (x < 4 ? grey : 1.0f);
+    gusuku::writePngSrgb(dir_ + "/albedo.png", image);
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {}, 0);
+    builder.document().update(texturedMaterial("albedo.png"));
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    gusuku::GltfLoadOptions options;
+    options.max_texture_size = 4;
+    std::vector<std::string> warnings;
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "textured"), options, &warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    ASSERT_EQ(loaded.textures.size(), 1u);
+    EXPECT_EQ(loaded.materials[0].base_color_texture, 0);
+    EXPECT_EQ(loaded.textures[0].width, 4);
+    EXPECT_EQ(loaded.textures[0].height, 2);
+    EXPECT_NEAR(loaded.textures[0].texel(0, 0)[0], grey, 1e-5f);
+    EXPECT_NEAR(loaded.textures[0].texel(3, 1)[1], 1.0f, 1e-6f);
+}
+
+TEST_F(GltfTest, WriteGlbRoundTrip) {
+    TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 1}, {6, 5, 1}, {5, 6, 2}};
+    mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0.6f, 0.8f}, {0, 0.6f, 0.8f}, {0, 0.6f, 0.8f}};
+    mesh.uv0 = {{0, 0}, {1, 0}, {0, 1}, {0.25f, 0.5f}, {0.75f, 0.5f}, {0.5f, 1}};
+    mesh.uv1 = {{0.1f, 0.1f}, {0.2f, 0.1f}, {0.1f, 0.2f}, {0.6f, 0.6f}, {0.7f, 0.6f}, {0.6f, 0.7f}};
+    mesh.has_uv1 = true;
+    mesh.indices = {0, 1, 2, 3, 4, 5};
+    mesh.triangle_material = {0, 1};
+    gusuku::Material wall;
+    wall.name = "wall";
+    wall.base_color_factor = {0.8f, 0.7f, 0.6f, 1.0f};
+    wall.base_color_texture = 0;
+    gusuku::Material lamp;
+    lamp.name = "lamp";
+    lamp.emissive_factor = {0.5f, 0.4f, 0.3f};
+    lamp.double_sided = true;
+    mesh.materials = {wall, lamp};
+    gusuku::ImageRGBA texture;
+    texture.width = 3;
+    texture.height = 2;
+    texture.texels = {0.0f, 0.1f, 0.2f, 1.0f, 0.3f, 0.4f, 0.5f, 1.0f, 0.6f, 0.7f, 0.8f, 1.0f,
+                      0.9f, 1.0f, 0.05f, 1.0f, 0.2f, 0.2f, 0.2f, 1.0f, 0.01f, 0.5f, 0.99f, 1.0f};
+    mesh.textures = {texture};
+    mesh.texture_names = {"texture"};
+
+    const std::string path = dir_ + "/round.glb";
+    gusuku::writeGlb(path, mesh, glm::inverse(gusuku::enuFromGltfYUp()));
+    gusuku::GltfLoadOptions options;
+    options.enu_from_model = gusuku::enuFromGltfYUp();
+    const TriangleMesh loaded = gusuku::loadGltf(path, options);
+
+    ASSERT_EQ(loaded.triangleCount(), mesh.triangleCount());
+    ASSERT_EQ(loaded.vertexCount(), mesh.vertexCount());
+    ASSERT_TRUE(loaded.has_uv1);
+    // Primitives are written per material in material order, so triangle t keeps its corners in order.
+    for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        const uint32_t a = mesh.indices[i], b = loaded.indices[i];
+        expectVec3Near(loaded.positions[b], mesh.positions[a]);
+        expectVec3Near(loaded.normals[b], mesh.normals[a]);
+        EXPECT_EQ(loaded.uv0[b], mesh.uv0[a]);
+        EXPECT_EQ(loaded.uv1[b], mesh.uv1[a]);
+    }
+    ASSERT_EQ(loaded.materials.size(), 2u);
+    EXPECT_EQ(loaded.triangle_material, mesh.triangle_material);
+    for (size_t m = 0; m < 2; ++m) {
+        EXPECT_EQ(loaded.materials[m].name, mesh.materials[m].name);
+        EXPECT_EQ(loaded.materials[m].base_color_factor, mesh.materials[m].base_color_factor);
+        EXPECT_EQ(loaded.materials[m].emissive_factor, mesh.materials[m].emissive_factor);
+        EXPECT_EQ(loaded.materials[m].double_sided, mesh.materials[m].double_sided);
+    }
+    ASSERT_EQ(loaded.textures.size(), 1u);
+    EXPECT_EQ(loaded.materials[0].base_color_texture, 0);
+    EXPECT_EQ(loaded.materials[1].base_color_texture, -1);
+    ASSERT_EQ(loaded.textures[0].width, 3);
+    ASSERT_EQ(loaded.textures[0].height, 2);
+    for (size_t i = 0; i < texture.texels.size(); ++i)  // 8-bit sRGB storage: within one step, encoded
+        EXPECT_NEAR(gusuku::srgbEncode(loaded.textures[0].texels[i]), gusuku::srgbEncode(texture.texels[i]),
+                    1.0f / 255.0f);
+}
+
+}  // namespace

@@ -1,0 +1,373 @@
+// Sky light: sun disc extraction on synthetic skies with known suns, the clear-sky sun model against its
+// published formulas, sky importance sampling against direct quadrature, and the GLSL twin against the CPU.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "gpu_test_support.h"
+#include "gusuku/equirect.h"
+#include "gusuku/input_error.h"
+#include "gusuku_bake/sky_light.h"
+
+namespace {
+
+using gusuku::ImageRGBA;
+using namespace gusuku::bake;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+glm::dvec3 enuFromElevationAzimuth(double elevation_deg, double azimuth_deg) {
+    const double e = elevation_deg * kDeg, a = azimuth_deg * kDeg;
+    return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
+}
+
+double angleBetweenDeg(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) / kDeg;
+}
+
+double luminance(const float* rgba) { return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2]; }
+
+ImageRGBA uniformMap(int width, int height, float value) {
+    ImageRGBA image;
+    image.width = width;
+    image.height = height;
+    image.texels.assign(size_t(width) * size_t(height) * 4, value);
+    for (size_t i = 3; i < image.texels.size(); i += 4) image.texels[i] = 1.0f;
+    return image;
+}
+
+/// Uniform sky of radiance sky_radiance plus a disc of angular radius disc_radius_deg and radiance disc_radiance
+/// at sun_direction, each texel holding the solid-angle-weighted average over 24 x 24 sub-samples (the disc's
+/// sub-texel coverage), then capped at `cap`.
+ImageRGBA renderSunSky(int width, int height, double north_deg, const glm::dvec3& sun_direction,
+                       const glm::dvec3& disc_radiance, double sky_radiance, double disc_radius_deg,
+                       double cap = std::numeric_limits<double>::infinity()) {
+    ImageRGBA image = uniformMap(width, height, float(sky_radiance));
+    const double cos_radius = std::cos(disc_radius_deg * kDeg);
+    const double cos_near = std::cos(disc_radius_deg * kDeg + 3.0 * kPi / height);  // texels that may touch it
+    constexpr int kSub = 24;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::dvec3 centre = gusuku::equirectDirection((x + 0.5) / width, (y + 0.5) / height, north_deg);
+            if (glm::dot(centre, sun_direction) < cos_near && y > 2 && y < height - 3) continue;
+            double covered = 0.0, total = 0.0;
+            for (int j = 0; j < kSub; ++j)
+                for (int i = 0; i < kSub; ++i) {
+                    const double u = (x + (i + 0.5) / kSub) / width, v = (y + (j + 0.5) / kSub) / height;
+                    const double weight = std::sin(v * kPi);  // solid angle of the sub-sample
+                    total += weight;
+                    if (glm::dot(gusuku::equirectDirection(u, v, north_deg), sun_direction) >= cos_radius)
+                        covered += weight;
+                }
+            const double coverage = covered / total;
+            if (coverage <= 0.0) continue;
+            float* t = image.texel(x, y);
+            for (int c = 0; c < 3; ++c)
+                t[c] = float(std::min(cap, sky_radiance + coverage * (disc_radiance[c] - sky_radiance)));
+        }
+    return image;
+}
+
+double discSolidAngle(double radius_deg) { return 2.0 * kPi * (1.0 - std::cos(radius_deg * kDeg)); }
+
+// ---------------------------------------------------------------------------------------------------------
+// Sun disc extraction
+// ---------------------------------------------------------------------------------------------------------
+
+struct SunCase {
+    double elevation_deg;
+    double azimuth_deg;
+};
+
+class SunDiscTest : public ::testing::TestWithParam<SunCase> {};
+
+TEST_P(SunDiscTest, FindsDirectionIrradianceAndLeavesOnlySky) {
+    const double north_deg = 90.0;  // azimuth 270 lands on the image's left/right seam
+    const glm::dvec3 sun = enuFromElevationAzimuth(GetParam().elevation_deg, GetParam().azimuth_deg);
+    const glm::dvec3 disc_radiance = 1.0e5 * glm::dvec3(1.0, 0.9, 0.8);  // a real sun is ~1e5x its sky
+    ImageRGBA sky = renderSunSky(1024, 512, north_deg, sun, disc_radiance, 1.0, kSunDiscAngularRadiusDeg);
+
+    const SunDiscEstimate estimate = extractSunDisc(sky, north_deg);
+    ASSERT_TRUE(estimate.found);
+    EXPECT_FALSE(estimate.clipped);
+    EXPECT_LT(angleBetweenDeg(estimate.direction_enu, sun), 0.3);
+    const double solid_angle = discSolidAngle(kSunDiscAngularRadiusDeg);
+    for (int c = 0; c < 3; ++c) {
+        const double expected = (disc_radiance[c] - 1.0) * solid_angle;  // the disc's excess over the sky
+        EXPECT_NEAR(estimate.irradiance_rgb[c], expected, 0.03 * expected) << "channel " << c;
+    }
+    EXPECT_GT(estimate.texel_count, 0);
+    float max_channel = 0.0f;
+    for (size_t i = 0; i < sky.texels.size(); ++i)
+        if (i % 4 != 3) max_channel = std::max(max_channel, sky.texels[i]);
+    EXPECT_NEAR(max_channel, 1.0f, 0.01f);
+}
+
+INSTANTIATE_TEST_SUITE_P(Suns, SunDiscTest,
+                         ::testing::Values(SunCase{35.0, 140.0}, SunCase{20.0, 270.0}, SunCase{75.0, 10.0},
+                                           SunCase{3.0, 95.0}));
+
+TEST(SunDisc, OvercastSkyIsNotASunAndStaysUnchanged) {
+    // CIE-like overcast: L = (1 + 2 cos theta) / 3 above the horizon, a flat ground below.
+    ImageRGBA sky = uniformMap(1024, 512, 0.0f);
+    for (int y = 0; y < sky.height; ++y) {
+        const double cos_theta = std::cos((y + 0.5) / sky.height * kPi);
+        const float radiance = float((1.0 + 2.0 * std::max(0.0, cos_theta)) / 3.0);
+        for (int x = 0; x < sky.width; ++x) std::fill(sky.texel(x, y), sky.texel(x, y) + 3, radiance);
+    }
+    const std::vector<float> before = sky.texels;
+    const SunDiscEstimate estimate = extractSunDisc(sky, 0.0);
+    EXPECT_FALSE(estimate.found);
+    EXPECT_EQ(estimate.texel_count, 0);
+    EXPECT_TRUE(sky.texels == before);
+}
+
+TEST(SunDisc, BlackMapIsNotASun) {
+    ImageRGBA sky = uniformMap(64, 32, 0.0f);
+    EXPECT_FALSE(extractSunDisc(sky, 0.0).found);
+}
+
+TEST(SunDisc, CappedDiscIsFoundAndMarkedClipped) {
+    const glm::dvec3 sun = enuFromElevationAzimuth(40.0, 200.0);
+    ImageRGBA sky = renderSunSky(1024, 512, 30.0, sun, glm::dvec3(1.0e5), 1.0, kSunDiscAngularRadiusDeg, 5.0);
+    const SunDiscEstimate estimate = extractSunDisc(sky, 30.0);
+    ASSERT_TRUE(estimate.found);
+    EXPECT_TRUE(estimate.clipped);
+    EXPECT_LT(angleBetweenDeg(estimate.direction_enu, sun), 0.5);
+    float max_channel = 0.0f;
+    for (size_t i = 0; i < sky.texels.size(); ++i)
+        if (i % 4 != 3) max_channel = std::max(max_channel, sky.texels[i]);
+    EXPECT_NEAR(max_channel, 1.0f, 0.01f);
+}
+
+TEST(SunDisc, DiscFarTooFaintForARealSunIsMarkedClipped) {
+    // 300x its sky: far above the sky (found), but its irradiance (299 * 6.8e-5 = 0.02) is under 1% of
+    // pi * sky radiance (0.031): no real sun is that faint against its sky.
+    const glm::dvec3 sun = enuFromElevationAzimuth(50.0, 60.0);
+    ImageRGBA sky = renderSunSky(1024, 512, 0.0, sun, glm::dvec3(300.0), 1.0, kSunDiscAngularRadiusDeg);
+    const SunDiscEstimate estimate = extractSunDisc(sky, 0.0);
+    ASSERT_TRUE(estimate.found);
+    EXPECT_TRUE(estimate.clipped);
+}
+
+TEST(SunDisc, BadMapsAreInputErrors) {
+    ImageRGBA empty;
+    EXPECT_THROW(extractSunDisc(empty, 0.0), gusuku::InputError);
+    ImageRGBA wrong = uniformMap(8, 4, 1.0f);
+    wrong.texels.pop_back();
+    EXPECT_THROW(extractSunDisc(wrong, 0.0), gusuku::InputError);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Clear-sky sun
+// ---------------------------------------------------------------------------------------------------------
+
+TEST(ClearSkySun, KastenYoungAirMassMatchesItsFormulaInZenithForm) {
+    // Kasten and Young (1989) as usually printed, with the zenith angle z: 1 / (cos z + 0.50572 (96.07995 - z)^-1.6364)
+    auto zenithForm = [](double zenith_deg) {
+        return 1.0 / (std::cos(zenith_deg * kDeg) + 0.50572 * std::pow(96.07995 - zenith_deg, -1.6364));
+    };
+    EXPECT_NEAR(kastenYoungAirMass(90.0), 1.0, 1e-3);
+    EXPECT_NEAR(kastenYoungAirMass(30.0), 1.994, 1e-3);
+    for (double zenith : {0.0, 30.0, 60.0, 80.0, 89.0, 90.0})
+        EXPECT_NEAR(kastenYoungAirMass(90.0 - zenith), zenithForm(zenith), 1e-9 * zenithForm(zenith));
+    EXPECT_NEAR(kastenYoungAirMass(0.0), 37.92, 0.05);  // the formula's horizon value
+}
+
+TEST(ClearSkySun, IrradianceIsPlausibleMonotonicAndZeroBelowHorizon) {
+    const glm::dvec3 zenith = clearSkySunIrradianceRgb(90.0);
+    // ESRA, T_L = 3, m = 1: 1367 exp(-0.8662 * 3 / 8.26674) ~ 1000 W/m^2 (a typical clear-sky DNI).
+    const double zenith_expected = 1367.0 * std::exp(-0.8662 * 3.0 * 0.99971 /
+                                                     (6.6296 + 1.7513 * 0.99971 - 0.1202 * 0.99942 +
+                                                      0.0065 * 0.99913 - 0.00013 * 0.99884));
+    EXPECT_NEAR(zenith.y, zenith_expected, 0.5);
+    EXPECT_NEAR(zenith.x, zenith.y, 1e-9);  // neutral at the zenith
+    EXPECT_NEAR(zenith.z, zenith.y, 1e-9);
+    glm::dvec3 previous(0.0);
+    for (double elevation = 0.25; elevation <= 90.0; elevation += 0.25) {
+        const glm::dvec3 e = clearSkySunIrradianceRgb(elevation);
+        for (int c = 0; c < 3; ++c) EXPECT_GT(e[c], previous[c]) << "elevation " << elevation << " channel " << c;
+        previous = e;
+    }
+    for (double below : {0.0, -0.5, -10.0, -90.0}) EXPECT_EQ(clearSkySunIrradianceRgb(below), glm::dvec3(0.0));
+    const glm::dvec3 low = clearSkySunIrradianceRgb(5.0);
+    EXPECT_GT(low.x, low.y);  // redder at a low sun
+    EXPECT_GT(low.y, low.z);
+    EXPECT_LT(clearSkySunIrradianceRgb(40.0, 6.0).y, clearSkySunIrradianceRgb(40.0, 3.0).y);  // hazier: dimmer
+    EXPECT_THROW(clearSkySunIrradianceRgb(std::nan(""), 3.0), std::invalid_argument);
+    EXPECT_THROW(clearSkySunIrradianceRgb(30.0, 0.0), std::invalid_argument);
+}
+
+TEST(ClearSkySun, ElevationScaleCarriesBetweenElevations) {
+    EXPECT_NEAR(sunElevationScale(37.0, 37.0), 1.0, 1e-12);
+    EXPECT_GT(sunElevationScale(20.0, 60.0), 1.0);
+    EXPECT_NEAR(sunElevationScale(20.0, 60.0) * sunElevationScale(60.0, 45.0), sunElevationScale(20.0, 45.0), 1e-12);
+    EXPECT_EQ(sunElevationScale(30.0, -2.0), 0.0);
+    EXPECT_EQ(sunElevationScale(-2.0, 30.0), 0.0);
+    const glm::dvec3 rgb = sunElevationScaleRgb(60.0, 10.0);
+    EXPECT_GT(rgb.x, rgb.z);  // towards a lower sun, blue drops more than red
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Sky importance sampling (CPU)
+// ---------------------------------------------------------------------------------------------------------
+
+/// A sky with a gradient, a coloured bright patch and a dark ground.
+ImageRGBA patchSky(int width, int height) {
+    ImageRGBA sky = uniformMap(width, height, 0.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float* t = sky.texel(x, y);
+            const double v = (y + 0.5) / height;
+            const double base = v < 0.5 ? 0.5 + 0.5 * (0.5 - v) : 0.1;
+            t[0] = float(base * 0.8);
+            t[1] = float(base * 0.9);
+            t[2] = float(base * 1.2);
+            if (x >= width / 5 && x < width / 5 + 8 && y >= height / 4 && y < height / 4 + 5) {
+                t[0] = 400.0f;  // bright, warm: radiance / luminance differs from the rest of the sky
+                t[1] = 300.0f;
+                t[2] = 150.0f;
+            }
+        }
+    return sky;
+}
+
+TEST(SkySampling, PdfIntegratesToOneOverTheSphere) {
+    const SkySamplingTables tables = buildSkySamplingTables(patchSky(256, 128), 45.0);
+    double integral = 0.0;
+    for (int y = 0; y < tables.height; ++y)
+        for (int x = 0; x < tables.width; ++x) {
+            const glm::dvec3 d = gusuku::equirectDirection((x + 0.5) / tables.width, (y + 0.5) / tables.height, 45.0);
+            integral += skyPdfCpu(tables, d) * gusuku::equirectTexelSolidAngle(y, tables.width, tables.height);
+        }
+    EXPECT_NEAR(integral, 1.0, 1e-4);
+}
+
+TEST(SkySampling, MonteCarloIrradianceMatchesQuadrature) {
+    const ImageRGBA sky = patchSky(256, 128);
+    const double north_deg = 45.0;
+    const SkySamplingTables tables = buildSkySamplingTables(sky, north_deg);
+    // Irradiance on a horizontal plane by quadrature over texels.
+    glm::dvec3 quadrature(0.0);
+    for (int y = 0; y < sky.height; ++y)
+        for (int x = 0; x < sky.width; ++x) {
+            const glm::dvec3 d = gusuku::equirectDirection((x + 0.5) / sky.width, (y + 0.5) / sky.height, north_deg);
+            const float* t = sky.texel(x, y);
+            quadrature += glm::dvec3(t[0], t[1], t[2]) * std::max(0.0, d.z) *
+                          gusuku::equirectTexelSolidAngle(y, sky.width, sky.height);
+        }
+    // The same by importance sampling: stratified jittered xi, fixed seed.
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    constexpr int kStrata = 400;
+    glm::dvec3 estimate(0.0);
+    for (int j = 0; j < kStrata; ++j)
+        for (int i = 0; i < kStrata; ++i) {
+            const float xi1 = (float(i) + jitter(rng)) / kStrata, xi2 = (float(j) + jitter(rng)) / kStrata;
+            const SkySample s = sampleSkyCpu(tables, xi1, xi2);
+            ASSERT_TRUE(std::isfinite(s.pdf_solid_angle));
+            ASSERT_GT(s.pdf_solid_angle, 0.0);
+            estimate += skyRadianceCpu(tables, s.direction_enu) * std::max(0.0, s.direction_enu.z) / s.pdf_solid_angle;
+        }
+    estimate /= double(kStrata) * kStrata;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << "channel " << c;
+}
+
+TEST(SkySampling, SampledPdfAgreesWithPdfLookupAndTexelConvention) {
+    const SkySamplingTables tables = buildSkySamplingTables(patchSky(64, 32), 120.0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (int k = 0; k < 2000; ++k) {
+        const SkySample s = sampleSkyCpu(tables, uniform(rng), uniform(rng));
+        EXPECT_NEAR(glm::length(s.direction_enu), 1.0, 1e-12);
+        EXPECT_NEAR(skyPdfCpu(tables, s.direction_enu), s.pdf_solid_angle, 1e-6 * s.pdf_solid_angle);
+    }
+    // skyRadianceCpu reads the texel whose centre direction it is given (equirect.h's convention).
+    for (int y = 0; y < tables.height; y += 5)
+        for (int x = 0; x < tables.width; x += 7) {
+            const glm::dvec3 d = gusuku::equirectDirection((x + 0.5) / tables.width, (y + 0.5) / tables.height, 120.0);
+            const float* expected = tables.radiance_rgba.data() + (size_t(y) * tables.width + x) * 4;
+            EXPECT_EQ(skyRadianceCpu(tables, d), glm::dvec3(expected[0], expected[1], expected[2]));
+        }
+}
+
+TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
+    const SkySamplingTables black = buildSkySamplingTables(uniformMap(64, 32, 0.0f), 0.0);
+    EXPECT_EQ(black.table[3], 0.0f);
+    for (float xi : {0.0f, 0.3f, 0.999f, 1.0f}) {
+        const SkySample s = sampleSkyCpu(black, xi, 0.5f);
+        EXPECT_TRUE(std::isfinite(s.pdf_solid_angle));
+        EXPECT_GT(s.pdf_solid_angle, 0.0);
+    }
+    for (int y = 0; y < 32; y += 3) {  // uniform over the sphere (at texel centres, where sin theta is exact)
+        const glm::dvec3 d = gusuku::equirectDirection(0.3, (y + 0.5) / 32.0, 0.0);
+        EXPECT_NEAR(skyPdfCpu(black, d), 1.0 / (4.0 * kPi), 1e-3 / (4.0 * kPi));
+    }
+    // Upper half black: every sample goes below the horizon, the pdf up there is 0 (never NaN).
+    ImageRGBA ground_only = uniformMap(64, 32, 0.0f);
+    for (int y = 16; y < 32; ++y)
+        for (int x = 0; x < 64; ++x) std::fill(ground_only.texel(x, y), ground_only.texel(x, y) + 3, 1.0f);
+    const SkySamplingTables tables = buildSkySamplingTables(ground_only, 0.0);
+    for (float xi : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) EXPECT_LE(sampleSkyCpu(tables, xi, xi).direction_enu.z, 0.0);
+    EXPECT_EQ(skyPdfCpu(tables, {0.0, 0.0, 1.0}), 0.0);
+    EXPECT_EQ(skyPdfCpu(tables, {0.3, 0.2, 0.5}), 0.0);
+    // Table layout: header then CDFs ending exactly at 1.
+    EXPECT_EQ(tables.table[0], 64.0f);
+    EXPECT_EQ(tables.table[1], 32.0f);
+    EXPECT_EQ(tables.table[kSkyTableHeaderFloats + 32], 1.0f);
+    EXPECT_EQ(tables.table.size(), kSkyTableHeaderFloats + 33 + 32 * 65);
+    EXPECT_NEAR(tables.table[3], 2.0 * kPi, 0.01);  // luminance 1 over the lower hemisphere
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// GLSL twin (shaders/include/sky_sampling.glsl through shaders/sky_probe.comp)
+// ---------------------------------------------------------------------------------------------------------
+
+class SkySamplingGpu : public gusuku::testing::GpuTest {};
+
+TEST_F(SkySamplingGpu, ProbeMatchesCpuTwins) {
+    const double north_deg = 200.0;
+    const SkySamplingTables tables = buildSkySamplingTables(patchSky(128, 64), north_deg);
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    std::normal_distribution<float> gaussian(0.0f, 1.0f);
+    std::vector<glm::vec2> xi;
+    std::vector<glm::vec3> directions;
+    // Edge cases first: the poles, the seam, xi at the ends of [0, 1].
+    xi.push_back({0.0f, 0.0f});
+    directions.push_back({0.0f, 0.0f, 1.0f});
+    xi.push_back({1.0f, 1.0f});
+    directions.push_back({0.0f, 0.0f, -1.0f});
+    xi.push_back({0.5f, 0.999999f});
+    directions.push_back(glm::vec3(gusuku::equirectDirection(1e-4, 0.3, north_deg)));
+    for (int k = 0; k < 1000; ++k) {
+        xi.push_back({uniform(rng), uniform(rng)});
+        glm::vec3 d(gaussian(rng), gaussian(rng), gaussian(rng));
+        directions.push_back(glm::normalize(d));
+    }
+    const std::vector<SkyProbeResult> gpu = runSkyProbeGpu(context(), tables, xi, directions);
+    ASSERT_EQ(gpu.size(), xi.size());
+    for (size_t i = 0; i < xi.size(); ++i) {
+        SCOPED_TRACE(::testing::Message() << "probe " << i << " xi (" << xi[i].x << ", " << xi[i].y << ")");
+        const SkySample cpu = sampleSkyCpu(tables, xi[i].x, xi[i].y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(gpu[i].sampled_direction_enu[c], cpu.direction_enu[c], 1e-5);
+        EXPECT_NEAR(gpu[i].sampled_pdf, cpu.pdf_solid_angle, 1e-4 * cpu.pdf_solid_angle);
+        const glm::dvec3 direction(directions[i]);
+        const glm::dvec3 radiance = skyRadianceCpu(tables, direction);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(gpu[i].radiance_at_direction[c], float(radiance[c]));
+        const double pdf = skyPdfCpu(tables, direction);
+        EXPECT_NEAR(gpu[i].pdf_at_direction, pdf, 1e-4 * pdf);
+        const glm::dvec3 radiance_at_sample = skyRadianceCpu(tables, cpu.direction_enu);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(gpu[i].radiance_at_sample[c], float(radiance_at_sample[c]));
+        EXPECT_NEAR(gpu[i].pdf_at_sample, skyPdfCpu(tables, cpu.direction_enu), 1e-4 * cpu.pdf_solid_angle);
+    }
+}
+
+}  // namespace
