@@ -363,6 +363,21 @@ TEST_F(GltfTest, MissingTextureIsWarningAndFactorOnly) {
     EXPECT_TRUE(named) << "no warning names the missing texture";
 }
 
+TEST_F(GltfTest, EmbeddedImageOutsideItsBufferIsInputError) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {}, 0);
+    const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    const int image_view = builder.addView(png_signature, sizeof(png_signature));
+    builder.document()["bufferViews"][image_view]["byteLength"] = 1 << 20;  // far past the buffer's end
+    json material = texturedMaterial("unused.png");
+    material["images"] = {{{"bufferView", image_view}, {"mimeType", "image/png"}}};
+    builder.document().update(material);
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const std::string path = builder.write(dir_, "image_range");
+    const InputError error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_NE(std::string(error.what()).find("images[0]"), std::string::npos) << error.what();
+}
+
 TEST_F(GltfTest, TextureIsDecodedAsSrgbAndDownsampled) {
     // 8 x 4 PNG: left half sRGB-encoded 0.5 (stored byte 128 after encoding linear srgbDecode(128/255)),
     // right half white. max_texture_size 4 halves it to 4 x 2.

@@ -45,9 +45,11 @@ TEST(SharedAssetsTest, PlaycanvasHouseHasLightmapUvs) {
     EXPECT_EQ(mesh.uv1.size(), mesh.vertexCount());
     expectWellFormed(mesh);
     expectFiniteBoundsWithExtent(mesh);
-    // SOURCE.md: about 0.5 x 0.19 x 0.5 units, y up in glTF -> height is ENU z.
+    // SOURCE.md: about 0.5 x 0.19 x 0.5 units; glTF's y (up) becomes ENU z: the 0.19 is the height.
     const gusuku::Bounds3 bounds = gusuku::meshBounds(mesh);
-    EXPECT_LT(bounds.max.z - bounds.min.z, bounds.max.x - bounds.min.x);
+    EXPECT_NEAR(bounds.max.x - bounds.min.x, 0.5f, 0.02f);
+    EXPECT_NEAR(bounds.max.y - bounds.min.y, 0.5f, 0.02f);
+    EXPECT_NEAR(bounds.max.z - bounds.min.z, 0.19f, 0.01f);
 }
 
 TEST(SharedAssetsTest, JapanTempleLoadsWithTextures) {
@@ -63,6 +65,11 @@ TEST(SharedAssetsTest, JapanTempleLoadsWithTextures) {
     EXPECT_FALSE(mesh.has_uv1);
     expectWellFormed(mesh);
     expectFiniteBoundsWithExtent(mesh);
+    // SOURCE.md: about 3.0 x 4.0 x 4.7 units; glTF's y (up) becomes ENU z: the 4.0 is the height.
+    const gusuku::Bounds3 bounds = gusuku::meshBounds(mesh);
+    EXPECT_NEAR(bounds.max.x - bounds.min.x, 3.0f, 0.1f);
+    EXPECT_NEAR(bounds.max.y - bounds.min.y, 4.7f, 0.1f);
+    EXPECT_NEAR(bounds.max.z - bounds.min.z, 4.0f, 0.1f);
     EXPECT_GE(mesh.textures.size(), 7u);  // seven base-colour JPEGs in textures/
     EXPECT_EQ(mesh.texture_names.size(), mesh.textures.size());
     for (const gusuku::ImageRGBA& texture : mesh.textures) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -12,6 +13,7 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/equirect.h"
+#include "gusuku/image.h"
 #include "gusuku/input_error.h"
 #include "gusuku_bake/sky_light.h"
 
@@ -31,8 +33,6 @@ glm::dvec3 enuFromElevationAzimuth(double elevation_deg, double azimuth_deg) {
 double angleBetweenDeg(const glm::dvec3& a, const glm::dvec3& b) {
     return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) / kDeg;
 }
-
-double luminance(const float* rgba) { return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2]; }
 
 ImageRGBA uniformMap(int width, int height, float value) {
     ImageRGBA image;
@@ -155,6 +155,41 @@ TEST(SunDisc, DiscFarTooFaintForARealSunIsMarkedClipped) {
     const SunDiscEstimate estimate = extractSunDisc(sky, 0.0);
     ASSERT_TRUE(estimate.found);
     EXPECT_TRUE(estimate.clipped);
+}
+
+/// Share of a map's light (luminance integrated over the sphere) that extractSunDisc took out as the disc.
+double sunShareOfLight(const SunDiscEstimate& disc, const ImageRGBA& sky_without_sun) {
+    const double disc_light = 0.2126 * disc.irradiance_rgb.x + 0.7152 * disc.irradiance_rgb.y +
+                              0.0722 * disc.irradiance_rgb.z;  // cos ~ 1 over the disc
+    const double sky_light = buildSkySamplingTables(sky_without_sun, 0.0).table[3];
+    return disc_light / (disc_light + sky_light);
+}
+
+TEST(SunDisc, RealPhotosMatchTheirDocumentedSuns) {
+    GUSUKU_REQUIRE_SHARED_DATA();
+    // ../shared/data/env/SOURCE.md: sun at about 35 deg holding about 25 % of the light; low sun at about
+    // 10 deg holding about 68 %; an overcast map with no direct sun. North's column is irrelevant here.
+    const std::string env = gusuku::testing::sharedDataDir() + "/env/";
+    struct Expectation {
+        const char* file;
+        double elevation_deg;
+        double sun_share;
+    };
+    for (const Expectation& e : {Expectation{"immenstadter_horn_1k.hdr", 35.0, 0.25},
+                                 Expectation{"rooitou_park_1k.hdr", 10.0, 0.68}}) {
+        SCOPED_TRACE(e.file);
+        ImageRGBA sky = gusuku::readRadianceMap(env + e.file);
+        const SunDiscEstimate disc = extractSunDisc(sky, 0.0);
+        ASSERT_TRUE(disc.found);
+        EXPECT_FALSE(disc.clipped);
+        EXPECT_NEAR(std::asin(disc.direction_enu.z) / kDeg, e.elevation_deg, 2.0);
+        EXPECT_NEAR(sunShareOfLight(disc, sky), e.sun_share, 0.05);
+        EXPECT_LT(disc.angular_radius_deg, 5.0);
+    }
+    ImageRGBA overcast = gusuku::readRadianceMap(env + "potsdamer_platz_1k.hdr");
+    const std::vector<float> before = overcast.texels;
+    EXPECT_FALSE(extractSunDisc(overcast, 0.0).found);
+    EXPECT_TRUE(overcast.texels == before);
 }
 
 TEST(SunDisc, BadMapsAreInputErrors) {

@@ -24,14 +24,23 @@ void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, doubl
         geometry.warnings.push_back("building TEXCOORD_1 not usable as a lightmap (" + report.message +
                                     "); generating charts instead");
     }
+    // The resolution estimate assumes a packing overhead; when the charts pack worse, the packer lowers the
+    // density. Grow the lightmap a little (twice at most) before accepting a lower density.
     LightmapCharts charts = generateLightmapCharts(loaded, texels_per_metre, resolution);
+    for (int attempt = 0; attempt < 2 && charts.texels_per_metre < texels_per_metre * 0.999; ++attempt) {
+        const double growth = texels_per_metre / charts.texels_per_metre * 1.05;
+        const int larger = chooseLightmapResolution(loaded, texels_per_metre * growth);
+        if (larger <= geometry.lightmap_resolution) break;
+        geometry.lightmap_resolution = larger;
+        charts = generateLightmapCharts(loaded, texels_per_metre, larger);
+    }
     geometry.building = std::move(charts.mesh);
     geometry.effective_texels_per_metre = charts.texels_per_metre;
     geometry.lightmap_uv_source = "generated charts (" + std::to_string(charts.chart_count) + " charts)";
     if (charts.texels_per_metre < texels_per_metre * 0.999)
         geometry.warnings.push_back("lightmap density lowered from " + std::to_string(texels_per_metre) + " to " +
                                     std::to_string(charts.texels_per_metre) + " texels/m to fit " +
-                                    std::to_string(resolution) + "^2");
+                                    std::to_string(geometry.lightmap_resolution) + "^2");
 }
 
 }  // namespace

@@ -50,7 +50,11 @@ void BakeProgress::advance(const std::string& label, uint32_t samples_done, uint
     draw(false);
 }
 
-void BakeProgress::finish() { draw(true); }
+void BakeProgress::finish() {
+    // A log (not a terminal) already has its 100 % line when the last advance completed the work.
+    if (!is_terminal_ && last_decile_ == 10) return;
+    draw(true);
+}
 
 void BakeProgress::draw(bool final_line) {
     if (!enabled_) return;

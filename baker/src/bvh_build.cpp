@@ -178,12 +178,16 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
     }
 
     if (usable_triangles.empty()) {
-        BvhNodeGpu empty_root{};
-        for (int axis = 0; axis < 3; ++axis) {
-            empty_root.bounds_min[axis] = 1e30f;
-            empty_root.bounds_max[axis] = -1e30f;
-        }
-        bvh.nodes.push_back(empty_root);
+        // The slab test is symmetric in min and max, so "inverted" bounds would still be hit; instead the
+        // root is a leaf holding one placeholder whose zero edges make Moller-Trumbore's determinant zero.
+        BvhTriangleGpu placeholder{};
+        placeholder.triangle_index = kBvhNoTriangle;
+        bvh.triangles.push_back(placeholder);
+        BvhNodeGpu root{};
+        root.left_or_first = 0;
+        root.triangle_count = 1;
+        bvh.nodes.push_back(root);
+        bvh.depth = 1;
         return bvh;
     }
 

@@ -70,43 +70,45 @@ struct TriangleInfo {
     bool degenerate = true;
 };
 
-// Which triangle lies across each edge, for edges a chart may cross: shared by exactly two triangles that run
-// it in opposite directions (a consistently wound, manifold surface). -1 elsewhere.
-std::vector<int64_t> findChartableNeighbours(const std::vector<TriangleInfo>& triangles) {
-    struct EdgeUse {
-        uint32_t count = 0;
-        int64_t first_slot = -1;  // triangle * 3 + edge
-        bool first_forward = false;
-        int64_t second_slot = -1;
-        bool second_forward = false;
-    };
-    std::unordered_map<uint64_t, EdgeUse> uses;
+// Triangles a chart may grow into across each triangle's edges: those that run the same (welded) edge in the
+// opposite direction, i.e. continue a consistently wound surface. On a non-manifold edge (a wall meeting a
+// floor twice, a face duplicated back to back) every opposite-running pair counts; the normal test and the
+// overlap test decide which of them may really join. Neighbours of edge slot (triangle * 3 + edge) are
+// neighbours[offsets[slot] .. offsets[slot + 1]).
+struct EdgeNeighbours {
+    std::vector<uint32_t> offsets;
+    std::vector<uint32_t> neighbours;
+};
+
+EdgeNeighbours findChartableNeighbours(const std::vector<TriangleInfo>& triangles) {
+    // slot * 2 + (1 when the slot runs its edge from the smaller welded index to the larger)
+    std::unordered_map<uint64_t, std::vector<uint64_t>> uses;
     uses.reserve(triangles.size() * 2);
     for (size_t triangle = 0; triangle < triangles.size(); ++triangle) {
+        // Degenerate triangles (slivers, collapsed poles) would tie unrelated triangles together across their
+        // collapsed edges; they join a neighbour's chart afterwards instead.
+        if (triangles[triangle].degenerate) continue;
         for (int edge = 0; edge < 3; ++edge) {
             const uint32_t a = triangles[triangle].welded[edge];
             const uint32_t b = triangles[triangle].welded[(edge + 1) % 3];
-            if (a == b) continue;
             const bool forward = a < b;
             const uint64_t key = forward ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
-            EdgeUse& use = uses[key];
-            if (use.count == 0) {
-                use.first_slot = int64_t(triangle * 3 + edge);
-                use.first_forward = forward;
-            } else if (use.count == 1) {
-                use.second_slot = int64_t(triangle * 3 + edge);
-                use.second_forward = forward;
-            }
-            ++use.count;
+            uses[key].push_back(uint64_t(triangle * 3 + edge) * 2 + (forward ? 1 : 0));
         }
     }
-    std::vector<int64_t> neighbour(triangles.size() * 3, -1);
-    for (const auto& [key, use] : uses) {
-        if (use.count != 2 || use.first_forward == use.second_forward) continue;
-        neighbour[size_t(use.first_slot)] = use.second_slot / 3;
-        neighbour[size_t(use.second_slot)] = use.first_slot / 3;
+    std::vector<std::vector<uint32_t>> per_slot(triangles.size() * 3);
+    for (const auto& [key, slots] : uses)
+        for (uint64_t first : slots)
+            for (uint64_t second : slots)
+                if ((first & 1) != (second & 1)) per_slot[first >> 1].push_back(uint32_t((second >> 1) / 3));
+    EdgeNeighbours result;
+    result.offsets.reserve(per_slot.size() + 1);
+    result.offsets.push_back(0);
+    for (const std::vector<uint32_t>& list : per_slot) {
+        result.neighbours.insert(result.neighbours.end(), list.begin(), list.end());
+        result.offsets.push_back(uint32_t(result.neighbours.size()));
     }
-    return neighbour;
+    return result;
 }
 
 double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
@@ -321,7 +323,7 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
             edge_lengths.push_back(glm::length(corner[1] - corner[0]));
         }
     }
-    const std::vector<int64_t> neighbour = findChartableNeighbours(triangles);
+    const EdgeNeighbours adjacency = findChartableNeighbours(triangles);
 
     double typical_edge = diagonal * 1e-3;
     if (!edge_lengths.empty()) {
@@ -344,10 +346,10 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
     std::vector<int64_t> rejected_by_chart(triangle_count, -1);
     std::vector<Chart> charts;
     for (uint32_t seed : seed_order) {
-        if (chart_of[seed] >= 0) continue;
+        if (chart_of[seed] >= 0 || triangles[seed].degenerate) continue;
         const int64_t chart_index = int64_t(charts.size());
         Chart chart;
-        const glm::dvec3 seed_normal = triangles[seed].degenerate ? glm::dvec3(0, 0, 1) : triangles[seed].normal;
+        const glm::dvec3 seed_normal = triangles[seed].normal;
         planeBasis(seed_normal, &chart.tangent, &chart.bitangent);
         auto flatten = [&](uint32_t triangle) {
             FlatTriangle flat;
@@ -370,23 +372,46 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
             const uint32_t triangle = frontier.front();
             frontier.pop_front();
             chart.triangles.push_back(triangle);
-            for (int edge = 0; edge < 3; ++edge) {
-                const int64_t next = neighbour[size_t(triangle) * 3 + edge];
-                if (next < 0 || chart_of[next] >= 0 || rejected_by_chart[next] == chart_index) continue;
+            const size_t first_slot = size_t(triangle) * 3;
+            for (uint32_t at = adjacency.offsets[first_slot]; at < adjacency.offsets[first_slot + 3]; ++at) {
+                const uint32_t next = adjacency.neighbours[at];
+                if (chart_of[next] >= 0 || rejected_by_chart[next] == chart_index) continue;
                 const TriangleInfo& info = triangles[size_t(next)];
-                // Degenerate triangles have no normal to disagree with; they go wherever a neighbour goes.
-                const bool similar = info.degenerate || glm::dot(info.normal, seed_normal) >= min_normal_dot;
-                const FlatTriangle flat = flatten(uint32_t(next));
+                const bool similar = glm::dot(info.normal, seed_normal) >= min_normal_dot;
+                const FlatTriangle flat = flatten(next);
                 if (!similar || index.overlapsAny(flat)) {
                     rejected_by_chart[next] = chart_index;
                     continue;
                 }
                 chart_of[next] = chart_index;
                 index.add(flat);
-                frontier.push_back(uint32_t(next));
+                frontier.push_back(next);
             }
         }
         charts.push_back(std::move(chart));
+    }
+
+    // Degenerate triangles cover no area, so they cannot overlap anything: each joins the chart of a triangle
+    // it shares a welded vertex with (its uv1 then lies in that chart's rectangle), or is a chart of its own.
+    std::unordered_map<uint32_t, int64_t> chart_at_welded_vertex;
+    for (size_t triangle = 0; triangle < triangle_count; ++triangle)
+        if (chart_of[triangle] >= 0)
+            for (uint32_t corner : triangles[triangle].welded) chart_at_welded_vertex.emplace(corner, chart_of[triangle]);
+    for (size_t triangle = 0; triangle < triangle_count; ++triangle) {
+        if (chart_of[triangle] >= 0) continue;
+        for (uint32_t corner : triangles[triangle].welded) {
+            auto it = chart_at_welded_vertex.find(corner);
+            if (it != chart_at_welded_vertex.end()) {
+                chart_of[triangle] = it->second;
+                break;
+            }
+        }
+        if (chart_of[triangle] < 0) {
+            chart_of[triangle] = int64_t(charts.size());
+            charts.emplace_back();
+            planeBasis(glm::dvec3(0, 0, 1), &charts.back().tangent, &charts.back().bitangent);
+        }
+        charts[size_t(chart_of[triangle])].triangles.push_back(uint32_t(triangle));
     }
 
     // Turn each chart in its plane to the smallest bounding rectangle (fewer wasted texels).

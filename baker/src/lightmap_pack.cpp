@@ -121,6 +121,9 @@ int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, 
                          "must be finite and positive, got " + std::to_string(texels_per_metre));
     if (max_resolution < 4)
         throw InputError("lightmap", "max_resolution", "must be at least 4, got " + std::to_string(max_resolution));
+    for (uint32_t index : mesh.indices)
+        if (index >= mesh.positions.size())
+            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
     double area_m2 = 0.0;
     for (size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
         const glm::dvec3 p0(mesh.positions[mesh.indices[triangle * 3 + 0]]);

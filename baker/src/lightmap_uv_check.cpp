@@ -69,6 +69,9 @@ std::vector<size_t> findUvCharts(const TriangleMesh& mesh, const std::vector<boo
 UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution) {
     if (resolution < 1 || resolution > 16384)
         throw InputError("lightmap", "resolution", "must be in [1, 16384], got " + std::to_string(resolution));
+    for (uint32_t index : mesh.indices)
+        if (index >= mesh.positions.size())
+            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
     UvCheckReport report;
     report.resolution = resolution;
     report.triangle_count = mesh.triangleCount();

@@ -37,9 +37,28 @@ namespace {
 constexpr int kMaxNodeDepth = 256;
 
 // tinygltf image callback: keep the encoded bytes (as_is) instead of decoding them with its built-in stb_image.
-bool keepEncodedImage(tinygltf::Image* image, const int /*image_index*/, std::string* /*error*/,
+// user_data is the Model being loaded. tinygltf hands over an embedded image's bufferView without checking it
+// against its buffer, so the range is checked here before a byte is copied.
+bool keepEncodedImage(tinygltf::Image* image, const int image_index, std::string* error,
                       std::string* /*warning*/, int /*requested_width*/, int /*requested_height*/,
-                      const unsigned char* bytes, int byte_count, void* /*user_data*/) {
+                      const unsigned char* bytes, int byte_count, void* user_data) {
+    if (image->bufferView >= 0) {
+        const auto* model = static_cast<const tinygltf::Model*>(user_data);
+        bool inside_a_buffer = false;
+        const auto address = reinterpret_cast<uintptr_t>(bytes);
+        for (const tinygltf::Buffer& buffer : model->buffers) {
+            const auto begin = reinterpret_cast<uintptr_t>(buffer.data.data());
+            const uintptr_t end = begin + buffer.data.size();
+            inside_a_buffer |= byte_count >= 0 && address >= begin && address <= end &&
+                               uintptr_t(byte_count) <= end - address;
+        }
+        if (!inside_a_buffer) {
+            if (error)
+                *error += "images[" + std::to_string(image_index) + "]: bufferView " +
+                          std::to_string(image->bufferView) + " lies outside its buffer\n";
+            return false;
+        }
+    }
     if (bytes != nullptr && byte_count > 0) image->image.assign(bytes, bytes + byte_count);
     image->as_is = true;
     return true;
@@ -529,8 +548,8 @@ TriangleMesh loadGltf(const std::string& path, const GltfLoadOptions& options, s
     if (!std::filesystem::is_regular_file(path, error_code)) throw InputError(path, "", "file not found");
 
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(&keepEncodedImage, nullptr);
     tinygltf::Model model;
+    parser.SetImageLoader(&keepEncodedImage, &model);
     std::string error, warning;
     const bool parsed = hasGlbExtension(path) ? parser.LoadBinaryFromFile(&model, &error, &warning, path)
                                               : parser.LoadASCIIFromFile(&model, &error, &warning, path);

@@ -169,7 +169,10 @@ ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigne
     const std::string extension = extensionFromSignature(bytes);
     if (extension.empty()) throw InputError(name, "", "image data in an unknown format");
     OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-    const OIIO::ImageSpec config = readConfig();
+    OIIO::ImageSpec config = readConfig();
+    // The proxy goes both to open() and into the config: OpenImageIO 2.4's readers look for it in the config.
+    void* reader_pointer = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader_pointer);
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open("memory" + extension, &config, &reader);
     if (!input) throw InputError(name, "", "cannot read image: " + OIIO::geterror());
     return readOpenedImage(name, *input, encoding);

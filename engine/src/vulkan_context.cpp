@@ -100,6 +100,9 @@ void checkVk(VkResult result, const char* what) {
 VulkanContextOptions vulkanOptionsFromEnvironment() {
     VulkanContextOptions options;
     options.enable_validation = environmentFlag("GUSUKU_VALIDATION");
+    // An escape hatch for triage: GUSUKU_SYNC_VALIDATION=0 keeps the core checks but drops the hazard tracking.
+    if (const char* sync = std::getenv("GUSUKU_SYNC_VALIDATION"); sync && std::strcmp(sync, "0") == 0)
+        options.enable_synchronization_validation = false;
     if (const char* device = std::getenv("GUSUKU_DEVICE")) options.device_name_filter = device;
     return options;
 }

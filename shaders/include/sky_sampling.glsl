@@ -111,7 +111,9 @@ vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
 
     // sin theta from the distance to the nearer pole, measured from that pole's side of the row, and z through
     // the elevation: both keep float precision at the poles (1 - v would not).
-    float v_from_pole = (2 * y + 1 < height) ? v : (float(height - 1 - y) + (row_high - xi.x) / (row_high - row_low)) / float(height);
+    float v_from_pole = (2 * y + 1 < height)
+        ? v
+        : (float(height - 1 - y) + (row_high - xi.x) / (row_high - row_low)) / float(height);
     float sin_theta = sin(SKY_PI * v_from_pole);
     float azimuth_rad = radians(360.0 * u - skyNorthAzimuthDeg());
     vec3 direction_enu = vec3(sin_theta * sin(azimuth_rad), sin_theta * cos(azimuth_rad), sin((0.5 - v) * SKY_PI));

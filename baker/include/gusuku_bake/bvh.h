@@ -8,8 +8,8 @@
 // - nodes[0] is the root. An inner node has triangle_count == 0 and left_or_first = index of its left
 //   child; its right child is ALWAYS left_or_first + 1 (children are allocated in pairs).
 //   A leaf has 1..kBvhMaxLeafTriangles triangles: triangles[left_or_first .. left_or_first+triangle_count).
-// - An empty BVH (no usable triangle) is one inner-looking node with empty bounds (min > max): every ray
-//   misses its box, so traversal never reads the (empty) triangle buffer.
+// - An empty BVH (no usable triangle) is one leaf holding one placeholder triangle that no ray can hit
+//   (zero edges, triangle_index kBvhNoTriangle), so both buffers are never empty and need no special case.
 // - Node bounds are padded by ~1e-6 relative so that rounding in the triangle test never puts a hit just
 //   outside its leaf's box. The tree depth is at most kBvhMaxDepth, so the GLSL stack cannot overflow.
 // - Ray/triangle: Moller-Trumbore on (v0, edge1, edge2), both faces, hits with 0 < t < t_max.
@@ -27,6 +27,8 @@ namespace gusuku::bake {
 
 /// Most triangles in one leaf.
 inline constexpr uint32_t kBvhMaxLeafTriangles = 4;
+/// triangle_index of the placeholder in an empty BVH (never reported as a hit).
+inline constexpr uint32_t kBvhNoTriangle = 0xffffffffu;
 /// Deepest node level (root = 1). Equals the GLSL traversal stack size (BVH_STACK_SIZE).
 inline constexpr uint32_t kBvhMaxDepth = 64;
 
@@ -54,9 +56,9 @@ static_assert(sizeof(BvhTriangleGpu) == 48, "BvhTriangleGpu must match the std43
 
 struct Bvh {
     std::vector<BvhNodeGpu> nodes;          ///< upload as-is to the node storage buffer
-    std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle storage buffer
+    std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle storage buffer (never empty)
     size_t dropped_triangle_count = 0;      ///< zero-area or non-finite triangles left out
-    uint32_t depth = 0;                     ///< levels in the tree (root only = 1; 0 when empty)
+    uint32_t depth = 0;                     ///< levels in the tree (root only = 1)
 };
 
 /// Builds a binned-SAH BVH (16 bins, leaves of <= 4 triangles) over every triangle of `mesh`.

@@ -31,7 +31,7 @@ namespace gusuku::bake {
 /// clamped to [4, max_resolution] (rounded DOWN to a multiple of 4 when the cap is hit). The overhead allows
 /// for chart rectangles, shelf packing and padding; when the charts still do not fit, generateLightmapCharts
 /// lowers the density and says so. O(triangles). Throws InputError when texels_per_metre is not finite and
-/// positive or max_resolution < 4.
+/// positive, max_resolution < 4, or an index is out of range.
 inline constexpr double kLightmapPackingOverhead = 2.0;
 int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, int max_resolution = 2048);
 
@@ -57,7 +57,7 @@ struct UvCheckReport {
 /// merely come closer than a texel are reported in shared_edge_texels instead. Degenerate triangles are
 /// counted but take no part in the overlap count. A mesh without uv1 (or with a uv1 count that does not
 /// match its vertices) is reported not ok. O(triangles + texels covered); allocates resolution^2 ints.
-/// Throws InputError when resolution < 1 or > 16384.
+/// Throws InputError when resolution < 1 or > 16384, or an index is out of range.
 UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution);
 
 /// The result of generateLightmapCharts.
@@ -72,18 +72,23 @@ struct LightmapCharts {
 
 /// Makes lightmap charts for `mesh` at `texels_per_metre` in a `resolution`^2 lightmap.
 /// - Positions are welded within 1e-6 of the bounding-box diagonal (glTF splits vertices at normal and uv0
-///   seams), and triangles are joined across an edge shared by exactly two triangles with opposite winding
-///   (so duplicated and back-to-back faces never share a chart) while the normal stays within 40 degrees of
-///   the chart's seed normal (seeds: largest triangles first). A triangle whose projection would overlap the
-///   chart's existing triangles is left for a later chart, so no chart folds over itself.
+///   seams). A chart grows from a seed (largest triangles first) across welded edges that a neighbour runs in
+///   the opposite direction (a consistently wound surface; on non-manifold edges every such pair), while the
+///   neighbour's normal stays within 40 degrees of the seed's. A triangle whose projection would overlap the
+///   chart's triangles by more than 1e-4 texel (duplicated faces, folds, a ramp passing over itself) is left
+///   for a later chart, so no chart overlaps itself. Degenerate triangles (zero area or collapsed by welding)
+///   join the chart of a triangle sharing one of their vertices.
 /// - Each chart is projected onto the plane of its seed normal, rotated in that plane to the smallest bounding
 ///   rectangle (5 degree steps), and scaled to texels.
 /// - Rectangles are shelf-packed, tallest first, each with `padding_texels` empty texels on every side of the
-///   texels its triangles touch, so two charts' touched texels are at least 2 * padding_texels apart. If they
-///   do not fit, the density is lowered uniformly until they do (texels_per_metre reports it).
-/// About linear in triangles (hash maps for welding, adjacency and overlap tests); 50k triangles take well
-/// under a second or two. Throws InputError for a mesh without triangles, a bad density or resolution, or
-/// when even a one-texel footprint per chart cannot fit.
+///   texels its triangles touch, so at least 2 * padding_texels empty texels separate two charts. Inside its
+///   rectangle a chart is offset so its edges stay clear of rows of texel centres (coverage is then stable
+///   under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres). If the rectangles do not fit, the
+///   density is lowered uniformly (bisection) until they do; texels_per_metre reports it.
+/// About linear in triangles (hash maps for welding, adjacency and overlap tests): a 65k-triangle sphere
+/// takes about 0.1-0.4 s on this machine. Throws InputError for a mesh without triangles, an index out of range, a position
+/// that is not finite, a bad density, resolution or padding, or when even a one-texel footprint per chart
+/// cannot fit.
 LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
                                       int padding_texels = 2);
 
@@ -102,7 +107,7 @@ struct LightmapTexel {
 /// clipped area inside the texel is larger wins; fallback (centroid) claims yield to centre claims. A texel
 /// taken by a fallback claim maps to the point of the triangle nearest its centre in uv1, so positions always
 /// lie on the triangle. Triangles with zero world area are skipped. uv1 outside [0,1] is clipped away.
-/// Throws InputError when the mesh has no uv1 or resolution is out of [1, 16384].
+/// Throws InputError when the mesh has no uv1, an index is out of range, or resolution is out of [1, 16384].
 std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh_with_uv1, int resolution);
 
 /// Fills empty texels from their neighbours, `iterations` rings deep, so bilinear filtering at chart edges

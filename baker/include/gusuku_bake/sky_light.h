@@ -72,7 +72,8 @@ struct SunDiscEstimate {
 /// (peak - m) / 2), kept inside the ring's inner radius, dilated by 2 texels; each of its texels becomes the
 /// fill. A sunless map (no texel standing out like that) -> found = false and the map is untouched.
 /// Callers should still compare direction_enu with the sun position from the date (a clipped white cloud can
-/// pass the flat-top rule). Throws InputError when the map is empty or its texel vector has the wrong size.
+/// pass the flat-top rule). Known limit: an LDR-range clipped sun (peak < 50 m) covering fewer than 3 texels
+/// (maps of 512 x 256 and less) is not found and stays in the map. Throws InputError when the map is empty or its texel vector has the wrong size.
 /// Cost: O(texels) for the peak search, plus O(texels in the band of rows around the sun).
 SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_image_deg);
 
@@ -92,7 +93,8 @@ double kastenYoungAirMass(double elevation_deg);
 /// Colour: each channel's optical depth is tau_c = k_c tau with k_c = (lambda_c / 550 nm)^-2 (lambda 610, 550,
 /// 465 nm; exponent 2 between aerosol's ~1.3 and Rayleigh's 4), normalised so that the sun at the zenith is
 /// neutral: E_c = B_n(m) exp(-(k_c - 1)(tau(m) - tau(1))). So G is the broadband value, R rises and B falls
-/// as the sun gets lower (about +25% / -20% at 5 deg elevation with T_L = 3). Elevation <= 0 -> (0, 0, 0).
+/// as the sun gets lower (with T_L = 3: R/G 1.04, B/G 0.92 at 30 deg; R/G 1.25, B/G 0.62 at 5 deg; G at the
+/// zenith 998 W m^-2). Elevation <= 0 -> (0, 0, 0).
 /// Throws std::invalid_argument when elevation is NaN or linke_turbidity is not finite and > 0.
 glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity = 3.0);
 

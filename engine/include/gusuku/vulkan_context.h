@@ -19,14 +19,14 @@ struct VulkanContextOptions {
     bool enable_validation = false;
     /// With validation: also enable the layer's synchronization validation (missing barriers between
     /// dispatches, SYNC-HAZARD-* messages) through VK_EXT_validation_features, where the layer offers it.
-    /// Measured on lavapipe: no visible cost for test_vulkan.
+    /// Measured on lavapipe: no visible cost for test_vulkan. GUSUKU_SYNC_VALIDATION=0 turns it off.
     bool enable_synchronization_validation = true;
     /// Substring of the device name to pick ("llvmpipe", "NVIDIA"); empty: a discrete or integrated GPU if one
     /// exists, else lavapipe. The environment variable GUSUKU_DEVICE overrides an empty value.
     std::string device_name_filter;
 };
 
-/// Options read from the environment (GUSUKU_VALIDATION, GUSUKU_DEVICE).
+/// Options read from the environment (GUSUKU_VALIDATION, GUSUKU_SYNC_VALIDATION, GUSUKU_DEVICE).
 VulkanContextOptions vulkanOptionsFromEnvironment();
 
 class VulkanContext {

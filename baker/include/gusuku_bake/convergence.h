@@ -1,0 +1,54 @@
+#pragma once
+// Convergence study of the building lightmap: RMS error against a converged reference as samples double, with
+// and without the edge-keeping filter, and the time each step cost. Monte Carlo error should fall as
+// 1/sqrt(samples) (a slope of -1/2 on log-log axes); the study measures it rather than assuming it.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gusuku/site.h"
+#include "gusuku/vulkan_context.h"
+
+namespace gusuku::bake {
+
+struct ConvergenceOptions {
+    std::string slot_name;             ///< empty: the site's first slot
+    uint32_t reference_samples = 1024; ///< the converged bake (an independent seed)
+    uint32_t max_samples = 128;        ///< the study doubles from 1 up to this
+    int max_texture_size = 512;
+    bool show_progress = true;
+};
+
+struct ConvergencePoint {
+    uint32_t samples = 0;
+    uint64_t rays = 0;            ///< cumulative
+    double seconds = 0.0;         ///< cumulative trace time
+    double relative_rms = 0.0;    ///< RMS(E - E_ref) / mean(E_ref), luminance, over valid texels
+    double relative_rms_denoised = 0.0;
+};
+
+struct ConvergenceStudy {
+    std::string slot_name;
+    size_t texel_count = 0;
+    uint32_t reference_samples = 0;
+    double reference_seconds = 0.0;
+    /// The reference's own expected error, estimated from the 1-sample error as rms_1 / sqrt(reference
+    /// samples): errors near this floor are the reference's noise, not the bake's.
+    double reference_noise_floor = 0.0;
+    std::vector<ConvergencePoint> points;
+    double rays_per_second = 0.0;
+    double log_log_slope = 0.0;           ///< least-squares slope of log(rms) on log(samples), raw
+    double log_log_slope_denoised = 0.0;
+};
+
+ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& site, const ConvergenceOptions& options);
+
+/// Seconds of tracing to reach `target_relative_rms`, interpolated on log-log axes between measured points;
+/// negative when the study never reached it.
+double secondsToReach(const ConvergenceStudy& study, double target_relative_rms, bool denoised);
+
+/// The study as a printable table plus summary lines.
+std::string formatConvergenceStudy(const ConvergenceStudy& study, double target_relative_rms);
+
+}  // namespace gusuku::bake

@@ -1,0 +1,172 @@
+#include "gusuku_bake/convergence.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+
+#include "bake_outputs.h"
+#include "gusuku/colour.h"
+#include "gusuku_bake/bake_geometry.h"
+#include "gusuku_bake/bake_progress.h"
+#include "gusuku_bake/irradiance_tracer.h"
+#include "gusuku_bake/slot_lighting.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Relative RMS of luminance over texels valid in both, against the reference.
+double relativeRms(const std::vector<glm::vec4>& estimate, const std::vector<glm::vec4>& reference) {
+    double squared_error = 0.0, reference_sum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < reference.size(); ++i) {
+        if (reference[i].a <= 0.0f || estimate[i].a <= 0.0f) continue;
+        const double reference_luminance = luminanceRec709(glm::vec3(reference[i]));
+        const double error = luminanceRec709(glm::vec3(estimate[i])) - reference_luminance;
+        squared_error += error * error;
+        reference_sum += reference_luminance;
+        ++count;
+    }
+    if (count == 0 || reference_sum <= 0.0) return 0.0;
+    return std::sqrt(squared_error / double(count)) / (reference_sum / double(count));
+}
+
+double logLogSlope(const std::vector<ConvergencePoint>& points, bool denoised) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (const ConvergencePoint& point : points) {
+        const double rms = denoised ? point.relative_rms_denoised : point.relative_rms;
+        if (rms <= 0.0) continue;
+        const double x = std::log(double(point.samples)), y = std::log(rms);
+        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+    }
+    const double denominator = n * sxx - sx * sx;
+    return n >= 2 && denominator > 0.0 ? (n * sxy - sx * sy) / denominator : 0.0;
+}
+
+}  // namespace
+
+ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& site, const ConvergenceOptions& options) {
+    const BakeSlot* slot = site.bake.slots.empty() ? nullptr : &site.bake.slots.front();
+    for (const BakeSlot& candidate : site.bake.slots)
+        if (candidate.name == options.slot_name) slot = &candidate;
+    if (slot == nullptr || (!options.slot_name.empty() && slot->name != options.slot_name))
+        throw std::invalid_argument("no slot named '" + options.slot_name + "' in " + site.file);
+
+    const PreparedSky sunny = prepareSky(site.sunny_sky);
+    std::optional<PreparedSky> overcast;
+    if (site.overcast_sky) overcast = prepareSky(*site.overcast_sky);
+    const SlotLighting lighting = lightSlot(site, *slot, sunny, overcast ? &*overcast : nullptr);
+    const double elevation = lighting.sun.present ? lighting.sun_position.apparent_elevation_deg : -1.0;
+    const BakeGeometry geometry = prepareBakeGeometry(site, elevation, options.max_texture_size);
+
+    std::vector<QueryPointGpu> points;
+    for (const LightmapTexel& texel : geometry.texels)
+        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f)});
+    IrradianceTracer tracer(context, geometry.scene, lighting.sky->tables, options.max_texture_size);
+    TracePass pass;
+    pass.max_bounces = uint32_t(site.bake.max_bounces);
+    pass.sun = lighting.sun;
+
+    ConvergenceStudy study;
+    study.slot_name = slot->name;
+    study.texel_count = points.size();
+    study.reference_samples = options.reference_samples;
+    BakeProgress progress(double(points.size()) * (options.reference_samples + options.max_samples),
+                          options.show_progress);
+
+    // Reference: an independent seed, so its noise does not correlate with the study's.
+    TracePass reference_pass = pass;
+    reference_pass.seed = site.bake.seed ^ 0x5eed5eedu;
+    PointAccumulator reference = tracer.createAccumulator(points);
+    const auto reference_start = Clock::now();
+    while (reference.samples_done < options.reference_samples) {
+        const uint32_t chunk = std::min(8u, options.reference_samples - reference.samples_done);
+        const uint64_t rays = tracer.addSamples(reference, chunk, reference_pass);
+        progress.advance("reference", reference.samples_done, options.reference_samples, double(chunk) * points.size(), rays);
+    }
+    study.reference_seconds = std::chrono::duration<double>(Clock::now() - reference_start).count();
+    const std::vector<glm::vec4> reference_texels =
+        processBuildingLightmap(geometry, tracer.readSums(reference), options.reference_samples, false).per_texel;
+
+    PointAccumulator estimate = tracer.createAccumulator(points);
+    double seconds = 0.0;
+    uint64_t rays = 0;
+    for (uint32_t target = 1; target <= options.max_samples; target *= 2) {
+        const auto start = Clock::now();
+        const uint32_t chunk = target - estimate.samples_done;
+        const uint64_t chunk_rays = tracer.addSamples(estimate, chunk, pass);
+        seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        rays += chunk_rays;
+        progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(), chunk_rays);
+        const std::vector<glm::vec4> sums = tracer.readSums(estimate);
+        ConvergencePoint point;
+        point.samples = target;
+        point.rays = rays;
+        point.seconds = seconds;
+        point.relative_rms = relativeRms(processBuildingLightmap(geometry, sums, target, false).per_texel, reference_texels);
+        point.relative_rms_denoised =
+            relativeRms(processBuildingLightmap(geometry, sums, target, true).per_texel, reference_texels);
+        study.points.push_back(point);
+    }
+    progress.finish();
+    study.rays_per_second = seconds > 0.0 ? double(rays) / seconds : 0.0;
+    study.log_log_slope = logLogSlope(study.points, false);
+    study.log_log_slope_denoised = logLogSlope(study.points, true);
+    if (!study.points.empty())
+        study.reference_noise_floor = study.points.front().relative_rms / std::sqrt(double(options.reference_samples));
+    return study;
+}
+
+double secondsToReach(const ConvergenceStudy& study, double target, bool denoised) {
+    for (size_t i = 0; i < study.points.size(); ++i) {
+        const double rms = denoised ? study.points[i].relative_rms_denoised : study.points[i].relative_rms;
+        if (rms > target) continue;
+        if (i == 0) return study.points[0].seconds;
+        const ConvergencePoint& before = study.points[i - 1];
+        const double rms_before = denoised ? before.relative_rms_denoised : before.relative_rms;
+        // Error ~ seconds^slope: interpolate log(seconds) linearly in log(rms).
+        const double fraction = (std::log(rms_before) - std::log(target)) / (std::log(rms_before) - std::log(rms));
+        return std::exp(std::log(before.seconds) + fraction * (std::log(study.points[i].seconds) - std::log(before.seconds)));
+    }
+    return -1.0;
+}
+
+std::string formatConvergenceStudy(const ConvergenceStudy& study, double target) {
+    std::string text;
+    char line[256];
+    std::snprintf(line, sizeof line, "slot %s, %zu lightmap texels, reference %u samples (%.1f s)\n",
+                  study.slot_name.c_str(), study.texel_count, study.reference_samples, study.reference_seconds);
+    text += line;
+    text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  rms*sqrt(spp)\n";
+    for (const ConvergencePoint& point : study.points) {
+        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %13.4f\n", point.samples, double(point.rays),
+                      point.seconds, point.relative_rms, point.relative_rms_denoised,
+                      point.relative_rms * std::sqrt(double(point.samples)));
+        text += line;
+    }
+    std::snprintf(line, sizeof line,
+                  "log-log slope: %.3f raw, %.3f denoised (1/sqrt(samples) is -0.5)\n"
+                  "reference noise floor: %.4f relative RMS\n"
+                  "rays per second: %.3f M\n",
+                  study.log_log_slope, study.log_log_slope_denoised, study.reference_noise_floor,
+                  study.rays_per_second / 1e6);
+    text += line;
+    const double raw = secondsToReach(study, target, false), denoised = secondsToReach(study, target, true);
+    const auto describe = [](double seconds) {
+        char value[64];
+        if (seconds < 0.0) return std::string("not reached");
+        std::snprintf(value, sizeof value, "%.2f s", seconds);
+        return std::string(value);
+    };
+    std::snprintf(line, sizeof line, "time to %.1f %% relative RMS: %s raw, %s denoised\n", target * 100.0,
+                  describe(raw).c_str(), describe(denoised).c_str());
+    text += line;
+    return text;
+}
+
+}  // namespace gusuku::bake

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The main job on the bundled sample site: install, build, generate the sample site, bake it, print the summary.
+# Outputs land in out/sample (the site) and out/bakeset (the bake set).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+./build/baker/gusuku-bake sample out/sample --force
+./build/baker/gusuku-bake sun --lat 26.2856 --lon 127.8008 --height 160 --time 2026-06-21T09:00:00+09:00
+./build/baker/gusuku-bake bake out/sample/site.json -o out/bakeset --force

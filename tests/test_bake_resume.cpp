@@ -1,0 +1,147 @@
+// A bake stopped part-way and run again gives exactly what an uninterrupted bake gives (issue 3, "Progress and
+// resume"): through the API (a stop request between chunks) and through the command line (SIGKILL mid-bake,
+// then the same command again).
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu_test_support.h"
+#include "gusuku/image.h"
+#include "gusuku/site.h"
+#include "gusuku_bake/bake_job.h"
+#include "mini_site.h"
+
+namespace gusuku::bake {
+namespace {
+
+using gusuku::testing::GpuTest;
+namespace fs = std::filesystem;
+
+std::vector<std::string> exrFiles(const std::string& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".exr") names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void expectSameBakeSets(const std::string& expected_dir, const std::string& actual_dir) {
+    const std::vector<std::string> names = exrFiles(expected_dir);
+    ASSERT_FALSE(names.empty());
+    ASSERT_EQ(names, exrFiles(actual_dir));
+    for (const std::string& name : names) {
+        const ImageRGBA expected = readImage(expected_dir + "/" + name);
+        const ImageRGBA actual = readImage(actual_dir + "/" + name);
+        ASSERT_EQ(expected.width, actual.width) << name;
+        ASSERT_EQ(expected.height, actual.height) << name;
+        size_t differing = 0;
+        for (size_t i = 0; i < expected.texels.size(); ++i) differing += expected.texels[i] != actual.texels[i];
+        EXPECT_EQ(differing, 0u) << name << ": resumed bake differs from the uninterrupted one";
+    }
+}
+
+class BakeResumeTest : public GpuTest {};
+
+TEST_F(BakeResumeTest, StoppedAndResumedBakeEqualsUninterruptedBake) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-resume");
+    gusuku::testing::MiniSiteOptions site_options;
+    site_options.samples_per_texel = 6;
+    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+
+    BakeOptions options;
+    options.show_progress = false;
+    options.target_chunk_seconds = 1e-6;  // one sample per chunk: many places to stop
+    options.output_dir = dir + "/uninterrupted";
+    const BakeReport uninterrupted = runBake(context(), site, options);
+    ASSERT_TRUE(uninterrupted.completed);
+    EXPECT_TRUE(fs::exists(options.output_dir + "/manifest.json"));
+    EXPECT_FALSE(fs::exists(options.output_dir + "/.checkpoint")) << "checkpoints are removed once complete";
+
+    options.output_dir = dir + "/resumed";
+    int polls = 0;
+    options.should_stop = [&polls] { return ++polls == 9; };  // stops inside the second point set
+    const BakeReport stopped = runBake(context(), site, options);
+    EXPECT_FALSE(stopped.completed);
+    EXPECT_FALSE(fs::exists(options.output_dir + "/manifest.json")) << "no manifest for an unfinished bake";
+    EXPECT_TRUE(fs::exists(options.output_dir + "/.checkpoint"));
+
+    options.should_stop = nullptr;
+    const BakeReport resumed = runBake(context(), site, options);
+    ASSERT_TRUE(resumed.completed);
+    EXPECT_LT(resumed.rays_traced, uninterrupted.rays_traced) << "the resumed run reuses the checkpointed work";
+    expectSameBakeSets(dir + "/uninterrupted", dir + "/resumed");
+
+    const BakeReport again = runBake(context(), site, options);
+    EXPECT_TRUE(again.up_to_date) << "a finished bake set with the same inputs is not baked again";
+}
+
+// Runs gusuku-bake with args; returns its pid (the caller waits).
+pid_t spawnBake(const std::vector<std::string>& args) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+        std::vector<char*> argv;
+        static std::string executable = gusuku::testing::bakeExecutablePath();
+        argv.push_back(executable.data());
+        std::vector<std::string> copies = args;
+        for (std::string& arg : copies) argv.push_back(arg.data());
+        argv.push_back(nullptr);
+        execv(executable.c_str(), argv.data());
+        _exit(127);
+    }
+    return pid;
+}
+
+int waitExitCode(pid_t pid) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+TEST(BakeCommandResume, KilledBakeResumesToTheSameResult) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-kill");
+    gusuku::testing::MiniSiteOptions site_options;
+    // Long enough (several seconds on lavapipe) to be killed part-way.
+    site_options.samples_per_texel = 160;
+    site_options.texels_per_metre = 12.0;
+    site_options.max_bounces = 3;
+    site_options.with_overcast_slot = false;
+    const std::string site = gusuku::testing::writeMiniSite(dir, site_options);
+
+    ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", dir + "/reference", "--quiet"})), 0);
+
+    const std::string killed_dir = dir + "/killed";
+    const pid_t pid = spawnBake({"bake", site, "-o", killed_dir, "--quiet"});
+    // Kill it once a checkpoint with some work exists (checkpoints are written at least every 2 s).
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    bool checkpointed = false;
+    int early_status = -1;
+    while (!checkpointed && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        checkpointed = fs::exists(killed_dir + "/.checkpoint") && !fs::is_empty(killed_dir + "/.checkpoint");
+        int status = 0;
+        if (waitpid(pid, &status, WNOHANG) == pid) {
+            early_status = WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+            break;
+        }
+    }
+    if (early_status == 0) GTEST_SKIP() << "the bake finished before it could be killed; nothing to resume";
+    ASSERT_EQ(early_status, -1) << "the bake failed on its own";
+    kill(pid, SIGKILL);
+    waitExitCode(pid);
+    ASSERT_TRUE(checkpointed) << "no checkpoint appeared";
+    EXPECT_FALSE(fs::exists(killed_dir + "/manifest.json"));
+
+    ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", killed_dir, "--quiet"})), 0);
+    expectSameBakeSets(dir + "/reference", killed_dir);
+}
+
+}  // namespace
+}  // namespace gusuku::bake
