@@ -91,7 +91,8 @@ void addHeightfield(TriangleMesh& mesh, uint32_t cells, float extent) {
 // Axis-aligned closed box, counter-clockwise seen from outside.
 void addBox(TriangleMesh& mesh, vec3 lo, vec3 hi) {
     const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-    for (int k = 0; k < 8; ++k) mesh.positions.push_back({k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
+    for (int k = 0; k < 8; ++k)
+        mesh.positions.push_back({k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
     const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads)
         mesh.indices.insert(mesh.indices.end(),
@@ -217,7 +218,8 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, const std::vector<uint32_
         const vec3 interpolated = (1.0f - u - v) * p0 + u * p1 + v * p2;
         const vec3 along_ray = ray.origin + hit->t * ray.direction;
         EXPECT_LT(glm::length(interpolated - along_ray), 1e-4f * (1.0f + glm::length(along_ray))) << "ray " << i;
-        const bool front = glm::dot(glm::cross(dvec3(p1) - dvec3(p0), dvec3(p2) - dvec3(p0)), dvec3(ray.direction)) < 0.0;
+        const dvec3 normal = glm::cross(dvec3(p1) - dvec3(p0), dvec3(p2) - dvec3(p0));
+        const bool front = glm::dot(normal, dvec3(ray.direction)) < 0.0;
         EXPECT_EQ(hit->front_face, front) << "ray " << i;
     }
     EXPECT_LT(ambiguous, rays.size() / 100 + 1) << "too many rays near edges to be a fair test";
@@ -412,7 +414,8 @@ TEST(BvhCpu, CoincidentCentroidsStillMakeSmallLeavesAndBoundedDepth) {
     for (int i = 0; i < 2000; ++i) addTriangle(mesh, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
     for (int i = 0; i < 2000; ++i) {
         const float angle = 2.0f * kPi * i / 2000.0f;
-        addTriangle(mesh, {0, 0, 1}, {std::cos(angle), std::sin(angle), 1}, {std::cos(angle + 1e-3f), std::sin(angle + 1e-3f), 1});
+        addTriangle(mesh, {0, 0, 1}, {std::cos(angle), std::sin(angle), 1},
+                    {std::cos(angle + 1e-3f), std::sin(angle + 1e-3f), 1});
     }
     const Bvh bvh = buildBvh(mesh, {});
     expectWellFormed(bvh, mesh.triangleCount());
@@ -571,8 +574,8 @@ TEST_F(BvhGpuTest, ReportsRaysPerSecond) {
         closest_hits += closest[i].triangle_index != 0xffffffffu;
         occluded_hits += occluded[i].occluded;
     }
-    std::printf("BVH on %s: %zu triangles, %zu rays: closest hit %.2f M rays/s (%zu hits), any hit %.2f M rays/s "
-                "(DESIGN.md 5: ~1.0 and ~0.85 on lavapipe, 2 cores)\n",
+    std::printf("BVH on %s: %zu triangles, %zu rays: closest hit %.2f M rays/s (%zu hits), "
+                "any hit %.2f M rays/s (%zu hits) (DESIGN.md 5: ~1.0 and ~0.85 on lavapipe, 2 cores)\n",
                 context().deviceDescription().c_str(), scene.triangleCount(), rays.size(),
                 rays.size() / closest_seconds * 1e-6, closest_hits, rays.size() / occluded_seconds * 1e-6,
                 occluded_hits);

@@ -139,6 +139,33 @@ TEST(GltfAxes, EnuFromGltfYUpIsARotation) {
     EXPECT_DOUBLE_EQ(glm::determinant(glm::dmat3(m)), 1.0);
 }
 
+TEST(MeshTest, AppendMeshReindexesVerticesMaterialsAndTextures) {
+    TriangleMesh first;
+    first.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    first.normals.assign(3, {0, 0, 1});
+    first.uv0.assign(3, {0, 0});
+    first.indices = {0, 1, 2};
+    first.triangle_material = {0};
+    first.materials.resize(1);
+    TriangleMesh second = first;
+    for (glm::vec3& p : second.positions) p += glm::vec3(0, 0, 5);
+    second.materials[0].base_color_texture = 0;
+    second.textures.resize(1);
+    second.texture_names = {"albedo.png"};
+    gusuku::appendMesh(first, second);
+    ASSERT_EQ(first.triangleCount(), 2u);
+    EXPECT_EQ(first.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(first.triangle_material, (std::vector<uint32_t>{0, 1}));
+    ASSERT_EQ(first.materials.size(), 2u);
+    EXPECT_EQ(first.materials[0].base_color_texture, -1);
+    EXPECT_EQ(first.materials[1].base_color_texture, 0);
+    EXPECT_EQ(first.texture_names, std::vector<std::string>{"albedo.png"});
+    const gusuku::Bounds3 bounds = gusuku::meshBounds(first);
+    EXPECT_EQ(bounds.min, glm::vec3(0, 0, 0));
+    EXPECT_EQ(bounds.max, glm::vec3(1, 1, 5));
+    EXPECT_TRUE(gusuku::meshBounds(TriangleMesh{}).empty());
+}
+
 TEST_F(GltfTest, YUpTriangleLandsAtEnuXMinusZY) {
     GltfBuilder builder;
     const int mesh = builder.addTriangleMesh(kTriangle, {}, {0, 1, 0, 0, 1, 0, 0, 1, 0});
@@ -276,6 +303,41 @@ TEST_F(GltfTest, TruncatedGlbIsInputError) {
     EXPECT_EQ(error.file(), truncated);
     EXPECT_FALSE(error.problem().empty());
     EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(dir_ + "/absent.glb", {}); }).file(), dir_ + "/absent.glb");
+}
+
+TEST_F(GltfTest, EveryTruncationOrByteFlipIsLoadedOrInputError) {
+    // Damaged files must never crash the loader or throw anything but InputError.
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {0, 1, 2}, {0, 0, 1, 0, 0, 1, 0, 0, 1});
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const TriangleMesh source = gusuku::loadGltf(builder.write(dir_, "source"), {});
+    const std::string whole_path = dir_ + "/whole.glb";
+    gusuku::writeGlb(whole_path, source, glm::dmat4(1.0));
+    const std::string whole = gusuku::readWholeFile(whole_path);
+    const std::string damaged_path = dir_ + "/damaged.glb";
+    size_t attempts = 0, rejected = 0;
+    const auto load_damaged = [&](const std::string& bytes) {
+        gusuku::writeBytesAtomically(damaged_path, bytes.data(), bytes.size());
+        ++attempts;
+        try {
+            gusuku::loadGltf(damaged_path, {});
+        } catch (const InputError&) {
+            ++rejected;
+        }
+    };
+    for (size_t length = 0; length < whole.size(); length += 7) load_damaged(whole.substr(0, length));
+    uint32_t random_state = 12345;
+    for (int trial = 0; trial < 300; ++trial) {
+        std::string bytes = whole;
+        for (int flip = 0; flip < 3; ++flip) {
+            random_state = random_state * 1664525u + 1013904223u;
+            bytes[(random_state >> 8) % bytes.size()] ^= char(1 + (random_state & 0x7f));
+        }
+        load_damaged(bytes);
+    }
+    // Every strict prefix is a truncated .glb: all of those at least must be rejected.
+    EXPECT_GE(rejected, (whole.size() + 6) / 7);
+    EXPECT_LE(rejected, attempts);
 }
 
 TEST_F(GltfTest, IndexOutOfRangeNamesPrimitiveAndIndex) {

@@ -255,6 +255,38 @@ TEST(LightmapTexels, ThinTriangleStillGetsTheTexelUnderItsCentroid) {
     EXPECT_LE(texels[0].position.y, 0.01f);
 }
 
+TEST(LightmapTexels, OneTriangleOwnsEachTexelLargerCoverageWinning) {
+    // A 4x4 map fully covered by a quad (triangles 0 and 1, z = 0). Triangle 2 (z = 1) is a small sliver
+    // around texel (1, 1)'s centre covering 0.08 of that texel, against at least 0.5 for the quad's triangle
+    // there; triangle 3 (z = 2) is a thin triangle inside texel (3, 3) that covers no centre, so its fallback
+    // claim yields to the quad's centre claim.
+    TriangleMesh mesh;
+    addUvQuad(mesh, {0, 0}, {1, 1}, 0.0f);
+    auto addSliver = [&](glm::vec2 a, glm::vec2 b, glm::vec2 c, float z) {
+        const uint32_t first = uint32_t(mesh.positions.size());
+        for (const glm::vec2& texel_uv : {a, b, c}) {
+            mesh.positions.push_back(glm::vec3(texel_uv, z));
+            mesh.normals.push_back({0, 0, 1});
+            mesh.uv0.push_back(glm::vec2(0.0f));
+            mesh.uv1.push_back(texel_uv / 4.0f);
+        }
+        for (uint32_t i = 0; i < 3; ++i) mesh.indices.push_back(first + i);
+        mesh.triangle_material.push_back(0);
+    };
+    addSliver({1.3f, 1.3f}, {1.7f, 1.3f}, {1.5f, 1.7f}, 1.0f);
+    addSliver({3.1f, 3.1f}, {3.3f, 3.1f}, {3.1f, 3.3f}, 2.0f);
+    const std::vector<LightmapTexel> texels = rasterizeLightmapTexels(mesh, 4);
+    ASSERT_EQ(texels.size(), 16u);
+    for (const LightmapTexel& texel : texels) {
+        EXPECT_LT(texel.triangle, 2u) << "texel (" << texel.x << ", " << texel.y << ")";
+        EXPECT_NEAR(texel.position.z, 0.0f, 1e-6f);
+    }
+    const UvCheckReport report = checkLightmapUvs(mesh, 4);
+    EXPECT_FALSE(report.ok);
+    EXPECT_EQ(report.chart_count, 3u);
+    EXPECT_EQ(report.overlapping_texels, 2u);  // (1, 1): two centre claims; (3, 3): another chart's fallback
+}
+
 TEST(LightmapUvCheck, AcceptsAQuadWhoseDiagonalRunsThroughTexelCentres) {
     // The shared diagonal passes exactly through four texel centres of the 4x4 map: each must go to one side.
     TriangleMesh mesh;

@@ -2,6 +2,9 @@
 // put things where they belong, the house is oriented, closed and open at its doorway, and it stands on the
 // terrace. Geometry is checked with brute-force ray casts, independent of the baker's BVH.
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sys/wait.h>
 #include <filesystem>
 #include <optional>
 #include <random>
@@ -134,6 +137,7 @@ TEST_F(SampleSite, SiteJsonSaysWhatWasAsked) {
     ASSERT_TRUE(config_->overcast_sky.has_value());
     EXPECT_EQ(config_->bake.date, "2026-06-21");
     EXPECT_EQ(config_->bake.samples_per_texel, ss::kSamplesPerTexel);
+    EXPECT_DOUBLE_EQ(config_->bake.texels_per_metre, ss::kTexelsPerMetre);
     EXPECT_EQ(config_->bake.max_bounces, 3);
     EXPECT_DOUBLE_EQ(config_->bake.ground_cell_m, 0.5);
     // The default slots: three sunny and one overcast.
@@ -196,7 +200,8 @@ TEST_F(SampleSite, HouseFacesPointOutOfTheSolid) {
         const double z = unit(random) * 0.9, phi = 6.283185307179586 * unit(random);
         const glm::dvec3 from = centre + 15.0 * glm::dvec3(std::sqrt(1 - z * z) * std::cos(phi),
                                                            std::sqrt(1 - z * z) * std::sin(phi), z);
-        const glm::dvec3 target = centre + glm::dvec3(unit(random) * 4 - 2, unit(random) * 4 - 2, unit(random) * 3 - 1.5);
+        const glm::dvec3 target =
+            centre + glm::dvec3(unit(random) * 4 - 2, unit(random) * 4 - 2, unit(random) * 3 - 1.5);
         const glm::dvec3 direction = glm::normalize(target - from);
         if (const auto hit = closestHit(*house_, from, direction)) {
             ++outside_hits;
@@ -302,6 +307,28 @@ TEST_F(SampleSite, SkiesLoadAndTheSunIsWhereSpaPutsIt) {
     const glm::dvec3 sun = ss::sunnyPhotoSunDirection();
     EXPECT_GT(sun.z, 0.9);  // near the zenith at noon at 26 deg N on the solstice
     EXPECT_LT(std::acos(std::fmin(1.0, glm::dot(brightest, sun))), 2.0 * 3.14159265358979 / 512);
+}
+
+// Exit status of a shell command line (0 when it ran and succeeded).
+int runCommand(const std::string& command_line) {
+    const int status = std::system((command_line + " > /dev/null 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SampleCommand, RefusesANonEmptyFolderUnlessForced) {
+    const std::string directory = gusuku::testing::makeTemporaryDirectory("sample_cli");
+    const std::string keep = directory + "/notes.txt";
+    std::ofstream(keep) << "mine";
+    const std::string command = "'" + gusuku::testing::bakeExecutablePath() + "' sample '" + directory + "'";
+    EXPECT_EQ(runCommand(command), 1);
+    EXPECT_FALSE(std::filesystem::exists(directory + "/site.json"));
+    EXPECT_EQ(runCommand(command + " --force"), 0);
+    EXPECT_TRUE(std::filesystem::exists(directory + "/site.json"));
+    EXPECT_TRUE(std::filesystem::exists(keep));  // --force writes beside other files, it does not clear them
+    EXPECT_EQ(runCommand(command + " --bogus"), 2);
+    // A fresh folder that does not exist yet is created.
+    EXPECT_EQ(runCommand("'" + gusuku::testing::bakeExecutablePath() + "' sample '" + directory + "/new'"), 0);
+    EXPECT_TRUE(std::filesystem::exists(directory + "/new/site.json"));
 }
 
 }  // namespace

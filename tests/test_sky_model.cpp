@@ -111,7 +111,8 @@ TEST_P(ClearSkyImage, MatchesFormulaAndCarriesTheRequestedIrradiances) {
                 ASSERT_NEAR(luminance, spec.ground_albedo * ghi / kPi, 1e-5);
                 continue;
             }
-            const double smooth = model.zenithLuminance() * referenceType12RelativeLuminance(direction, spec.sun_direction);
+            const double smooth =
+                model.zenithLuminance() * referenceType12RelativeLuminance(direction, spec.sun_direction);
             const double sun_cosine = direction.x * spec.sun_direction.x + direction.y * spec.sun_direction.y +
                                       direction.z * spec.sun_direction.z;
             if (sun_cosine > cos_near_sun) {
@@ -161,8 +162,10 @@ TEST(SkyModel, SunDiscSurvivesTheHdrFile) {
         for (int x = 0; x < kWidth; ++x) {
             const glm::dvec3 direction = equirectDirection((x + 0.5) / kWidth, (y + 0.5) / kHeight, 0.0);
             if (glm::dot(direction, spec.sun_direction) <= cos_near_sun) continue;
-            const double smooth = model.zenithLuminance() * referenceType12RelativeLuminance(direction, spec.sun_direction);
-            sun_normal_irradiance += (luminanceOf(read.texel(x, y)) - smooth) * equirectTexelSolidAngle(y, kWidth, kHeight);
+            const double smooth =
+                model.zenithLuminance() * referenceType12RelativeLuminance(direction, spec.sun_direction);
+            sun_normal_irradiance +=
+                (luminanceOf(read.texel(x, y)) - smooth) * equirectTexelSolidAngle(y, kWidth, kHeight);
         }
     EXPECT_NEAR(sun_normal_irradiance, model.directNormalIrradiance(), 0.02 * model.directNormalIrradiance());
 }

@@ -1,5 +1,5 @@
-// CPU traversal of the GPU-layout BVH, written to mirror shaders/include/bvh_traverse.glsl step for step
-// (same slab test, same Moller-Trumbore, same nearest-child-first order), so tests can hold the shader to it.
+// CPU traversal of the GPU-layout BVH, written to mirror shaders/include/bvh_traverse.glsl (same slab test,
+// same Moller-Trumbore, same nearest-child-first visiting order), so tests can hold the shader to it.
 
 #include <algorithm>
 #include <cmath>

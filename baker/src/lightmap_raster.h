@@ -12,7 +12,7 @@ namespace gusuku::bake::detail {
 
 using UvTriangle = std::array<glm::dvec2, 3>;
 
-/// Twice the signed area (positive when counter-clockwise in u right, v down... i.e. by the cross product).
+/// Twice the signed area: cross(b - a, c - a), positive when the corners turn from +u towards +v.
 double signedDoubleArea(const UvTriangle& triangle);
 
 /// True when `point` lies inside the triangle. Each edge is evaluated with its end points in a canonical

@@ -22,8 +22,8 @@ public:
     uint32_t addTexturedMaterial(const std::string& name, ImageRGBA texture);
 
     /// Texture coordinates: metres along two axes of the face's plane divided by the tile size (the glTF
-    /// sampler repeats). `u_axis` is a unit direction in the plane; v runs along normal x u_axis, negated so
-    /// that a vertical face's texture stands upright (glTF v grows downwards in the image).
+    /// sampler repeats). On walls and slopes u runs horizontally and v up the face, negated so that the
+    /// texture stands upright (glTF v grows downwards in the image); on flat faces u is east, v is -north.
     void setTileSize(double metres) { tile_size_m_ = metres; }
 
     /// Triangle a, b, c counter-clockwise seen from its front. Degenerate triangles are dropped.

