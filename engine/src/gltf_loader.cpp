@@ -380,12 +380,12 @@ private:
             PrimitiveData data = readPrimitive(primitive, field);
             if (data.indices.empty()) continue;
             const uint32_t material = materialFor(primitive.material, field);
-            appendPrimitive(data, enu_from_mesh, normal_matrix, flip_winding, material);
+            appendPrimitive(data, enu_from_mesh, normal_matrix, flip_winding, material, field);
         }
     }
 
     void appendPrimitive(PrimitiveData& data, const glm::dmat4& enu_from_mesh, const glm::dmat3& normal_matrix,
-                         bool flip_winding, uint32_t material) {
+                         bool flip_winding, uint32_t material, const std::string& field) {
         if (flip_winding)
             for (size_t t = 0; t + 2 < data.indices.size(); t += 3) std::swap(data.indices[t + 1], data.indices[t + 2]);
 
@@ -414,14 +414,21 @@ private:
         std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
         std::vector<bool> normal_is_valid(positions.size(), false);
         if (has_normals) {
+            size_t unusable_normals = 0;
             for (size_t i = 0; i < normals.size(); ++i) {
                 const glm::dvec3 n = normal_matrix * data.normals[i];
                 const double length = glm::length(n);
                 if (length > 1e-20 && std::isfinite(length)) {
                     normals[i] = glm::vec3(n / length);
                     normal_is_valid[i] = true;
+                } else {
+                    ++unusable_normals;
                 }
             }
+            // Bad normals are repaired, not fatal: a photogrammetry export often has a few.
+            if (unusable_normals > 0)
+                warn(field + ".attributes.NORMAL: " + std::to_string(unusable_normals) +
+                     " zero, NaN or infinite normals replaced by face normals");
         }
         // Face normals (counter-clockwise in ENU, after any winding flip) for vertices without a usable one.
         for (size_t t = 0; t + 2 < data.indices.size(); t += 3) {
