@@ -50,7 +50,7 @@ ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const st
         result.image[index] = glm::vec4(glm::vec3(sums[i]) * inverse_samples, valid ? 1.0f : 0.0f);
         guides[index] = {texel.position, texel.shading_normal};
     }
-    if (denoise) denoiseLightmap(result.image, guides, resolution);
+    if (denoise) denoiseLightmap(result.image, guides, resolution, denoiseOptionsForSamples(samples));
     result.per_texel.resize(geometry.texels.size());
     for (size_t i = 0; i < geometry.texels.size(); ++i) {
         const LightmapTexel& texel = geometry.texels[i];

@@ -1,5 +1,6 @@
 #include "gusuku_bake/lightmap_denoise.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,6 +9,20 @@
 #include "gusuku/colour.h"
 
 namespace gusuku::bake {
+
+namespace {
+// Edge-stop width in units of 1/sqrt(samples). Measured with `gusuku-bake converge` on the sample site (1-sample
+// relative RMS 0.88) for multiples 0.5, 1 and 2: 2 gave the lowest error from 8 to 256 samples (5.0 % against
+// 10.8 % raw at 64 samples); on a simple box site (1-sample error 0.46) 1 and 2 differ by under 1 % absolute.
+constexpr float kDenoiseNoiseMultiple = 2.0f;
+}  // namespace
+
+DenoiseOptions denoiseOptionsForSamples(uint32_t samples) {
+    DenoiseOptions options;
+    const float noise_scale = 1.0f / std::sqrt(float(std::max(samples, 1u)));
+    options.relative_luminance_sigma = std::clamp(kDenoiseNoiseMultiple * noise_scale, 0.02f, 0.5f);
+    return options;
+}
 
 void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides, int resolution,
                      const DenoiseOptions& options) {

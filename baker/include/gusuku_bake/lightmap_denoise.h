@@ -4,6 +4,7 @@
 // changes of irradiance (a shadow edge under the eaves), so it smooths Monte Carlo noise without bleeding light
 // across corners or charts. Its effect on error per sample count is printed by `gusuku-bake converge`.
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -22,6 +23,11 @@ struct DenoiseOptions {
     float normal_power = 64.0f;       ///< weight (n_p . n_q)^power
     float relative_luminance_sigma = 0.5f;  ///< |Y_p - Y_q| / (Y_p + Y_q) at which the colour weight is e^-1/2
 };
+
+/// Options for a bake of `samples` samples per texel: the irradiance edge-stop narrows as the Monte Carlo noise
+/// (1/sqrt(samples)) falls, so the filter smooths hard where noise dominates and leaves a well-converged bake
+/// nearly untouched instead of adding blur (its bias) to it.
+DenoiseOptions denoiseOptionsForSamples(uint32_t samples);
 
 /// Filters rgba (alpha > 0 marks a valid texel; invalid texels neither change nor contribute), in place.
 /// guides holds resolution^2 entries (ignored where invalid). O(iterations * 25 * texels).
