@@ -19,9 +19,9 @@ namespace gusuku::bake {
 /// hit back faces; invalid texels are filled by dilation from their valid neighbours.
 inline constexpr float kMaxBackfaceFraction = 0.1f;
 
-/// Averages, validity, denoise and dilation of the building lightmap. Returns resolution^2 RGBA texels (alpha
-/// 1 for valid, the dilation's neighbour mean for filled texels, 0 outside every chart), and per texel of
-/// geometry.texels the irradiance with alpha 1/0 for validity (for statistics).
+/// Averages, validity, denoise and dilation of the building lightmap. Returns resolution^2 RGBA texels (alpha 1
+/// where traced and valid, 0 elsewhere; RGB filled by dilation in invalid texels and the padding around charts),
+/// and per texel of geometry.texels the irradiance with alpha 1/0 for validity (for statistics).
 struct ProcessedLightmap {
     std::vector<glm::vec4> image;
     std::vector<glm::vec4> per_texel;

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# gusuku against Blender's Cycles (the tool the paper baked with) on the sample site's overcast slot, on this
+# machine, in one run: relative RMS error of the building lightmap against each tool's own converged bake, and
+# the time each took to get there.
+#
+# Needs a built gusuku (scripts/build.sh) and Debian's Blender: apt-get install blender python3-numpy.
+# Usage: bench/cycles/compare_with_cycles.sh [OUT_DIR]   (default out/cycles-comparison)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out=${1:-out/cycles-comparison}
+bake=${GUSUKU_BAKE:-./build/baker/gusuku-bake}
+command -v blender >/dev/null || { echo "compare_with_cycles: needs Blender (apt-get install blender python3-numpy)" >&2; exit 1; }
+mkdir -p "$out"
+"$bake" sample "$out/sample" --force > /dev/null
+# The bake set supplies the building with gusuku's lightmap charts (TEXCOORD_1), so both tools bake the same
+# texels; its overcast lightmap (2048 samples) is the cross-check of what Cycles converges to.
+"$bake" bake "$out/sample/site.json" -o "$out/bakeset" --samples 2048 --force --quiet > /dev/null
+
+echo "== gusuku (lavapipe, $(nproc) cores)"
+"$bake" converge "$out/sample/site.json" --slot overcast --max-samples 512 --reference-samples 4096 \
+  --target-rms 0.05 2>/dev/null | tee "$out/gusuku.txt"
+"$bake" converge "$out/sample/site.json" --slot overcast --max-samples 512 --reference-samples 4096 \
+  --target-rms 0.03 2>/dev/null | tail -1
+
+echo "== Cycles (Blender $(blender --version 2>/dev/null | head -1 | awk '{print $2}'), CPU, 2 threads)"
+blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \
+  "$out/bakeset" "$out/sample/site.glb" "$out/sample/sky_overcast.hdr" 1 2 4 8 16 32 64 128 256 512 4096 2>&1 |
+  grep -E "^CYCLES_(RESULT|AGREEMENT)" | tee "$out/cycles.txt"
