@@ -1,8 +1,15 @@
 #version 450
-// Bake kernel: one invocation per query point (a lightmap texel or a ground cell), sample_count samples per
-// dispatch added to the point's running sum. Sums persist across dispatches (and across a resumed bake), so
-// samples [first_sample, first_sample + sample_count) of every point are drawn from their own fixed streams.
+// Bake kernel: one invocation per (query point, sample): x indexes the point (a lightmap texel or a ground cell),
+// y the sample within this dispatch's chunk. Each writes its one-sample estimate to a scratch slot;
+// bake_accumulate.comp then adds the chunk's samples onto the running sums in sample order.
+//
+// Why one sample per invocation: llvmpipe (lavapipe) guards shader loops with an iteration limiter that counts
+// every iteration of the loops nested inside an outermost loop; an invocation looping over hundreds of samples
+// (each with BVH traversal loops inside) silently hit it and lost samples (measured: a 256-sample dispatch on the
+// sample site traced 16 % fewer rays than four 64-sample ones). One path per invocation stays far below it.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 
 layout(local_size_x = 64) in;
 
@@ -25,8 +32,8 @@ struct QueryPoint {
     vec4 normal;    // xyz unit
 };
 layout(std430, set = 0, binding = 7) readonly buffer QueryPoints { QueryPoint query_points[]; };
-// xyz: sum of irradiance estimates; w: number of first rays that hit a back face (texel validity).
-layout(std430, set = 0, binding = 8) buffer Accumulation { vec4 accumulated[]; };
+// Per (sample in chunk, point): xyz the irradiance estimate, w 1 when the first ray hit a back face.
+layout(std430, set = 0, binding = 8) writeonly buffer SampleEstimates { vec4 sample_estimates[]; };
 layout(std430, set = 0, binding = 9) buffer RayCounter { uint rays_traced_total[]; };
 
 const uint kModeIndirect = 0u;   // E_ind: everything but the direct sun at the point
@@ -47,34 +54,34 @@ layout(push_constant) uniform PushConstants {
 
 void main() {
     uint point_index = gl_GlobalInvocationID.x;
-    if (point_index >= pc.point_count) return;
-    QueryPoint point = query_points[point_index];
+    uint sample_in_chunk = gl_GlobalInvocationID.y;
+    bool in_range = point_index < pc.point_count && sample_in_chunk < pc.sample_count;
+    if (in_range) {
+        QueryPoint point = query_points[point_index];
+        PathSettings settings;
+        settings.max_bounces = pc.max_bounces;
+        settings.skip_flags = pc.skip_flags;
+        settings.sun_present = pc.sun_present != 0u;
+        settings.sun_direction = pc.sun_direction_cos_max.xyz;
+        settings.sun_cos_max = pc.sun_direction_cos_max.w;
+        settings.sun_irradiance = pc.sun_irradiance_ray_offset.xyz;
+        settings.ray_offset = pc.sun_irradiance_ray_offset.w;
 
-    PathSettings settings;
-    settings.max_bounces = pc.max_bounces;
-    settings.skip_flags = pc.skip_flags;
-    settings.sun_present = pc.sun_present != 0u;
-    settings.sun_direction = pc.sun_direction_cos_max.xyz;
-    settings.sun_cos_max = pc.sun_direction_cos_max.w;
-    settings.sun_irradiance = pc.sun_irradiance_ray_offset.xyz;
-    settings.ray_offset = pc.sun_irradiance_ray_offset.w;
-
-    // Samples are added one by one onto the stored sum, so the floating-point result is the same however the
-    // samples are split into dispatches (a resumed bake matches an uninterrupted one bit for bit).
-    vec4 running_sum = accumulated[point_index];
-    for (uint s = 0u; s < pc.sample_count; ++s) {
-        Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + s);
+        Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + sample_in_chunk);
+        vec4 estimate = vec4(0.0);
         if (pc.mode == kModeSunDirect) {
-            running_sum.xyz += sunIrradianceAt(point.position.xyz, point.normal.xyz, rng, settings);
+            estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, rng, settings);
         } else {
             bool backface_hit;
-            vec3 estimate = estimateIndirectIrradiance(point.position.xyz, point.normal.xyz, rng, settings,
-                                                       backface_hit);
+            estimate.xyz = estimateIndirectIrradiance(point.position.xyz, point.normal.xyz, rng, settings,
+                                                      backface_hit);
             // A NaN from a degenerate input must never reach an output: drop that sample's value.
-            if (any(isnan(estimate)) || any(isinf(estimate))) estimate = vec3(0.0);
-            running_sum += vec4(estimate, backface_hit ? 1.0 : 0.0);
+            if (any(isnan(estimate.xyz)) || any(isinf(estimate.xyz))) estimate.xyz = vec3(0.0);
+            estimate.w = backface_hit ? 1.0 : 0.0;
         }
+        sample_estimates[sample_in_chunk * pc.point_count + point_index] = estimate;
     }
-    accumulated[point_index] = running_sum;
-    atomicAdd(rays_traced_total[0], g_rays_traced);
+    // One atomic per subgroup rather than per invocation.
+    uint subgroup_rays = subgroupAdd(in_range ? g_rays_traced : 0u);
+    if (subgroupElect()) atomicAdd(rays_traced_total[0], subgroup_rays);
 }

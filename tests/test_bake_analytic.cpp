@@ -171,5 +171,35 @@ TEST_F(BakeAnalyticTest, SameSeedGivesSameResultAndChunkingDoesNotMatter) {
     EXPECT_GT(differing, 30) << "another seed draws other random numbers";
 }
 
+TEST_F(BakeAnalyticTest, LongDispatchLosesNoSamples) {
+    // Regression: with one invocation looping over all of a dispatch's samples, llvmpipe's shader loop limiter
+    // silently cut long invocations short (fewer rays, biased sums). 1024 samples in one call must equal 16
+    // calls of 64, ray for ray and bit for bit.
+    TriangleMesh terrain = gusuku::testing::emptyMesh(glm::vec3(0.4f));
+    for (int y = 0; y < 60; ++y)
+        for (int x = 0; x < 60; ++x) {
+            const float x0 = float(x) - 30.0f, y0 = float(y) - 30.0f;
+            const float h = 0.2f * std::sin(x0 * 0.7f) * std::cos(y0 * 0.5f);
+            gusuku::testing::addQuad(terrain, {x0, y0, h}, {x0 + 1.0f, y0, h}, {x0 + 1.0f, y0 + 1.0f, h}, {x0, y0 + 1.0f, h});
+        }
+    const TriangleMesh box = gusuku::testing::closedBox({-2.0f, -2.0f, 0.0f}, {2.0f, 2.0f, 3.0f}, false, glm::vec3(0.7f));
+    const TraceScene scene = makeTraceScene(box, &terrain);
+    IrradianceTracer tracer(context(), scene,
+                            buildSkySamplingTables(gusuku::testing::uniformSky(32, 16, glm::vec3(1.0f)), 0.0));
+    TracePass pass;
+    pass.sun.present = true;
+    pass.sun.direction_enu = glm::normalize(glm::dvec3(0.3, 0.2, 0.9));
+    pass.sun.irradiance_rgb = glm::dvec3(5.0);
+    const auto points = pointsOnLine(256, {-6.0f, -2.5f, 0.3f}, {0.05f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+    PointAccumulator one_call = tracer.createAccumulator(points);
+    const uint64_t rays_one_call = tracer.addSamples(one_call, 1024, pass);
+    PointAccumulator many_calls = tracer.createAccumulator(points);
+    uint64_t rays_many_calls = 0;
+    for (int i = 0; i < 16; ++i) rays_many_calls += tracer.addSamples(many_calls, 64, pass);
+    EXPECT_EQ(rays_one_call, rays_many_calls);
+    const auto a = tracer.readSums(one_call), b = tracer.readSums(many_calls);
+    for (size_t i = 0; i < points.size(); ++i) EXPECT_EQ(a[i].x, b[i].x) << "point " << i;
+}
+
 }  // namespace
 }  // namespace gusuku::bake

@@ -105,43 +105,53 @@ int waitExitCode(pid_t pid) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-TEST(BakeCommandResume, KilledBakeResumesToTheSameResult) {
-    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-kill");
+// Starts a bake of a site long enough to be stopped part-way, waits for its first checkpoint and sends
+// `signal_number`; returns the bake's exit code, or -1 when it finished before the signal (nothing to test).
+int interruptBake(const std::string& site, const std::string& out_dir, int signal_number) {
+    const pid_t pid = spawnBake({"bake", site, "-o", out_dir, "--quiet"});
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        int status = 0;
+        if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? -1 : 255;
+        if (fs::exists(out_dir + "/.checkpoint") && !fs::is_empty(out_dir + "/.checkpoint")) break;
+    }
+    kill(pid, signal_number);
+    return waitExitCode(pid);
+}
+
+class BakeCommandResume : public ::testing::TestWithParam<int> {};
+
+TEST_P(BakeCommandResume, InterruptedBakeResumesToTheSameResult) {
+    const int signal_number = GetParam();
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-interrupt");
     gusuku::testing::MiniSiteOptions site_options;
-    // Long enough (several seconds on lavapipe) to be killed part-way.
+    // Long enough (several seconds on lavapipe) to be interrupted part-way.
     site_options.samples_per_texel = 160;
     site_options.texels_per_metre = 12.0;
     site_options.max_bounces = 3;
     site_options.with_overcast_slot = false;
     const std::string site = gusuku::testing::writeMiniSite(dir, site_options);
-
     ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", dir + "/reference", "--quiet"})), 0);
 
-    const std::string killed_dir = dir + "/killed";
-    const pid_t pid = spawnBake({"bake", site, "-o", killed_dir, "--quiet"});
-    // Kill it once a checkpoint with some work exists (checkpoints are written at least every 2 s).
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    bool checkpointed = false;
-    int early_status = -1;
-    while (!checkpointed && std::chrono::steady_clock::now() < deadline) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        checkpointed = fs::exists(killed_dir + "/.checkpoint") && !fs::is_empty(killed_dir + "/.checkpoint");
-        int status = 0;
-        if (waitpid(pid, &status, WNOHANG) == pid) {
-            early_status = WIFEXITED(status) ? WEXITSTATUS(status) : -2;
-            break;
-        }
-    }
-    if (early_status == 0) GTEST_SKIP() << "the bake finished before it could be killed; nothing to resume";
-    ASSERT_EQ(early_status, -1) << "the bake failed on its own";
-    kill(pid, SIGKILL);
-    waitExitCode(pid);
-    ASSERT_TRUE(checkpointed) << "no checkpoint appeared";
-    EXPECT_FALSE(fs::exists(killed_dir + "/manifest.json"));
+    const std::string interrupted_dir = dir + "/interrupted";
+    const int status = interruptBake(site, interrupted_dir, signal_number);
+    if (status == -1) GTEST_SKIP() << "the bake finished before it could be interrupted; nothing to resume";
+    if (signal_number == SIGINT)
+        EXPECT_EQ(status, 130) << "Ctrl-C checkpoints and exits with 130";
+    else
+        EXPECT_EQ(status, 128 + SIGKILL);
+    EXPECT_FALSE(fs::exists(interrupted_dir + "/manifest.json"));
+    EXPECT_TRUE(fs::exists(interrupted_dir + "/.checkpoint"));
 
-    ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", killed_dir, "--quiet"})), 0);
-    expectSameBakeSets(dir + "/reference", killed_dir);
+    ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", interrupted_dir, "--quiet"})), 0);
+    expectSameBakeSets(dir + "/reference", interrupted_dir);
 }
+
+INSTANTIATE_TEST_SUITE_P(CtrlCAndKill, BakeCommandResume, ::testing::Values(SIGINT, SIGKILL),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                             return std::string(info.param == SIGINT ? "CtrlC" : "Kill");
+                         });
 
 }  // namespace
 }  // namespace gusuku::bake

@@ -201,6 +201,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
                 report.rays_traced = progress.raysTraced();
                 report.trace_seconds = set_tracer.traceSeconds();
                 report.wall_seconds = secondsSince(wall_start);
+                report.resumed_fraction = progress.resumedFraction();
                 return report;  // completed = false: checkpoints hold everything done so far
             }
             sums.push_back(std::move(*set_sums));
@@ -211,7 +212,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     report.rays_traced = progress.raysTraced();
     report.trace_seconds = set_tracer.traceSeconds();
     report.wall_seconds = secondsSince(wall_start);
-    report.resumed_fraction = 0.0;
+    report.resumed_fraction = progress.resumedFraction();
     writer.writeManifest(site, input_hash, report);
     std::filesystem::remove_all(checkpoint_dir);
     report.completed = true;

@@ -121,6 +121,8 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::printf("building:        %zu lightmap texels (%dx%d)\n", report.building_texels, report.lightmap_resolution,
                 report.lightmap_resolution);
     std::printf("ground:          %zu cells\n", report.ground_cells);
+    if (report.resumed_fraction > 0.0)
+        std::printf("resumed:         %.0f %% of the work came from checkpoints\n", report.resumed_fraction * 100.0);
     std::printf("rays:            %.3g traced, %.3f Mrays/s\n", double(report.rays_traced), rays_per_second / 1e6);
     std::printf("wall time:       %s (tracing %s)\n", bake::formatDuration(report.wall_seconds).c_str(),
                 bake::formatDuration(report.trace_seconds).c_str());

@@ -1,5 +1,6 @@
 #include "gusuku_bake/convergence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -156,16 +157,20 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
                   study.log_log_slope, study.log_log_slope_denoised, study.reference_noise_floor,
                   study.rays_per_second / 1e6);
     text += line;
-    const double raw = secondsToReach(study, target, false), denoised = secondsToReach(study, target, true);
     const auto describe = [](double seconds) {
         char value[64];
         if (seconds < 0.0) return std::string("not reached");
         std::snprintf(value, sizeof value, "%.2f s", seconds);
         return std::string(value);
     };
-    std::snprintf(line, sizeof line, "time to %.1f %% relative RMS: %s raw, %s denoised\n", target * 100.0,
-                  describe(raw).c_str(), describe(denoised).c_str());
-    text += line;
+    std::vector<double> targets = {0.10, 0.05, 0.03, 0.02};
+    if (std::find(targets.begin(), targets.end(), target) == targets.end()) targets.push_back(target);
+    for (const double each : targets) {
+        std::snprintf(line, sizeof line, "trace time to %.1f %% relative RMS: %s raw, %s denoised\n", each * 100.0,
+                      describe(secondsToReach(study, each, false)).c_str(),
+                      describe(secondsToReach(study, each, true)).c_str());
+        text += line;
+    }
     return text;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "bake_accumulate_spv.h"
 #include "bake_irradiance_spv.h"
 #include "gusuku_bake/bvh.h"
 #include "gusuku_bake/content_hash.h"
@@ -27,8 +28,16 @@ struct BakePushConstants {
 };
 static_assert(sizeof(BakePushConstants) == 64);
 
-constexpr uint32_t kWorkgroupSize = 64;  // local_size_x of bake_irradiance.comp
+struct AccumulatePushConstants {
+    uint32_t point_count;
+    uint32_t sample_count;
+};
+
+constexpr uint32_t kWorkgroupSize = 64;  // local_size_x of bake_irradiance.comp and bake_accumulate.comp
 constexpr uint32_t kBufferCount = 10;
+// The per-sample scratch buffer holds point_count x chunk vec4s; chunks are cut so it stays under this (well
+// inside lavapipe's 128 MiB storage-buffer cap).
+constexpr size_t kMaxScratchBytes = size_t(64) << 20;
 
 template <typename T> GpuBuffer uploadedBuffer(VulkanContext& context, const std::vector<T>& values) {
     GpuBuffer buffer(context, std::max<size_t>(values.size() * sizeof(T), 16));
@@ -58,6 +67,9 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceSpirv, sizeof(kBakeIrradianceSpirv),
                                                   kBufferCount, uint32_t(sizeof(BakePushConstants)));
+    accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateSpirv,
+                                                             sizeof(kBakeAccumulateSpirv), 2,
+                                                             uint32_t(sizeof(AccumulatePushConstants)));
 }
 
 IrradianceTracer::~IrradianceTracer() = default;
@@ -100,14 +112,34 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     push.sun_irradiance_ray_offset[2] = float(pass.sun.irradiance_rgb.z);
     push.sun_irradiance_ray_offset[3] = pass.ray_offset_m;
 
-    const uint32_t zero_counter[4] = {0, 0, 0, 0};
-    ray_counter_.upload(zero_counter, sizeof zero_counter);
+    const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
+    const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
+    if (sample_estimates_.size() < std::min<size_t>(sample_count, max_chunk) * point_bytes)
+        sample_estimates_ = GpuBuffer(context_, std::min<size_t>(sample_count, max_chunk) * point_bytes);
     pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
-                            &sky_table_, &accumulator.points, &accumulator.sums, &ray_counter_});
-    pipeline_->dispatchAndWait(&push, (accumulator.point_count + kWorkgroupSize - 1) / kWorkgroupSize);
-    accumulator.samples_done += sample_count;
-    uint32_t rays = 0;
-    ray_counter_.download(&rays, sizeof rays);
+                            &sky_table_, &accumulator.points, &sample_estimates_, &ray_counter_});
+    accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums});
+    uint64_t rays = 0;
+    for (uint32_t done = 0; done < sample_count;) {
+        const uint32_t chunk = std::min(max_chunk, sample_count - done);
+        push.first_sample = accumulator.samples_done;
+        push.sample_count = chunk;
+        const AccumulatePushConstants accumulate_push{accumulator.point_count, chunk};
+        const uint32_t zero_counter[4] = {0, 0, 0, 0};
+        ray_counter_.upload(zero_counter, sizeof zero_counter);
+        const uint32_t point_groups = (accumulator.point_count + kWorkgroupSize - 1) / kWorkgroupSize;
+        context_.submitAndWait([&](VkCommandBuffer cmd) {
+            pipeline_->recordDispatch(cmd, &push, point_groups, chunk);
+            recordComputeBarrier(cmd);
+            accumulate_pipeline_->recordDispatch(cmd, &accumulate_push, point_groups);
+            recordComputeBarrier(cmd);
+        });
+        uint32_t chunk_rays = 0;
+        ray_counter_.download(&chunk_rays, sizeof chunk_rays);
+        rays += chunk_rays;
+        accumulator.samples_done += chunk;
+        done += chunk;
+    }
     return rays;
 }
 

@@ -13,14 +13,12 @@ command -v blender >/dev/null || { echo "compare_with_cycles: needs Blender (apt
 mkdir -p "$out"
 "$bake" sample "$out/sample" --force > /dev/null
 # The bake set supplies the building with gusuku's lightmap charts (TEXCOORD_1), so both tools bake the same
-# texels; its overcast lightmap (2048 samples) is the cross-check of what Cycles converges to.
-"$bake" bake "$out/sample/site.json" -o "$out/bakeset" --samples 2048 --force --quiet > /dev/null
+# texels; its overcast lightmap (1024 samples) is the cross-check of what Cycles converges to.
+"$bake" bake "$out/sample/site.json" -o "$out/bakeset" --samples 1024 --force --quiet > /dev/null
 
 echo "== gusuku (lavapipe, $(nproc) cores)"
 "$bake" converge "$out/sample/site.json" --slot overcast --max-samples 512 --reference-samples 4096 \
-  --target-rms 0.05 2>/dev/null | tee "$out/gusuku.txt"
-"$bake" converge "$out/sample/site.json" --slot overcast --max-samples 512 --reference-samples 4096 \
-  --target-rms 0.03 2>/dev/null | tail -1
+  2>/dev/null | tee "$out/gusuku.txt"
 
 echo "== Cycles (Blender $(blender --version 2>/dev/null | head -1 | awk '{print $2}'), CPU, 2 threads)"
 blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \

@@ -24,6 +24,7 @@ public:
     void finish();  ///< final line with totals
 
     uint64_t raysTraced() const { return rays_; }
+    double resumedFraction() const { return resumed_work_ / total_work_; }
     double secondsElapsed() const;
     double raysPerSecond() const;
 

@@ -90,7 +90,9 @@ public:
 
 private:
     VulkanContext& context_;
-    std::unique_ptr<ComputePipeline> pipeline_;
+    std::unique_ptr<ComputePipeline> pipeline_;             ///< bake_irradiance.comp: one path per invocation
+    std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums
+    GpuBuffer sample_estimates_;                            ///< one chunk's per-sample estimates
     GpuBuffer bvh_nodes_, bvh_triangles_, shading_, materials_, textures_, sky_radiance_, sky_table_,
         ray_counter_;
     size_t triangle_count_ = 0;

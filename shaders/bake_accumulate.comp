@@ -1,0 +1,23 @@
+#version 450
+// Adds a chunk's one-sample estimates (bake_irradiance.comp) onto each point's running sum, one sample at a
+// time in sample order, so the floating-point sum is the same however the samples were split into chunks,
+// dispatches or runs: a resumed bake matches an uninterrupted one bit for bit.
+
+layout(local_size_x = 64) in;
+
+layout(std430, set = 0, binding = 0) readonly buffer SampleEstimates { vec4 sample_estimates[]; };
+// xyz: sum of irradiance estimates; w: number of first rays that hit a back face (texel validity).
+layout(std430, set = 0, binding = 1) buffer Accumulation { vec4 accumulated[]; };
+
+layout(push_constant) uniform PushConstants {
+    uint point_count;
+    uint sample_count;
+} pc;
+
+void main() {
+    uint point_index = gl_GlobalInvocationID.x;
+    if (point_index >= pc.point_count) return;
+    vec4 running_sum = accumulated[point_index];
+    for (uint s = 0u; s < pc.sample_count; ++s) running_sum += sample_estimates[s * pc.point_count + point_index];
+    accumulated[point_index] = running_sum;
+}
