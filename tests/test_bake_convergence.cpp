@@ -1,5 +1,7 @@
-// Convergence (issue 3): the RMS error of a bake against a converged one falls as 1/sqrt(samples), a slope of
-// -1/2 on log-log axes, and the edge-keeping filter lowers the error at a given sample count.
+// Convergence (issue 3): the RMS error of a bake against a converged one falls at least as fast as
+// 1/sqrt(samples), the Monte Carlo rate (a slope of -1/2 on log-log axes). The scrambled Sobol sampler does
+// better on smooth integrands (about -0.7 on this site); a slope much steeper than -1 would mean the reference
+// and the study share errors. The edge-keeping filter lowers the error at every sample count.
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
@@ -26,7 +28,8 @@ TEST_F(BakeConvergenceTest, ErrorFallsAsOneOverSqrtSamples) {
     std::printf("%s", formatConvergenceStudy(study, 0.05).c_str());
 
     ASSERT_EQ(study.points.size(), 7u);  // 1, 2, 4, ..., 64
-    EXPECT_NEAR(study.log_log_slope, -0.5, 0.08);
+    EXPECT_LT(study.log_log_slope, -0.45);
+    EXPECT_GT(study.log_log_slope, -1.0);
     for (size_t i = 1; i < study.points.size(); ++i)
         EXPECT_LT(study.points[i].relative_rms, study.points[i - 1].relative_rms) << study.points[i].samples;
     // The reference's own noise must sit well below what is measured, or the slope would flatten.

@@ -118,8 +118,12 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     study.rays_per_second = seconds > 0.0 ? double(rays) / seconds : 0.0;
     study.log_log_slope = logLogSlope(study.points, false);
     study.log_log_slope_denoised = logLogSlope(study.points, true);
-    if (!study.points.empty())
-        study.reference_noise_floor = study.points.front().relative_rms / std::sqrt(double(options.reference_samples));
+    if (!study.points.empty()) {
+        // The study's own power law, extended to the reference's sample count.
+        const ConvergencePoint& last = study.points.back();
+        study.reference_noise_floor =
+            last.relative_rms * std::pow(double(options.reference_samples) / double(last.samples), study.log_log_slope);
+    }
     return study;
 }
 

@@ -1,6 +1,13 @@
 // Random numbers and direction sampling shared by the baker's tracer and (later) the bench's reference
-// renderer. The generator is a counter-based PCG hash: every (seed, point, sample) triple starts its own
-// stream, so a bake is deterministic and a resumed bake draws exactly the numbers an uninterrupted one would.
+// renderer. Every (seed, point, sample) triple has its own fixed numbers, so a bake is deterministic and a
+// resumed bake draws exactly the numbers an uninterrupted one would.
+//
+// 2D draws (directions on the sky, the cosine lobe, the sun disc) come from a scrambled Sobol sequence:
+// Sobol's first two dimensions, a (0,2)-sequence, so the first N samples of a point stratify the square; each
+// 2D draw of a path (each bounce, each light) gets its own random scramble and its own shuffle of the sample
+// index ("padding"), by hash-based nested uniform scrambling after Burley (2020, "Practical hash-based Owen
+// scrambling"). Measured on the sample site: the error at a given sample count falls much faster than with
+// independent random numbers. 1D draws (Russian roulette) use a counter-based PCG hash.
 #ifndef GUSUKU_SAMPLING_GLSL
 #define GUSUKU_SAMPLING_GLSL
 
@@ -12,11 +19,19 @@ uint pcgHash(uint value) {
     return (word >> 22u) ^ word;
 }
 
-struct Rng { uint state; };
+struct Rng {
+    uint state;         // PCG state for 1D draws
+    uint point_seed;    // hash of (seed, point): the point's own scrambles
+    uint sample_index;  // index into the point's Sobol sequence
+    uint dimension;     // how many 2D draws this path has made
+};
 
 Rng rngForSample(uint seed, uint point_index, uint sample_index) {
     Rng rng;
-    rng.state = pcgHash(seed ^ pcgHash(point_index ^ pcgHash(sample_index + 0x9e3779b9u)));
+    rng.point_seed = pcgHash(seed ^ pcgHash(point_index + 0x68bc21ebu));
+    rng.sample_index = sample_index;
+    rng.dimension = 0u;
+    rng.state = pcgHash(rng.point_seed ^ pcgHash(sample_index + 0x9e3779b9u));
     return rng;
 }
 
@@ -28,7 +43,39 @@ float rngNext(inout Rng rng) {
     return float(word >> 8u) * (1.0 / 16777216.0);
 }
 
-vec2 rngNext2(inout Rng rng) { return vec2(rngNext(rng), rngNext(rng)); }
+// A hash that only moves bits towards the most significant end (Laine and Karras 2011): applied to a
+// bit-reversed value it is a nested uniform (Owen) scramble.
+uint laineKarrasPermutation(uint value, uint seed) {
+    value += seed;
+    value ^= value * 0x6c50b47cu;
+    value ^= value * 0xb82f1e52u;
+    value ^= value * 0xc7afe638u;
+    value ^= value * 0x8d22f6e6u;
+    return value;
+}
+
+uint nestedUniformScramble(uint value, uint seed) {
+    return bitfieldReverse(laineKarrasPermutation(bitfieldReverse(value), seed));
+}
+
+// Sobol dimension 1 (dimension 0 is the bit reversal of the index): generator matrix by its recurrence.
+uint sobolSecondDimension(uint index) {
+    uint result = 0u;
+    uint direction = 1u << 31u;
+    for (; index != 0u; index >>= 1u, direction ^= direction >> 1u)
+        if ((index & 1u) != 0u) result ^= direction;
+    return result;
+}
+
+vec2 rngNext2(inout Rng rng) {
+    uint pair_seed = pcgHash(rng.point_seed ^ pcgHash(rng.dimension + 0x2c1b3c6du));
+    rng.dimension++;
+    uint shuffled_index = nestedUniformScramble(rng.sample_index, pair_seed);
+    uint x = nestedUniformScramble(bitfieldReverse(shuffled_index), pcgHash(pair_seed ^ 0xa511e9b3u));
+    uint y = nestedUniformScramble(sobolSecondDimension(shuffled_index), pcgHash(pair_seed ^ 0x63d83595u));
+    // 24 bits, so the result stays below 1 in float.
+    return vec2(float(x >> 8u), float(y >> 8u)) * (1.0 / 16777216.0);
+}
 
 // Orthonormal basis around a unit normal (Duff et al. 2017, branchless).
 void buildBasis(vec3 normal, out vec3 tangent, out vec3 bitangent) {

@@ -33,8 +33,8 @@ struct ConvergenceStudy {
     size_t texel_count = 0;
     uint32_t reference_samples = 0;
     double reference_seconds = 0.0;
-    /// The reference's own expected error, estimated from the 1-sample error as rms_1 / sqrt(reference
-    /// samples): errors near this floor are the reference's noise, not the bake's.
+    /// The reference's own expected error: the study's fitted power law (log_log_slope) extended from its last
+    /// point to the reference's sample count. Errors near this floor are the reference's noise, not the bake's.
     double reference_noise_floor = 0.0;
     std::vector<ConvergencePoint> points;
     double rays_per_second = 0.0;
