@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bake_output_checks.h"
 #include "gpu_test_support.h"
 #include "gusuku/image.h"
 #include "gusuku/site.h"
@@ -44,13 +45,7 @@ nlohmann::json bakeAndCheck(gusuku::VulkanContext& context, const std::string& s
     const BakeReport report = runBake(context, loadSiteConfig(site_path), options);
     EXPECT_TRUE(report.completed);
     EXPECT_GT(report.building_texels, 1000u);
-    for (const auto& entry : fs::directory_iterator(out)) {
-        if (entry.path().extension() != ".exr") continue;
-        const ImageRGBA image = readImage(entry.path().string());
-        size_t non_finite = 0;
-        for (float value : image.texels) non_finite += std::isfinite(value) ? 0 : 1;
-        EXPECT_EQ(non_finite, 0u) << entry.path();
-    }
+    EXPECT_GT(gusuku::testing::expectExrImagesFinite(out), 0);
     std::ifstream manifest(out + "/manifest.json");
     return nlohmann::json::parse(manifest);
 }
