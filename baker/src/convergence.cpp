@@ -58,6 +58,7 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     if (slot == nullptr || (!options.slot_name.empty() && slot->name != options.slot_name))
         throw std::invalid_argument("no slot named '" + options.slot_name + "' in " + site.file);
 
+    const auto setup_start = Clock::now();
     const PreparedSky sunny = prepareSky(site.sunny_sky);
     std::optional<PreparedSky> overcast;
     if (site.overcast_sky) overcast = prepareSky(*site.overcast_sky);
@@ -77,6 +78,7 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     study.slot_name = slot->name;
     study.texel_count = points.size();
     study.reference_samples = options.reference_samples;
+    study.setup_seconds = std::chrono::duration<double>(Clock::now() - setup_start).count();
     BakeProgress progress(double(points.size()) * (options.reference_samples + options.max_samples),
                           options.show_progress);
 
@@ -110,8 +112,10 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         point.rays = rays;
         point.seconds = seconds;
         point.relative_rms = relativeRms(processBuildingLightmap(geometry, sums, target, false).per_texel, reference_texels);
-        point.relative_rms_denoised =
-            relativeRms(processBuildingLightmap(geometry, sums, target, true).per_texel, reference_texels);
+        const auto denoise_start = Clock::now();
+        const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true);
+        point.denoise_seconds = std::chrono::duration<double>(Clock::now() - denoise_start).count();
+        point.relative_rms_denoised = relativeRms(denoised.per_texel, reference_texels);
         study.points.push_back(point);
     }
     progress.finish();
@@ -129,14 +133,17 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
 
 double secondsToReach(const ConvergenceStudy& study, double target, bool denoised) {
     for (size_t i = 0; i < study.points.size(); ++i) {
-        const double rms = denoised ? study.points[i].relative_rms_denoised : study.points[i].relative_rms;
+        const ConvergencePoint& point = study.points[i];
+        const double rms = denoised ? point.relative_rms_denoised : point.relative_rms;
         if (rms > target) continue;
-        if (i == 0) return study.points[0].seconds;
+        const double filter_seconds = denoised ? point.denoise_seconds : 0.0;
+        if (i == 0) return point.seconds + filter_seconds;
         const ConvergencePoint& before = study.points[i - 1];
         const double rms_before = denoised ? before.relative_rms_denoised : before.relative_rms;
         // Error ~ seconds^slope: interpolate log(seconds) linearly in log(rms).
         const double fraction = (std::log(rms_before) - std::log(target)) / (std::log(rms_before) - std::log(rms));
-        return std::exp(std::log(before.seconds) + fraction * (std::log(study.points[i].seconds) - std::log(before.seconds)));
+        return std::exp(std::log(before.seconds) + fraction * (std::log(point.seconds) - std::log(before.seconds))) +
+               filter_seconds;
     }
     return -1.0;
 }
@@ -144,14 +151,16 @@ double secondsToReach(const ConvergenceStudy& study, double target, bool denoise
 std::string formatConvergenceStudy(const ConvergenceStudy& study, double target) {
     std::string text;
     char line[256];
-    std::snprintf(line, sizeof line, "slot %s, %zu lightmap texels, reference %u samples (%.1f s)\n",
-                  study.slot_name.c_str(), study.texel_count, study.reference_samples, study.reference_seconds);
+    std::snprintf(line, sizeof line,
+                  "slot %s, %zu lightmap texels, reference %u samples (%.1f s), setup before the first ray %.2f s\n",
+                  study.slot_name.c_str(), study.texel_count, study.reference_samples, study.reference_seconds,
+                  study.setup_seconds);
     text += line;
-    text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  rms*sqrt(spp)\n";
+    text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  denoise_s  rms*sqrt(spp)\n";
     for (const ConvergencePoint& point : study.points) {
-        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %13.4f\n", point.samples, double(point.rays),
-                      point.seconds, point.relative_rms, point.relative_rms_denoised,
-                      point.relative_rms * std::sqrt(double(point.samples)));
+        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %9.3f  %13.4f\n", point.samples,
+                      double(point.rays), point.seconds, point.relative_rms, point.relative_rms_denoised,
+                      point.denoise_seconds, point.relative_rms * std::sqrt(double(point.samples)));
         text += line;
     }
     std::snprintf(line, sizeof line,
@@ -170,7 +179,7 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
     std::vector<double> targets = {0.10, 0.05, 0.03, 0.02};
     if (std::find(targets.begin(), targets.end(), target) == targets.end()) targets.push_back(target);
     for (const double each : targets) {
-        std::snprintf(line, sizeof line, "trace time to %.1f %% relative RMS: %s raw, %s denoised\n", each * 100.0,
+        std::snprintf(line, sizeof line, "trace time to %.1f %% relative RMS: %s raw, %s denoised (filter included)\n", each * 100.0,
                       describe(secondsToReach(study, each, false)).c_str(),
                       describe(secondsToReach(study, each, true)).c_str());
         text += line;

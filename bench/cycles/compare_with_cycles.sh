@@ -13,14 +13,31 @@ command -v blender >/dev/null || { echo "compare_with_cycles: needs Blender (apt
 mkdir -p "$out"
 "$bake" sample "$out/sample" --force > /dev/null
 # The bake set supplies the building with gusuku's lightmap charts (TEXCOORD_1), so both tools bake the same
-# texels; its overcast lightmap (1024 samples) is the cross-check of what Cycles converges to.
-"$bake" bake "$out/sample/site.json" -o "$out/bakeset" --samples 1024 --force --quiet > /dev/null
+# texels; its overcast lightmap (1024 samples) is the cross-check of what Cycles converges to. No --force: a
+# second run with the same inputs finds the bake set up to date and skips it.
+"$bake" bake "$out/sample/site.json" -o "$out/bakeset" --samples 1024 --quiet > /dev/null
+
+# This machine is shared: its speed can drift by tens of percent within minutes. The same short gusuku study
+# before and after Cycles shows how far it drifted while the two were measured.
+drift_check() {
+  "$bake" converge "$out/sample/site.json" --slot overcast --max-samples 64 --reference-samples 64 2>/dev/null |
+    sed -n 's/^rays per second: //p'
+}
 
 echo "== gusuku (lavapipe, $(nproc) cores)"
 "$bake" converge "$out/sample/site.json" --slot overcast --max-samples 512 --reference-samples 4096 \
   2>/dev/null | tee "$out/gusuku.txt"
 
+drift_before=$(drift_check)
+
 echo "== Cycles (Blender $(blender --version 2>/dev/null | head -1 | awk '{print $2}'), CPU, 2 threads)"
 blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \
-  "$out/bakeset" "$out/sample/site.glb" "$out/sample/sky_overcast.hdr" 1 2 4 8 16 32 64 128 256 512 4096 2>&1 |
+  "$out/bakeset" "$out/sample/site.glb" "$out/sample/sky_overcast.hdr" 4096 1 2 4 8 16 32 64 128 256 512 2>&1 |
   grep -E "^CYCLES_(RESULT|AGREEMENT)" | tee "$out/cycles.txt"
+
+echo "== drift check (the same 64-sample gusuku study before and after Cycles)"
+echo "drift_check_before_cycles_mrays_per_s $drift_before" | tee "$out/drift.txt"
+echo "drift_check_after_cycles_mrays_per_s $(drift_check)" | tee -a "$out/drift.txt"
+
+echo "== side by side"
+python3 bench/cycles/summarise_comparison.py "$out"

@@ -1,14 +1,16 @@
 # Blender (Cycles, CPU) bake of the same lightmap gusuku bakes, for the speed comparison of issue 3.
 #
 # Run by bench/cycles/compare_with_cycles.sh, inside Blender:
-#   blender -b --factory-startup --python cycles_lightmap_bake.py -- BAKESET SITE_GLB SKY_HDR SAMPLES... 
+#   blender -b --factory-startup --python cycles_lightmap_bake.py -- BAKESET SITE_GLB SKY_HDR REFERENCE SAMPLES...
 #
 # It imports the bake set's building.glb (whose TEXCOORD_1 holds gusuku's lightmap charts) and the site mesh,
 # lights them with the overcast sky only (an overcast slot has no sun, so gusuku's E_ind is the whole
 # irradiance and Cycles' DIFFUSE bake of direct + indirect light measures the same quantity, times 1/pi), and
-# bakes the building's lightmap at each sample count, timing each bake. It prints one line per bake with the
-# relative RMS error of luminance against Cycles' own highest-sample bake (the last count given) over the texels
-# gusuku marks valid, and the agreement of Cycles' converged bake with gusuku's overcast lightmap.
+# bakes the building's lightmap at each sample count, timing each bake, twice: with every texel taking all its
+# samples ("fixed", as gusuku does) and with Cycles' adaptive sampling (Blender's default since 3.0: texels stop
+# once their noise estimate is under a threshold, so the error stalls near it). It prints one line per bake
+# with the relative RMS error of luminance against Cycles' own fixed bake at REFERENCE samples, over the texels
+# gusuku marks valid, and the agreement of that converged bake with gusuku's overcast lightmap.
 import math
 import sys
 import time
@@ -22,7 +24,8 @@ if not hasattr(numpy, "bool"):
 
 args = sys.argv[sys.argv.index("--") + 1:]
 bakeset, site_glb, sky_hdr = args[0], args[1], args[2]
-sample_counts = [int(a) for a in args[3:]]
+reference_samples = int(args[3])
+sample_counts = [int(a) for a in args[4:]]
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
@@ -56,14 +59,25 @@ reference_image = bpy.data.images.load(bakeset + "/building_overcast.exr")
 resolution = reference_image.size[0]
 target = bpy.data.images.new("lightmap", resolution, resolution, float_buffer=True, alpha=False)
 
-# gusuku's surfaces are purely diffuse: turn off the Principled BSDF's specular layer everywhere, so Cycles'
-# diffuse light is not reduced by a Fresnel term gusuku does not model.
+# gusuku's surfaces are Lambertian. Blender's glTF importer gives every material a Principled BSDF, whose
+# diffuse lobe is not Lambertian (retro-reflection at roughness > 0) and whose specular layer takes energy
+# through a Fresnel term. Replace each with a Diffuse BSDF (roughness 0: Lambert) fed the same base colour, so
+# both tools bake the same light transport.
 for material in bpy.data.materials:
     if material.node_tree is None:
         continue
-    for node in material.node_tree.nodes:
-        if node.type == "BSDF_PRINCIPLED":
-            node.inputs["Specular"].default_value = 0.0
+    tree = material.node_tree
+    for principled in [n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"]:
+        diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Roughness"].default_value = 0.0
+        base_colour = principled.inputs["Base Color"]
+        if base_colour.is_linked:
+            tree.links.new(base_colour.links[0].from_socket, diffuse.inputs["Color"])
+        else:
+            diffuse.inputs["Color"].default_value = base_colour.default_value
+        for link in list(principled.outputs["BSDF"].links):
+            tree.links.new(diffuse.outputs["BSDF"], link.to_socket)
+        tree.nodes.remove(principled)
 
 for obj in building:
     uv_layers = obj.data.uv_layers
@@ -103,19 +117,25 @@ def relative_rms(estimate, reference, scale=1.0):
     return math.sqrt(squared / count) / (total / count)
 
 
-results = []
-for samples in sample_counts:
+def bake(samples, adaptive):
+    """One timed Cycles bake of the lightmap; returns (seconds, luminance per texel)."""
     scene.cycles.samples = samples
+    scene.cycles.use_adaptive_sampling = adaptive
     start = time.perf_counter()
     bpy.ops.object.bake(type="DIFFUSE", pass_filter={"DIRECT", "INDIRECT"}, margin=2, use_clear=True)
     seconds = time.perf_counter() - start
-    results.append((samples, seconds, luminance_texels(target.pixels[:])))
-    print(f"CYCLES_BAKE samples={samples} seconds={seconds:.2f}", flush=True)
+    print(f"CYCLES_BAKE samples={samples} adaptive={int(adaptive)} seconds={seconds:.2f}", flush=True)
+    return seconds, luminance_texels(target.pixels[:])
 
-reference_samples, _, cycles_reference = results[-1]
-for samples, seconds, estimate in results[:-1]:
-    print(f"CYCLES_RESULT samples={samples} seconds={seconds:.2f} "
-          f"relative_rms={relative_rms(estimate, cycles_reference):.4f}", flush=True)
+
+# The reference: every texel gets all its samples (adaptive sampling would stop near its noise threshold).
+_, cycles_reference = bake(reference_samples, adaptive=False)
+for adaptive in (False, True):
+    mode = "adaptive" if adaptive else "fixed"
+    for samples in sample_counts:
+        seconds, estimate = bake(samples, adaptive)
+        print(f"CYCLES_RESULT mode={mode} samples={samples} seconds={seconds:.2f} "
+              f"relative_rms={relative_rms(estimate, cycles_reference):.4f}", flush=True)
 # Cycles' diffuse light pass is irradiance / pi; the fitted scale should come out near pi.
 fit = sum(g for g, ok in zip(gusuku_luminance, valid) if ok) / sum(c for c, ok in zip(cycles_reference, valid) if ok)
 print(f"CYCLES_AGREEMENT reference_samples={reference_samples} fitted_scale={fit:.4f} (pi = {math.pi:.4f}) "

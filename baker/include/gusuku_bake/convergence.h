@@ -24,6 +24,7 @@ struct ConvergencePoint {
     uint32_t samples = 0;
     uint64_t rays = 0;            ///< cumulative
     double seconds = 0.0;         ///< cumulative trace time
+    double denoise_seconds = 0.0; ///< time the edge-keeping filter took on this point's lightmap
     double relative_rms = 0.0;    ///< RMS(E - E_ref) / mean(E_ref), luminance, over valid texels
     double relative_rms_denoised = 0.0;
 };
@@ -33,6 +34,9 @@ struct ConvergenceStudy {
     size_t texel_count = 0;
     uint32_t reference_samples = 0;
     double reference_seconds = 0.0;
+    /// Time before the first ray: sky tables and sun, charts and texels, BVH, pipelines. A bake pays it once per
+    /// slot; a fair wall-time comparison with another baker adds it to the trace time.
+    double setup_seconds = 0.0;
     /// The reference's own expected error: the study's fitted power law (log_log_slope) extended from its last
     /// point to the reference's sample count. Errors near this floor are the reference's noise, not the bake's.
     double reference_noise_floor = 0.0;
@@ -45,7 +49,7 @@ struct ConvergenceStudy {
 ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& site, const ConvergenceOptions& options);
 
 /// Seconds of tracing to reach `target_relative_rms`, interpolated on log-log axes between measured points;
-/// negative when the study never reached it.
+/// negative when the study never reached it. For the denoised error, the filter's own time is included.
 double secondsToReach(const ConvergenceStudy& study, double target_relative_rms, bool denoised);
 
 /// The study as a printable table plus summary lines.

@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""Puts gusuku's and Cycles' error-against-time curves from one comparison run side by side.
+
+Reads OUT/gusuku.txt (the table `gusuku-bake converge` prints) and OUT/cycles.txt (the CYCLES_* lines of
+cycles_lightmap_bake.py), prints the time each baker needs to reach 10, 5, 3 and 2 % relative RMS, and writes
+OUT/error_vs_time.svg: relative RMS against seconds on log-log axes, one curve per method.
+
+Cycles runs twice, with every texel taking all its samples (fixed, as gusuku does) and with its default adaptive
+sampling. Fairness: Cycles' seconds are whole bake calls (scene sync, BVH and the bake itself); gusuku's trace seconds
+exclude its one-off setup (sky tables, charts, BVH, pipelines), so the table shows gusuku both without and with
+that setup added. The denoised curve includes the filter's own time where the study printed it.
+
+Python's standard library only, so it runs wherever the comparison runs.
+Usage: summarise_comparison.py OUT_DIR
+"""
+import math
+import os
+import re
+import sys
+
+TARGETS = [0.10, 0.05, 0.03, 0.02]
+
+
+def read_gusuku(path):
+    """Rows of the converge table as dicts keyed by its header, plus the setup seconds (0 when not printed)."""
+    rows, header, setup_seconds = [], None, 0.0
+    with open(path) as stream:
+        for line in stream:
+            setup = re.search(r"setup before the first ray ([0-9.]+) s", line)
+            if setup:
+                setup_seconds = float(setup.group(1))
+            fields = line.split()
+            if fields and fields[0] == "samples":
+                header = fields
+            elif header and fields and fields[0].isdigit() and len(fields) == len(header):
+                rows.append(dict(zip(header, (float(f) for f in fields))))
+    if not rows:
+        sys.exit(f"summarise_comparison: {path}: no convergence table found")
+    return rows, setup_seconds
+
+
+def read_cycles(path):
+    """{mode: [(seconds, relative_rms), ...]} from the CYCLES_RESULT lines, mode "fixed" or "adaptive"."""
+    curves = {}
+    with open(path) as stream:
+        for line in stream:
+            match = re.match(r"CYCLES_RESULT mode=(\w+) samples=(\d+) seconds=([0-9.]+) relative_rms=([0-9.]+)", line)
+            if match:
+                curves.setdefault(match.group(1), []).append((float(match.group(3)), float(match.group(4))))
+    if not curves:
+        sys.exit(f"summarise_comparison: {path}: no CYCLES_RESULT lines found")
+    return curves
+
+
+def seconds_to_reach(curve, target):
+    """Seconds at which the (seconds, rms) curve first reaches target, interpolated on log-log axes."""
+    for i, (seconds, rms) in enumerate(curve):
+        if rms > target:
+            continue
+        if i == 0:
+            return seconds
+        seconds_before, rms_before = curve[i - 1]
+        fraction = (math.log(rms_before) - math.log(target)) / (math.log(rms_before) - math.log(rms))
+        return math.exp(math.log(seconds_before) + fraction * (math.log(seconds) - math.log(seconds_before)))
+    return None
+
+
+def write_svg(path, curves):
+    width, height, margin = 640, 420, 60
+    all_points = [p for _, _, points in curves for p in points if p[0] > 0 and p[1] > 0]
+    x_min = 10 ** math.floor(math.log10(min(p[0] for p in all_points)))
+    x_max = 10 ** math.ceil(math.log10(max(p[0] for p in all_points)))
+    y_min = 10 ** math.floor(math.log10(min(p[1] for p in all_points)))
+    y_max = 10 ** math.ceil(math.log10(max(p[1] for p in all_points)))
+
+    def to_x(seconds):
+        return margin + (width - 2 * margin) * (math.log10(seconds) - math.log10(x_min)) / math.log10(x_max / x_min)
+
+    def to_y(rms):
+        return height - margin - (height - 2 * margin) * (math.log10(rms) - math.log10(y_min)) / math.log10(y_max / y_min)
+
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" '
+             f'font-size="12"><rect width="100%" height="100%" fill="white"/>']
+    decade = x_min
+    while decade <= x_max:
+        x = to_x(decade)
+        parts.append(f'<line x1="{x:.1f}" y1="{margin}" x2="{x:.1f}" y2="{height - margin}" stroke="#ddd"/>'
+                     f'<text x="{x:.1f}" y="{height - margin + 16}" text-anchor="middle">{decade:g}</text>')
+        decade *= 10
+    decade = y_min
+    while decade <= y_max:
+        y = to_y(decade)
+        parts.append(f'<line x1="{margin}" y1="{y:.1f}" x2="{width - margin}" y2="{y:.1f}" stroke="#ddd"/>'
+                     f'<text x="{margin - 6}" y="{y + 4:.1f}" text-anchor="end">{decade * 100:g} %</text>')
+        decade *= 10
+    parts.append(f'<text x="{width / 2}" y="{height - 18}" text-anchor="middle">seconds (2 cores)</text>'
+                 f'<text x="16" y="{height / 2}" transform="rotate(-90 16 {height / 2})" text-anchor="middle">'
+                 f'relative RMS error of the lightmap</text>')
+    for index, (label, colour, points) in enumerate(curves):
+        path_points = " ".join(f"{to_x(s):.1f},{to_y(r):.1f}" for s, r in points if s > 0 and r > 0)
+        parts.append(f'<polyline points="{path_points}" fill="none" stroke="{colour}" stroke-width="2"/>')
+        parts.append(f'<text x="{width - margin - 4}" y="{margin + 16 + 16 * index}" text-anchor="end" '
+                     f'fill="{colour}">{label}</text>')
+    parts.append("</svg>\n")
+    with open(path + ".tmp", "w") as stream:
+        stream.write("".join(parts))
+    os.replace(path + ".tmp", path)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: summarise_comparison.py OUT_DIR")
+    out = sys.argv[1]
+    gusuku_rows, setup_seconds = read_gusuku(out + "/gusuku.txt")
+    cycles_curves = read_cycles(out + "/cycles.txt")
+    raw = [(row["trace_s"], row["rel_rms"]) for row in gusuku_rows]
+    denoised = [(row["trace_s"] + row.get("denoise_s", 0.0), row["rel_rms_denoised"]) for row in gusuku_rows]
+    methods = [
+        ("gusuku raw", raw, 0.0),
+        ("gusuku denoised", denoised, 0.0),
+        ("gusuku raw + setup", raw, setup_seconds),
+        ("gusuku denoised + setup", denoised, setup_seconds),
+    ] + [(f"Cycles {mode}", curve, 0.0) for mode, curve in sorted(cycles_curves.items())]
+    print(f"seconds to reach a relative RMS error (gusuku setup before the first ray: {setup_seconds:.2f} s)")
+    print(f"{'method':26s}" + "".join(f"{f'{t * 100:g} %':>10s}" for t in TARGETS))
+    for label, curve, offset in methods:
+        cells = []
+        for target in TARGETS:
+            seconds = seconds_to_reach(curve, target)
+            cells.append(f"{'-' if seconds is None else f'{seconds + offset:.2f}':>10s}")
+        print(f"{label:26s}" + "".join(cells))
+    # Cycles at its best (the faster of its two modes) against gusuku with its setup paid, raw and denoised.
+    for target in TARGETS:
+        cycles_best = min((s for s in (seconds_to_reach(c, target) for c in cycles_curves.values()) if s), default=None)
+        if cycles_best is None:
+            continue
+        ratios = []
+        for label, curve in (("raw", raw), ("denoised", denoised)):
+            seconds = seconds_to_reach(curve, target)
+            ratios.append(f"{cycles_best / (seconds + setup_seconds):.2f} x gusuku {label}" if seconds else
+                          f"gusuku {label} not reached")
+        print(f"at {target * 100:g} %: the faster Cycles mode takes " + ", ".join(ratios) + " (wall time, setup included)")
+    colours = {"fixed": "#d62728", "adaptive": "#ff7f0e"}
+    write_svg(out + "/error_vs_time.svg", [("gusuku raw", "#1f77b4", raw), ("gusuku denoised", "#2ca02c", denoised)] +
+              [(f"Cycles {mode}", colours.get(mode, "#7f7f7f"), curve) for mode, curve in sorted(cycles_curves.items())])
+    print(f"chart: {out}/error_vs_time.svg")
+    try:
+        with open(out + "/drift.txt") as stream:
+            speeds = [float(line.split()[1]) for line in stream if len(line.split()) == 3]
+        if len(speeds) == 2 and min(speeds) > 0:
+            print(f"machine drift while measuring: gusuku's rays per second changed by "
+                  f"{100 * (speeds[1] / speeds[0] - 1):+.0f} % from before Cycles to after; ratios are good to about that")
+    except (OSError, ValueError, IndexError):
+        pass
+
+
+if __name__ == "__main__":
+    main()
