@@ -50,6 +50,7 @@ layout(push_constant) uniform PushConstants {
     uint sun_present;
     vec4 sun_direction_cos_max;
     vec4 sun_irradiance_ray_offset;
+    uint sky_next_event;
 } pc;
 
 void main() {
@@ -66,6 +67,7 @@ void main() {
         settings.sun_cos_max = pc.sun_direction_cos_max.w;
         settings.sun_irradiance = pc.sun_irradiance_ray_offset.xyz;
         settings.ray_offset = pc.sun_irradiance_ray_offset.w;
+        settings.sky_next_event = pc.sky_next_event != 0u;
 
         Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + sample_in_chunk);
         vec4 estimate = vec4(0.0);

@@ -12,6 +12,7 @@
 #include "gusuku/time_utc.h"
 #include "gusuku_bake/bake_statistics.h"
 #include "gusuku_bake/content_hash.h"
+#include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/lightmap_denoise.h"
 
 namespace gusuku::bake {
@@ -120,6 +121,9 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
         {"name", name},
         {"sky", lighting.slot.sky == SlotSky::Sunny ? "sunny" : "overcast"},
         {"sky_map", lighting.sky->path},
+        {"sky_sampling",
+         {{"method", skySamplingName(resolveSkySampling(SkySampling::Automatic, lighting.sky->tables))},
+          {"cosine_relative_variance", lighting.sky->tables.cosine_relative_variance}}},
         {"sun", sun},
         {"building_irradiance", building_file},
         {"ground_irradiance_with_building", with_file},

@@ -30,15 +30,18 @@ int runConvergeCommand(const std::vector<std::string>& args) {
         if (arg == "--help" || arg == "-h") {
             std::printf(
                 "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
-                "                            [--target-rms R]\n"
+                "                            [--target-rms R] [--sky-sampling auto|cosine|mis]\n"
                 "\n"
                 "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
                 "texel and prints the relative RMS error of each against a reference of --reference-samples (default\n"
                 "1024, an independent seed), with and without the edge-keeping filter, the log-log slope (-0.5 for\n"
-                "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n");
+                "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
+                "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
+                "default, is what a bake does), to compare the two on a site's own sky.\n");
             return 0;
         }
-        if ((arg == "--slot" || arg == "--reference-samples" || arg == "--max-samples" || arg == "--target-rms") &&
+        if ((arg == "--slot" || arg == "--reference-samples" || arg == "--max-samples" || arg == "--target-rms" ||
+             arg == "--sky-sampling") &&
             i + 1 >= args.size()) {
             std::fprintf(stderr, "gusuku-bake converge: %s needs a value\n", arg.c_str());
             return 2;
@@ -55,6 +58,19 @@ int runConvergeCommand(const std::vector<std::string>& args) {
         } else if (arg == "--target-rms") {
             if (!parsePositive(args[++i], target_rms) || target_rms >= 1.0) {
                 std::fprintf(stderr, "gusuku-bake converge: --target-rms: '%s' is not in (0, 1)\n", args[i].c_str());
+                return 2;
+            }
+        } else if (arg == "--sky-sampling") {
+            const std::string& method = args[++i];
+            if (method == "auto") {
+                options.sky_sampling = bake::SkySampling::Automatic;
+            } else if (method == "cosine") {
+                options.sky_sampling = bake::SkySampling::CosineOnly;
+            } else if (method == "mis") {
+                options.sky_sampling = bake::SkySampling::CosineAndMap;
+            } else {
+                std::fprintf(stderr, "gusuku-bake converge: --sky-sampling: '%s' is not auto, cosine or mis\n",
+                             method.c_str());
                 return 2;
             }
         } else if (!arg.empty() && arg[0] == '-') {

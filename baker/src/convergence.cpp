@@ -73,9 +73,11 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     TracePass pass;
     pass.max_bounces = uint32_t(site.bake.max_bounces);
     pass.sun = lighting.sun;
+    pass.sky_sampling = options.sky_sampling;
 
     ConvergenceStudy study;
     study.slot_name = slot->name;
+    study.sky_sampling = skySamplingName(tracer.resolvedSkySampling(options.sky_sampling));
     study.texel_count = points.size();
     study.reference_samples = options.reference_samples;
     study.setup_seconds = std::chrono::duration<double>(Clock::now() - setup_start).count();
@@ -152,9 +154,10 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
     std::string text;
     char line[256];
     std::snprintf(line, sizeof line,
-                  "slot %s, %zu lightmap texels, reference %u samples (%.1f s), setup before the first ray %.2f s\n",
+                  "slot %s, %zu lightmap texels, reference %u samples (%.1f s), setup before the first ray %.2f s, "
+                  "sky sampling: %s\n",
                   study.slot_name.c_str(), study.texel_count, study.reference_samples, study.reference_seconds,
-                  study.setup_seconds);
+                  study.setup_seconds, study.sky_sampling.c_str());
     text += line;
     text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  denoise_s  rms*sqrt(spp)\n";
     for (const ConvergencePoint& point : study.points) {

@@ -25,8 +25,9 @@ struct BakePushConstants {
     uint32_t sun_present;
     float sun_direction_cos_max[4];
     float sun_irradiance_ray_offset[4];
+    uint32_t sky_next_event;
 };
-static_assert(sizeof(BakePushConstants) == 64);
+static_assert(sizeof(BakePushConstants) == 68);
 
 struct AccumulatePushConstants {
     uint32_t point_count;
@@ -77,6 +78,7 @@ IrradianceTracer::~IrradianceTracer() = default;
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
     sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba);
     sky_table_ = uploadedBuffer(context_, sky.table);
+    sky_cosine_relative_variance_ = sky.cosine_relative_variance;
 }
 
 PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPointGpu>& points) {
@@ -111,6 +113,7 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     push.sun_irradiance_ray_offset[1] = float(pass.sun.irradiance_rgb.y);
     push.sun_irradiance_ray_offset[2] = float(pass.sun.irradiance_rgb.z);
     push.sun_irradiance_ray_offset[3] = pass.ray_offset_m;
+    push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
 
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
     const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
@@ -166,6 +169,33 @@ std::vector<glm::vec3> IrradianceTracer::traceIrradiance(const std::vector<Query
     std::vector<glm::vec3> irradiance(sums.size());
     for (size_t i = 0; i < sums.size(); ++i) irradiance[i] = glm::vec3(sums[i]) / float(std::max(samples, 1u));
     return irradiance;
+}
+
+namespace {
+
+SkySampling resolveForVariance(SkySampling requested, double cosine_relative_variance) {
+    if (requested != SkySampling::Automatic) return requested;
+    return cosine_relative_variance > kSkyNextEventRelativeVarianceThreshold ? SkySampling::CosineAndMap
+                                                                             : SkySampling::CosineOnly;
+}
+
+}  // namespace
+
+SkySampling IrradianceTracer::resolvedSkySampling(SkySampling requested) const {
+    return resolveForVariance(requested, sky_cosine_relative_variance_);
+}
+
+SkySampling resolveSkySampling(SkySampling requested, const SkySamplingTables& sky) {
+    return resolveForVariance(requested, sky.cosine_relative_variance);
+}
+
+const char* skySamplingName(SkySampling sampling) {
+    switch (sampling) {
+        case SkySampling::CosineOnly: return "cosine";
+        case SkySampling::CosineAndMap: return "cosine + map (MIS)";
+        case SkySampling::Automatic: break;
+    }
+    return "automatic";
 }
 
 }  // namespace gusuku::bake

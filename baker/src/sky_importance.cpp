@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "gusuku/equirect.h"
 #include "gusuku/input_error.h"
 #include "gusuku_bake/sky_light.h"
@@ -166,7 +168,33 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
         writeCdf(column_weights, tables.table.data() + conditionalOffset(tables, y));
     }
     writeCdf(row_weights, tables.table.data() + marginalOffset());
+    tables.cosine_relative_variance = skyCosineRelativeVariance(sky_without_sun, north_azimuth_in_image_deg);
     return tables;
+}
+
+double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg) {
+    const int width = sky_without_sun.width, height = sky_without_sun.height;
+    if (width <= 0 || height <= 0 || sky_without_sun.texels.size() != size_t(width) * size_t(height) * 4) return 0.0;
+    const glm::dvec3 normals[] = {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0}};
+    double largest = 0.0;
+    for (const glm::dvec3& normal : normals) {
+        double first_moment = 0.0, second_moment = 0.0;  // integrals of L cos and L^2 cos over the hemisphere
+        for (int y = 0; y < height; ++y) {
+            const double texel_solid_angle = equirectTexelSolidAngle(y, width, height);
+            for (int x = 0; x < width; ++x) {
+                const glm::dvec3 direction =
+                    equirectDirection((x + 0.5) / width, (y + 0.5) / height, north_azimuth_in_image_deg);
+                const double cosine = glm::dot(normal, direction);
+                if (cosine <= 0.0) continue;
+                const double luminance = luminanceOf(sky_without_sun.texel(x, y));
+                first_moment += luminance * cosine * texel_solid_angle;
+                second_moment += luminance * luminance * cosine * texel_solid_angle;
+            }
+        }
+        if (first_moment > 0.0)
+            largest = std::max(largest, kPi * second_moment / (first_moment * first_moment) - 1.0);
+    }
+    return largest;
 }
 
 SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2) {

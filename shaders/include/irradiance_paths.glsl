@@ -1,5 +1,5 @@
 // The baker's light-transport core: an irradiance estimate at a point with a normal, from paths that gather
-// sky light (importance-sampled map, MIS with the cosine lobe), sun light at every surface they reach (next-event
+// sky light (the cosine lobe, plus the importance-sampled map by MIS when the sky is uneven), sun light at every surface they reach (next-event
 // estimation to the disc; the disc is taken out of the sky map so only this estimator sees it) and emission,
 // over up to max_bounces diffuse reflections with Russian roulette.
 //
@@ -20,6 +20,7 @@ struct PathSettings {
     float sun_cos_max;      // cosine of the disc's angular radius
     vec3 sun_irradiance;    // irradiance on a plane facing the sun (normal incidence), linear RGB
     float ray_offset;       // metres along the normal, to leave the surface a ray starts on
+    bool sky_next_event;    // also sample the sky map at each vertex (MIS); off: the cosine lobe alone
 };
 
 uint g_rays_traced = 0u;
@@ -53,13 +54,17 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathS
     for (uint depth = 0u;; ++depth) {
         vec3 origin = vertex_position + vertex_normal * settings.ray_offset;
 
-        // Sky by importance sampling the map, weighted against the cosine lobe (power heuristic).
-        float sky_pdf;
-        vec3 sky_direction = sampleSkyDirection(rngNext2(rng), sky_pdf);
-        float sky_cos = dot(vertex_normal, sky_direction);
-        if (sky_cos > 0.0 && sky_pdf > 0.0 && !traceOccluded(origin, sky_direction, settings)) {
-            float mis = powerHeuristic(sky_pdf, sky_cos / kPi);
-            irradiance += path_weight * skyRadiance(sky_direction) * (sky_cos / sky_pdf * mis);
+        // Sky by importance sampling the map, weighted against the cosine lobe (power heuristic). Skipped for
+        // smooth skies (the caller decides from the map): there the cosine lobe alone is nearly as good per
+        // sample and costs one ray per vertex instead of two.
+        if (settings.sky_next_event) {
+            float sky_pdf;
+            vec3 sky_direction = sampleSkyDirection(rngNext2(rng), sky_pdf);
+            float sky_cos = dot(vertex_normal, sky_direction);
+            if (sky_cos > 0.0 && sky_pdf > 0.0 && !traceOccluded(origin, sky_direction, settings)) {
+                float mis = powerHeuristic(sky_pdf, sky_cos / kPi);
+                irradiance += path_weight * skyRadiance(sky_direction) * (sky_cos / sky_pdf * mis);
+            }
         }
         // The sun lights every surface the path reaches; at the query point itself it is the real-time term.
         if (depth > 0u) irradiance += path_weight * sunIrradianceAt(vertex_position, vertex_normal, rng, settings);
@@ -70,7 +75,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathS
         BvhHit hit;
         g_rays_traced++;
         if (!bvhTraceClosest(origin, direction, 1e30, settings.skip_flags, hit)) {
-            float mis = powerHeuristic(cos_pdf, skyPdf(direction));
+            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, skyPdf(direction)) : 1.0;
             irradiance += path_weight * kPi * skyRadiance(direction) * mis;
             break;
         }

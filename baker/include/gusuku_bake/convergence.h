@@ -9,6 +9,7 @@
 
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
+#include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {
 
@@ -18,6 +19,7 @@ struct ConvergenceOptions {
     uint32_t max_samples = 128;        ///< the study doubles from 1 up to this
     int max_texture_size = 512;
     bool show_progress = true;
+    SkySampling sky_sampling = SkySampling::Automatic;  ///< the study and its reference both use it
 };
 
 struct ConvergencePoint {
@@ -31,6 +33,7 @@ struct ConvergencePoint {
 
 struct ConvergenceStudy {
     std::string slot_name;
+    std::string sky_sampling;  ///< the method used, resolved ("cosine" or "cosine + map (MIS)")
     size_t texel_count = 0;
     uint32_t reference_samples = 0;
     double reference_seconds = 0.0;

@@ -37,6 +37,14 @@ enum class TraceMode : uint32_t {
     SunDirect = 1,           ///< only the direct sun term (sun disc sampled, shadow ray): a test path
 };
 
+/// How paths gather sky light at each vertex.
+enum class SkySampling : uint32_t {
+    Automatic = 0,     ///< CosineAndMap when the sky's cosine relative variance exceeds
+                       ///< kSkyNextEventRelativeVarianceThreshold, else CosineOnly
+    CosineOnly = 1,    ///< the cosine-sampled continuation ray alone sees the sky (one ray per vertex)
+    CosineAndMap = 2,  ///< plus a shadow ray to a direction drawn from the map, MIS (power heuristic)
+};
+
 struct TracePass {
     TraceMode mode = TraceMode::IndirectIrradiance;
     uint32_t skip_flags = 0;   ///< e.g. kTriangleFlagBuilding for E_without
@@ -44,6 +52,7 @@ struct TracePass {
     uint32_t seed = 1;
     SunLight sun;
     float ray_offset_m = 1e-3f;  ///< how far rays start off their surface
+    SkySampling sky_sampling = SkySampling::Automatic;
 };
 
 /// Running sums for one set of query points, resident on the GPU.
@@ -68,6 +77,9 @@ public:
 
     /// Replaces the sky (each slot has its own).
     void setSky(const SkySamplingTables& sky);
+
+    /// What `requested` means for the current sky: Automatic resolved by the sky's cosine relative variance.
+    SkySampling resolvedSkySampling(SkySampling requested) const;
 
     PointAccumulator createAccumulator(const std::vector<QueryPointGpu>& points);
 
@@ -97,6 +109,13 @@ private:
         ray_counter_;
     size_t triangle_count_ = 0;
     size_t dropped_triangle_count_ = 0;
+    double sky_cosine_relative_variance_ = 0.0;
 };
+
+/// What `requested` means for a sky: Automatic resolved by its cosine relative variance.
+SkySampling resolveSkySampling(SkySampling requested, const SkySamplingTables& sky);
+
+/// "cosine" or "cosine + map (MIS)", for manifests and logs.
+const char* skySamplingName(SkySampling sampling);
 
 }  // namespace gusuku::bake
