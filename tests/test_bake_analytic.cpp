@@ -36,6 +36,14 @@ std::vector<QueryPointGpu> pointsOnLine(int count, glm::vec3 start, glm::vec3 st
     return points;
 }
 
+// Three bounces, the sky gathered the given way.
+TracePass skyPass(SkySampling sky_sampling) {
+    TracePass pass;
+    pass.max_bounces = 3;
+    pass.sky_sampling = sky_sampling;
+    return pass;
+}
+
 class BakeAnalyticTest : public GpuTest {};
 
 TEST_F(BakeAnalyticTest, PlaneUnderUniformSkyReceivesPiL) {
@@ -46,10 +54,7 @@ TEST_F(BakeAnalyticTest, PlaneUnderUniformSkyReceivesPiL) {
     const auto points = pointsOnLine(64, {-5.0f, -3.0f, 0.0f}, {0.17f, 0.11f, 0.0f}, {0.0f, 0.0f, 1.0f});
     for (const SkySampling sky_sampling : kBothSkySamplings) {
         SCOPED_TRACE(skySamplingName(sky_sampling));
-        TracePass pass;
-        pass.max_bounces = 3;
-        pass.sky_sampling = sky_sampling;
-        const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, pass);
+        const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, skyPass(sky_sampling));
         EXPECT_NEAR(meanLuminance(irradiance), kPi * radiance, 0.01 * kPi * radiance);
         for (const glm::vec3& e : irradiance)
             EXPECT_NEAR(e.g, kPi * radiance, 0.15 * kPi * radiance) << "one point, 128 samples: within 4 sigma";
@@ -70,10 +75,7 @@ TEST_F(BakeAnalyticTest, FootOfTallBlackWallReceivesHalfPiL) {
     const auto points = pointsOnLine(64, {-3.0f, -0.05f, 0.0f}, {0.1f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
     for (const SkySampling sky_sampling : kBothSkySamplings) {
         SCOPED_TRACE(skySamplingName(sky_sampling));
-        TracePass pass;
-        pass.max_bounces = 3;
-        pass.sky_sampling = sky_sampling;
-        const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, pass);
+        const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, skyPass(sky_sampling));
         EXPECT_NEAR(meanLuminance(irradiance), kPi * radiance / 2.0, 0.01 * kPi * radiance / 2.0);
     }
 }

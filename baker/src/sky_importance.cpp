@@ -175,25 +175,30 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
 double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg) {
     const int width = sky_without_sun.width, height = sky_without_sun.height;
     if (width <= 0 || height <= 0 || sky_without_sun.texels.size() != size_t(width) * size_t(height) * 4) return 0.0;
-    const glm::dvec3 normals[] = {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0}};
-    double largest = 0.0;
-    for (const glm::dvec3& normal : normals) {
-        double first_moment = 0.0, second_moment = 0.0;  // integrals of L cos and L^2 cos over the hemisphere
-        for (int y = 0; y < height; ++y) {
-            const double texel_solid_angle = equirectTexelSolidAngle(y, width, height);
-            for (int x = 0; x < width; ++x) {
-                const glm::dvec3 direction =
-                    equirectDirection((x + 0.5) / width, (y + 0.5) / height, north_azimuth_in_image_deg);
-                const double cosine = glm::dot(normal, direction);
+    constexpr int kPlanes = 5;
+    const glm::dvec3 normals[kPlanes] = {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, -1.0, 0.0},
+                                         {-1.0, 0.0, 0.0}};
+    // Per plane, the integrals of L cos and L^2 cos over its hemisphere.
+    double first_moment[kPlanes] = {}, second_moment[kPlanes] = {};
+    for (int y = 0; y < height; ++y) {
+        const double texel_solid_angle = equirectTexelSolidAngle(y, width, height);
+        for (int x = 0; x < width; ++x) {
+            const double luminance = luminanceOf(sky_without_sun.texel(x, y));
+            if (luminance <= 0.0) continue;
+            const glm::dvec3 direction =
+                equirectDirection((x + 0.5) / width, (y + 0.5) / height, north_azimuth_in_image_deg);
+            for (int plane = 0; plane < kPlanes; ++plane) {
+                const double cosine = glm::dot(normals[plane], direction);
                 if (cosine <= 0.0) continue;
-                const double luminance = luminanceOf(sky_without_sun.texel(x, y));
-                first_moment += luminance * cosine * texel_solid_angle;
-                second_moment += luminance * luminance * cosine * texel_solid_angle;
+                first_moment[plane] += luminance * cosine * texel_solid_angle;
+                second_moment[plane] += luminance * luminance * cosine * texel_solid_angle;
             }
         }
-        if (first_moment > 0.0)
-            largest = std::max(largest, kPi * second_moment / (first_moment * first_moment) - 1.0);
     }
+    double largest = 0.0;
+    for (int plane = 0; plane < kPlanes; ++plane)
+        if (first_moment[plane] > 0.0)
+            largest = std::max(largest, kPi * second_moment[plane] / (first_moment[plane] * first_moment[plane]) - 1.0);
     return largest;
 }
 

@@ -128,15 +128,34 @@ def bake(samples, adaptive):
     return seconds, luminance_texels(target.pixels[:])
 
 
-# The reference: every texel gets all its samples (adaptive sampling would stop near its noise threshold).
-_, cycles_reference = bake(reference_samples, adaptive=False)
-for adaptive in (False, True):
-    mode = "adaptive" if adaptive else "fixed"
-    for samples in sample_counts:
-        seconds, estimate = bake(samples, adaptive)
-        print(f"CYCLES_RESULT mode={mode} samples={samples} seconds={seconds:.2f} "
-              f"relative_rms={relative_rms(estimate, cycles_reference):.4f}", flush=True)
-# Cycles' diffuse light pass is irradiance / pi; the fitted scale should come out near pi.
-fit = sum(g for g, ok in zip(gusuku_luminance, valid) if ok) / sum(c for c, ok in zip(cycles_reference, valid) if ok)
-print(f"CYCLES_AGREEMENT reference_samples={reference_samples} fitted_scale={fit:.4f} (pi = {math.pi:.4f}) "
-      f"relative_rms_vs_gusuku_at_pi={relative_rms(cycles_reference, gusuku_luminance, math.pi):.4f}", flush=True)
+def timing_repeat():
+    """REFERENCE 0: times the same bakes again and prints only seconds (the errors do not change between runs:
+    Cycles' seed is fixed), so the comparison can interleave its timings with gusuku's."""
+    for adaptive in (False, True):
+        for samples in sample_counts:
+            seconds, _ = bake(samples, adaptive)
+            print(f"CYCLES_TIMING mode={'adaptive' if adaptive else 'fixed'} samples={samples} seconds={seconds:.2f}",
+                  flush=True)
+
+
+def measured_run():
+    # The reference: every texel gets all its samples (adaptive sampling would stop near its noise threshold).
+    _, cycles_reference = bake(reference_samples, adaptive=False)
+    for adaptive in (False, True):
+        mode = "adaptive" if adaptive else "fixed"
+        for samples in sample_counts:
+            seconds, estimate = bake(samples, adaptive)
+            print(f"CYCLES_RESULT mode={mode} samples={samples} seconds={seconds:.2f} "
+                  f"relative_rms={relative_rms(estimate, cycles_reference):.4f}", flush=True)
+    # Cycles' diffuse light pass is irradiance / pi; the fitted scale should come out near pi.
+    fit = (sum(g for g, ok in zip(gusuku_luminance, valid) if ok) /
+           sum(c for c, ok in zip(cycles_reference, valid) if ok))
+    print(f"CYCLES_AGREEMENT reference_samples={reference_samples} fitted_scale={fit:.4f} (pi = {math.pi:.4f}) "
+          f"relative_rms_vs_gusuku_at_pi={relative_rms(cycles_reference, gusuku_luminance, math.pi):.4f}",
+          flush=True)
+
+
+if reference_samples == 0:
+    timing_repeat()
+else:
+    measured_run()
