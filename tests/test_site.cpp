@@ -7,11 +7,11 @@
 #include <sstream>
 #include <string>
 
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bake_command.h"
 #include "gpu_test_support.h"
 #include "gusuku/input_error.h"
 #include "gusuku/site.h"
@@ -449,30 +449,11 @@ TEST(SfmTransform, FlipsAYDownMesh) {
 
 // --- gusuku-bake check ------------------------------------------------------------------------------------
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string stdout_text;
-    std::string stderr_text;
-};
+using gusuku::testing::CommandResult;
 
-std::string readText(const fs::path& path) {
-    std::ifstream stream(path);
-    std::ostringstream text;
-    text << stream.rdbuf();
-    return text.str();
-}
 
 CommandResult runBakeCheck(const std::string& directory, const std::string& site_path) {
-    const fs::path out = fs::path(directory) / "check.out";
-    const fs::path err = fs::path(directory) / "check.err";
-    const std::string command = "'" + gusuku::testing::bakeExecutablePath() + "' check '" + site_path + "' >'" +
-                                out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    CommandResult result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.stdout_text = readText(out);
-    result.stderr_text = readText(err);
-    return result;
+    return gusuku::testing::runBakeCommand({"check", site_path}, directory);
 }
 
 TEST_F(SiteJson, CheckCommandReportsFileFieldAndProblem) {
@@ -502,15 +483,10 @@ TEST_F(SiteJson, CheckCommandSummarisesASharedDataSite) {
 
 TEST(CheckCommand, HelpAndUsage) {
     const std::string directory = gusuku::testing::makeTemporaryDirectory("test_site_cli");
-    const std::string command = "'" + gusuku::testing::bakeExecutablePath() + "' check --help >'" + directory +
-                                "/help.out' 2>&1";
-    const int status = std::system(command.c_str());
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
-    EXPECT_TRUE(contains(readText(fs::path(directory) / "help.out"), "usage: gusuku-bake check SITE_JSON"));
-    const int no_argument = std::system(("'" + gusuku::testing::bakeExecutablePath() + "' check 2>/dev/null").c_str());
-    ASSERT_TRUE(WIFEXITED(no_argument));
-    EXPECT_EQ(WEXITSTATUS(no_argument), 2);
+    const CommandResult help = gusuku::testing::runBakeCommand({"check", "--help"}, directory);
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_TRUE(contains(help.stdout_text + help.stderr_text, "usage: gusuku-bake check SITE_JSON"));
+    EXPECT_EQ(gusuku::testing::runBakeCommand({"check"}, directory).exit_code, 2);
 }
 
 }  // namespace

@@ -1,0 +1,73 @@
+// `gusuku-bake converge` from the command line: the study's table and summary, the forced sky sampling it
+// reports, and clear refusals of bad arguments.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bake_command.h"
+#include "gpu_test_support.h"
+#include "mini_site.h"
+
+namespace {
+
+using gusuku::testing::CommandResult;
+using gusuku::testing::runBakeCommand;
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+class ConvergeCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        directory_ = gusuku::testing::makeTemporaryDirectory("gusuku-converge-cli");
+        site_path_ = gusuku::testing::writeMiniSite(directory_);
+    }
+    CommandResult converge(const std::vector<std::string>& options) {
+        std::vector<std::string> args = {"converge", site_path_};
+        args.insert(args.end(), options.begin(), options.end());
+        return runBakeCommand(args, directory_);
+    }
+    std::string directory_;
+    std::string site_path_;
+};
+
+TEST_F(ConvergeCli, PrintsTheCurveAndTheForcedSkySampling) {
+    for (const auto& [option, name] : {std::pair<std::string, std::string>{"mis", "sky sampling: cosine + map (MIS)\n"},
+                                       {"cosine", "sky sampling: cosine\n"}}) {
+        const CommandResult result = converge(
+            {"--slot", "cloudy", "--max-samples", "4", "--reference-samples", "8", "--sky-sampling", option});
+        ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+        EXPECT_TRUE(contains(result.stdout_text, "slot cloudy,")) << result.stdout_text;
+        EXPECT_TRUE(contains(result.stdout_text, name)) << result.stdout_text;
+        EXPECT_TRUE(contains(result.stdout_text, "samples      rays   trace_s   rel_rms")) << result.stdout_text;
+        EXPECT_TRUE(contains(result.stdout_text, "log-log slope:")) << result.stdout_text;
+        EXPECT_TRUE(contains(result.stdout_text, "trace time to 5.0 % relative RMS:")) << result.stdout_text;
+    }
+}
+
+TEST_F(ConvergeCli, BadArgumentsExitTwoNamingTheOption) {
+    const CommandResult unknown_method = converge({"--sky-sampling", "sometimes"});
+    EXPECT_EQ(unknown_method.exit_code, 2);
+    EXPECT_TRUE(contains(unknown_method.stderr_text, "--sky-sampling: 'sometimes' is not auto, cosine or mis"))
+        << unknown_method.stderr_text;
+
+    const CommandResult zero_samples = converge({"--max-samples", "0"});
+    EXPECT_EQ(zero_samples.exit_code, 2);
+    EXPECT_TRUE(contains(zero_samples.stderr_text, "--max-samples")) << zero_samples.stderr_text;
+
+    const CommandResult missing_value = converge({"--slot"});
+    EXPECT_EQ(missing_value.exit_code, 2);
+    EXPECT_TRUE(contains(missing_value.stderr_text, "--slot needs a value")) << missing_value.stderr_text;
+
+    const CommandResult no_site = runBakeCommand({"converge"}, directory_);
+    EXPECT_EQ(no_site.exit_code, 2);
+    EXPECT_TRUE(contains(no_site.stderr_text, "needs SITE.json")) << no_site.stderr_text;
+}
+
+TEST_F(ConvergeCli, UnknownSlotIsAnErrorNamingIt) {
+    const CommandResult result = converge({"--slot", "dusk", "--max-samples", "1", "--reference-samples", "1"});
+    EXPECT_NE(result.exit_code, 0);
+    EXPECT_TRUE(contains(result.stderr_text, "no slot named 'dusk'")) << result.stderr_text;
+    EXPECT_TRUE(result.stdout_text.empty()) << result.stdout_text;
+}
+
+}  // namespace
