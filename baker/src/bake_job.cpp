@@ -35,7 +35,10 @@ uint64_t bakeInputHash(const SiteConfig& site, uint32_t samples, const BakeOptio
     hash.addString(kBakeSetFormat).addFile(site.file).addFile(site.building.path).addFile(site.sunny_sky.path);
     if (site.sfm_mesh) hash.addFile(site.sfm_mesh->path);
     if (site.overcast_sky) hash.addFile(site.overcast_sky->path);
-    hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash());
+    // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
+    // be resumed, or the result would differ from an uninterrupted bake.
+    hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
+        .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
 }
 

@@ -150,8 +150,9 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
 
 /// Relative variance Var / E^2 of a one-sample, cosine-sampled estimate of the irradiance from the map (sun
 /// removed) on an unoccluded plane, E = integral of L cos: pi * integral(L^2 cos) / integral(L cos)^2 - 1, in
-/// luminance, the largest over five planes (facing up, north, east, south, west). 0 for a uniform sky; the
-/// CIE overcast sky gives about 0.1; a small bright patch gives a large value. 0 for a black map.
+/// luminance, the largest over five planes (facing up, north, east, south, west). 0 for a uniform sky, 1 for a
+/// sky lit only above the horizon (on a wall); the sample's CIE overcast map gives 0.46, photographs 2.6 to 4.9,
+/// a small bright patch far more. 0 for a black map.
 double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg);
 
 /// Above this cosine relative variance the tracer also samples the sky map by importance at every path
