@@ -142,9 +142,7 @@ SunRequest parseArguments(const std::vector<std::string>& args) {
 
 // The pressure the refraction used: the user's, or sun.h's documented standard-atmosphere default.
 double pressureUsedMbar(const SunObserver& observer) {
-    if (observer.pressure_mbar >= 0.0) return observer.pressure_mbar;
-    const double base = 1.0 - 2.25577e-5 * observer.height_m;
-    return base > 0.0 ? 1013.25 * std::pow(base, 5.25588) : 0.0;
+    return observer.pressure_mbar >= 0.0 ? observer.pressure_mbar : standardAtmospherePressureMbar(observer.height_m);
 }
 
 void printJson(const SunRequest& request, const SunPosition& sun) {

@@ -79,13 +79,6 @@ void validateObserver(const SunObserver& observer, double utc_seconds) {
                                     " is outside the years -2000..6000 that SPA covers");
 }
 
-// Pressure of the standard atmosphere at a height, mbar (the default documented in sun.h). Above ~44 km the
-// formula's base goes negative; the air is then negligible, so refraction is off.
-double standardAtmospherePressureMbar(double height_m) {
-    const double base = 1.0 - 2.25577e-5 * height_m;
-    return base > 0.0 ? 1013.25 * std::pow(base, 5.25588) : 0.0;
-}
-
 // 3.2: sum over one Earth series of A cos(B + C * JME).
 double sumSeries(const spa_terms::EarthSeries& series, double jme) {
     double sum = 0.0;
@@ -151,6 +144,12 @@ double refractionCorrectionDeg(double elevation_deg, double pressure_mbar, doubl
 }
 
 }  // namespace
+
+double standardAtmospherePressureMbar(double height_m) {
+    // Above ~44 km the base goes negative; the air is then negligible, so refraction is off.
+    const double base = 1.0 - 2.25577e-5 * height_m;
+    return base > 0.0 ? 1013.25 * std::pow(base, 5.25588) : 0.0;
+}
 
 SunPosition computeSunPosition(const SunObserver& observer, double utc_seconds) {
     validateObserver(observer, utc_seconds);

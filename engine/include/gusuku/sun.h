@@ -40,4 +40,8 @@ struct SunPosition {
 /// A sun below the horizon is a valid result (above_horizon = false), not an error.
 SunPosition computeSunPosition(const SunObserver& observer, double utc_seconds);
 
+/// Pressure of the standard atmosphere at a height (m), mbar: 1013.25 * (1 - 2.25577e-5 h)^5.25588, the default
+/// for SunObserver::pressure_mbar. 0 above ~44 km, where the formula's base turns negative (no refraction).
+double standardAtmospherePressureMbar(double height_m);
+
 }  // namespace gusuku
