@@ -44,6 +44,17 @@ TracePass skyPass(SkySampling sky_sampling) {
     return pass;
 }
 
+// A sun of 5 and the sky sampled both ways (MIS): the path that draws the most random numbers, for the
+// determinism tests.
+TracePass sunlitPassWithEveryRandomDraw(const glm::dvec3& towards_sun) {
+    TracePass pass;
+    pass.sun.present = true;
+    pass.sun.direction_enu = glm::normalize(towards_sun);
+    pass.sun.irradiance_rgb = glm::dvec3(5.0);
+    pass.sky_sampling = SkySampling::CosineAndMap;
+    return pass;
+}
+
 class BakeAnalyticTest : public GpuTest {};
 
 TEST_F(BakeAnalyticTest, PlaneUnderUniformSkyReceivesPiL) {
@@ -157,10 +168,7 @@ TEST_F(BakeAnalyticTest, SameSeedGivesSameResultAndChunkingDoesNotMatter) {
     const TraceScene scene = makeTraceScene(box, &ground);
     IrradianceTracer tracer(context(), scene,
                             buildSkySamplingTables(gusuku::testing::uniformSky(32, 16, glm::vec3(1.0f)), 0.0));
-    TracePass pass;
-    pass.sun.present = true;
-    pass.sun.direction_enu = glm::normalize(glm::dvec3(0.5, 0.2, 0.8));
-    pass.sun.irradiance_rgb = glm::dvec3(5.0);
+    const TracePass pass = sunlitPassWithEveryRandomDraw(glm::dvec3(0.5, 0.2, 0.8));
     const auto points = pointsOnLine(40, {-3.0f, -1.5f, 0.0f}, {0.15f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
 
     PointAccumulator in_one = tracer.createAccumulator(points);
@@ -199,10 +207,7 @@ TEST_F(BakeAnalyticTest, LongDispatchLosesNoSamples) {
     const TraceScene scene = makeTraceScene(box, &terrain);
     IrradianceTracer tracer(context(), scene,
                             buildSkySamplingTables(gusuku::testing::uniformSky(32, 16, glm::vec3(1.0f)), 0.0));
-    TracePass pass;
-    pass.sun.present = true;
-    pass.sun.direction_enu = glm::normalize(glm::dvec3(0.3, 0.2, 0.9));
-    pass.sun.irradiance_rgb = glm::dvec3(5.0);
+    const TracePass pass = sunlitPassWithEveryRandomDraw(glm::dvec3(0.3, 0.2, 0.9));
     const auto points = pointsOnLine(256, {-6.0f, -2.5f, 0.3f}, {0.05f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
     PointAccumulator one_call = tracer.createAccumulator(points);
     const uint64_t rays_one_call = tracer.addSamples(one_call, 1024, pass);
