@@ -182,7 +182,8 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
     std::vector<double> targets = {0.10, 0.05, 0.03, 0.02};
     if (std::find(targets.begin(), targets.end(), target) == targets.end()) targets.push_back(target);
     for (const double each : targets) {
-        std::snprintf(line, sizeof line, "trace time to %.1f %% relative RMS: %s raw, %s denoised (filter included)\n", each * 100.0,
+        std::snprintf(line, sizeof line,
+                      "trace time to %.1f %% relative RMS: %s raw, %s denoised (filter included)\n", each * 100.0,
                       describe(secondsToReach(study, each, false)).c_str(),
                       describe(secondsToReach(study, each, true)).c_str());
         text += line;

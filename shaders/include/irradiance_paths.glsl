@@ -1,7 +1,7 @@
 // The baker's light-transport core: an irradiance estimate at a point with a normal, from paths that gather
-// sky light (the cosine lobe, plus the importance-sampled map by MIS when the sky is uneven), sun light at every surface they reach (next-event
-// estimation to the disc; the disc is taken out of the sky map so only this estimator sees it) and emission,
-// over up to max_bounces diffuse reflections with Russian roulette.
+// sky light (the cosine lobe, plus the importance-sampled map by MIS when the sky is uneven), sun light at
+// every surface they reach (next-event estimation to the disc; the disc is taken out of the sky map so only
+// this estimator sees it) and emission, over up to max_bounces diffuse reflections with Russian roulette.
 //
 // Units: the estimator returns irradiance E = integral of L cos over the hemisphere. At a diffuse surface of
 // albedo rho the outgoing radiance is rho / pi * E, so a cosine-sampled bounce multiplies the path weight by
