@@ -78,7 +78,7 @@ IrradianceTracer::~IrradianceTracer() = default;
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
     sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba);
     sky_table_ = uploadedBuffer(context_, sky.table);
-    sky_cosine_relative_variance_ = sky.cosine_relative_variance;
+    automatic_sky_sampling_ = resolveSkySampling(SkySampling::Automatic, sky);
 }
 
 PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPointGpu>& points) {
@@ -171,22 +171,14 @@ std::vector<glm::vec3> IrradianceTracer::traceIrradiance(const std::vector<Query
     return irradiance;
 }
 
-namespace {
-
-SkySampling resolveForVariance(SkySampling requested, double cosine_relative_variance) {
-    if (requested != SkySampling::Automatic) return requested;
-    return cosine_relative_variance > kSkyNextEventRelativeVarianceThreshold ? SkySampling::CosineAndMap
-                                                                             : SkySampling::CosineOnly;
-}
-
-}  // namespace
-
 SkySampling IrradianceTracer::resolvedSkySampling(SkySampling requested) const {
-    return resolveForVariance(requested, sky_cosine_relative_variance_);
+    return requested == SkySampling::Automatic ? automatic_sky_sampling_ : requested;
 }
 
 SkySampling resolveSkySampling(SkySampling requested, const SkySamplingTables& sky) {
-    return resolveForVariance(requested, sky.cosine_relative_variance);
+    if (requested != SkySampling::Automatic) return requested;
+    return sky.cosine_relative_variance > kSkyNextEventRelativeVarianceThreshold ? SkySampling::CosineAndMap
+                                                                                 : SkySampling::CosineOnly;
 }
 
 const char* skySamplingName(SkySampling sampling) {

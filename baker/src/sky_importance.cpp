@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -178,15 +179,22 @@ double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_
     constexpr int kPlanes = 5;
     const glm::dvec3 normals[kPlanes] = {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, -1.0, 0.0},
                                          {-1.0, 0.0, 0.0}};
+    // The texel directions are separable: (cos(elevation) * horizontal(column), sin(elevation)(row)), so the
+    // trigonometry is done once per column and once per row, not per texel.
+    std::vector<glm::dvec3> column_horizontal(static_cast<size_t>(width));
+    for (int x = 0; x < width; ++x)
+        column_horizontal[size_t(x)] = equirectDirection((x + 0.5) / width, 0.5, north_azimuth_in_image_deg);
     // Per plane, the integrals of L cos and L^2 cos over its hemisphere.
     double first_moment[kPlanes] = {}, second_moment[kPlanes] = {};
     for (int y = 0; y < height; ++y) {
         const double texel_solid_angle = equirectTexelSolidAngle(y, width, height);
+        const double sin_elevation = equirectDirection(0.0, (y + 0.5) / height, 0.0).z;
+        const double cos_elevation = std::sqrt(std::max(0.0, 1.0 - sin_elevation * sin_elevation));
         for (int x = 0; x < width; ++x) {
             const double luminance = luminanceOf(sky_without_sun.texel(x, y));
             if (luminance <= 0.0) continue;
-            const glm::dvec3 direction =
-                equirectDirection((x + 0.5) / width, (y + 0.5) / height, north_azimuth_in_image_deg);
+            const glm::dvec3 direction(cos_elevation * column_horizontal[size_t(x)].x,
+                                       cos_elevation * column_horizontal[size_t(x)].y, sin_elevation);
             for (int plane = 0; plane < kPlanes; ++plane) {
                 const double cosine = glm::dot(normals[plane], direction);
                 if (cosine <= 0.0) continue;

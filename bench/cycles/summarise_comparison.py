@@ -113,18 +113,20 @@ def write_svg(path, curves):
 
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" '
              f'font-size="12"><rect width="100%" height="100%" fill="white"/>']
-    decade = x_min
-    while decade <= x_max:
+    def decades(low, high):
+        decade = low
+        while decade <= high:
+            yield decade
+            decade *= 10
+
+    for decade in decades(x_min, x_max):
         x = to_x(decade)
         parts.append(f'<line x1="{x:.1f}" y1="{margin}" x2="{x:.1f}" y2="{height - margin}" stroke="#ddd"/>'
                      f'<text x="{x:.1f}" y="{height - margin + 16}" text-anchor="middle">{decade:g}</text>')
-        decade *= 10
-    decade = y_min
-    while decade <= y_max:
+    for decade in decades(y_min, y_max):
         y = to_y(decade)
         parts.append(f'<line x1="{margin}" y1="{y:.1f}" x2="{width - margin}" y2="{y:.1f}" stroke="#ddd"/>'
                      f'<text x="{margin - 6}" y="{y + 4:.1f}" text-anchor="end">{decade * 100:g} %</text>')
-        decade *= 10
     parts.append(f'<text x="{width / 2}" y="{height - 18}" text-anchor="middle">seconds (2 cores)</text>'
                  f'<text x="16" y="{height / 2}" transform="rotate(-90 16 {height / 2})" text-anchor="middle">'
                  f'relative RMS error of the lightmap</text>')

@@ -109,7 +109,7 @@ private:
         ray_counter_;
     size_t triangle_count_ = 0;
     size_t dropped_triangle_count_ = 0;
-    double sky_cosine_relative_variance_ = 0.0;
+    SkySampling automatic_sky_sampling_ = SkySampling::CosineOnly;  ///< what Automatic means for the current sky
 };
 
 /// What `requested` means for a sky: Automatic resolved by its cosine relative variance.
