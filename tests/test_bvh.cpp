@@ -16,7 +16,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "bvh_probe_spv.h"
+#include "bvh_probe_comp_spv.h"
 #include "gpu_test_support.h"
 #include "gusuku/gpu_compute.h"
 #include "gusuku/input_error.h"
@@ -489,7 +489,7 @@ protected:
         nodes.uploadVector(bvh.nodes);
         triangles.uploadVector(bvh.triangles);
         ray_buffer.uploadVector(probe_rays);
-        ComputePipeline pipeline(context(), kBvhProbeSpirv, sizeof(kBvhProbeSpirv), 4, sizeof(ProbeParams));
+        ComputePipeline pipeline(context(), kBvhProbeCompSpirv, sizeof(kBvhProbeCompSpirv), 4, sizeof(ProbeParams));
         pipeline.bindBuffers({&nodes, &triangles, &ray_buffer, &result_buffer});
         const ProbeParams params{static_cast<uint32_t>(rays.size()), queries};
         const uint32_t groups = (params.ray_count + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;

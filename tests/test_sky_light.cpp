@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
+#include "sky_probe.h"
 #include "gusuku/equirect.h"
 #include "gusuku/image.h"
 #include "gusuku/input_error.h"

@@ -12,7 +12,7 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/gpu_compute.h"
-#include "smoke_scale_add_spv.h"
+#include "smoke_scale_add_comp_spv.h"
 
 namespace gusuku {
 namespace {
@@ -65,7 +65,7 @@ TEST_F(VulkanTest, ScaleAddShaderMatchesTheCpuBitForBit) {
     const uint32_t zero = 0;
     key_sum_buffer.upload(&zero, sizeof(zero));
 
-    ComputePipeline pipeline(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
+    ComputePipeline pipeline(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
     pipeline.bindBuffers({&input_buffer, &output_buffer, &key_sum_buffer});
     pipeline.dispatchAndWait(&params, (count + kWorkgroupSize - 1) / kWorkgroupSize);
 
@@ -150,10 +150,10 @@ TEST_F(VulkanTest, BufferRoundsSizesAndMovesOwnership) {
 }
 
 TEST_F(VulkanTest, PipelineRefusesBadArguments) {
-    EXPECT_THROW(ComputePipeline(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, 132),
+    EXPECT_THROW(ComputePipeline(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, 132),
                  std::invalid_argument);
-    EXPECT_THROW(ComputePipeline(context(), kSmokeScaleAddSpirv, 6, 3, 12), std::invalid_argument);
-    ComputePipeline pipeline(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
+    EXPECT_THROW(ComputePipeline(context(), kSmokeScaleAddCompSpirv, 6, 3, 12), std::invalid_argument);
+    ComputePipeline pipeline(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
     GpuBuffer buffer(context(), 16);
     EXPECT_THROW(pipeline.bindBuffers({&buffer, &buffer}), std::invalid_argument);
     EXPECT_THROW(pipeline.bindBuffers({&buffer, nullptr, &buffer}), std::invalid_argument);
@@ -171,8 +171,8 @@ TEST_F(VulkanTest, MissingBarrierIsReportedBySynchronizationValidation) {
     GpuBuffer third(context(), count * sizeof(float));
     GpuBuffer key_sum_first(context(), sizeof(uint32_t));
     GpuBuffer key_sum_second(context(), sizeof(uint32_t));
-    ComputePipeline producer(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
-    ComputePipeline consumer(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
+    ComputePipeline producer(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
+    ComputePipeline consumer(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
     producer.bindBuffers({&first, &second, &key_sum_first});
     consumer.bindBuffers({&second, &third, &key_sum_second});
     const ScaleAddParams params{1.0f, 0.0f, count};
@@ -205,8 +205,8 @@ TEST_F(VulkanTest, DependentDispatchesInOneSubmissionSeeEachOthersWrites) {
     first.uploadVector(inputs);
     const ScaleAddParams params{2.0f, 1.0f, count};
     // One pipeline per binding: a pipeline owns one descriptor set (see gpu_compute.h).
-    ComputePipeline forward(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
-    ComputePipeline back(context(), kSmokeScaleAddSpirv, sizeof(kSmokeScaleAddSpirv), 3, sizeof(ScaleAddParams));
+    ComputePipeline forward(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
+    ComputePipeline back(context(), kSmokeScaleAddCompSpirv, sizeof(kSmokeScaleAddCompSpirv), 3, sizeof(ScaleAddParams));
     forward.bindBuffers({&first, &second, &key_sum_first});
     back.bindBuffers({&second, &first, &key_sum_second});
     const uint32_t groups = (count + kWorkgroupSize - 1) / kWorkgroupSize;

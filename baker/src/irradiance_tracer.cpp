@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "bake_accumulate_spv.h"
-#include "bake_irradiance_spv.h"
+#include "bake_accumulate_comp_spv.h"
+#include "bake_irradiance_comp_spv.h"
 #include "gusuku_bake/bvh.h"
 #include "gusuku_bake/content_hash.h"
 
@@ -49,7 +49,7 @@ template <typename T> GpuBuffer uploadedBuffer(VulkanContext& context, const std
 }  // namespace
 
 uint64_t tracerCodeHash() {
-    return ContentHash().addBytes(kBakeIrradianceSpirv, sizeof(kBakeIrradianceSpirv)).value();
+    return ContentHash().addBytes(kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv)).value();
 }
 
 IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& scene, const SkySamplingTables& sky,
@@ -66,10 +66,10 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     textures_ = uploadedBuffer(context, shading.texture_words);
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
-    pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceSpirv, sizeof(kBakeIrradianceSpirv),
+    pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
                                                   kBufferCount, uint32_t(sizeof(BakePushConstants)));
-    accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateSpirv,
-                                                             sizeof(kBakeAccumulateSpirv), 2,
+    accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
+                                                             sizeof(kBakeAccumulateCompSpirv), 2,
                                                              uint32_t(sizeof(AccumulatePushConstants)));
 }
 

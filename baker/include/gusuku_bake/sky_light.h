@@ -5,7 +5,7 @@
 //   - sun disc extraction            (sun_disc.cpp)
 //   - clear-sky direct sun model     (clear_sky_sun.cpp)
 //   - sky importance-sampling tables (sky_importance.cpp), and their CPU twins of shaders/include/sky_sampling.glsl
-// and a GPU probe of that GLSL for tests (sky_probe.cpp).
+// (the GPU probe of that GLSL lives with the tests: tests/support/sky_probe.h).
 //
 // Conventions: equirect maps as in gusuku/equirect.h (row 0 zenith, azimuth = 360 u - north_azimuth_in_image_deg),
 // directions are unit vectors in the site's east-north-up frame, radiance in the map's linear Rec.709 units,
@@ -185,25 +185,5 @@ double skyPdfCpu(const SkySamplingTables& tables, const glm::dvec3& direction_en
 /// equirect.h (azimuth 0 where x = y = 0), v = theta / pi with theta = atan2(|xy|, z); x = min(int(u w), w-1),
 /// y = min(int(v h), h-1).
 glm::dvec3 skyRadianceCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu);
-
-// ------------------------------------------------------------------------------------------------------------
-// GPU probe of sky_sampling.glsl (sky_probe.cpp, shaders/sky_probe.comp), for tests and diagnostics
-// ------------------------------------------------------------------------------------------------------------
-
-/// One probe's results, all computed by the GLSL include on the device.
-struct SkyProbeResult {
-    glm::vec3 sampled_direction_enu{0.0f};  ///< sampleSkyDirection(xi)
-    float sampled_pdf = 0.0f;               ///< its pdf_solid_angle out-parameter
-    glm::vec3 radiance_at_direction{0.0f};  ///< skyRadiance(direction)
-    float pdf_at_direction = 0.0f;          ///< skyPdf(direction)
-    glm::vec3 radiance_at_sample{0.0f};     ///< skyRadiance(sampled direction)
-    float pdf_at_sample = 0.0f;             ///< skyPdf(sampled direction)
-};
-
-/// Runs shaders/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).
-/// One synchronous dispatch; throws std::runtime_error on Vulkan failure.
-std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamplingTables& tables,
-                                           const std::vector<glm::vec2>& xi,
-                                           const std::vector<glm::vec3>& directions_enu);
 
 }  // namespace gusuku::bake

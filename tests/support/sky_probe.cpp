@@ -1,11 +1,11 @@
-// Runs shaders/sky_probe.comp: the GLSL sky lookup and sampling evaluated on the device, so tests can hold
+// Runs shaders/tests/sky_probe.comp: the GLSL sky lookup and sampling evaluated on the device, so tests can hold
 // sky_sampling.glsl to its CPU twin in sky_importance.cpp.
 
 #include <stdexcept>
 
 #include "gusuku/gpu_compute.h"
-#include "gusuku_bake/sky_light.h"
-#include "sky_probe_spv.h"
+#include "sky_probe.h"
+#include "sky_probe_comp_spv.h"
 
 namespace gusuku::bake {
 
@@ -31,7 +31,7 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
     table_buffer.uploadVector(tables.table);
     input_buffer.uploadVector(inputs);
 
-    ComputePipeline pipeline(context, kSkyProbeSpirv, sizeof(kSkyProbeSpirv), 4, sizeof(uint32_t));
+    ComputePipeline pipeline(context, kSkyProbeCompSpirv, sizeof(kSkyProbeCompSpirv), 4, sizeof(uint32_t));
     pipeline.bindBuffers({&radiance_buffer, &table_buffer, &input_buffer, &output_buffer});
     const uint32_t probe_count = uint32_t(xi.size());
     pipeline.dispatchAndWait(&probe_count, (probe_count + kLocalSize - 1) / kLocalSize);
