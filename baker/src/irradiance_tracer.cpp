@@ -1,11 +1,14 @@
 #include "gusuku_bake/irradiance_tracer.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <stdexcept>
 
 #include "bake_accumulate_comp_spv.h"
 #include "bake_irradiance_comp_spv.h"
+#include "bake_accumulate_interface.h"
+#include "bake_irradiance_interface.h"
 #include "gusuku_bake/bvh.h"
 #include "gusuku_bake/content_hash.h"
 
@@ -13,29 +16,18 @@ namespace gusuku::bake {
 
 namespace {
 
-// Must match the push-constant block of shaders/bake_irradiance.comp.
-struct BakePushConstants {
-    uint32_t point_count;
-    uint32_t first_sample;
-    uint32_t sample_count;
-    uint32_t max_bounces;
-    uint32_t seed;
-    uint32_t skip_flags;
-    uint32_t mode;
-    uint32_t sun_present;
-    float sun_direction_cos_max[4];
-    float sun_irradiance_ray_offset[4];
-    uint32_t sky_next_event;
-};
-static_assert(sizeof(BakePushConstants) == 68);
+// Bindings and push constants are written once, in shaders/include/bake_{irradiance,accumulate}_interface.h.
+using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
+using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
+static_assert(sizeof(BakePushConstants) == 68 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
+                  offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
+                  offsetof(BakePushConstants, sky_next_event) == 64,
+              "std430 offsets of bake_irradiance_interface.h's push constants");
+static_assert(uint32_t(TraceMode::IndirectIrradiance) == BAKE_MODE_INDIRECT &&
+              uint32_t(TraceMode::SunDirect) == BAKE_MODE_SUN_DIRECT);
 
-struct AccumulatePushConstants {
-    uint32_t point_count;
-    uint32_t sample_count;
-};
-
-constexpr uint32_t kWorkgroupSize = 64;  // local_size_x of bake_irradiance.comp and bake_accumulate.comp
-constexpr uint32_t kBufferCount = 10;
+constexpr uint32_t kWorkgroupSize = BAKE_WORKGROUP_SIZE;
+static_assert(BAKE_ACCUMULATE_WORKGROUP_SIZE == BAKE_WORKGROUP_SIZE, "one point_groups count serves both kernels");
 // The per-sample scratch buffer holds point_count x chunk vec4s; chunks are cut so it stays under this (well
 // inside lavapipe's 128 MiB storage-buffer cap).
 constexpr size_t kMaxScratchBytes = size_t(64) << 20;
@@ -67,9 +59,9 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
-                                                  kBufferCount, uint32_t(sizeof(BakePushConstants)));
+                                                  BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)));
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
-                                                             sizeof(kBakeAccumulateCompSpirv), 2,
+                                                             sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));
 }
 
@@ -92,7 +84,13 @@ PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPoin
 }
 
 uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass) {
-    if (accumulator.point_count == 0 || sample_count == 0) return 0;
+    // An empty set (no ground cell on the SfM mesh, say) has nothing to trace, but its samples are still done:
+    // callers loop until samples_done reaches their target, and would spin forever if it never moved.
+    if (accumulator.point_count == 0) {
+        accumulator.samples_done += sample_count;
+        return 0;
+    }
+    if (sample_count == 0) return 0;
     BakePushConstants push{};
     push.point_count = accumulator.point_count;
     push.first_sample = accumulator.samples_done;

@@ -3,16 +3,18 @@
 // time in sample order, so the floating-point sum is the same however the samples were split into chunks,
 // dispatches or runs: a resumed bake matches an uninterrupted one bit for bit.
 
-layout(local_size_x = 64) in;
+#extension GL_GOOGLE_include_directive : require
 
-layout(std430, set = 0, binding = 0) readonly buffer SampleEstimates { vec4 sample_estimates[]; };
+#include "bake_accumulate_interface.h"
+
+layout(local_size_x = BAKE_ACCUMULATE_WORKGROUP_SIZE) in;
+
+layout(std430, set = 0, binding = ACCUMULATE_SAMPLE_ESTIMATE_BINDING) readonly buffer SampleEstimates {
+    vec4 sample_estimates[];
+};
 // xyz: sum of irradiance estimates; w: number of first rays that hit a back face (texel validity).
-layout(std430, set = 0, binding = 1) buffer Accumulation { vec4 accumulated[]; };
-
-layout(push_constant) uniform PushConstants {
-    uint point_count;
-    uint sample_count;
-} pc;
+layout(std430, set = 0, binding = ACCUMULATE_SUM_BINDING) buffer Accumulation { vec4 accumulated[]; };
+// The push-constant block `pc` (BakeAccumulatePushConstants) is declared in bake_accumulate_interface.h.
 
 void main() {
     uint point_index = gl_GlobalInvocationID.x;

@@ -11,15 +11,17 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 
-layout(local_size_x = 64) in;
+#include "bake_irradiance_interface.h"
 
-#define BVH_NODE_BINDING 0
-#define BVH_TRIANGLE_BINDING 1
-#define SHADING_TRIANGLE_BINDING 2
-#define MATERIAL_BINDING 3
-#define TEXTURE_BINDING 4
-#define SKY_RADIANCE_BINDING 5
-#define SKY_TABLE_BINDING 6
+layout(local_size_x = BAKE_WORKGROUP_SIZE) in;
+
+#define BVH_NODE_BINDING BAKE_BVH_NODE_BINDING
+#define BVH_TRIANGLE_BINDING BAKE_BVH_TRIANGLE_BINDING
+#define SHADING_TRIANGLE_BINDING BAKE_SHADING_TRIANGLE_BINDING
+#define MATERIAL_BINDING BAKE_MATERIAL_BINDING
+#define TEXTURE_BINDING BAKE_TEXTURE_BINDING
+#define SKY_RADIANCE_BINDING BAKE_SKY_RADIANCE_BINDING
+#define SKY_TABLE_BINDING BAKE_SKY_TABLE_BINDING
 
 #include "sampling.glsl"
 #include "bvh_traverse.glsl"
@@ -31,27 +33,12 @@ struct QueryPoint {
     vec4 position;  // xyz ENU metres
     vec4 normal;    // xyz unit
 };
-layout(std430, set = 0, binding = 7) readonly buffer QueryPoints { QueryPoint query_points[]; };
+layout(std430, set = 0, binding = BAKE_QUERY_POINT_BINDING) readonly buffer QueryPoints { QueryPoint query_points[]; };
 // Per (sample in chunk, point): xyz the irradiance estimate, w 1 when the first ray hit a back face.
-layout(std430, set = 0, binding = 8) writeonly buffer SampleEstimates { vec4 sample_estimates[]; };
-layout(std430, set = 0, binding = 9) buffer RayCounter { uint rays_traced_total[]; };
+layout(std430, set = 0, binding = BAKE_SAMPLE_ESTIMATE_BINDING) writeonly buffer SampleEstimates { vec4 sample_estimates[]; };
+layout(std430, set = 0, binding = BAKE_RAY_COUNTER_BINDING) buffer RayCounter { uint rays_traced_total[]; };
 
-const uint kModeIndirect = 0u;   // E_ind: everything but the direct sun at the point
-const uint kModeSunDirect = 1u;  // the direct sun term alone (tests)
-
-layout(push_constant) uniform PushConstants {
-    uint point_count;
-    uint first_sample;
-    uint sample_count;
-    uint max_bounces;
-    uint seed;
-    uint skip_flags;
-    uint mode;
-    uint sun_present;
-    vec4 sun_direction_cos_max;
-    vec4 sun_irradiance_ray_offset;
-    uint sky_next_event;
-} pc;
+// The push-constant block `pc` (BakeIrradiancePushConstants) is declared in bake_irradiance_interface.h.
 
 void main() {
     uint point_index = gl_GlobalInvocationID.x;
@@ -71,7 +58,7 @@ void main() {
 
         Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + sample_in_chunk);
         vec4 estimate = vec4(0.0);
-        if (pc.mode == kModeSunDirect) {
+        if (pc.mode == BAKE_MODE_SUN_DIRECT) {
             estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, rng, settings);
         } else {
             bool backface_hit;

@@ -1,36 +1,53 @@
 #pragma once
-// Minimal compute helpers over VulkanContext: storage buffers and compute pipelines whose descriptor set 0
-// holds only storage buffers at bindings 0..N-1 plus one push-constant block. That is all the baker needs:
-// textures, sky maps and the BVH travel as storage buffers (lavapipe lacks descriptor indexing, DESIGN.md 5).
+// Minimal compute helpers on a GpuDevice (the app's device or a VulkanContext's, gpu_device.h): buffers and
+// compute pipelines whose descriptor set 0 holds only storage buffers at bindings 0..N-1 plus one push-constant
+// block. That is all the baker needs: textures, sky maps and the BVH travel as storage buffers (lavapipe lacks
+// descriptor indexing, DESIGN.md 5). A VulkanContext converts to `const GpuDevice&`, so it can be passed as is.
+//
+// Lifetime: the GpuDevice object passed in (not only its handles) must outlive the buffers and pipelines made
+// on it; they keep a pointer to it.
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
-#include "gusuku/vulkan_context.h"
+#include "gusuku/gpu_device.h"
 
 namespace gusuku {
 
-/// A storage buffer in host-visible, host-coherent memory (on lavapipe all memory is host memory, and the
-/// baker's buffers are read back every pass, so one kind of memory keeps the code small).
+/// Where a buffer's bytes live.
+enum class GpuMemory {
+    /// Host-visible, host-coherent, mapped for the buffer's life: upload and download are plain memcpy. Right
+    /// for the baker, whose buffers are read back every pass (on lavapipe all memory is host memory anyway).
+    kHostVisible,
+    /// Device-local (host-visible too only if the device's device-local types all are): for data the GPU reads
+    /// every frame and the host writes once, such as the runtime's lightmaps and meshes on a phone's GPU.
+    /// upload and download go through a temporary staging buffer and one submission each (setup only).
+    kDeviceLocal,
+};
+
+/// A buffer (storage by default) in the memory chosen by GpuMemory.
 class GpuBuffer {
 public:
     GpuBuffer() = default;
     /// byte_count is rounded up to 4; a zero-sized request allocates 4 bytes so bindings stay valid.
     /// Throws std::runtime_error when a storage buffer would exceed the device's maxStorageBufferRange
     /// (128 MiB on lavapipe) or memory runs out. Transfer src/dst usage is always added.
-    GpuBuffer(VulkanContext& context, size_t byte_count,
-              VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    GpuBuffer(const GpuDevice& gpu, size_t byte_count, VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+              GpuMemory memory = GpuMemory::kHostVisible);
     ~GpuBuffer();
     GpuBuffer(GpuBuffer&& other) noexcept;
     GpuBuffer& operator=(GpuBuffer&& other) noexcept;
     GpuBuffer(const GpuBuffer&) = delete;
     GpuBuffer& operator=(const GpuBuffer&) = delete;
 
-    /// Plain memcpy into/out of the persistently mapped memory; no GPU work may be using the bytes meanwhile.
-    /// Throws std::out_of_range when [offset, offset + byte_count) is not inside the buffer.
+    /// Host-visible: plain memcpy into/out of the persistently mapped memory. Device-local: a copy through a
+    /// temporary staging buffer, submitted and waited for (allocates; for setup, not per frame). Either way no
+    /// GPU work may be using the bytes meanwhile. Throws std::out_of_range when [offset, offset + byte_count)
+    /// is not inside the buffer.
     void upload(const void* bytes, size_t byte_count, size_t offset = 0);
     void download(void* bytes, size_t byte_count, size_t offset = 0) const;
     template <typename T> void uploadVector(const std::vector<T>& values) {
@@ -44,10 +61,15 @@ public:
 
     VkBuffer handle() const { return buffer_; }
     size_t size() const { return byte_count_; }
+    GpuMemory memory() const { return memory_kind_; }
+    /// True when upload/download are plain memcpy (the bytes are mapped).
+    bool isMapped() const { return mapped_ != nullptr; }
 
 private:
     void release();
-    VulkanContext* context_ = nullptr;
+    void copyThroughStaging(void* host_bytes, size_t byte_count, size_t offset, bool to_device) const;
+    const GpuDevice* gpu_ = nullptr;
+    GpuMemory memory_kind_ = GpuMemory::kHostVisible;
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     void* mapped_ = nullptr;
@@ -58,8 +80,8 @@ private:
 /// 0..count-1, and a push-constant block of push_constant_bytes (<= 128).
 class ComputePipeline {
 public:
-    ComputePipeline(VulkanContext& context, const uint32_t* spirv, size_t spirv_bytes,
-                    uint32_t storage_buffer_count, uint32_t push_constant_bytes);
+    ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes, uint32_t storage_buffer_count,
+                    uint32_t push_constant_bytes);
     ~ComputePipeline();
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
@@ -75,13 +97,14 @@ public:
                         uint32_t groups_z = 1) const;
 
     /// Records, submits and waits: one synchronous dispatch, followed by a barrier that makes its writes
-    /// visible to the host.
+    /// visible to the host. Uses a GpuSubmitter of the pipeline's own, made on first use.
     void dispatchAndWait(const void* push_constants, uint32_t groups_x, uint32_t groups_y = 1,
                          uint32_t groups_z = 1);
 
 private:
     void destroy() noexcept;
-    VulkanContext& context_;
+    const GpuDevice& gpu_;
+    std::unique_ptr<GpuSubmitter> submitter_;  // for dispatchAndWait
     uint32_t storage_buffer_count_;
     uint32_t push_constant_bytes_;
     VkShaderModule module_ = VK_NULL_HANDLE;

@@ -1,15 +1,20 @@
 #pragma once
-// One headless Vulkan context for the baker, the runtime and the bench: instance, one device with a compute
-// (and graphics, when present) queue, a command pool, and optional Khronos validation whose messages are
-// collected so that tests can fail on any of them.
+// One headless Vulkan context for the tools (the baker, gusuku-render, the bench) and for tests: it owns an
+// instance, one device with a compute (and graphics, when present) queue, and optional Khronos validation whose
+// messages are collected so that tests can fail on any of them. Everything that runs on the GPU takes the
+// non-owning GpuDevice view (gpu_device.h), which this context owns one of and converts to, so the same code
+// runs on an AR app's own device.
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
+
+#include "gusuku/gpu_device.h"
 
 namespace gusuku {
 
@@ -37,6 +42,11 @@ public:
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
+
+    /// The non-owning view of this context's device, valid for the context's life. The conversion lets a
+    /// VulkanContext be passed wherever a `const GpuDevice&` is taken.
+    const GpuDevice& gpu() const { return gpu_; }
+    operator const GpuDevice&() const { return gpu_; }
 
     VkInstance instance() const { return instance_; }
     VkPhysicalDevice physicalDevice() const { return physical_device_; }
@@ -94,15 +104,12 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
-    VkCommandPool command_pool_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
-    std::mutex submit_mutex_;  // the queue, pool and fence need external synchronisation
+    GpuDevice gpu_;                           // the view handed to everything that runs on this device
+    std::mutex queue_mutex_;                  // the queue needs external synchronisation (gpu_.queue_mutex)
+    std::unique_ptr<GpuSubmitter> submitter_;  // submitAndWait's pool and fence
     bool validation_enabled_ = false;
     mutable std::mutex messages_mutex_;
     std::vector<std::string> validation_messages_;
 };
-
-/// Throws std::runtime_error naming the call when result is not VK_SUCCESS.
-void checkVk(VkResult result, const char* what);
 
 }  // namespace gusuku

@@ -27,17 +27,18 @@ void checkRange(size_t offset, size_t byte_count, size_t buffer_bytes, const cha
 // ---------------------------------------------------------------------------------------------------------------
 // GpuBuffer
 
-GpuBuffer::GpuBuffer(VulkanContext& context, size_t byte_count, VkBufferUsageFlags usage) : context_(&context) {
+GpuBuffer::GpuBuffer(const GpuDevice& gpu, size_t byte_count, VkBufferUsageFlags usage, GpuMemory memory)
+    : gpu_(&gpu), memory_kind_(memory) {
     // Rounded to 4 so shaders may read whole uint words; never 0 so the buffer can always be bound.
     byte_count_ = byte_count == 0 ? 4 : (byte_count + 3) / 4 * 4;
-    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    const VkPhysicalDeviceLimits& limits = gpu.limits();
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && byte_count_ > limits.maxStorageBufferRange)
         throw std::runtime_error("GpuBuffer: a storage buffer of " + mebibytes(byte_count_) +
                                 " exceeds this device's maxStorageBufferRange of " +
-                                mebibytes(limits.maxStorageBufferRange) + " (" + context.properties().deviceName +
+                                mebibytes(limits.maxStorageBufferRange) + " (" + gpu.properties.deviceName +
                                 "); split the data over several buffers or dispatches");
 
-    VkDevice device = context.device();
+    VkDevice device = gpu.device;
     VkBufferCreateInfo buffer_info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     buffer_info.size = byte_count_;
     // Transfer usage costs nothing and lets callers copy or fill buffers with vkCmdCopyBuffer/vkCmdFillBuffer.
@@ -49,15 +50,23 @@ GpuBuffer::GpuBuffer(VulkanContext& context, size_t byte_count, VkBufferUsageFla
         vkGetBufferMemoryRequirements(device, buffer_, &requirements);
         VkMemoryAllocateInfo allocate_info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         allocate_info.allocationSize = requirements.size;
-        allocate_info.memoryTypeIndex = context.findMemoryType(
-            requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        const VkMemoryPropertyFlags mappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        if (memory == GpuMemory::kHostVisible) {
+            allocate_info.memoryTypeIndex = gpu.findMemoryType(requirements.memoryTypeBits, mappable);
+        } else {
+            allocate_info.memoryTypeIndex = gpu.findMemoryType(requirements.memoryTypeBits,
+                                                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        }
         const VkResult allocated = vkAllocateMemory(device, &allocate_info, nullptr, &memory_);
         if (allocated == VK_ERROR_OUT_OF_HOST_MEMORY || allocated == VK_ERROR_OUT_OF_DEVICE_MEMORY)
             throw std::runtime_error("GpuBuffer: out of memory allocating " + mebibytes(requirements.size));
         checkVk(allocated, "vkAllocateMemory");
         checkVk(vkBindBufferMemory(device, buffer_, memory_, 0), "vkBindBufferMemory");
-        // Mapped once for the buffer's life: host-coherent, so no flushes or invalidates are needed.
-        checkVk(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+        // Host-visible buffers are mapped once for the buffer's life: host-coherent, so no flushes or
+        // invalidates are needed. Device-local ones are never mapped, even where the type happens to allow it
+        // (lavapipe), so the staging path is the one exercised on every device.
+        if (memory == GpuMemory::kHostVisible)
+            checkVk(vkMapMemory(device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
     } catch (...) {
         release();
         throw;
@@ -67,7 +76,8 @@ GpuBuffer::GpuBuffer(VulkanContext& context, size_t byte_count, VkBufferUsageFla
 GpuBuffer::~GpuBuffer() { release(); }
 
 GpuBuffer::GpuBuffer(GpuBuffer&& other) noexcept
-    : context_(std::exchange(other.context_, nullptr)),
+    : gpu_(std::exchange(other.gpu_, nullptr)),
+      memory_kind_(other.memory_kind_),
       buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
       memory_(std::exchange(other.memory_, VK_NULL_HANDLE)),
       mapped_(std::exchange(other.mapped_, nullptr)),
@@ -76,7 +86,8 @@ GpuBuffer::GpuBuffer(GpuBuffer&& other) noexcept
 GpuBuffer& GpuBuffer::operator=(GpuBuffer&& other) noexcept {
     if (this != &other) {
         release();
-        context_ = std::exchange(other.context_, nullptr);
+        gpu_ = std::exchange(other.gpu_, nullptr);
+        memory_kind_ = other.memory_kind_;
         buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
         memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
         mapped_ = std::exchange(other.mapped_, nullptr);
@@ -86,8 +97,8 @@ GpuBuffer& GpuBuffer::operator=(GpuBuffer&& other) noexcept {
 }
 
 void GpuBuffer::release() {
-    if (context_ != nullptr) {
-        VkDevice device = context_->device();
+    if (gpu_ != nullptr) {
+        VkDevice device = gpu_->device;
         if (mapped_ != nullptr) vkUnmapMemory(device, memory_);
         if (buffer_ != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer_, nullptr);
         if (memory_ != VK_NULL_HANDLE) vkFreeMemory(device, memory_, nullptr);
@@ -100,33 +111,62 @@ void GpuBuffer::release() {
 
 void GpuBuffer::upload(const void* bytes, size_t byte_count, size_t offset) {
     checkRange(offset, byte_count, byte_count_, "upload");
-    if (byte_count > 0) std::memcpy(static_cast<char*>(mapped_) + offset, bytes, byte_count);
+    if (byte_count == 0) return;
+    if (mapped_ != nullptr)
+        std::memcpy(static_cast<char*>(mapped_) + offset, bytes, byte_count);
+    else
+        copyThroughStaging(const_cast<void*>(bytes), byte_count, offset, /*to_device=*/true);
 }
 
 void GpuBuffer::download(void* bytes, size_t byte_count, size_t offset) const {
     checkRange(offset, byte_count, byte_count_, "download");
-    if (byte_count > 0) std::memcpy(bytes, static_cast<const char*>(mapped_) + offset, byte_count);
+    if (byte_count == 0) return;
+    if (mapped_ != nullptr)
+        std::memcpy(bytes, static_cast<const char*>(mapped_) + offset, byte_count);
+    else
+        copyThroughStaging(bytes, byte_count, offset, /*to_device=*/false);
+}
+
+void GpuBuffer::copyThroughStaging(void* host_bytes, size_t byte_count, size_t offset, bool to_device) const {
+    GpuBuffer staging(*gpu_, byte_count, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuMemory::kHostVisible);
+    if (to_device) std::memcpy(staging.mapped_, host_bytes, byte_count);
+    GpuSubmitter submitter(*gpu_);
+    submitter.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy region{to_device ? 0 : offset, to_device ? offset : 0, byte_count};
+        vkCmdCopyBuffer(cmd, to_device ? staging.buffer_ : buffer_, to_device ? buffer_ : staging.buffer_, 1, &region);
+        // Transfer writes made visible to the shaders that read the buffer next, or to the host read below.
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.dstAccessMask = to_device ? VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                                VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT
+                                          : VK_ACCESS_HOST_READ_BIT;
+        const VkPipelineStageFlags destination_stages =
+            to_device ? VK_PIPELINE_STAGE_ALL_COMMANDS_BIT : VK_PIPELINE_STAGE_HOST_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, destination_stages, 0, 1, &barrier, 0, nullptr, 0,
+                             nullptr);
+    });
+    if (!to_device) std::memcpy(host_bytes, staging.mapped_, byte_count);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
 // ComputePipeline
 
-ComputePipeline::ComputePipeline(VulkanContext& context, const uint32_t* spirv, size_t spirv_bytes,
+ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes,
                                  uint32_t storage_buffer_count, uint32_t push_constant_bytes)
-    : context_(context), storage_buffer_count_(storage_buffer_count), push_constant_bytes_(push_constant_bytes) {
+    : gpu_(gpu), storage_buffer_count_(storage_buffer_count), push_constant_bytes_(push_constant_bytes) {
     if (spirv == nullptr || spirv_bytes == 0 || spirv_bytes % 4 != 0)
         throw std::invalid_argument("ComputePipeline: SPIR-V must be a non-empty array of 32-bit words");
-    const uint32_t push_constant_limit = std::min<uint32_t>(128, context.properties().limits.maxPushConstantsSize);
+    const uint32_t push_constant_limit = std::min<uint32_t>(128, gpu.limits().maxPushConstantsSize);
     if (push_constant_bytes % 4 != 0 || push_constant_bytes > push_constant_limit)
         throw std::invalid_argument("ComputePipeline: push constants must be a multiple of 4 bytes and at most " +
                                     std::to_string(push_constant_limit) + "; got " +
                                     std::to_string(push_constant_bytes));
-    if (storage_buffer_count > context.properties().limits.maxPerStageDescriptorStorageBuffers)
+    if (storage_buffer_count > gpu.limits().maxPerStageDescriptorStorageBuffers)
         throw std::invalid_argument("ComputePipeline: " + std::to_string(storage_buffer_count) +
                                     " storage buffers exceed the device's per-stage limit of " +
-                                    std::to_string(context.properties().limits.maxPerStageDescriptorStorageBuffers));
+                                    std::to_string(gpu.limits().maxPerStageDescriptorStorageBuffers));
 
-    VkDevice device = context.device();
+    VkDevice device = gpu.device;
     try {
         VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
         module_info.codeSize = spirv_bytes;
@@ -187,7 +227,7 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const uint32_t* spirv, 
 ComputePipeline::~ComputePipeline() { destroy(); }
 
 void ComputePipeline::destroy() noexcept {
-    VkDevice device = context_.device();
+    VkDevice device = gpu_.device;
     // The descriptor set goes with its pool.
     if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     if (pipeline_ != VK_NULL_HANDLE) vkDestroyPipeline(device, pipeline_, nullptr);
@@ -221,7 +261,7 @@ void ComputePipeline::bindBuffers(const std::vector<const GpuBuffer*>& buffers) 
         writes[binding].pBufferInfo = &buffer_infos[binding];
     }
     if (!writes.empty())
-        vkUpdateDescriptorSets(context_.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+        vkUpdateDescriptorSets(gpu_.device, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
 void ComputePipeline::recordDispatch(VkCommandBuffer cmd, const void* push_constants, uint32_t groups_x,
@@ -240,7 +280,8 @@ void ComputePipeline::recordDispatch(VkCommandBuffer cmd, const void* push_const
 
 void ComputePipeline::dispatchAndWait(const void* push_constants, uint32_t groups_x, uint32_t groups_y,
                                       uint32_t groups_z) {
-    context_.submitAndWait([&](VkCommandBuffer cmd) {
+    if (!submitter_) submitter_ = std::make_unique<GpuSubmitter>(gpu_);
+    submitter_->submitAndWait([&](VkCommandBuffer cmd) {
         recordDispatch(cmd, push_constants, groups_x, groups_y, groups_z);
         // Makes the shader's writes visible to the host reads that follow the fence.
         recordComputeBarrier(cmd);

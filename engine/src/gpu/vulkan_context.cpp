@@ -92,11 +92,6 @@ bool environmentFlag(const char* name) {
 
 }  // namespace
 
-void checkVk(VkResult result, const char* what) {
-    if (result == VK_SUCCESS) return;
-    throw std::runtime_error(std::string(what) + " failed with VkResult " + std::to_string(static_cast<int>(result)));
-}
-
 VulkanContextOptions vulkanOptionsFromEnvironment() {
     VulkanContextOptions options;
     options.enable_validation = environmentFlag("GUSUKU_VALIDATION");
@@ -123,12 +118,9 @@ VulkanContext::~VulkanContext() { destroy(); }
 void VulkanContext::destroy() noexcept {
     if (device_ != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(device_);
-        if (fence_ != VK_NULL_HANDLE) vkDestroyFence(device_, fence_, nullptr);
-        if (command_pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, command_pool_, nullptr);
+        submitter_.reset();
         vkDestroyDevice(device_, nullptr);
     }
-    fence_ = VK_NULL_HANDLE;
-    command_pool_ = VK_NULL_HANDLE;
     device_ = VK_NULL_HANDLE;
     if (messenger_ != VK_NULL_HANDLE) {
         auto destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -333,13 +325,8 @@ void VulkanContext::createDevice() {
     checkVk(vkCreateDevice(physical_device_, &device_info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;  // one-shot command buffers only
-    pool_info.queueFamilyIndex = queue_family_;
-    checkVk(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_), "vkCreateCommandPool");
-
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    checkVk(vkCreateFence(device_, &fence_info, nullptr, &fence_), "vkCreateFence");
+    gpu_ = GpuDevice::describe(instance_, physical_device_, device_, queue_, queue_family_, &queue_mutex_);
+    submitter_ = std::make_unique<GpuSubmitter>(gpu_);
 }
 
 std::string VulkanContext::deviceDescription() const {
@@ -352,47 +339,11 @@ std::string VulkanContext::deviceDescription() const {
 bool VulkanContext::isSoftwareRasterizer() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 
 void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
-    std::lock_guard<std::mutex> lock(submit_mutex_);
-
-    VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate_info.commandPool = command_pool_;
-    allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocate_info.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    checkVk(vkAllocateCommandBuffers(device_, &allocate_info, &cmd), "vkAllocateCommandBuffers");
-
-    try {
-        VkCommandBufferBeginInfo begin_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin_info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        checkVk(vkBeginCommandBuffer(cmd, &begin_info), "vkBeginCommandBuffer");
-        record(cmd);
-        checkVk(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-        VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit_info.commandBufferCount = 1;
-        submit_info.pCommandBuffers = &cmd;
-        checkVk(vkQueueSubmit(queue_, 1, &submit_info, fence_), "vkQueueSubmit");
-    } catch (...) {
-        // Not submitted, so not pending: safe to free.
-        vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
-        throw;
-    }
-    // Once submitted, a failed wait (device lost) leaves the buffer possibly pending: leak it rather than free it.
-    checkVk(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    checkVk(vkResetFences(device_, 1, &fence_), "vkResetFences");
-    vkFreeCommandBuffers(device_, command_pool_, 1, &cmd);
+    submitter_->submitAndWait(record);
 }
 
 uint32_t VulkanContext::findMemoryType(uint32_t type_bits, VkMemoryPropertyFlags properties) const {
-    VkPhysicalDeviceMemoryProperties memory;
-    vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory);
-    for (uint32_t index = 0; index < memory.memoryTypeCount; ++index)
-        if ((type_bits & (1u << index)) && (memory.memoryTypes[index].propertyFlags & properties) == properties)
-            return index;
-    std::ostringstream message;
-    message << "Vulkan: no memory type with property flags 0x" << std::hex << properties << " among allowed types 0x"
-            << type_bits << " on " << properties_.deviceName;
-    throw std::runtime_error(message.str());
+    return gpu_.findMemoryType(type_bits, properties);
 }
 
 std::vector<std::string> VulkanContext::validationMessages() const {

@@ -1,0 +1,21 @@
+// shaders/bake/bake_accumulate.comp as both sides see it: its set-0 bindings and push-constant block, written
+// once for the GLSL and for baker/src/irradiance_tracer.cpp. See interface_types.h for the rules.
+#ifndef GUSUKU_BAKE_ACCUMULATE_INTERFACE_H
+#define GUSUKU_BAKE_ACCUMULATE_INTERFACE_H
+
+#include "interface_types.h"
+
+// bake_accumulate.comp, set 0
+#define ACCUMULATE_SAMPLE_ESTIMATE_BINDING 0  // the irradiance kernel's scratch
+#define ACCUMULATE_SUM_BINDING 1              // vec4 running sums per point
+#define BAKE_ACCUMULATE_BINDING_COUNT 2
+
+GUSUKU_PUSH_CONSTANTS_BEGIN(BakeAccumulatePushConstants)
+    uint point_count;
+    uint sample_count;
+GUSUKU_PUSH_CONSTANTS_END(BakeAccumulatePushConstants, pc)
+
+// local_size_x, the same as bake_irradiance.comp's
+#define BAKE_ACCUMULATE_WORKGROUP_SIZE 64
+
+#endif

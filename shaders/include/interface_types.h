@@ -1,0 +1,29 @@
+// Lets one header declare binding numbers and push-constant blocks for GLSL and C++ at once, so a layout is
+// written once (shaders/include/*_interface.h). GLSL includes it through GL_GOOGLE_include_directive, C++
+// through the gusuku_shader_interface target.
+//
+// Rules for an interface block: scalar uint, int and float members, and vec4 (16 bytes) only at a 16-byte
+// offset: std430 and C++ then agree on every offset, which the C++ side pins with static_assert. No vec3.
+// (The C++ vec4 is not alignas(16), so the struct's size is the GLSL block's size, not padded past it.)
+#ifndef GUSUKU_INTERFACE_TYPES_H
+#define GUSUKU_INTERFACE_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace gusuku::shader_interface {
+using uint = std::uint32_t;
+struct vec4 {
+    float components[4];
+    float& operator[](int index) { return components[index]; }
+    float operator[](int index) const { return components[index]; }
+};
+}  // namespace gusuku::shader_interface
+// C++: a plain struct in gusuku::shader_interface; GLSL: the push-constant block named `instance`.
+#define GUSUKU_PUSH_CONSTANTS_BEGIN(BlockName) namespace gusuku::shader_interface { struct BlockName {
+#define GUSUKU_PUSH_CONSTANTS_END(BlockName, instance) }; }
+#else
+#define GUSUKU_PUSH_CONSTANTS_BEGIN(BlockName) layout(push_constant) uniform BlockName {
+#define GUSUKU_PUSH_CONSTANTS_END(BlockName, instance) } instance;
+#endif
+
+#endif
