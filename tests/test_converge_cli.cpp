@@ -63,6 +63,20 @@ TEST_F(ConvergeCli, BadArgumentsExitTwoNamingTheOption) {
     EXPECT_TRUE(contains(no_site.stderr_text, "needs SITE.json")) << no_site.stderr_text;
 }
 
+TEST_F(ConvergeCli, MaxSamplesAboveReferenceSamplesIsRefusedBeforeTracing) {
+    const CommandResult result = converge({"--max-samples", "16", "--reference-samples", "8"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_TRUE(contains(result.stderr_text, "--max-samples 16 is above --reference-samples 8")) << result.stderr_text;
+    EXPECT_FALSE(contains(result.stderr_text, "device")) << "refused before a device was opened: "
+                                                         << result.stderr_text;
+    EXPECT_TRUE(result.stdout_text.empty()) << result.stdout_text;
+
+    const CommandResult defaults = converge({"--max-samples", "2048"});  // default reference: 1024
+    EXPECT_EQ(defaults.exit_code, 2);
+    EXPECT_TRUE(contains(defaults.stderr_text, "--max-samples 2048 is above --reference-samples 1024"))
+        << defaults.stderr_text;
+}
+
 TEST_F(ConvergeCli, UnknownSlotIsAnErrorNamingIt) {
     const CommandResult result = converge({"--slot", "dusk", "--max-samples", "1", "--reference-samples", "1"});
     EXPECT_NE(result.exit_code, 0);

@@ -15,6 +15,9 @@
 #include "bake_outputs.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku_bake/bake_checkpoint.h"
+#include "gusuku_bake/bake_folder_lock.h"
+#include "gusuku_bake/bake_inputs.h"
+#include "gusuku_bake/bake_preflight.h"
 #include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/content_hash.h"
@@ -29,17 +32,23 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Everything that changes the traced sums: the inputs' bytes, the settings, and the tracer's own code.
-uint64_t bakeInputHash(const SiteConfig& site, uint32_t samples, const BakeOptions& options) {
+// Everything that changes the traced sums: the bytes of every file the bake reads (a glTF's external buffers
+// and textures included), the settings, and the tracer's own code. Checkpoints carry this hash.
+uint64_t traceInputHash(const std::vector<std::string>& input_files, uint32_t samples, const BakeOptions& options) {
     ContentHash hash;
-    hash.addString(kBakeSetFormat).addFile(site.file).addFile(site.building.path).addFile(site.sunny_sky.path);
-    if (site.sfm_mesh) hash.addFile(site.sfm_mesh->path);
-    if (site.overcast_sky) hash.addFile(site.overcast_sky->path);
+    hash.addString(kBakeSetFormat);
+    for (const std::string& file : input_files) hash.addString(file).addFile(file);
     // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
     // be resumed, or the result would differ from an uninterrupted bake.
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
         .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
+}
+
+// The manifest's hash: the traced sums' plus the settings that only change how they become files. The filter
+// is not part of the checkpoint hash, so a bake resumed with or without --no-denoise reuses the traced sums.
+uint64_t outputInputHash(uint64_t trace_hash, const BakeOptions& options) {
+    return ContentHash().addValue(trace_hash).addValue(uint8_t(options.denoise ? 1 : 0)).value();
 }
 
 struct PointSet {
@@ -77,9 +86,14 @@ public:
         : tracer_(tracer), progress_(progress), options_(options), input_hash_(input_hash),
           checkpoint_dir_(checkpoint_dir) {}
 
-    /// Traces one set to `samples`; returns its sums, or nothing when stopped.
+    /// Traces one set to `samples`; returns its sums, or nothing when stopped. A stop request is polled
+    /// before the set and after every chunk, and is honoured even when that chunk finished the set (with
+    /// --samples 1 every set is one chunk): the set's sums are checkpointed first, so nothing is lost.
     std::optional<std::vector<glm::vec4>> trace(const std::string& slot_name, const PointSet& set,
                                                 const TracePass& pass, uint32_t samples) {
+        if (stopRequested()) return std::nullopt;
+        // An empty set (no ground cell over the ground) is done at once: there is nothing to trace or save.
+        if (set.points.empty()) return std::vector<glm::vec4>{};
         const std::string label = slot_name + " " + set.name;
         const std::string checkpoint_path = checkpoint_dir_ + "/" + slot_name + "." + set.name + ".bin";
         PointAccumulator accumulator = tracer_.createAccumulator(set.points);
@@ -96,23 +110,30 @@ public:
             const uint64_t rays = tracer_.addSamples(accumulator, chunk, pass);
             const double seconds = std::max(secondsSince(start), 1e-4);
             trace_seconds_ += seconds;
-            progress_.advance(label, accumulator.samples_done, samples, double(chunk) * point_count, rays);
+            progress_.advance(label, accumulator.samples_done, samples, double(chunk) * point_count, rays, seconds);
             // Size the next chunk so a dispatch takes about target_chunk_seconds.
             const double wanted = double(chunk) * options_.target_chunk_seconds / seconds;
             chunk_samples_ = uint32_t(std::clamp(wanted, 1.0, 64.0));
-            const bool stop = options_.should_stop && options_.should_stop();
+            const bool stop = stopRequested();
             if (stop || accumulator.samples_done >= samples || secondsSince(last_checkpoint) > 2.0) {
                 writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator)});
                 last_checkpoint = Clock::now();
             }
-            if (stop && accumulator.samples_done < samples) return std::nullopt;
+            if (stop) return std::nullopt;
         }
-        if (point_count > 0 && !std::filesystem::exists(checkpoint_path))
+        if (!std::filesystem::exists(checkpoint_path))
             writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator)});
+        if (stopRequested()) return std::nullopt;
         return tracer_.readSums(accumulator);
     }
 
     double traceSeconds() const { return trace_seconds_; }
+
+    /// Sticky: a should_stop that answers true once (a signal flag, a test's counter) stops the whole bake.
+    bool stopRequested() {
+        stop_requested_ = stop_requested_ || (options_.should_stop && options_.should_stop());
+        return stop_requested_;
+    }
 
 private:
     IrradianceTracer& tracer_;
@@ -122,6 +143,7 @@ private:
     std::string checkpoint_dir_;
     uint32_t chunk_samples_ = 1;
     double trace_seconds_ = 0.0;
+    bool stop_requested_ = false;
 };
 
 std::optional<uint64_t> manifestInputHash(const std::string& manifest_path) {
@@ -143,30 +165,42 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     const uint32_t samples = uint32_t(options.samples_override > 0 ? options.samples_override
                                                                    : site.bake.samples_per_texel);
     report.samples_per_point = samples;
-    const uint64_t input_hash = bakeInputHash(site, samples, options);
+    // Before anything is created or written: the output folder must not be, or hold, anything the bake reads.
+    const std::vector<std::string> input_files = bakeInputFiles(site);
+    refuseOutputHoldingInputs(options.output_dir, input_files);
+    const uint64_t trace_hash = traceInputHash(input_files, samples, options);
+    const uint64_t input_hash = outputInputHash(trace_hash, options);
     report.manifest_path = options.output_dir + "/manifest.json";
+
+    const BakeFolderLock lock(options.output_dir);  // a second bake into this folder is refused here
     if (!options.force && manifestInputHash(report.manifest_path) == input_hash) {
         report.completed = true;
         report.up_to_date = true;
         return report;
     }
 
-    // Light first: the lowest baked sun sizes the ground grid.
+    // Everything that can refuse the bake comes before the first file is replaced. Light first: the lowest
+    // baked sun sizes the ground grid.
+    const std::vector<SlotSun> suns = slotSunPositions(site);
     const PreparedSky sunny = prepareSky(site.sunny_sky);
     std::optional<PreparedSky> overcast;
     if (site.overcast_sky) overcast = prepareSky(*site.overcast_sky);
     std::vector<SlotLighting> slots;
-    double lowest_sun_elevation = -1.0;
     for (const BakeSlot& slot : site.bake.slots) {
         slots.push_back(lightSlot(site, slot, sunny, overcast ? &*overcast : nullptr));
-        if (slots.back().sun.present) {
-            const double elevation = slots.back().sun_position.apparent_elevation_deg;
-            lowest_sun_elevation = lowest_sun_elevation < 0.0 ? elevation : std::min(lowest_sun_elevation, elevation);
-        }
         for (const std::string& warning : slots.back().warnings) report.warnings.push_back(warning);
     }
 
-    BakeGeometry geometry = prepareBakeGeometry(site, lowest_sun_elevation, options.max_texture_size);
+    BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size);
+    refuseBuildingWithoutTexels(site, geometry);
+    std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
+    if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
+    const std::vector<InputError> too_large = deviceLimitProblems(
+        site, bakeDeviceBuffers(site, geometry, skies, options.max_texture_size),
+        storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange));
+    if (!too_large.empty()) throw too_large.front();
+    const std::string no_ground = emptyGroundReason(site, geometry);
+    if (!no_ground.empty()) geometry.warnings.push_back(no_ground);
     report.warnings.insert(report.warnings.end(), geometry.warnings.begin(), geometry.warnings.end());
     report.lightmap_resolution = geometry.lightmap_resolution;
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "gusuku-bake: warning: %s\n", warning.c_str());
@@ -182,11 +216,14 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     double total_work = 0.0;
     for (const PointSet& set : sets) total_work += double(set.points.size()) * samples * double(slots.size());
     BakeProgress progress(total_work, options.show_progress);
+    // The old manifest goes before the first file of this bake replaces one of its files: a bake set with a
+    // manifest is then always the complete, matching one, even if this bake is interrupted or fails.
+    std::filesystem::remove(report.manifest_path);
     const std::string checkpoint_dir = options.output_dir + "/.checkpoint";
     std::filesystem::create_directories(checkpoint_dir);
 
     IrradianceTracer tracer(context, geometry.scene, sunny.tables, options.max_texture_size);
-    SetTracer set_tracer(tracer, progress, options, input_hash, checkpoint_dir);
+    SetTracer set_tracer(tracer, progress, options, trace_hash, checkpoint_dir);
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();
     for (const SlotLighting& lighting : slots) {

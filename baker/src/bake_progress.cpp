@@ -9,7 +9,7 @@
 namespace gusuku::bake {
 
 std::string formatDuration(double seconds) {
-    if (!std::isfinite(seconds) || seconds < 0.0) return "--:--";
+    if (!std::isfinite(seconds) || seconds < 0.0) return "--";
     const long total = std::lround(seconds);
     char text[32];
     if (total >= 3600)
@@ -41,13 +41,20 @@ double BakeProgress::raysPerSecond() const {
 }
 
 void BakeProgress::advance(const std::string& label, uint32_t samples_done, uint32_t samples_total,
-                           double work_done, uint64_t rays) {
+                           double work_done, uint64_t rays, double trace_seconds) {
     done_work_ += work_done;
+    traced_work_ += work_done;
+    traced_seconds_ += trace_seconds;
     rays_ += rays;
     label_ = label;
     samples_done_ = samples_done;
     samples_total_ = samples_total;
     draw(false);
+}
+
+double BakeProgress::secondsLeft() const {
+    if (traced_work_ <= 0.0 || traced_seconds_ <= 0.0) return NAN;
+    return std::max(0.0, total_work_ - done_work_) * traced_seconds_ / traced_work_;
 }
 
 void BakeProgress::finish() {
@@ -71,9 +78,7 @@ void BakeProgress::draw(bool final_line) {
     }
     last_draw_ = now;
     const double elapsed = secondsElapsed();
-    // Time left from this run's own rate (resumed work came for free and would make the estimate optimistic).
-    const double fresh_work = done_work_ - resumed_work_;
-    const double seconds_left = fresh_work > 0.0 ? elapsed * (total_work_ - done_work_) / fresh_work : NAN;
+    const double seconds_left = secondsLeft();
     constexpr int kBarWidth = 24;
     const int filled = int(std::lround(fraction * kBarWidth));
     std::string bar(size_t(filled), '#');

@@ -84,6 +84,15 @@ int runConvergeCommand(const std::vector<std::string>& args) {
         std::fprintf(stderr, "gusuku-bake converge: needs SITE.json (see --help)\n");
         return 2;
     }
+    // The error is measured against the reference: an estimate with more samples than the reference would
+    // measure the reference's own noise.
+    if (options.max_samples > options.reference_samples) {
+        std::fprintf(stderr,
+                     "gusuku-bake converge: --max-samples %u is above --reference-samples %u; the reference must "
+                     "have at least as many samples as the largest estimate\n",
+                     options.max_samples, options.reference_samples);
+        return 2;
+    }
     const SiteConfig site = loadSiteConfig(site_path);
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());

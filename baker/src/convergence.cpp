@@ -91,8 +91,10 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     const auto reference_start = Clock::now();
     while (reference.samples_done < options.reference_samples) {
         const uint32_t chunk = std::min(8u, options.reference_samples - reference.samples_done);
+        const auto chunk_start = Clock::now();
         const uint64_t rays = tracer.addSamples(reference, chunk, reference_pass);
-        progress.advance("reference", reference.samples_done, options.reference_samples, double(chunk) * points.size(), rays);
+        progress.advance("reference", reference.samples_done, options.reference_samples, double(chunk) * points.size(),
+                         rays, std::chrono::duration<double>(Clock::now() - chunk_start).count());
     }
     study.reference_seconds = std::chrono::duration<double>(Clock::now() - reference_start).count();
     const std::vector<glm::vec4> reference_texels =
@@ -105,9 +107,11 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         const auto start = Clock::now();
         const uint32_t chunk = target - estimate.samples_done;
         const uint64_t chunk_rays = tracer.addSamples(estimate, chunk, pass);
-        seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        const double chunk_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        seconds += chunk_seconds;
         rays += chunk_rays;
-        progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(), chunk_rays);
+        progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(), chunk_rays,
+                         chunk_seconds);
         const std::vector<glm::vec4> sums = tracer.readSums(estimate);
         ConvergencePoint point;
         point.samples = target;

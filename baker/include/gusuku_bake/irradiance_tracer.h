@@ -85,7 +85,7 @@ public:
 
     /// Adds `sample_count` samples per point: samples [samples_done, samples_done + sample_count) of each
     /// point's fixed random stream, so the result depends only on the total, not on how it was chunked.
-    /// Returns the number of rays traced.
+    /// Returns the number of rays traced. An empty accumulator advances samples_done without tracing.
     uint64_t addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass);
 
     /// The running sums (vec4 per point, see PointAccumulator::sums).
