@@ -212,6 +212,10 @@ void writeExr(const std::string& path, const ImageRGBA& image, bool with_alpha) 
     const std::vector<float> packed = packChannels(image, channel_count);
     OIIO::ImageSpec spec(image.width, image.height, channel_count, OIIO::TypeDesc::FLOAT);
     spec.attribute("compression", "zip");
+    // Same pixels, same bytes: OpenImageIO stamps the write time into the header (DateTime -> capDate) unless
+    // the spec has one, so give it an empty one. Nothing else in the header depends on the clock or the
+    // software version (tests/test_bake_bytes.cpp compares whole files).
+    spec.attribute("DateTime", "");
     writeWithOiio(path, spec, packed.data());
 }
 
