@@ -1,0 +1,37 @@
+# gusuku_check_runtime_links(TARGET <name> FORBIDDEN <target>...)
+#
+# Configure-time guard: walks the link closure of TARGET (LINK_LIBRARIES and INTERFACE_LINK_LIBRARIES of every
+# target it reaches) and stops the configure with a message if any FORBIDDEN target is in it. Catches a
+# header-only dependency (nlohmann-json) that a check of the linked binary could not see.
+function(gusuku_check_runtime_links)
+  cmake_parse_arguments(ARG "" "TARGET" "FORBIDDEN" ${ARGN})
+  set(pending ${ARG_TARGET})
+  set(visited)
+  while(pending)
+    list(POP_FRONT pending current)
+    if(current IN_LIST visited OR NOT TARGET ${current})
+      continue()
+    endif()
+    list(APPEND visited ${current})
+    get_target_property(aliased ${current} ALIASED_TARGET)
+    if(aliased)
+      list(APPEND pending ${aliased})
+    endif()
+    foreach(property LINK_LIBRARIES INTERFACE_LINK_LIBRARIES)
+      get_target_property(dependencies ${current} ${property})
+      if(dependencies)
+        foreach(dependency ${dependencies})
+          # $<LINK_ONLY:x> and similar generator expressions wrap plain target names.
+          string(REGEX REPLACE "^\\$<[A-Z_]+:(.+)>$" "\\1" dependency "${dependency}")
+          list(APPEND pending ${dependency})
+        endforeach()
+      endif()
+    endforeach()
+  endwhile()
+  foreach(forbidden ${ARG_FORBIDDEN})
+    if(forbidden IN_LIST visited)
+      message(FATAL_ERROR "${ARG_TARGET} links ${forbidden}: the runtime may depend on gusuku_maths, gusuku_gpu "
+                          "and Vulkan only (DESIGN.md 8)")
+    endif()
+  endforeach()
+endfunction()

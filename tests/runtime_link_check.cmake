@@ -1,0 +1,25 @@
+# Fails when the program linked against gusuku_runtime alone (runtime_link_probe) needs a shared library outside
+# the runtime's allowed set: Vulkan, and the C/C++ runtime. OpenImageIO, OpenColorIO, tinygltf, GeographicLib
+# (the tools' I/O stack) must never reach an app that links the runtime (DESIGN.md 8).
+# Usage: cmake -DPROBE=<path> -DREADELF=<path> -P runtime_link_check.cmake
+execute_process(COMMAND ${READELF} -d ${PROBE} OUTPUT_VARIABLE dynamic_section RESULT_VARIABLE readelf_result)
+if(NOT readelf_result EQUAL 0)
+  message(FATAL_ERROR "readelf -d ${PROBE} failed (${readelf_result})")
+endif()
+string(REGEX MATCHALL "Shared library: \\[[^]]+\\]" needed_entries "${dynamic_section}")
+set(allowed "^lib(vulkan|stdc\\+\\+|m|gcc_s|c|pthread|dl)\\.so")
+set(unexpected)
+foreach(entry ${needed_entries})
+  string(REGEX REPLACE "Shared library: \\[([^]]+)\\]" "\\1" library "${entry}")
+  message(STATUS "runtime_link_probe needs ${library}")
+  if(NOT library MATCHES "${allowed}")
+    list(APPEND unexpected ${library})
+  endif()
+endforeach()
+if(NOT needed_entries)
+  message(FATAL_ERROR "readelf found no NEEDED entries in ${PROBE}; the check would prove nothing")
+endif()
+if(unexpected)
+  message(FATAL_ERROR "gusuku_runtime pulls in libraries an embedded runtime must not need: ${unexpected}")
+endif()
+message(STATUS "gusuku_runtime links only Vulkan and the C/C++ runtime")
