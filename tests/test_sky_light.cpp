@@ -1,5 +1,5 @@
-// Sky light: sun disc extraction on synthetic skies with known suns, the clear-sky sun model against its
-// published formulas, sky importance sampling against direct quadrature, and the GLSL twin against the CPU.
+// Sky light: sun disc extraction on synthetic skies with known suns, sky importance sampling against direct
+// quadrature, and the GLSL twin against the CPU. (The clear-sky sun model: test_sun_irradiance.cpp.)
 
 #include <algorithm>
 #include <cmath>
@@ -199,56 +199,6 @@ TEST(SunDisc, BadMapsAreInputErrors) {
     ImageRGBA wrong = uniformMap(8, 4, 1.0f);
     wrong.texels.pop_back();
     EXPECT_THROW(extractSunDisc(wrong, 0.0), gusuku::InputError);
-}
-
-// ---------------------------------------------------------------------------------------------------------
-// Clear-sky sun
-// ---------------------------------------------------------------------------------------------------------
-
-TEST(ClearSkySun, KastenYoungAirMassMatchesItsFormulaInZenithForm) {
-    // Kasten and Young (1989) as usually printed, with the zenith angle z: 1 / (cos z + 0.50572 (96.07995 - z)^-1.6364)
-    auto zenithForm = [](double zenith_deg) {
-        return 1.0 / (std::cos(zenith_deg * kDeg) + 0.50572 * std::pow(96.07995 - zenith_deg, -1.6364));
-    };
-    EXPECT_NEAR(kastenYoungAirMass(90.0), 1.0, 1e-3);
-    EXPECT_NEAR(kastenYoungAirMass(30.0), 1.994, 1e-3);
-    for (double zenith : {0.0, 30.0, 60.0, 80.0, 89.0, 90.0})
-        EXPECT_NEAR(kastenYoungAirMass(90.0 - zenith), zenithForm(zenith), 1e-9 * zenithForm(zenith));
-    EXPECT_NEAR(kastenYoungAirMass(0.0), 37.92, 0.05);  // the formula's horizon value
-}
-
-TEST(ClearSkySun, IrradianceIsPlausibleMonotonicAndZeroBelowHorizon) {
-    const glm::dvec3 zenith = clearSkySunIrradianceRgb(90.0);
-    // ESRA, T_L = 3, m = 1: 1367 exp(-0.8662 * 3 / 8.26674) ~ 1000 W/m^2 (a typical clear-sky DNI).
-    const double zenith_expected = 1367.0 * std::exp(-0.8662 * 3.0 * 0.99971 /
-                                                     (6.6296 + 1.7513 * 0.99971 - 0.1202 * 0.99942 +
-                                                      0.0065 * 0.99913 - 0.00013 * 0.99884));
-    EXPECT_NEAR(zenith.y, zenith_expected, 0.5);
-    EXPECT_NEAR(zenith.x, zenith.y, 1e-9);  // neutral at the zenith
-    EXPECT_NEAR(zenith.z, zenith.y, 1e-9);
-    glm::dvec3 previous(0.0);
-    for (double elevation = 0.25; elevation <= 90.0; elevation += 0.25) {
-        const glm::dvec3 e = clearSkySunIrradianceRgb(elevation);
-        for (int c = 0; c < 3; ++c) EXPECT_GT(e[c], previous[c]) << "elevation " << elevation << " channel " << c;
-        previous = e;
-    }
-    for (double below : {0.0, -0.5, -10.0, -90.0}) EXPECT_EQ(clearSkySunIrradianceRgb(below), glm::dvec3(0.0));
-    const glm::dvec3 low = clearSkySunIrradianceRgb(5.0);
-    EXPECT_GT(low.x, low.y);  // redder at a low sun
-    EXPECT_GT(low.y, low.z);
-    EXPECT_LT(clearSkySunIrradianceRgb(40.0, 6.0).y, clearSkySunIrradianceRgb(40.0, 3.0).y);  // hazier: dimmer
-    EXPECT_THROW(clearSkySunIrradianceRgb(std::nan(""), 3.0), std::invalid_argument);
-    EXPECT_THROW(clearSkySunIrradianceRgb(30.0, 0.0), std::invalid_argument);
-}
-
-TEST(ClearSkySun, ElevationScaleCarriesBetweenElevations) {
-    EXPECT_NEAR(sunElevationScale(37.0, 37.0), 1.0, 1e-12);
-    EXPECT_GT(sunElevationScale(20.0, 60.0), 1.0);
-    EXPECT_NEAR(sunElevationScale(20.0, 60.0) * sunElevationScale(60.0, 45.0), sunElevationScale(20.0, 45.0), 1e-12);
-    EXPECT_EQ(sunElevationScale(30.0, -2.0), 0.0);
-    EXPECT_EQ(sunElevationScale(-2.0, 30.0), 0.0);
-    const glm::dvec3 rgb = sunElevationScaleRgb(60.0, 10.0);
-    EXPECT_GT(rgb.x, rgb.z);  // towards a lower sun, blue drops more than red
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/image.h"
+#include "gusuku/sun_irradiance.h"
 
 namespace gusuku::bake {
 
@@ -21,7 +22,7 @@ double diffuseHorizontalLuminance(const ImageRGBA& sky) {
         const double solid_angle = equirectTexelSolidAngle(y, sky.width, sky.height);
         for (int x = 0; x < sky.width; ++x) {
             const float* texel = sky.texel(x, y);
-            irradiance += luminanceRec709({texel[0], texel[1], texel[2]}) * solid_angle * cos_zenith;
+            irradiance += luminanceRec709(glm::vec3(texel[0], texel[1], texel[2])) * solid_angle * cos_zenith;
         }
     }
     return irradiance;
@@ -70,7 +71,7 @@ SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const Prepa
     const double photo_elevation = disc.found ? std::asin(std::clamp(disc.direction_enu.z, -1.0, 1.0)) * kDegrees
                                               : -90.0;
     if (disc.found && !disc.clipped && photo_elevation > 0.5) {
-        lighting.sun.irradiance_rgb = disc.irradiance_rgb * sunElevationScaleRgb(photo_elevation, elevation);
+        lighting.sun.irradiance_rgb = carrySunIrradianceRgb(disc.irradiance_rgb, photo_elevation, elevation);
         lighting.sun_irradiance_source = "sky map sun disc (measured at " + std::to_string(photo_elevation) +
                                          " deg elevation, carried by the clear-sky model)";
     } else {

@@ -1,10 +1,10 @@
 #pragma once
 // Sky light for the bake (DESIGN.md 3): the baked E_ind sees the 360 sky photo WITH ITS SUN DISC REMOVED, and the
 // direct sun is added in real time with an irradiance E_sun measured from the removed disc (HDR maps) or taken
-// from a clear-sky model of the sun's elevation (clipped or sunless maps). This header holds the three CPU parts:
+// from a clear-sky model of the sun's elevation (clipped or sunless maps). This header holds two CPU parts:
 //   - sun disc extraction            (sun_disc.cpp)
-//   - clear-sky direct sun model     (clear_sky_sun.cpp)
 //   - sky importance-sampling tables (sky_importance.cpp), and their CPU twins of shaders/include/sky_sampling.glsl
+// The clear-sky sun model, shared with the runtime, is gusuku/sun_irradiance.h (engine/src/maths).
 // (the GPU probe of that GLSL lives with the tests: tests/support/sky_probe.h).
 //
 // Conventions: equirect maps as in gusuku/equirect.h (row 0 zenith, azimuth = 360 u - north_azimuth_in_image_deg),
@@ -76,35 +76,6 @@ struct SunDiscEstimate {
 /// (maps of 512 x 256 and less) is not found and stays in the map. Throws InputError when the map is empty or its texel vector has the wrong size.
 /// Cost: O(texels) for the peak search, plus O(texels in the band of rows around the sun).
 SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_image_deg);
-
-// ------------------------------------------------------------------------------------------------------------
-// Clear-sky direct sun (clear_sky_sun.cpp)
-// ------------------------------------------------------------------------------------------------------------
-
-/// Relative optical air mass, Kasten and Young (1989): m = 1 / (sin h + 0.50572 (h + 6.07995)^-1.6364), h the
-/// (refraction-corrected, i.e. apparent) sun elevation in degrees. m(90) = 0.9997 (about 1), m(30) = 1.9943.
-/// Elevation below 0 -> +infinity (no direct beam). Throws std::invalid_argument on NaN.
-double kastenYoungAirMass(double elevation_deg);
-
-/// Direct normal irradiance of a clear sky, W m^-2, per Rec.709 channel, at sea level.
-/// Broadband: ESRA beam model (Rigollier, Bauer and Wald 2000): B_n = I0 exp(-0.8662 T_L m dR(m)) with
-/// I0 = 1367 W m^-2, m Kasten-Young, dR the Rayleigh optical thickness of Kasten (1996) as fitted in ESRA:
-/// 1/dR = 6.6296 + 1.7513 m - 0.1202 m^2 + 0.0065 m^3 - 0.00013 m^4 (m <= 20), 10.4 + 0.718 m (m > 20).
-/// Colour: each channel's optical depth is tau_c = k_c tau with k_c = (lambda_c / 550 nm)^-2 (lambda 610, 550,
-/// 465 nm; exponent 2 between aerosol's ~1.3 and Rayleigh's 4), normalised so that the sun at the zenith is
-/// neutral: E_c = B_n(m) exp(-(k_c - 1)(tau(m) - tau(1))). So G is the broadband value, R rises and B falls
-/// as the sun gets lower (with T_L = 3: R/G 1.04, B/G 0.92 at 30 deg; R/G 1.25, B/G 0.62 at 5 deg; G at the
-/// zenith 998 W m^-2). Elevation <= 0 -> (0, 0, 0).
-/// Throws std::invalid_argument when elevation is NaN or linke_turbidity is not finite and > 0.
-glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity = 3.0);
-
-/// Luminance (Rec.709 Y) of the model at to_elevation_deg divided by that at from_elevation_deg: carries an
-/// E_sun measured at the photo's sun elevation to a slot's sun elevation. 0 when either elevation is <= 0
-/// (no direct beam to carry from or to).
-double sunElevationScale(double from_elevation_deg, double to_elevation_deg, double linke_turbidity = 3.0);
-
-/// The same per channel (carries the colour shift too); 0 per channel when either elevation is <= 0.
-glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_deg, double linke_turbidity = 3.0);
 
 // ------------------------------------------------------------------------------------------------------------
 // Sky importance sampling (sky_importance.cpp); GPU twin: shaders/include/sky_sampling.glsl

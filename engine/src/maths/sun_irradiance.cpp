@@ -1,14 +1,13 @@
-// Clear-sky direct sun: what E_sun is when the sky photo cannot say (clipped or sunless maps), and how a
-// measured E_sun changes between the photo's sun elevation and a slot's (DESIGN.md 3). The model is the
-// ESRA beam model (Rigollier, Bauer and Wald 2000, Solar Energy 68(1)), with Kasten and Young's (1989) air mass;
-// the per-channel reddening is ours and is documented in gusuku_bake/sky_light.h.
+// Clear-sky direct sun (gusuku/sun_irradiance.h): ESRA beam model with Kasten-Young air mass and a per-channel
+// reddening. The baker's E_sun for every slot goes through these lines, so a change here changes bake sets:
+// keep the arithmetic as it is unless the bake is meant to change.
+
+#include "gusuku/sun_irradiance.h"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "gusuku_bake/sky_light.h"
-
-namespace gusuku::bake {
+namespace gusuku {
 
 namespace {
 
@@ -37,8 +36,6 @@ void checkArguments(double elevation_deg, double linke_turbidity) {
         throw std::invalid_argument("clear-sky sun: linke_turbidity must be finite and > 0");
 }
 
-double luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
-
 }  // namespace
 
 double kastenYoungAirMass(double elevation_deg) {
@@ -65,12 +62,6 @@ glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity
     return irradiance;
 }
 
-double sunElevationScale(double from_elevation_deg, double to_elevation_deg, double linke_turbidity) {
-    const double from = luminance(clearSkySunIrradianceRgb(from_elevation_deg, linke_turbidity));
-    const double to = luminance(clearSkySunIrradianceRgb(to_elevation_deg, linke_turbidity));
-    return (from > 0.0 && to > 0.0) ? to / from : 0.0;
-}
-
 glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_deg, double linke_turbidity) {
     const glm::dvec3 from = clearSkySunIrradianceRgb(from_elevation_deg, linke_turbidity);
     const glm::dvec3 to = clearSkySunIrradianceRgb(to_elevation_deg, linke_turbidity);
@@ -79,4 +70,9 @@ glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_d
     return scale;
 }
 
-}  // namespace gusuku::bake
+glm::dvec3 carrySunIrradianceRgb(const glm::dvec3& irradiance_rgb, double from_elevation_deg, double to_elevation_deg,
+                                 double linke_turbidity) {
+    return irradiance_rgb * sunElevationScaleRgb(from_elevation_deg, to_elevation_deg, linke_turbidity);
+}
+
+}  // namespace gusuku
