@@ -26,21 +26,16 @@ GroundRegion chooseGroundRegion(const Bounds3& building_bounds, double lowest_su
     return region;
 }
 
-glm::dvec2 groundCellCentre(const GroundRegion& region, int column, int row) {
-    return {region.origin_enu_m.x + (column + 0.5) * region.cell_m,
-            region.origin_enu_m.y + (region.rows - row - 0.5) * region.cell_m};
-}
-
 std::vector<GroundCell> sampleGround(const GroundRegion& region, const Bvh& bvh, const TriangleMesh& mesh,
                                      uint32_t skip_flags, float top_z) {
-    std::vector<GroundCell> cells(size_t(region.columns) * size_t(region.rows));
+    std::vector<GroundCell> cells(region.cellCount());
     const glm::vec3 down(0.0f, 0.0f, -1.0f);
     for (int row = 0; row < region.rows; ++row)
         for (int column = 0; column < region.columns; ++column) {
             const glm::dvec2 centre = groundCellCentre(region, column, row);
             const glm::vec3 origin(float(centre.x), float(centre.y), top_z);
             const auto hit = traceClosestCpu(bvh, origin, down, 1e30f, skip_flags);
-            GroundCell& cell = cells[size_t(row) * size_t(region.columns) + size_t(column)];
+            GroundCell& cell = cells[groundCellIndex(region, {column, row})];
             if (!hit) continue;
             const uint32_t t = hit->triangle_index;
             const glm::vec3 p0 = mesh.positions[mesh.indices[3 * t]];

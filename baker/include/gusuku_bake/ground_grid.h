@@ -4,9 +4,8 @@
 // height and normal (from the SfM mesh) and, per slot, the ground's sky-and-bounce irradiance with and without
 // the building. The runtime turns those into the shadow-catcher ratio.
 //
-// Image convention: column 0 at the west edge (min x), row 0 at the NORTH edge (max y), so the EXR reads as a
-// map with north up. Cell (col, row) has its centre at
-//   x = origin_x + (col + 0.5) * cell_m,   y = origin_y + (rows - row - 0.5) * cell_m.
+// The grid's addressing (cell <-> ENU position, image order) is shared with the runtime and lives in
+// gusuku/ground_grid.h (column 0 west, row 0 NORTH); this header chooses the region and samples the ground.
 
 #include <cstdint>
 #include <vector>
@@ -14,17 +13,14 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "gusuku/ground_grid.h"
 #include "gusuku/mesh.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {
 
-struct GroundRegion {
-    glm::dvec2 origin_enu_m{0.0};  ///< south-west corner
-    double cell_m = 0.25;
-    int columns = 0;
-    int rows = 0;
-};
+/// The baker's ground region is the bake set's ground grid (origin, cell size, columns, rows).
+using GroundRegion = gusuku::GroundGrid;
 
 /// The region: the building's footprint grown by shadow_reach = height / tan(max(lowest_sun_elevation, 10 deg))
 /// (the 10 degree floor keeps a low winter sun from asking for an unbounded grid) plus a bounce margin of half
@@ -44,7 +40,10 @@ struct GroundCell {
 std::vector<GroundCell> sampleGround(const GroundRegion& region, const Bvh& bvh, const TriangleMesh& mesh,
                                      uint32_t skip_flags, float top_z);
 
-glm::dvec2 groundCellCentre(const GroundRegion& region, int column, int row);
+/// ENU (x, y) of cell (column, row)'s centre: gusuku::groundCellCentreEnu.
+inline glm::dvec2 groundCellCentre(const GroundRegion& region, int column, int row) {
+    return groundCellCentreEnu(region, {column, row});
+}
 
 /// A flat square at z = 0 (albedo 0.2) covering `half_size_m` around the origin: the ground stand-in when a
 /// site has no SfM mesh. Two triangles, facing up.
