@@ -274,10 +274,8 @@ struct Chart {
     glm::dvec2 min{0.0}, max{0.0};                    // of the flattened vertices, metres
 };
 
-}  // namespace
-
-LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
-                                      int padding_texels) {
+// Phase 1: refuse what cannot be charted, naming the field.
+void validateChartInputs(const TriangleMesh& mesh, double texels_per_metre, int resolution, int padding_texels) {
     if (mesh.triangleCount() == 0) throw InputError("lightmap", "mesh", "has no triangles to chart");
     if (!(texels_per_metre > 0.0) || !std::isfinite(texels_per_metre))
         throw InputError("lightmap", "texels_per_metre",
@@ -289,12 +287,24 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
     for (uint32_t index : mesh.indices)
         if (index >= mesh.positions.size())
             throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
-
-    // Scale of the scene, for tolerances that do not depend on its units or placement.
-    glm::dvec3 low(INFINITY), high(-INFINITY);
-    for (const glm::vec3& position : mesh.positions) {
+    for (const glm::vec3& position : mesh.positions)
         if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
             throw InputError("lightmap", "mesh positions", "a position is not finite");
+}
+
+// What chart growing needs to know of the mesh: per-triangle welded corners, normals and areas, who may join
+// whom across an edge, and tolerances scaled to the scene (not to its units or its distance from the origin).
+struct MeshAnalysis {
+    std::vector<TriangleInfo> triangles;
+    EdgeNeighbours adjacency;
+    double typical_edge = 0.0;       // median first-edge length, metres: the overlap grid's cell scale
+    double overlap_tolerance = 0.0;  // overlaps thinner than this (metres) are touching
+};
+
+// Phase 2: weld, measure and connect the triangles.
+MeshAnalysis analyseMesh(const TriangleMesh& mesh, double texels_per_metre) {
+    glm::dvec3 low(INFINITY), high(-INFINITY);
+    for (const glm::vec3& position : mesh.positions) {
         low = glm::min(low, glm::dvec3(position));
         high = glm::max(high, glm::dvec3(position));
     }
@@ -302,12 +312,13 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
     const double magnitude = std::max(glm::length(high), glm::length(low));
     const std::vector<uint32_t> welded = weldPositions(mesh.positions, kWeldToleranceOfDiagonal * diagonal);
 
+    MeshAnalysis analysis;
     const size_t triangle_count = mesh.triangleCount();
-    std::vector<TriangleInfo> triangles(triangle_count);
+    analysis.triangles.resize(triangle_count);
     std::vector<double> edge_lengths;
     edge_lengths.reserve(triangle_count);
     for (size_t triangle = 0; triangle < triangle_count; ++triangle) {
-        TriangleInfo& info = triangles[triangle];
+        TriangleInfo& info = analysis.triangles[triangle];
         glm::dvec3 corner[3];
         for (int i = 0; i < 3; ++i) {
             info.welded[i] = welded[mesh.indices[triangle * 3 + i]];
@@ -323,18 +334,26 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
             edge_lengths.push_back(glm::length(corner[1] - corner[0]));
         }
     }
-    const EdgeNeighbours adjacency = findChartableNeighbours(triangles);
+    analysis.adjacency = findChartableNeighbours(analysis.triangles);
 
-    double typical_edge = diagonal * 1e-3;
+    analysis.typical_edge = diagonal * 1e-3;
     if (!edge_lengths.empty()) {
         std::nth_element(edge_lengths.begin(), edge_lengths.begin() + edge_lengths.size() / 2, edge_lengths.end());
-        typical_edge = std::max(edge_lengths[edge_lengths.size() / 2], diagonal * 1e-6);
+        analysis.typical_edge = std::max(edge_lengths[edge_lengths.size() / 2], diagonal * 1e-6);
     }
     // Overlaps thinner than a ten-thousandth of a texel, or than float noise at this distance from the origin,
     // are touching, not overlapping.
-    const double overlap_tolerance = std::max(1e-4 / texels_per_metre, 4e-7 * magnitude);
+    analysis.overlap_tolerance = std::max(1e-4 / texels_per_metre, 4e-7 * magnitude);
+    return analysis;
+}
 
-    // Grow charts from the largest triangles first, so big flat walls seed big charts.
+// Phase 3: grow charts from the largest triangles first, so big flat walls seed big charts. A neighbour joins
+// when its normal is within kMaxNormalDeviationDeg of the seed's and its flattened shape overlaps nothing in
+// the chart. chart_of[triangle] is set for every non-degenerate triangle.
+std::vector<Chart> growCharts(const TriangleMesh& mesh, const MeshAnalysis& analysis,
+                              std::vector<int64_t>& chart_of) {
+    const std::vector<TriangleInfo>& triangles = analysis.triangles;
+    const size_t triangle_count = triangles.size();
     std::vector<uint32_t> seed_order(triangle_count);
     std::iota(seed_order.begin(), seed_order.end(), 0u);
     std::stable_sort(seed_order.begin(), seed_order.end(), [&](uint32_t a, uint32_t b) {
@@ -342,7 +361,7 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
         return triangles[a].area > triangles[b].area;
     });
     const double min_normal_dot = std::cos(kMaxNormalDeviationDeg * std::numbers::pi / 180.0);
-    std::vector<int64_t> chart_of(triangle_count, -1);
+    chart_of.assign(triangle_count, -1);
     std::vector<int64_t> rejected_by_chart(triangle_count, -1);
     std::vector<Chart> charts;
     for (uint32_t seed : seed_order) {
@@ -364,7 +383,7 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
             }
             return flat;
         };
-        FlatChartIndex index(4.0 * typical_edge, overlap_tolerance);
+        FlatChartIndex index(4.0 * analysis.typical_edge, analysis.overlap_tolerance);
         std::deque<uint32_t> frontier{seed};
         chart_of[seed] = chart_index;
         index.add(flatten(seed));
@@ -373,6 +392,7 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
             frontier.pop_front();
             chart.triangles.push_back(triangle);
             const size_t first_slot = size_t(triangle) * 3;
+            const EdgeNeighbours& adjacency = analysis.adjacency;
             for (uint32_t at = adjacency.offsets[first_slot]; at < adjacency.offsets[first_slot + 3]; ++at) {
                 const uint32_t next = adjacency.neighbours[at];
                 if (chart_of[next] >= 0 || rejected_by_chart[next] == chart_index) continue;
@@ -390,9 +410,14 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
         }
         charts.push_back(std::move(chart));
     }
+    return charts;
+}
 
-    // Degenerate triangles cover no area, so they cannot overlap anything: each joins the chart of a triangle
-    // it shares a welded vertex with (its uv1 then lies in that chart's rectangle), or is a chart of its own.
+// Phase 4: degenerate triangles cover no area, so they cannot overlap anything: each joins the chart of a
+// triangle it shares a welded vertex with (its uv1 then lies in that chart's rectangle), or is a chart of its own.
+void attachDegenerateTriangles(const std::vector<TriangleInfo>& triangles, std::vector<int64_t>& chart_of,
+                               std::vector<Chart>& charts) {
+    const size_t triangle_count = triangles.size();
     std::unordered_map<uint32_t, int64_t> chart_at_welded_vertex;
     for (size_t triangle = 0; triangle < triangle_count; ++triangle)
         if (chart_of[triangle] >= 0)
@@ -413,8 +438,11 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
         }
         charts[size_t(chart_of[triangle])].triangles.push_back(uint32_t(triangle));
     }
+}
 
-    // Turn each chart in its plane to the smallest bounding rectangle (fewer wasted texels).
+// Phase 5: turn each chart in its plane to its smallest bounding rectangle (fewer wasted texels). Sets each
+// chart's basis and min/max; returns the rectangles' extents in metres.
+std::vector<glm::dvec2> fitChartRectangles(const TriangleMesh& mesh, std::vector<Chart>& charts) {
     std::vector<glm::dvec2> extents(charts.size());
     std::vector<glm::dvec3> chart_points;
     for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
@@ -447,15 +475,19 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
         chart.bitangent = best_bitangent;
         extents[chart_index] = chart.max - chart.min;
     }
+    return extents;
+}
 
-    const detail::ChartPacking packing =
-        detail::packChartRectangles(extents, texels_per_metre, resolution, padding_texels);
+// Phase 6: the output mesh. Vertices are split per chart (a vertex on a chart border gets one copy per chart),
+// and each copy's uv1 is its flattened position at the packed density, placed in its chart's rectangle.
+LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Chart>& charts,
+                                const std::vector<glm::dvec2>& extents, const detail::ChartPacking& packing,
+                                int resolution) {
     const double scale = packing.texels_per_metre;
-
     LightmapCharts result;
     result.texels_per_metre = scale;
     result.chart_count = charts.size();
-    result.triangle_chart.resize(triangle_count);
+    result.triangle_chart.resize(mesh.triangleCount());
     TriangleMesh& out = result.mesh;
     out.materials = mesh.materials;
     out.textures = mesh.textures;
@@ -500,6 +532,21 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
         }
     }
     return result;
+}
+
+}  // namespace
+
+LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
+                                      int padding_texels) {
+    validateChartInputs(mesh, texels_per_metre, resolution, padding_texels);
+    const MeshAnalysis analysis = analyseMesh(mesh, texels_per_metre);
+    std::vector<int64_t> chart_of;
+    std::vector<Chart> charts = growCharts(mesh, analysis, chart_of);
+    attachDegenerateTriangles(analysis.triangles, chart_of, charts);
+    const std::vector<glm::dvec2> extents = fitChartRectangles(mesh, charts);
+    const detail::ChartPacking packing =
+        detail::packChartRectangles(extents, texels_per_metre, resolution, padding_texels);
+    return writeChartedMesh(mesh, charts, extents, packing, resolution);
 }
 
 }  // namespace gusuku::bake
