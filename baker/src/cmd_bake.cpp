@@ -91,13 +91,14 @@ int runBakeCommand(const std::vector<std::string>& args) {
         return 2;
     }
 
+    // From the start: a Ctrl-C during setup (device, skies, BVH) stops the bake before its first sample.
+    std::signal(SIGINT, requestStop);
+    std::signal(SIGTERM, requestStop);
+    options.should_stop = [] { return g_stop_requested != 0; };
     const SiteConfig site = loadSiteConfig(site_path);
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 
-    std::signal(SIGINT, requestStop);
-    std::signal(SIGTERM, requestStop);
-    options.should_stop = [] { return g_stop_requested != 0; };
     const bake::BakeReport report = bake::runBake(context, site, options);
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);

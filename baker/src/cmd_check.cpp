@@ -1,6 +1,7 @@
 // gusuku-bake check site.json: validates the site file and loads everything it names (meshes, skies), so a
 // bad input is found in seconds rather than an hour into a bake. Prints what a bake would use.
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -12,6 +13,10 @@
 #include "gusuku/mesh.h"
 #include "gusuku/site.h"
 #include "gusuku/time_utc.h"
+#include "gusuku/vulkan_context.h"
+#include "gusuku_bake/bake_geometry.h"
+#include "gusuku_bake/bake_preflight.h"
+#include "gusuku_bake/slot_lighting.h"
 
 namespace gusuku::bake_cli {
 
@@ -123,6 +128,35 @@ int checkSite(const std::string& site_path) {
 
     checkSky("sunny", config.sunny_sky, warnings);
     if (config.overcast_sky) checkSky("overcast", *config.overcast_sky, warnings);
+
+    // What the bake itself would refuse or warn about before tracing, by the bake's own preflight code.
+    const std::vector<bake::SlotSun> suns = bake::slotSunPositions(config);
+    for (const std::string& message : bake::sunsBelowHorizon(suns)) warnings.push_back(message);
+    bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns), 512);
+    bake::refuseBuildingWithoutTexels(config, geometry);
+    std::printf("lightmap: %zu texels at %d^2; ground grid: %d x %d cells of %.3g m\n", geometry.texels.size(),
+                geometry.lightmap_resolution, geometry.ground_region.columns, geometry.ground_region.rows,
+                geometry.ground_region.cell_m);
+    if (const std::string reason = bake::emptyGroundReason(config, geometry); !reason.empty())
+        warnings.push_back(reason);
+    const bake::PreparedSky sunny = bake::prepareSky(config.sunny_sky);
+    std::optional<bake::PreparedSky> overcast;
+    if (config.overcast_sky) overcast = bake::prepareSky(*config.overcast_sky);
+    std::vector<std::pair<std::string, const bake::SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
+    if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
+    uint64_t device_limit = uint64_t(1) << 27;  // Vulkan's guaranteed minimum of maxStorageBufferRange
+    std::string device = "no Vulkan device; Vulkan's guaranteed minimum";
+    try {
+        VulkanContext context(vulkanOptionsFromEnvironment());
+        device_limit = context.properties().limits.maxStorageBufferRange;
+        device = context.deviceDescription();
+    } catch (const std::exception&) {
+    }
+    device_limit = bake::storageBufferLimitBytes(device_limit);
+    std::printf("device: %s, storage buffers up to %.1f MiB\n", device.c_str(), double(device_limit) / (1 << 20));
+    const std::vector<InputError> too_large =
+        bake::deviceLimitProblems(config, bake::bakeDeviceBuffers(config, geometry, skies, 512), device_limit);
+    if (!too_large.empty()) throw too_large.front();
 
     std::printf("warnings: %zu\n", warnings.size());
     for (const std::string& warning : warnings) std::printf("  %s\n", warning.c_str());

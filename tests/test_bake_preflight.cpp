@@ -1,0 +1,172 @@
+// What a bake refuses or reports before tracing (issue 7, part A.1 and A.4), by the command line as a user
+// runs it, each with a time limit so a hang fails instead of hanging: a ground grid with no ground under it
+// (the SfM mesh far away, a cell larger than the site) bakes at once with empty ground terms; a building with
+// no surface to bake, and buffers over the device's storage-buffer limit, are refused naming the site.json
+// field; `check` says the same.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bake_process.h"
+#include "gpu_test_support.h"
+#include "gusuku/gltf_loader.h"
+#include "gusuku/image.h"
+#include "gusuku_bake/ground_grid.h"
+#include "mini_site.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using gusuku::testing::readTextFile;
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+struct BakeRun {
+    int exit_code = 0;
+    std::string out, err;
+};
+
+BakeRun runBake(const std::string& dir, const std::vector<std::string>& args, double timeout_seconds = 60.0) {
+    const pid_t pid = gusuku::testing::spawnBakeProcess(args, dir + "/run.out", dir + "/run.err");
+    BakeRun run;
+    run.exit_code = gusuku::testing::waitBakeProcess(pid, timeout_seconds);
+    run.out = readTextFile(dir + "/run.out");
+    run.err = readTextFile(dir + "/run.err");
+    return run;
+}
+
+// The mini site with an SfM mesh: a flat square of half-size `ground_half_m` whose centre is at ENU
+// `ground_offset_m` (metres east), and ground cells of `cell_m`.
+std::string writeSiteWithSfmGround(const std::string& dir, double ground_half_m, double ground_offset_m,
+                                   double cell_m) {
+    gusuku::testing::writeMiniSite(dir);
+    gusuku::writeGlb(dir + "/ground.glb", gusuku::bake::makeFlatGround(ground_half_m), glm::dmat4(1.0));
+    nlohmann::json site = nlohmann::json::parse(readTextFile(dir + "/site.json"));
+    site["sfm_mesh"] = {{"path", "ground.glb"},
+                        {"scale", 1},
+                        {"rotation_wxyz", {1, 0, 0, 0}},
+                        {"translation_enu_m", {ground_offset_m, 0, 0}}};
+    site["bake"]["ground_cell_m"] = cell_m;
+    site["bake"]["samples_per_texel"] = 2;
+    std::ofstream(dir + "/site.json") << site.dump(2);
+    return dir + "/site.json";
+}
+
+void expectGroundTermsEmpty(const std::string& bakeset) {
+    int images = 0;
+    for (const auto& entry : fs::directory_iterator(bakeset)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("ground_", 0) != 0 || name == "ground_geometry.exr") continue;
+        const gusuku::ImageRGBA image = gusuku::readImage(entry.path().string());
+        for (size_t i = 3; i < image.texels.size(); i += 4) ASSERT_EQ(image.texels[i], 0.0f) << name;
+        ++images;
+    }
+    EXPECT_EQ(images, 4) << "two slots, with and without the building";
+}
+
+TEST(BakePreflight, NoGroundCellUnderTheBuildingBakesAtOnceWithEmptyGroundTerms) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-far-ground");
+    const std::string site = writeSiteWithSfmGround(dir, 5.0, 1000.0, 0.5);  // the SfM ground 1 km east
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    ASSERT_NE(bake.exit_code, gusuku::testing::kTimedOut) << "the bake of an empty ground set hung";
+    ASSERT_EQ(bake.exit_code, 0) << bake.err;
+    EXPECT_TRUE(contains(bake.err, "ground terms will be empty")) << bake.err;
+    EXPECT_TRUE(contains(bake.out, "ground:          0 cells")) << bake.out;
+    expectGroundTermsEmpty(dir + "/out");
+
+    const BakeRun check = runBake(dir, {"check", site});
+    EXPECT_EQ(check.exit_code, 0) << check.err;
+    EXPECT_TRUE(contains(check.out, "lies over the SfM mesh")) << check.out;
+    EXPECT_TRUE(contains(check.out, "ground terms will be empty")) << check.out;
+}
+
+TEST(BakePreflight, GroundCellLargerThanTheSiteBakesAtOnce) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-big-cell");
+    // A 4 m ground under the 2 m house, cells of 100 m: the one cell's centre lies tens of metres off it.
+    const std::string site = writeSiteWithSfmGround(dir, 2.0, 0.0, 100.0);
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    ASSERT_NE(bake.exit_code, gusuku::testing::kTimedOut) << "the bake of an empty ground set hung";
+    ASSERT_EQ(bake.exit_code, 0) << bake.err;
+    EXPECT_TRUE(contains(bake.err, "1 x 1 ground grid (cell 100 m")) << bake.err;
+    expectGroundTermsEmpty(dir + "/out");
+}
+
+void expectRefusedBeforeWriting(const BakeRun& run, const std::string& out_dir, const std::string& message) {
+    EXPECT_EQ(run.exit_code, 1) << run.err;
+    EXPECT_TRUE(contains(run.err, message)) << run.err;
+    if (fs::exists(out_dir))
+        for (const auto& entry : fs::directory_iterator(out_dir))
+            EXPECT_EQ(entry.path().filename(), ".lock") << "written before the refusal: " << entry.path();
+}
+
+TEST(BakePreflight, BuildingOfDegenerateTrianglesIsRefusedByBakeAndCheck) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-flat-building");
+    const std::string site = gusuku::testing::writeMiniSite(dir);
+    gusuku::TriangleMesh flat = gusuku::bake::makeFlatGround(1.0);
+    for (glm::vec3& position : flat.positions) position.y = 0.0f;  // every triangle collapses onto a line
+    gusuku::writeGlb(dir + "/building.glb", flat, glm::inverse(gusuku::enuFromGltfYUp()));
+    const std::string message = "site.json: /building/path: ";
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    expectRefusedBeforeWriting(bake, dir + "/out", message);
+    EXPECT_TRUE(contains(bake.err, "has no surface to bake")) << bake.err;
+    const BakeRun check = runBake(dir, {"check", site});
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_TRUE(contains(check.err, message + dir + "/building.glb has no surface to bake")) << check.err;
+}
+
+TEST(BakePreflight, BuildingSoFarAwayThatFloatsCollapseItIsRefused) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-antipode");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    nlohmann::json site = nlohmann::json::parse(readTextFile(site_path));
+    // A quarter of the way round the Earth: thousands of km east and down of the reference, where a float's
+    // step is about 0.5 m on every axis, while the house, scaled down to 10 cm, is smaller than that.
+    site["building"].erase("enu_offset_m");
+    site["building"]["position"] = {{"latitude_deg", 26.2856}, {"longitude_deg", -142.1992}, {"height_m", 0}};
+    site["building"]["scale"] = 0.05;
+    std::ofstream(site_path) << site.dump(2);
+    const BakeRun bake = runBake(dir, {"bake", site_path, "-o", dir + "/out", "--quiet"});
+    ASSERT_NE(bake.exit_code, gusuku::testing::kTimedOut);
+    expectRefusedBeforeWriting(bake, dir + "/out", "site.json: /building/path: ");
+}
+
+TEST(BakePreflight, BuffersOverTheDeviceLimitAreRefusedNamingTheField) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-limits");
+    gusuku::testing::MiniSiteOptions options;
+    options.texels_per_metre = 40.0;  // about 38k texels: 1.2 MB of query points
+    const std::string site = gusuku::testing::writeMiniSite(dir, options);
+    // The mini site's sunny sky (128 x 64) needs 128 KiB of radiance; allow 512 KiB per buffer.
+    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "524288", 1);
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    const BakeRun check = runBake(dir, {"check", site});
+    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "65536", 1);  // now the sky is over it too, and named first
+    const BakeRun sky_bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    unsetenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES");
+
+    const std::string texels = "site.json: /bake/texels_per_metre: building query points (";
+    expectRefusedBeforeWriting(bake, dir + "/out", texels);
+    EXPECT_TRUE(contains(bake.err, "over the device's maxStorageBufferRange of 0.5 MiB")) << bake.err;
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_TRUE(contains(check.err, texels)) << check.err;
+    expectRefusedBeforeWriting(sky_bake, dir + "/out", "site.json: /skies/sunny/path: sky radiance (128 x 64)");
+
+    const BakeRun fits = runBake(dir, {"check", site});  // the device's own limit: everything fits
+    EXPECT_EQ(fits.exit_code, 0) << fits.err;
+}
+
+TEST(BakePreflight, CheckReportsSunsBelowTheHorizon) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-night");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    nlohmann::json site = nlohmann::json::parse(readTextFile(site_path));
+    site["bake"]["slots"][0]["local_time"] = "23:00";
+    std::ofstream(site_path) << site.dump(2);
+    const BakeRun check = runBake(dir, {"check", site_path});
+    EXPECT_EQ(check.exit_code, 0) << check.err;
+    EXPECT_TRUE(contains(check.out, "slot noon: the sun is below the horizon (apparent elevation -")) << check.out;
+}
+
+}  // namespace
