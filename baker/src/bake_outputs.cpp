@@ -1,12 +1,12 @@
 #include "bake_outputs.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
 #include "gusuku/atomic_file.h"
+#include "gusuku/bakeset_manifest_json.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
 #include "gusuku/time_utc.h"
@@ -18,8 +18,6 @@
 namespace gusuku::bake {
 
 namespace {
-
-nlohmann::json vec3Json(const glm::dvec3& value) { return {value.x, value.y, value.z}; }
 
 ImageRGBA imageFromTexels(const std::vector<glm::vec4>& texels, int width, int height) {
     ImageRGBA image;
@@ -106,93 +104,60 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
     writeGroundImage(without_file, ground_without_sums);
 
     const LabStatistics statistics = bakedAppearanceStatistics(geometry_, lightmap.per_texel, lighting.sun);
-    nlohmann::json sun = {{"present", lighting.sun.present},
-                          {"irradiance_source", lighting.sun_irradiance_source}};
+    BakeSetSlot entry;
+    entry.name = name;
+    entry.sky = lighting.slot.sky == SlotSky::Sunny ? BakeSetSky::Sunny : BakeSetSky::Overcast;
+    entry.sky_map = lighting.sky->path;
+    entry.sky_sampling_method = skySamplingName(resolveSkySampling(SkySampling::Automatic, lighting.sky->tables));
+    entry.cosine_relative_variance = lighting.sky->tables.cosine_relative_variance;
+    entry.sun.present = lighting.sun.present;
+    entry.sun.irradiance_source = lighting.sun_irradiance_source;
     if (lighting.slot.sky == SlotSky::Sunny) {
-        sun["azimuth_deg"] = lighting.sun_position.azimuth_deg;
-        sun["apparent_elevation_deg"] = lighting.sun_position.apparent_elevation_deg;
-        sun["direction_enu"] = vec3Json(lighting.sun_position.direction_enu);
+        entry.local_time = lighting.slot.local_time;
+        entry.utc = formatIso8601(lighting.slot.utc_seconds, 0);
+        entry.sun.position = BakeSetSunPosition{lighting.sun_position.azimuth_deg,
+                                                lighting.sun_position.apparent_elevation_deg,
+                                                lighting.sun_position.direction_enu};
     }
     if (lighting.sun.present) {
-        sun["irradiance_rgb"] = vec3Json(lighting.sun.irradiance_rgb);
-        sun["angular_radius_deg"] = lighting.sun.angular_radius_deg;
+        entry.sun.irradiance_rgb = lighting.sun.irradiance_rgb;
+        entry.sun.angular_radius_deg = lighting.sun.angular_radius_deg;
     }
-    nlohmann::json entry = {
-        {"name", name},
-        {"sky", lighting.slot.sky == SlotSky::Sunny ? "sunny" : "overcast"},
-        {"sky_map", lighting.sky->path},
-        {"sky_sampling",
-         {{"method", skySamplingName(resolveSkySampling(SkySampling::Automatic, lighting.sky->tables))},
-          {"cosine_relative_variance", lighting.sky->tables.cosine_relative_variance}}},
-        {"sun", sun},
-        {"building_irradiance", building_file},
-        {"ground_irradiance_with_building", with_file},
-        {"ground_irradiance_without_building", without_file},
-        {"invalid_texels", lightmap.invalid_texels},
-        {"colour_statistics", {{"space", "CIE Lab (D65) of linear radiance rho/pi*(E_ind + V E_sun cos)"},
-                               {"lab_mean", {statistics.mean.x, statistics.mean.y, statistics.mean.z}},
-                               {"lab_sigma", {statistics.sigma.x, statistics.sigma.y, statistics.sigma.z}},
-                               {"texels", statistics.texel_count}}},
-    };
-    if (lighting.slot.sky == SlotSky::Sunny) {
-        entry["local_time"] = lighting.slot.local_time;
-        entry["utc"] = formatIso8601(lighting.slot.utc_seconds, 0);
-    }
-    slot_entries_.push_back(entry);
+    entry.building_irradiance = building_file;
+    entry.ground_irradiance_with_building = with_file;
+    entry.ground_irradiance_without_building = without_file;
+    entry.invalid_texels = lightmap.invalid_texels;
+    entry.colour_statistics =
+        BakeSetColourStatistics{glm::dvec3(statistics.mean), glm::dvec3(statistics.sigma), statistics.texel_count};
+    slots_.push_back(entry);
 }
 
 void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report) {
-    char hash_text[17];
-    std::snprintf(hash_text, sizeof hash_text, "%016llx", static_cast<unsigned long long>(input_hash));
-    nlohmann::json inputs = nlohmann::json::array();
+    BakeSetManifest manifest;
+    manifest.input_hash = input_hash;
     const auto addInput = [&](const std::string& role, const std::string& path) {
-        inputs.push_back({{"role", role}, {"path", path}, {"fnv1a64", hashFileHex(path)}});
+        manifest.inputs.push_back({role, path, hashFileHex(path)});
     };
     addInput("site", site.file);
     addInput("building", site.building.path);
     if (site.sfm_mesh) addInput("sfm_mesh", site.sfm_mesh->path);
     addInput("sunny_sky", site.sunny_sky.path);
     if (site.overcast_sky) addInput("overcast_sky", site.overcast_sky->path);
-    const GroundRegion& region = geometry_.ground_region;
-    const nlohmann::json manifest = {
-        {"format", kBakeSetFormat},
-        {"input_hash", hash_text},
-        {"inputs", inputs},
-        {"site", {{"name", site.site.name},
-                  {"latitude_deg", site.site.reference.latitude_deg},
-                  {"longitude_deg", site.site.reference.longitude_deg},
-                  {"height_m", site.site.reference.height_m},
-                  {"utc_offset_minutes", site.site.utc_offset_minutes}}},
-        {"settings", {{"samples_per_texel", samples_},
-                      {"max_bounces", site.bake.max_bounces},
-                      {"seed", site.bake.seed},
-                      {"denoised", denoise_}}},
-        {"building", {{"mesh", "building.glb"},
-                      {"mesh_frame", "site ENU metres in glTF Y-up axes: glTF (x, y, z) = ENU (x, z, -y)"},
-                      {"lightmap_uv", "TEXCOORD_1"},
-                      {"lightmap_uv_source", geometry_.lightmap_uv_source},
-                      {"lightmap_resolution", geometry_.lightmap_resolution},
-                      {"texels_per_metre", geometry_.effective_texels_per_metre},
-                      {"texels", geometry_.texels.size()},
-                      {"irradiance_units", "the sky maps' linear radiance units times steradians"}}},
-        {"ground_grid", {{"geometry", "ground_geometry.exr"},
-                         {"geometry_channels", "RGB: unit normal (ENU), A: height (ENU z, metres)"},
-                         {"origin_enu_m", {region.origin_enu_m.x, region.origin_enu_m.y}},
-                         {"cell_m", region.cell_m},
-                         {"columns", region.columns},
-                         {"rows", region.rows},
-                         {"row_0", "north edge"},
-                         {"ground_source", geometry_.site_mesh_is_stand_in ? "flat plane at z = 0" : "sfm_mesh"},
-                         {"irradiance_alpha", "1 where the ground exists under the cell"}}},
-        {"slots", slot_entries_},
-        {"statistics", {{"rays_traced", report.rays_traced},
-                        {"trace_seconds", report.trace_seconds},
-                        {"rays_per_second", report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0},
-                        {"wall_seconds", report.wall_seconds}}},
-        {"warnings", report.warnings},
-    };
-    const std::string text = manifest.dump(2) + "\n";
-    writeBytesAtomically(output_dir_ + "/manifest.json", text.data(), text.size());
+    manifest.site = {site.site.name, site.site.reference.latitude_deg, site.site.reference.longitude_deg,
+                     site.site.reference.height_m, site.site.utc_offset_minutes};
+    manifest.settings = {samples_, site.bake.max_bounces, site.bake.seed, denoise_};
+    manifest.building.lightmap_uv_source = geometry_.lightmap_uv_source;
+    manifest.building.lightmap_resolution = geometry_.lightmap_resolution;
+    manifest.building.texels_per_metre = geometry_.effective_texels_per_metre;
+    manifest.building.texels = geometry_.texels.size();
+    manifest.ground_grid.grid = geometry_.ground_region;
+    manifest.ground_grid.ground_source = geometry_.site_mesh_is_stand_in ? "flat plane at z = 0" : "sfm_mesh";
+    manifest.slots = slots_;
+    manifest.statistics = {report.rays_traced, report.trace_seconds,
+                           report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0,
+                           report.wall_seconds};
+    manifest.warnings = report.warnings;
+    writeBakeSetManifest(output_dir_ + "/manifest.json", manifest);
 }
 
 }  // namespace gusuku::bake

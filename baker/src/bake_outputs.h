@@ -7,8 +7,7 @@
 #include <vector>
 
 #include <glm/vec4.hpp>
-#include <nlohmann/json.hpp>
-
+#include "gusuku/bakeset_manifest.h"
 #include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
@@ -46,7 +45,7 @@ private:
     const BakeGeometry& geometry_;
     uint32_t samples_;
     bool denoise_;
-    nlohmann::json slot_entries_ = nlohmann::json::array();
+    std::vector<BakeSetSlot> slots_;  ///< manifest entries of the slots written so far
 };
 
 }  // namespace gusuku::bake

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "gusuku/bakeset_manifest.h"
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
 
 namespace gusuku::bake {
 
-/// Version of the bake set layout written into manifest.json ("format").
-inline constexpr const char* kBakeSetFormat = "gusuku-bakeset/1";
+// The bake set layout's version, kBakeSetFormat, is gusuku/bakeset_manifest.h's (gusuku::kBakeSetFormat).
 
 struct BakeOptions {
     std::string output_dir;

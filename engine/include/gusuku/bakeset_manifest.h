@@ -1,0 +1,147 @@
+#pragma once
+// What a bake set's manifest.json says (docs/bakeset.md), as plain data: the baker fills it and writes it, the
+// runtime (or the app for it) reads it, and both see the same fields. This header needs only glm and the
+// standard library, so the runtime can hold a manifest without the I/O stack; reading and writing the JSON
+// lives in gusuku_assets (gusuku/bakeset_manifest_json.h).
+//
+// Frame and units, throughout: directions and positions in the site's east-north-up frame (metres), angles in
+// degrees, azimuth east of north, sun elevation APPARENT (refracted, as SunPosition gives it), irradiance per
+// linear Rec.709 channel in the sky maps' radiance units times steradians. File names are relative to the
+// bake set's folder.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/ground_grid.h"
+
+namespace gusuku {
+
+/// The layout version written as "format"; a reader refuses any other. Change it with any change a reader of
+/// the old layout would misread.
+inline constexpr const char* kBakeSetFormat = "gusuku-bakeset/1";
+
+/// One input file of the bake, with the FNV-1a 64 hash of its bytes (16 lower-case hex digits).
+struct BakeSetInput {
+    std::string role;     ///< "site", "building", "sfm_mesh", "sunny_sky", "overcast_sky"
+    std::string path;     ///< as site.json named it (resolved), not relative to the bake set
+    std::string fnv1a64;
+    bool operator==(const BakeSetInput&) const = default;
+};
+
+/// Where the site is (site.json's reference point) and its clock.
+struct BakeSetSite {
+    std::string name;
+    double latitude_deg = 0.0;   ///< geodetic, WGS84, north positive
+    double longitude_deg = 0.0;  ///< east positive
+    double height_m = 0.0;       ///< above the WGS84 ellipsoid
+    int utc_offset_minutes = 0;  ///< the site's clock, minutes east of UTC
+    bool operator==(const BakeSetSite&) const = default;
+};
+
+struct BakeSetSettings {
+    uint32_t samples_per_texel = 0;  ///< per lightmap texel and per ground cell
+    int max_bounces = 0;
+    uint32_t seed = 0;
+    bool denoised = false;           ///< the building lightmaps went through the edge-keeping filter
+    bool operator==(const BakeSetSettings&) const = default;
+};
+
+/// The building as baked. Fixed by the format (written, and checked by the reader): the mesh's frame is site
+/// ENU metres in glTF Y-up axes, glTF (x, y, z) = ENU (x, z, -y); the lightmap UVs are TEXCOORD_1.
+struct BakeSetBuilding {
+    std::string mesh = "building.glb";
+    std::string lightmap_uv_source;  ///< "TEXCOORD_1 from the glTF" or "generated charts (...)"
+    int lightmap_resolution = 0;     ///< lightmaps are lightmap_resolution^2 texels
+    double texels_per_metre = 0.0;   ///< the density the charts were laid out with
+    uint64_t texels = 0;             ///< lightmap texels that lie on the building
+    bool operator==(const BakeSetBuilding&) const = default;
+};
+
+/// The ground grid: its addressing is gusuku/ground_grid.h (column 0 west, row 0 north).
+struct BakeSetGroundGrid {
+    std::string geometry = "ground_geometry.exr";  ///< RGB: unit normal (ENU), A: height (ENU z, metres)
+    GroundGrid grid;
+    std::string ground_source;  ///< "sfm_mesh" or "flat plane at z = 0" (no SfM mesh in site.json)
+    bool operator==(const BakeSetGroundGrid&) const = default;
+};
+
+enum class BakeSetSky { Sunny, Overcast };
+
+/// Where the sun stood for a sunny slot (SPA at the slot's instant), above the horizon or not.
+struct BakeSetSunPosition {
+    double azimuth_deg = 0.0;             ///< east of north, [0, 360)
+    double apparent_elevation_deg = 0.0;  ///< refracted
+    glm::dvec3 direction_enu{0.0, 0.0, 1.0};  ///< unit, towards the sun: (cos e sin A, cos e cos A, sin e)
+    bool operator==(const BakeSetSunPosition&) const = default;
+};
+
+struct BakeSetSun {
+    /// True only for a sunny slot with the sun above the horizon; then irradiance_rgb and angular_radius_deg
+    /// hold, and the runtime adds the direct sun.
+    bool present = false;
+    /// Where E_sun came from: "sky map sun disc (measured at E deg elevation, carried by the clear-sky model)",
+    /// "clear-sky model (...)", "none: overcast", "none: sun below the horizon".
+    std::string irradiance_source;
+    std::optional<BakeSetSunPosition> position;  ///< sunny slots only
+    /// E_sun on a plane facing the sun, at position->apparent_elevation_deg; carry it to another elevation with
+    /// gusuku/sun_irradiance.h's carrySunIrradianceRgb.
+    glm::dvec3 irradiance_rgb{0.0};
+    double angular_radius_deg = 0.0;  ///< of the sun disc the tracer samples
+    bool operator==(const BakeSetSun&) const = default;
+};
+
+/// CIE Lab (D65) mean and standard deviation of the baked appearance rho/pi (E_ind + V E_sun cos) over the valid
+/// lightmap texels: the source side of the runtime's colour match (DESIGN.md 4).
+struct BakeSetColourStatistics {
+    glm::dvec3 lab_mean{0.0};
+    glm::dvec3 lab_sigma{0.0};
+    uint64_t texels = 0;
+    bool operator==(const BakeSetColourStatistics&) const = default;
+};
+
+struct BakeSetSlot {
+    std::string name;
+    BakeSetSky sky = BakeSetSky::Sunny;
+    std::string sky_map;     ///< the sky map's path, as site.json named it
+    std::string local_time;  ///< sunny slots: the slot's time on the site's clock (ISO 8601 with offset)
+    std::string utc;         ///< sunny slots: the same instant in UTC ("...Z")
+    BakeSetSun sun;
+    std::string sky_sampling_method;  ///< "cosine" or "cosine + map (MIS)"
+    double cosine_relative_variance = 0.0;  ///< the sky's measure that chose the method
+    std::string building_irradiance;                 ///< building_<slot>.exr
+    std::string ground_irradiance_with_building;     ///< ground_<slot>_with.exr
+    std::string ground_irradiance_without_building;  ///< ground_<slot>_without.exr
+    uint64_t invalid_texels = 0;  ///< texels inside geometry, filled by dilation
+    std::optional<BakeSetColourStatistics> colour_statistics;
+    bool operator==(const BakeSetSlot&) const = default;
+};
+
+/// This bake's own cost (differs between runs of the same inputs).
+struct BakeSetStatistics {
+    uint64_t rays_traced = 0;
+    double trace_seconds = 0.0;
+    double rays_per_second = 0.0;
+    double wall_seconds = 0.0;
+    bool operator==(const BakeSetStatistics&) const = default;
+};
+
+struct BakeSetManifest {
+    /// Hash of everything that changes the traced sums (inputs' bytes, settings, tracer code); a rerun with the
+    /// same hash has nothing to do. Written as 16 lower-case hex digits.
+    uint64_t input_hash = 0;
+    std::vector<BakeSetInput> inputs;
+    BakeSetSite site;
+    BakeSetSettings settings;
+    BakeSetBuilding building;
+    BakeSetGroundGrid ground_grid;
+    std::vector<BakeSetSlot> slots;
+    BakeSetStatistics statistics;
+    std::vector<std::string> warnings;
+    bool operator==(const BakeSetManifest&) const = default;
+};
+
+}  // namespace gusuku

@@ -1,0 +1,414 @@
+// manifest.json <-> BakeSetManifest (gusuku/bakeset_manifest_json.h). The writer's JSON is built member by
+// member with the value types the baker always wrote (unsigned counts, int sizes, doubles), so the bytes of a
+// bake set's manifest did not change when the baker moved onto this writer; the reader is strict (unknown
+// fields are errors), so what it accepts round-trips through the struct without loss.
+
+#include "gusuku/bakeset_manifest_json.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "gusuku/atomic_file.h"
+#include "gusuku/input_error.h"
+#include "site_json_reader.h"
+
+namespace gusuku {
+
+namespace {
+
+using nlohmann::json;
+using json_reader::NumberRange;
+using json_reader::ObjectReader;
+
+// The format's fixed texts: written into every manifest and required, word for word, by the reader (a
+// different text would mean a different convention, which needs a new format version).
+constexpr const char* kMeshFrame = "site ENU metres in glTF Y-up axes: glTF (x, y, z) = ENU (x, z, -y)";
+constexpr const char* kLightmapUv = "TEXCOORD_1";
+constexpr const char* kIrradianceUnits = "the sky maps' linear radiance units times steradians";
+constexpr const char* kGeometryChannels = "RGB: unit normal (ENU), A: height (ENU z, metres)";
+constexpr const char* kRow0 = "north edge";
+constexpr const char* kIrradianceAlpha = "1 where the ground exists under the cell";
+constexpr const char* kColourSpace = "CIE Lab (D65) of linear radiance rho/pi*(E_ind + V E_sun cos)";
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// ------------------------------------------------------------------------------------------------------------
+// Writing
+// ------------------------------------------------------------------------------------------------------------
+
+json vec3Json(const glm::dvec3& value) { return {value.x, value.y, value.z}; }
+
+std::string hex64(uint64_t value) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+    return text;
+}
+
+/// JSON has no NaN or infinity (nlohmann would write null, which no reader accepts as a number).
+void requireFiniteNumbers(const json& value, const std::string& pointer) {
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+        throw std::invalid_argument("bake set manifest: " + pointer + " is not finite");
+    if (value.is_object())
+        for (const auto& member : value.items())
+            requireFiniteNumbers(member.value(), pointer + "/" + json_reader::escapePointerToken(member.key()));
+    if (value.is_array())
+        for (size_t i = 0; i < value.size(); ++i) requireFiniteNumbers(value[i], pointer + "/" + std::to_string(i));
+}
+
+json slotJson(const BakeSetSlot& slot, size_t index) {
+    const std::string pointer = "/slots/" + std::to_string(index);
+    const bool sunny = slot.sky == BakeSetSky::Sunny;
+    if (sunny != slot.sun.position.has_value())
+        throw std::invalid_argument("bake set manifest: " + pointer + "/sun: a sunny slot has a sun position, an "
+                                    "overcast one none");
+    if (slot.sun.present && !sunny)
+        throw std::invalid_argument("bake set manifest: " + pointer + "/sun/present: an overcast slot has no sun");
+    if (!sunny && (!slot.local_time.empty() || !slot.utc.empty()))
+        throw std::invalid_argument("bake set manifest: " + pointer + ": an overcast slot has no local_time or utc");
+    json sun = {{"present", slot.sun.present}, {"irradiance_source", slot.sun.irradiance_source}};
+    if (slot.sun.position) {
+        sun["azimuth_deg"] = slot.sun.position->azimuth_deg;
+        sun["apparent_elevation_deg"] = slot.sun.position->apparent_elevation_deg;
+        sun["direction_enu"] = vec3Json(slot.sun.position->direction_enu);
+    }
+    if (slot.sun.present) {
+        sun["irradiance_rgb"] = vec3Json(slot.sun.irradiance_rgb);
+        sun["angular_radius_deg"] = slot.sun.angular_radius_deg;
+    }
+    json entry = {
+        {"name", slot.name},
+        {"sky", sunny ? "sunny" : "overcast"},
+        {"sky_map", slot.sky_map},
+        {"sky_sampling",
+         {{"method", slot.sky_sampling_method}, {"cosine_relative_variance", slot.cosine_relative_variance}}},
+        {"sun", sun},
+        {"building_irradiance", slot.building_irradiance},
+        {"ground_irradiance_with_building", slot.ground_irradiance_with_building},
+        {"ground_irradiance_without_building", slot.ground_irradiance_without_building},
+        {"invalid_texels", slot.invalid_texels},
+    };
+    if (slot.colour_statistics) {
+        const BakeSetColourStatistics& statistics = *slot.colour_statistics;
+        entry["colour_statistics"] = {{"space", kColourSpace},
+                                      {"lab_mean", vec3Json(statistics.lab_mean)},
+                                      {"lab_sigma", vec3Json(statistics.lab_sigma)},
+                                      {"texels", statistics.texels}};
+    }
+    if (sunny) {
+        entry["local_time"] = slot.local_time;
+        entry["utc"] = slot.utc;
+    }
+    return entry;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Reading
+// ------------------------------------------------------------------------------------------------------------
+
+const NumberRange kAnyFinite{-kInfinity, kInfinity};
+const NumberRange kNonNegative{0.0, kInfinity};
+
+/// A whole number within [min, max], stored as JSON integer (what the writer writes) or as a whole float.
+/// Integers are taken as they are, so counts above 2^53 keep every digit.
+uint64_t readUnsigned(const ObjectReader& reader, const std::string& name, uint64_t min, uint64_t max) {
+    const json& value = reader.required(name);
+    uint64_t number = 0;
+    if (value.is_number_unsigned()) {
+        number = value.get<uint64_t>();
+    } else if (value.is_number_integer()) {
+        reader.fail(name, std::to_string(value.get<int64_t>()) + " is negative");
+    } else {
+        const double real = json_reader::checkedNumber(reader.file(), reader.fieldPointer(name), value, kAnyFinite);
+        if (real != std::floor(real)) reader.fail(name, json_reader::formatNumber(real) + " is not a whole number");
+        if (real < 0.0) reader.fail(name, json_reader::formatNumber(real) + " is negative");
+        if (real >= 18446744073709551616.0) reader.fail(name, json_reader::formatNumber(real) + " is too large");
+        number = uint64_t(real);
+    }
+    if (number < min || number > max)
+        reader.fail(name, std::to_string(number) + " is outside [" + std::to_string(min) + ", " +
+                              std::to_string(max) + "]");
+    return number;
+}
+
+int readInt(const ObjectReader& reader, const std::string& name, int min, int max) {
+    const json& value = reader.required(name);
+    const double number = json_reader::checkedNumber(reader.file(), reader.fieldPointer(name), value,
+                                                     NumberRange{double(min), double(max)});
+    if (number != std::floor(number)) reader.fail(name, json_reader::formatNumber(number) + " is not a whole number");
+    return int(number);
+}
+
+bool readBool(const ObjectReader& reader, const std::string& name) {
+    const json& value = reader.required(name);
+    if (!value.is_boolean())
+        reader.fail(name, "expected true or false, found " + json_reader::describeJsonType(value));
+    return value.get<bool>();
+}
+
+std::string readNonEmptyString(const ObjectReader& reader, const std::string& name) {
+    std::string text = reader.string(name);
+    if (text.empty()) reader.fail(name, "is empty");
+    return text;
+}
+
+void readFixedText(const ObjectReader& reader, const std::string& name, const char* expected) {
+    if (reader.string(name) != expected)
+        reader.fail(name, std::string("expected \"") + expected + "\" (fixed by " + kBakeSetFormat + ")");
+}
+
+glm::dvec3 readVec3(const ObjectReader& reader, const std::string& name, const NumberRange& range) {
+    const std::vector<double> values = reader.numberArray(name, 3, range);
+    return {values[0], values[1], values[2]};
+}
+
+uint64_t parseHex64(const ObjectReader& reader, const std::string& name) {
+    const std::string text = reader.string(name);
+    uint64_t value = 0;
+    const auto result = std::from_chars(text.data(), text.data() + text.size(), value, 16);
+    bool lower_hex = text.size() == 16;
+    for (const char c : text) lower_hex = lower_hex && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
+    if (!lower_hex || result.ec != std::errc() || result.ptr != text.data() + text.size())
+        reader.fail(name, "\"" + text + "\" is not 16 lower-case hex digits");
+    return value;
+}
+
+ObjectReader elementObject(const ObjectReader& parent, const std::string& array_name, size_t index,
+                           std::initializer_list<const char*> known_fields) {
+    const json& array = parent.array(array_name);
+    return ObjectReader(parent.file(), array[index], parent.fieldPointer(array_name) + "/" + std::to_string(index),
+                        known_fields);
+}
+
+BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
+    const ObjectReader reader = slot.object("sun", {"present", "irradiance_source", "azimuth_deg",
+                                                    "apparent_elevation_deg", "direction_enu", "irradiance_rgb",
+                                                    "angular_radius_deg"});
+    BakeSetSun sun;
+    sun.present = readBool(reader, "present");
+    sun.irradiance_source = reader.string("irradiance_source");
+    if (sun.present && !sunny) reader.fail("present", "an overcast slot has no sun");
+    if (sunny) {
+        BakeSetSunPosition position;
+        position.azimuth_deg = reader.number("azimuth_deg", {0.0, 360.0});
+        position.apparent_elevation_deg = reader.number("apparent_elevation_deg", {-90.0, 90.0});
+        position.direction_enu = readVec3(reader, "direction_enu", {-1.0, 1.0});
+        const glm::dvec3& d = position.direction_enu;
+        if (std::fabs(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - 1.0) > 1e-6)
+            reader.fail("direction_enu", "is not a unit vector");
+        sun.position = position;
+    } else {
+        for (const char* name : {"azimuth_deg", "apparent_elevation_deg", "direction_enu"})
+            if (reader.has(name)) reader.fail(name, "only a sunny slot has a sun position");
+    }
+    if (sun.present) {
+        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", kNonNegative);
+        sun.angular_radius_deg = reader.number("angular_radius_deg", {0.0, 90.0});
+    } else {
+        for (const char* name : {"irradiance_rgb", "angular_radius_deg"})
+            if (reader.has(name)) reader.fail(name, "only a present sun has an irradiance");
+    }
+    return sun;
+}
+
+BakeSetSlot readSlot(const ObjectReader& reader) {
+    BakeSetSlot slot;
+    slot.name = readNonEmptyString(reader, "name");
+    const std::string sky = reader.string("sky");
+    if (sky != "sunny" && sky != "overcast")
+        reader.fail("sky", "\"" + sky + "\" is neither \"sunny\" nor \"overcast\"");
+    slot.sky = sky == "sunny" ? BakeSetSky::Sunny : BakeSetSky::Overcast;
+    const bool sunny = slot.sky == BakeSetSky::Sunny;
+    slot.sky_map = readNonEmptyString(reader, "sky_map");
+    if (sunny) {
+        slot.local_time = readNonEmptyString(reader, "local_time");
+        slot.utc = readNonEmptyString(reader, "utc");
+    } else {
+        for (const char* name : {"local_time", "utc"})
+            if (reader.has(name)) reader.fail(name, "only a sunny slot has a time");
+    }
+    slot.sun = readSun(reader, sunny);
+    const ObjectReader sampling = reader.object("sky_sampling", {"method", "cosine_relative_variance"});
+    slot.sky_sampling_method = readNonEmptyString(sampling, "method");
+    // pi * integral(L^2 cos) / integral(L cos)^2 - 1 is >= 0 up to rounding (Cauchy-Schwarz); -1 is its floor.
+    slot.cosine_relative_variance = sampling.number("cosine_relative_variance", {-1.0, kInfinity});
+    slot.building_irradiance = readNonEmptyString(reader, "building_irradiance");
+    slot.ground_irradiance_with_building = readNonEmptyString(reader, "ground_irradiance_with_building");
+    slot.ground_irradiance_without_building = readNonEmptyString(reader, "ground_irradiance_without_building");
+    slot.invalid_texels = readUnsigned(reader, "invalid_texels", 0, UINT64_MAX);
+    if (const auto colour = reader.optionalObject("colour_statistics", {"space", "lab_mean", "lab_sigma", "texels"})) {
+        readFixedText(*colour, "space", kColourSpace);
+        BakeSetColourStatistics statistics;
+        statistics.lab_mean = readVec3(*colour, "lab_mean", kAnyFinite);
+        statistics.lab_sigma = readVec3(*colour, "lab_sigma", kNonNegative);
+        statistics.texels = readUnsigned(*colour, "texels", 0, UINT64_MAX);
+        slot.colour_statistics = statistics;
+    }
+    return slot;
+}
+
+BakeSetManifest readManifest(const ObjectReader& root) {
+    BakeSetManifest manifest;
+    root.string("format");  // its value was checked before anything else
+    manifest.input_hash = parseHex64(root, "input_hash");
+
+    const json& inputs = root.array("inputs");
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const ObjectReader input = elementObject(root, "inputs", i, {"role", "path", "fnv1a64"});
+        BakeSetInput entry;
+        entry.role = readNonEmptyString(input, "role");
+        entry.path = readNonEmptyString(input, "path");
+        parseHex64(input, "fnv1a64");
+        entry.fnv1a64 = input.string("fnv1a64");
+        manifest.inputs.push_back(entry);
+    }
+
+    const ObjectReader site =
+        root.object("site", {"name", "latitude_deg", "longitude_deg", "height_m", "utc_offset_minutes"});
+    manifest.site.name = site.string("name");
+    manifest.site.latitude_deg = site.number("latitude_deg", {-90.0, 90.0});
+    manifest.site.longitude_deg = site.number("longitude_deg", {-180.0, 180.0});
+    manifest.site.height_m = site.number("height_m", kAnyFinite);
+    manifest.site.utc_offset_minutes = readInt(site, "utc_offset_minutes", -24 * 60, 24 * 60);
+
+    const ObjectReader settings = root.object("settings", {"samples_per_texel", "max_bounces", "seed", "denoised"});
+    manifest.settings.samples_per_texel = uint32_t(readUnsigned(settings, "samples_per_texel", 1, UINT32_MAX));
+    manifest.settings.max_bounces = readInt(settings, "max_bounces", 0, 1 << 16);
+    manifest.settings.seed = uint32_t(readUnsigned(settings, "seed", 0, UINT32_MAX));
+    manifest.settings.denoised = readBool(settings, "denoised");
+
+    const ObjectReader building =
+        root.object("building", {"mesh", "mesh_frame", "lightmap_uv", "lightmap_uv_source", "lightmap_resolution",
+                                 "texels_per_metre", "texels", "irradiance_units"});
+    manifest.building.mesh = readNonEmptyString(building, "mesh");
+    readFixedText(building, "mesh_frame", kMeshFrame);
+    readFixedText(building, "lightmap_uv", kLightmapUv);
+    manifest.building.lightmap_uv_source = building.string("lightmap_uv_source");
+    manifest.building.lightmap_resolution = readInt(building, "lightmap_resolution", 1, 1 << 16);
+    manifest.building.texels_per_metre = building.number("texels_per_metre", kNonNegative);
+    manifest.building.texels = readUnsigned(building, "texels", 0, UINT64_MAX);
+    readFixedText(building, "irradiance_units", kIrradianceUnits);
+
+    const ObjectReader ground =
+        root.object("ground_grid", {"geometry", "geometry_channels", "origin_enu_m", "cell_m", "columns", "rows",
+                                    "row_0", "ground_source", "irradiance_alpha"});
+    manifest.ground_grid.geometry = readNonEmptyString(ground, "geometry");
+    readFixedText(ground, "geometry_channels", kGeometryChannels);
+    const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, kAnyFinite);
+    manifest.ground_grid.grid.origin_enu_m = {origin[0], origin[1]};
+    manifest.ground_grid.grid.cell_m = ground.number("cell_m", {0.0, kInfinity, true, false});
+    manifest.ground_grid.grid.columns = readInt(ground, "columns", 1, 1 << 20);
+    manifest.ground_grid.grid.rows = readInt(ground, "rows", 1, 1 << 20);
+    readFixedText(ground, "row_0", kRow0);
+    manifest.ground_grid.ground_source = readNonEmptyString(ground, "ground_source");
+    readFixedText(ground, "irradiance_alpha", kIrradianceAlpha);
+
+    const json& slots = root.array("slots");
+    for (size_t i = 0; i < slots.size(); ++i) {
+        const ObjectReader slot =
+            elementObject(root, "slots", i,
+                          {"name", "sky", "sky_map", "local_time", "utc", "sun", "sky_sampling", "building_irradiance",
+                           "ground_irradiance_with_building", "ground_irradiance_without_building", "invalid_texels",
+                           "colour_statistics"});
+        manifest.slots.push_back(readSlot(slot));
+        for (size_t j = 0; j < i; ++j)
+            if (manifest.slots[j].name == manifest.slots[i].name)
+                slot.fail("name", "\"" + manifest.slots[i].name + "\" is already the name of /slots/" +
+                                      std::to_string(j));
+    }
+
+    const ObjectReader statistics =
+        root.object("statistics", {"rays_traced", "trace_seconds", "rays_per_second", "wall_seconds"});
+    manifest.statistics.rays_traced = readUnsigned(statistics, "rays_traced", 0, UINT64_MAX);
+    manifest.statistics.trace_seconds = statistics.number("trace_seconds", kNonNegative);
+    manifest.statistics.rays_per_second = statistics.number("rays_per_second", kNonNegative);
+    manifest.statistics.wall_seconds = statistics.number("wall_seconds", kNonNegative);
+
+    const json& warnings = root.array("warnings");
+    for (size_t i = 0; i < warnings.size(); ++i)
+        manifest.warnings.push_back(json_reader::checkedString(
+            root.file(), root.fieldPointer("warnings") + "/" + std::to_string(i), warnings[i]));
+    return manifest;
+}
+
+}  // namespace
+
+std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
+    json inputs = json::array();
+    for (const BakeSetInput& input : manifest.inputs)
+        inputs.push_back({{"role", input.role}, {"path", input.path}, {"fnv1a64", input.fnv1a64}});
+    json slots = json::array();
+    for (size_t i = 0; i < manifest.slots.size(); ++i) slots.push_back(slotJson(manifest.slots[i], i));
+    const BakeSetBuilding& building = manifest.building;
+    const BakeSetGroundGrid& ground = manifest.ground_grid;
+    const BakeSetStatistics& statistics = manifest.statistics;
+    const json document = {
+        {"format", kBakeSetFormat},
+        {"input_hash", hex64(manifest.input_hash)},
+        {"inputs", inputs},
+        {"site", {{"name", manifest.site.name},
+                  {"latitude_deg", manifest.site.latitude_deg},
+                  {"longitude_deg", manifest.site.longitude_deg},
+                  {"height_m", manifest.site.height_m},
+                  {"utc_offset_minutes", manifest.site.utc_offset_minutes}}},
+        {"settings", {{"samples_per_texel", manifest.settings.samples_per_texel},
+                      {"max_bounces", manifest.settings.max_bounces},
+                      {"seed", manifest.settings.seed},
+                      {"denoised", manifest.settings.denoised}}},
+        {"building", {{"mesh", building.mesh},
+                      {"mesh_frame", kMeshFrame},
+                      {"lightmap_uv", kLightmapUv},
+                      {"lightmap_uv_source", building.lightmap_uv_source},
+                      {"lightmap_resolution", building.lightmap_resolution},
+                      {"texels_per_metre", building.texels_per_metre},
+                      {"texels", building.texels},
+                      {"irradiance_units", kIrradianceUnits}}},
+        {"ground_grid", {{"geometry", ground.geometry},
+                         {"geometry_channels", kGeometryChannels},
+                         {"origin_enu_m", {ground.grid.origin_enu_m.x, ground.grid.origin_enu_m.y}},
+                         {"cell_m", ground.grid.cell_m},
+                         {"columns", ground.grid.columns},
+                         {"rows", ground.grid.rows},
+                         {"row_0", kRow0},
+                         {"ground_source", ground.ground_source},
+                         {"irradiance_alpha", kIrradianceAlpha}}},
+        {"slots", slots},
+        {"statistics", {{"rays_traced", statistics.rays_traced},
+                        {"trace_seconds", statistics.trace_seconds},
+                        {"rays_per_second", statistics.rays_per_second},
+                        {"wall_seconds", statistics.wall_seconds}}},
+        {"warnings", manifest.warnings},
+    };
+    requireFiniteNumbers(document, "");
+    return document.dump(2) + "\n";
+}
+
+void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manifest) {
+    const std::string text = bakeSetManifestJson(manifest);
+    writeBytesAtomically(path, text.data(), text.size());
+}
+
+BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string& text) {
+    const json document = json_reader::parseDocument(file, text);
+    // The version first: a manifest of another format is reported as such, not by its first unfamiliar field.
+    if (document.is_object() && document.contains("format") && document["format"].is_string() &&
+        document["format"].get<std::string>() != kBakeSetFormat)
+        throw InputError(file, "/format",
+                         "\"" + document["format"].get<std::string>() +
+                             "\" is not a format this reader knows (expected \"" + kBakeSetFormat + "\")");
+    const ObjectReader root(file, document, "",
+                            {"format", "input_hash", "inputs", "site", "settings", "building", "ground_grid", "slots",
+                             "statistics", "warnings"});
+    return readManifest(root);
+}
+
+BakeSetManifest readBakeSetManifest(const std::string& path) {
+    return parseBakeSetManifest(path, readWholeFile(path));
+}
+
+}  // namespace gusuku
