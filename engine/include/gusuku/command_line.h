@@ -1,0 +1,73 @@
+#pragma once
+// One command-line reader for gusuku's tools (gusuku-bake's subcommands, gusuku-render, gusuku-bench), so
+// that every option is parsed, range-checked and reported the same way. Options are GNU-style: `--name VALUE`
+// or `--name=VALUE`, flags `--name`, an optional one-letter alias (`-o`); everything not starting with '-' is
+// positional. Nothing here prints: errors are thrown as UsageError, whose message is one line
+// "<program>: <option>: <problem>", and the caller prints it and exits 2.
+//
+// Use: construct, take every option the tool knows (flag, text, integer, number, choice), then positionals(),
+// then finish(), which refuses anything left over (unknown options, a value given twice is the last one).
+
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gusuku {
+
+/// A bad command line: an unknown option, a missing or malformed value, a value out of range. Exit code 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class CommandLine {
+public:
+    /// program: what messages start with ("gusuku-bake bake"); arguments: those after the program/subcommand.
+    CommandLine(std::string program, std::vector<std::string> arguments);
+
+    /// True when --help or -h was given (removed from the arguments).
+    bool helpRequested();
+
+    /// True when the flag (`--name`, or its `-a` alias) is present; removes it. `--name=...` is a UsageError.
+    bool flag(const std::string& name, const std::string& alias = "");
+
+    /// The value of `--name VALUE` / `--name=VALUE` / `-a VALUE`, removed; nullopt when absent. Given twice:
+    /// the last one wins. A missing value (end of line, or the next word an option) is a UsageError.
+    std::optional<std::string> text(const std::string& name, const std::string& alias = "");
+
+    /// An integer option in [minimum, maximum]; a UsageError names the option, the text and the range.
+    std::optional<int64_t> integer(const std::string& name, int64_t minimum, int64_t maximum,
+                                   const std::string& alias = "");
+
+    /// A finite real option in [minimum, maximum] (strtod syntax); NaN, inf and trailing text are refused.
+    std::optional<double> number(const std::string& name, double minimum, double maximum,
+                                 const std::string& alias = "");
+
+    /// An option whose value must be one of `choices`; returns the index of the choice given.
+    std::optional<size_t> choice(const std::string& name, std::initializer_list<const char*> choices,
+                                 const std::string& alias = "");
+
+    /// The positional arguments left, in order, removed. Call after every option was taken.
+    std::vector<std::string> positionals();
+
+    /// Refuses whatever is left: "unknown option '--x' (see --help)" or "unexpected argument 'y'".
+    void finish() const;
+
+    /// Throws UsageError("<program>: <what>"), for checks that span several options.
+    [[noreturn]] void fail(const std::string& what) const;
+
+    const std::string& program() const { return program_; }
+
+private:
+    // Finds `--name`, `--name=...` or `-alias`; returns (index, inline value if `=` was used).
+    std::optional<std::pair<size_t, std::optional<std::string>>> find(const std::string& name,
+                                                                      const std::string& alias) const;
+    std::string program_;
+    std::vector<std::string> arguments_;
+};
+
+}  // namespace gusuku

@@ -1,0 +1,154 @@
+// The tools' one command-line reader (see command_line.h for the contract).
+
+#include "gusuku/command_line.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace gusuku {
+
+CommandLine::CommandLine(std::string program, std::vector<std::string> arguments)
+    : program_(std::move(program)), arguments_(std::move(arguments)) {}
+
+void CommandLine::fail(const std::string& what) const { throw UsageError(program_ + ": " + what); }
+
+std::optional<std::pair<size_t, std::optional<std::string>>> CommandLine::find(const std::string& name,
+                                                                               const std::string& alias) const {
+    std::optional<std::pair<size_t, std::optional<std::string>>> last;
+    for (size_t index = 0; index < arguments_.size(); ++index) {
+        const std::string& argument = arguments_[index];
+        if (argument == "--") break;  // everything after a bare "--" is positional
+        if (argument == name || (!alias.empty() && argument == alias)) {
+            last = std::make_pair(index, std::nullopt);
+        } else if (argument.size() > name.size() && argument.compare(0, name.size(), name) == 0 &&
+                   argument[name.size()] == '=') {
+            last = std::make_pair(index, std::optional<std::string>(argument.substr(name.size() + 1)));
+        }
+    }
+    return last;
+}
+
+bool CommandLine::helpRequested() { return flag("--help", "-h"); }
+
+bool CommandLine::flag(const std::string& name, const std::string& alias) {
+    bool present = false;
+    while (const auto found = find(name, alias)) {
+        if (found->second) fail(name + ": takes no value, got '" + *found->second + "'");
+        arguments_.erase(arguments_.begin() + std::ptrdiff_t(found->first));
+        present = true;
+    }
+    return present;
+}
+
+std::optional<std::string> CommandLine::text(const std::string& name, const std::string& alias) {
+    std::optional<std::string> value;
+    // Take every occurrence so none is left for finish() to call unknown; the last one wins.
+    std::vector<std::string> values;
+    for (size_t index = 0; index < arguments_.size();) {
+        const std::string& argument = arguments_[index];
+        if (argument == "--") break;
+        const bool bare = argument == name || (!alias.empty() && argument == alias);
+        const bool inline_value = argument.size() > name.size() && argument.compare(0, name.size(), name) == 0 &&
+                                  argument[name.size()] == '=';
+        if (!bare && !inline_value) {
+            ++index;
+            continue;
+        }
+        if (inline_value) {
+            values.push_back(argument.substr(name.size() + 1));
+            arguments_.erase(arguments_.begin() + std::ptrdiff_t(index));
+            continue;
+        }
+        // A value may itself start with '-' only when it is a number ("--lon -70.5").
+        const bool has_next = index + 1 < arguments_.size();
+        const bool next_is_value =
+            has_next && (arguments_[index + 1].empty() || arguments_[index + 1][0] != '-' ||
+                         (arguments_[index + 1].size() > 1 &&
+                          (std::isdigit(static_cast<unsigned char>(arguments_[index + 1][1])) ||
+                           arguments_[index + 1][1] == '.')));
+        if (!next_is_value) fail(name + ": needs a value");
+        values.push_back(arguments_[index + 1]);
+        arguments_.erase(arguments_.begin() + std::ptrdiff_t(index), arguments_.begin() + std::ptrdiff_t(index) + 2);
+    }
+    if (!values.empty()) value = values.back();
+    return value;
+}
+
+std::optional<int64_t> CommandLine::integer(const std::string& name, int64_t minimum, int64_t maximum,
+                                            const std::string& alias) {
+    const std::optional<std::string> value = text(name, alias);
+    if (!value) return std::nullopt;
+    errno = 0;
+    char* end = nullptr;
+    const long long parsed = std::strtoll(value->c_str(), &end, 10);
+    const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
+    if (value->empty() || end == value->c_str() || *end != '\0' || errno == ERANGE)
+        fail(name + ": '" + *value + "' is not an integer in " + range);
+    if (parsed < minimum || parsed > maximum) fail(name + ": " + *value + " is outside " + range);
+    return int64_t(parsed);
+}
+
+std::optional<double> CommandLine::number(const std::string& name, double minimum, double maximum,
+                                          const std::string& alias) {
+    const std::optional<std::string> value = text(name, alias);
+    if (!value) return std::nullopt;
+    char* end = nullptr;
+    const double parsed = std::strtod(value->c_str(), &end);
+    auto format = [](double bound) {
+        std::string text = std::to_string(bound);
+        // "90.000000" -> "90": ranges read as the user would write them.
+        while (text.find('.') != std::string::npos && (text.back() == '0' || text.back() == '.')) {
+            const bool dot = text.back() == '.';
+            text.pop_back();
+            if (dot) break;
+        }
+        return text;
+    };
+    const std::string range = "[" + format(minimum) + ", " + format(maximum) + "]";
+    if (value->empty() || end == value->c_str() || *end != '\0' || !std::isfinite(parsed))
+        fail(name + ": '" + *value + "' is not a finite number in " + range);
+    if (parsed < minimum || parsed > maximum) fail(name + ": " + *value + " is outside " + range);
+    return parsed;
+}
+
+std::optional<size_t> CommandLine::choice(const std::string& name, std::initializer_list<const char*> choices,
+                                          const std::string& alias) {
+    const std::optional<std::string> value = text(name, alias);
+    if (!value) return std::nullopt;
+    size_t index = 0;
+    std::string listed;
+    for (const char* candidate : choices) {
+        if (*value == candidate) return index;
+        listed += (index == 0 ? "" : index + 1 == choices.size() ? " or " : ", ") + std::string(candidate);
+        ++index;
+    }
+    fail(name + ": '" + *value + "' is not " + listed);
+}
+
+std::vector<std::string> CommandLine::positionals() {
+    std::vector<std::string> taken;
+    std::vector<std::string> kept;
+    bool after_separator = false;
+    for (const std::string& argument : arguments_) {
+        if (!after_separator && argument == "--") {
+            after_separator = true;
+        } else if (after_separator || argument.empty() || argument[0] != '-' || argument == "-") {
+            taken.push_back(argument);
+        } else {
+            kept.push_back(argument);
+        }
+    }
+    arguments_ = std::move(kept);
+    return taken;
+}
+
+void CommandLine::finish() const {
+    for (const std::string& argument : arguments_) {
+        if (!argument.empty() && argument[0] == '-') fail("unknown option '" + argument + "' (see --help)");
+        fail("unexpected argument '" + argument + "' (see --help)");
+    }
+}
+
+}  // namespace gusuku
