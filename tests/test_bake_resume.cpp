@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bake_process.h"
 #include "gpu_test_support.h"
 #include "gusuku/image.h"
 #include "gusuku/site.h"
@@ -146,6 +147,33 @@ TEST_P(BakeCommandResume, InterruptedBakeResumesToTheSameResult) {
 
     ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", interrupted_dir, "--quiet"})), 0);
     expectSameBakeSets(dir + "/reference", interrupted_dir);
+}
+
+// Ctrl-C at one sample per point: every set is a single chunk, so a stop polled only inside a set's loop was
+// never seen and the bake ran to the end. Sent right after the device line (setup, before the first sample).
+TEST(BakeCommandCtrlC, StopsPromptlyAtOneSample) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-ctrlc-one");
+    gusuku::testing::MiniSiteOptions site_options;
+    site_options.texels_per_metre = 24.0;
+    site_options.max_bounces = 3;
+    const std::string site = gusuku::testing::writeMiniSite(dir, site_options);
+    const std::string out = dir + "/out";
+    const pid_t pid = gusuku::testing::spawnBakeProcess({"bake", site, "-o", out, "--samples", "1", "--quiet"},
+                                                        "/dev/null", dir + "/bake.err");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (gusuku::testing::readTextFile(dir + "/bake.err").find("device") == std::string::npos &&
+           std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    kill(pid, SIGINT);
+    const auto signalled = std::chrono::steady_clock::now();
+    const int status = gusuku::testing::waitBakeProcess(pid, 60);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    EXPECT_EQ(status, 130) << gusuku::testing::readTextFile(dir + "/bake.err");
+    EXPECT_LT(seconds, 5.0) << "Ctrl-C took effect only after " << seconds << " s";
+    EXPECT_FALSE(fs::exists(out + "/manifest.json")) << "the bake ran to the end despite Ctrl-C";
+    // And the same command finishes the job.
+    ASSERT_EQ(waitExitCode(spawnBake({"bake", site, "-o", out, "--samples", "1", "--quiet"})), 0);
+    EXPECT_TRUE(fs::exists(out + "/manifest.json"));
 }
 
 INSTANTIATE_TEST_SUITE_P(CtrlCAndKill, BakeCommandResume, ::testing::Values(SIGINT, SIGKILL),
