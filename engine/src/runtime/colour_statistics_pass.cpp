@@ -1,0 +1,198 @@
+// The runtime's colour statistics pass: see colour_statistics_pass.h.
+#include "colour_statistics_pass.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "colour_statistics_comp_spv.h"
+#include "colour_statistics_reduce_comp_spv.h"
+
+namespace gusuku {
+
+using shader_interface::ColourMatchState;
+using shader_interface::ColourReducePushConstants;
+using shader_interface::ColourStatisticsPartial;
+using shader_interface::ColourStatisticsPushConstants;
+
+// std430 and C++ must agree on every offset (interface_types.h's rules).
+static_assert(offsetof(ColourMatchState, source_lab_mean) == 0);
+static_assert(offsetof(ColourMatchState, source_lab_sigma) == 16);
+static_assert(offsetof(ColourMatchState, mode) == 32);
+static_assert(offsetof(ColourMatchState, gain_limit) == 36);
+static_assert(offsetof(ColourMatchState, camera_lab_mean) == 48);
+static_assert(offsetof(ColourMatchState, camera_lab_variance) == 64);
+static_assert(offsetof(ColourMatchState, frame_lab_mean) == 80);
+static_assert(offsetof(ColourMatchState, frame_lab_sigma) == 96);
+static_assert(offsetof(ColourMatchState, camera_valid) == 112);
+static_assert(offsetof(ColourMatchState, frame_accepted) == 132);
+static_assert(sizeof(ColourMatchState) == 144);
+static_assert(sizeof(ColourStatisticsPartial) == 32);
+static_assert(uint32_t(ColourMatchMode::kOff) == COLOUR_MATCH_MODE_OFF);
+static_assert(uint32_t(ColourMatchMode::kPaper) == COLOUR_MATCH_MODE_PAPER);
+static_assert(uint32_t(ColourMatchMode::kPreserve) == COLOUR_MATCH_MODE_PRESERVE);
+
+namespace {
+
+// The host part of the state: bytes [0, kHostStateBytes), written by vkCmdUpdateBuffer.
+constexpr size_t kHostStateBytes = offsetof(ColourMatchState, camera_lab_mean);
+
+uint32_t divideRoundingUp(uint64_t value, uint32_t divisor) { return uint32_t((value + divisor - 1) / divisor); }
+
+ColourStatisticsGrid gridOrThrow(uint32_t width, uint32_t height, uint32_t stride) {
+    try {
+        return colourStatisticsGrid(width, height, stride);
+    } catch (const std::invalid_argument& error) {
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, error.what());
+    }
+}
+
+VkPhysicalDeviceSubgroupProperties subgroupPropertiesOf(const GpuDevice& gpu) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(gpu.physical_device, &properties);
+    const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & needed) != needed ||
+        subgroup.subgroupSize == 0)
+        throw RuntimeError(RuntimeErrorCode::kDevice,
+                           "colour statistics: the device has no subgroup arithmetic in compute shaders");
+    return subgroup;
+}
+
+bool queueFamilyHasGraphics(const GpuDevice& gpu) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical_device, &count, nullptr);
+    // At most a handful of families; read once at construction.
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical_device, &count, families.data());
+    return gpu.queue_family_index < count && (families[gpu.queue_family_index].queueFlags & VK_QUEUE_GRAPHICS_BIT);
+}
+
+void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages, VkAccessFlags source_access,
+                         VkPipelineStageFlags destination_stages, VkAccessFlags destination_access) {
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = source_access;
+    barrier.dstAccessMask = destination_access;
+    vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+ColourMatchMode colourMatchModeFor(ColourMatch colour_match) {
+    switch (colour_match) {
+    case ColourMatch::kPaper: return ColourMatchMode::kPaper;
+    case ColourMatch::kPreserve: return ColourMatchMode::kPreserve;
+    case ColourMatch::kOff: break;
+    }
+    return ColourMatchMode::kOff;
+}
+
+ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
+                                           uint32_t stride, float smoothing_frames)
+    : gpu_(gpu),
+      frame_width_(frame_width),
+      frame_height_(frame_height),
+      grid_(gridOrThrow(frame_width, frame_height, stride)),
+      workgroups_x_(divideRoundingUp(grid_.samples_x, COLOUR_STATISTICS_TILE)),
+      workgroups_y_(divideRoundingUp(grid_.samples_y, COLOUR_STATISTICS_TILE)),
+      // Without VK_EXT_subgroup_size_control, a SPIR-V 1.3 compute shader runs with subgroupSize lanes.
+      partials_per_workgroup_(divideRoundingUp(COLOUR_STATISTICS_TILE * COLOUR_STATISTICS_TILE,
+                                               subgroupPropertiesOf(gpu).subgroupSize)),
+      min_valid_samples_(colourStatisticsMinValidSamples(grid_.sampleCount())),
+      smoothing_weight_(float(colourStatisticsSmoothingWeight(smoothing_frames))),
+      queue_has_graphics_(queueFamilyHasGraphics(gpu)),
+      state_buffer_(gpu, sizeof(ColourMatchState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kHostVisible),
+      partial_buffer_(gpu, size_t(workgroups_x_) * workgroups_y_ * partials_per_workgroup_ *
+                               sizeof(ColourStatisticsPartial),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kDeviceLocal),
+      statistics_pipeline_(gpu, kColourStatisticsCompSpirv, sizeof kColourStatisticsCompSpirv,
+                           COLOUR_STATISTICS_BINDING_COUNT, sizeof(ColourStatisticsPushConstants)),
+      reduce_pipeline_(gpu, kColourStatisticsReduceCompSpirv, sizeof kColourStatisticsReduceCompSpirv,
+                       COLOUR_REDUCE_BINDING_COUNT, sizeof(ColourReducePushConstants)) {
+    // Mode off, no camera statistics: the transfer is the identity until the first frame.
+    const ColourMatchState initial{};
+    state_buffer_.upload(&initial, sizeof initial);
+    reduce_pipeline_.bindBuffers({&partial_buffer_, &state_buffer_});
+}
+
+void ColourStatisticsPass::recordSourceUpdate(VkCommandBuffer cmd, const LabStatistics& source, ColourMatchMode mode,
+                                              float gain_limit) {
+    const glm::vec3& sigma = source.standard_deviation;
+    if (!isFinite(source.mean) || !isFinite(sigma) || sigma.x < 0.0f || sigma.y < 0.0f || sigma.z < 0.0f)
+        throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet,
+                           "colour_statistics: lab_mean, lab_sigma: not finite, or a negative sigma");
+    ColourMatchState host_part{};
+    for (int c = 0; c < 3; ++c) {
+        host_part.source_lab_mean[c] = source.mean[c];
+        host_part.source_lab_sigma[c] = sigma[c];
+    }
+    host_part.mode = uint32_t(mode);
+    host_part.gain_limit = gain_limit;
+    // Earlier reads of the host part (last frame's building pass) must finish before it is overwritten.
+    const VkPipelineStageFlags readers =
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0);
+    recordMemoryBarrier(cmd, readers, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
+    vkCmdUpdateBuffer(cmd, state_buffer_.handle(), 0, kHostStateBytes, &host_part);
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, readers,
+                        VK_ACCESS_SHADER_READ_BIT);
+}
+
+void ColourStatisticsPass::record(VkCommandBuffer cmd, const GpuBuffer& camera_buffer) {
+    if (camera_buffer.size() < size_t(frame_width_) * frame_height_ * 4)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "colour statistics: camera buffer: " + std::to_string(camera_buffer.size()) +
+                               " bytes, the frame needs " + std::to_string(size_t(frame_width_) * frame_height_ * 4));
+    if (camera_buffer.handle() != bound_camera_buffer_) {
+        statistics_pipeline_.bindBuffers({&camera_buffer, &partial_buffer_});
+        bound_camera_buffer_ = camera_buffer.handle();
+    }
+    const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
+
+    // The camera pixels' writers and the state's and partials' earlier users, against both dispatches.
+    recordMemoryBarrier(cmd,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT | fragment,
+                        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    ColourStatisticsPushConstants statistics{};
+    statistics.frame_width = frame_width_;
+    statistics.frame_height = frame_height_;
+    statistics.stride = grid_.stride;
+    statistics.first_sample_offset = grid_.offset;
+    statistics.samples_x = grid_.samples_x;
+    statistics.samples_y = grid_.samples_y;
+    statistics.workgroups_x = workgroups_x_;
+    statistics.partials_per_workgroup = partials_per_workgroup_;
+    statistics_pipeline_.recordDispatch(cmd, &statistics, workgroups_x_, workgroups_y_);
+
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+
+    ColourReducePushConstants reduce{};
+    reduce.partial_count = workgroups_x_ * workgroups_y_ * partials_per_workgroup_;
+    reduce.min_valid_samples = min_valid_samples_;
+    reduce.smoothing_weight = smoothing_weight_;
+    reduce.reset = reset_pending_ ? 1u : 0u;
+    reduce_pipeline_.recordDispatch(cmd, &reduce, 1);
+    reset_pending_ = false;
+
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | fragment | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+}
+
+ColourMatchState ColourStatisticsPass::readState() const {
+    ColourMatchState state{};
+    state_buffer_.download(&state, sizeof state);
+    return state;
+}
+
+}  // namespace gusuku

@@ -1,0 +1,82 @@
+#pragma once
+// The runtime's colour statistics pass (DESIGN.md 8, pass 7): records, into the frame's command buffer, the two
+// compute dispatches that measure the camera frame's Lab statistics and smooth them into the ColourMatchState
+// that the next frame's building pass reads (through shaders/include/colour_match.glsl). Choices and the CPU
+// reference: gusuku/colour_match.h; GPU layout: shaders/include/colour_match_interface.h.
+//
+// Everything is allocated at construction (the state buffer, the partials buffer, two pipelines); recording
+// allocates nothing. Not thread-safe; one frame in flight at a time (the runtime waits on its fence).
+
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+#include "colour_match_interface.h"
+#include "gusuku/colour.h"
+#include "gusuku/colour_match.h"
+#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu_device.h"
+#include "gusuku/runtime.h"
+
+namespace gusuku {
+
+/// The GPU state's mode for the runtime's ColourMatch.
+ColourMatchMode colourMatchModeFor(ColourMatch colour_match);
+
+class ColourStatisticsPass {
+public:
+    /// Builds the pipelines and buffers for frames of frame_width x frame_height sampled every stride-th pixel,
+    /// smoothing with the time constant smoothing_frames (RuntimeOptions). Throws RuntimeError kInvalidFrame for
+    /// a stride of 0 or larger than a side, kDevice when the device lacks subgroup arithmetic in compute
+    /// shaders (Vulkan 1.1's VkPhysicalDeviceSubgroupProperties) or a Vulkan call fails. gpu must outlive this.
+    ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height, uint32_t stride,
+                         float smoothing_frames);
+    ColourStatisticsPass(const ColourStatisticsPass&) = delete;
+    ColourStatisticsPass& operator=(const ColourStatisticsPass&) = delete;
+
+    /// Records a vkCmdUpdateBuffer of the state's host part (source statistics, mode, gain limit) and a barrier
+    /// that makes it visible to the fragment and compute shaders after it. Outside a render pass. Throws
+    /// RuntimeError kInvalidBakeSet for non-finite statistics or a negative sigma.
+    void recordSourceUpdate(VkCommandBuffer cmd, const LabStatistics& source, ColourMatchMode mode,
+                            float gain_limit);
+
+    /// Records the statistics of camera_buffer (frame_width * frame_height packed RGBA8 words, R in the low
+    /// byte, sRGB, row 0 at the top) and the state's update, outside a render pass. Barriers recorded:
+    /// before, the caller's transfer, compute and host writes of camera_buffer and earlier shader reads of the
+    /// state (fragment included when the queue has graphics) against these dispatches; between the two
+    /// dispatches; after, the state's write against later fragment and compute reads, transfers and host reads
+    /// (after the submission's fence). Re-binds the descriptor sets only when camera_buffer changes, which the
+    /// caller may do only while no recorded command buffer of this pass is waiting to execute. After reset(),
+    /// the next record() starts the smoothing over.
+    void record(VkCommandBuffer cmd, const GpuBuffer& camera_buffer);
+
+    /// The next record() forgets the smoothed statistics (a cut in the camera feed).
+    void reset() { reset_pending_ = true; }
+
+    /// The state buffer (one ColourMatchState), for the building pass's descriptor set.
+    const GpuBuffer& stateBuffer() const { return state_buffer_; }
+    /// The state as the GPU left it; only once the submission that wrote it has completed.
+    shader_interface::ColourMatchState readState() const;
+
+    const ColourStatisticsGrid& grid() const { return grid_; }
+    uint32_t minValidSamples() const { return min_valid_samples_; }
+    float smoothingWeight() const { return smoothing_weight_; }
+
+private:
+    const GpuDevice& gpu_;
+    uint32_t frame_width_, frame_height_;
+    ColourStatisticsGrid grid_;
+    uint32_t workgroups_x_ = 0, workgroups_y_ = 0;
+    uint32_t partials_per_workgroup_ = 0;
+    uint32_t min_valid_samples_ = 0;
+    float smoothing_weight_ = 1.0f;
+    bool queue_has_graphics_ = false;
+    bool reset_pending_ = false;
+    VkBuffer bound_camera_buffer_ = VK_NULL_HANDLE;
+    GpuBuffer state_buffer_;
+    GpuBuffer partial_buffer_;
+    ComputePipeline statistics_pipeline_;
+    ComputePipeline reduce_pipeline_;
+};
+
+}  // namespace gusuku

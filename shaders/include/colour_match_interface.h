@@ -1,0 +1,99 @@
+// The colour match's GPU state and the two statistics kernels' bindings and push constants, written once for
+// the GLSL (shaders/runtime/colour_statistics.comp, colour_statistics_reduce.comp, include/colour_match.glsl)
+// and for C++ (engine/src/runtime/colour_statistics_pass.cpp, engine/include/gusuku/colour_match.h). See
+// interface_types.h for the rules; the C++ side pins every offset with static_assert (colour_match.h).
+//
+// The state lives in one small storage buffer that the runtime keeps for its life:
+//   - the first 48 bytes (source statistics, mode, gain limit) are written by the host side each frame through
+//     vkCmdUpdateBuffer (ColourStatisticsPass::recordSourceUpdate), in the frame's command buffer;
+//   - the rest (the camera's smoothed statistics and the last frame's raw ones) is written only by
+//     colour_statistics_reduce.comp, and read by the building's fragment shader of the next frame.
+#ifndef GUSUKU_COLOUR_MATCH_INTERFACE_H
+#define GUSUKU_COLOUR_MATCH_INTERFACE_H
+
+#include "interface_types.h"
+
+// ColourMatchState::mode (gusuku::ColourMatch kOff, kPaper, kPreserve in that order)
+#define COLOUR_MATCH_MODE_OFF 0u
+#define COLOUR_MATCH_MODE_PAPER 1u
+#define COLOUR_MATCH_MODE_PRESERVE 2u
+
+#ifdef __cplusplus
+namespace gusuku::shader_interface {
+#endif
+
+struct ColourMatchState {
+    // ---- written by the host side (bytes 0..47) ----
+    vec4 source_lab_mean;   // xyz: mu of the baked appearance (slot statistics blended by the slot weights)
+    vec4 source_lab_sigma;  // xyz: sigma of the same
+    uint mode;              // COLOUR_MATCH_MODE_*
+    float gain_limit;       // g: the transfer's sigma ratio is clamped to [1/g, g]
+    uint host_reserved0;
+    uint host_reserved1;
+    // ---- written by colour_statistics_reduce.comp (bytes 48..143) ----
+    vec4 camera_lab_mean;      // xyz: smoothed mu of the camera frame's valid samples
+    vec4 camera_lab_variance;  // xyz: smoothed sigma^2 of the same (sigma = sqrt)
+    vec4 frame_lab_mean;       // xyz: this frame's mu (valid samples), whether or not it was accepted
+    vec4 frame_lab_sigma;      // xyz: this frame's sigma
+    uint camera_valid;         // 1 once a frame was accepted since construction or reset; 0: no target yet
+    uint frames_accepted;      // frames folded into the smoothed statistics since construction or reset
+    uint frame_valid_samples;  // this frame: samples neither clipped nor black
+    uint frame_clipped_samples;  // this frame: samples with a channel at 255 or all channels at 0
+    uint frame_total_samples;    // this frame: samples taken (valid + clipped)
+    uint frame_accepted;         // 1 when this frame had enough valid samples to update the smoothed statistics
+    uint gpu_reserved0;
+    uint gpu_reserved1;
+};
+
+// One subgroup's share of a frame, written by colour_statistics.comp and read by colour_statistics_reduce.comp:
+// the valid samples' count, mean and sum of squared deviations from that mean (M2), so that partials combine
+// without the cancellation of sum(x^2) - n mean^2 (Chan, Golub and LeVeque's pairwise update).
+struct ColourStatisticsPartial {
+    vec4 lab_mean_count;  // xyz: mean of the valid samples (0 when none), w: their count
+    vec4 lab_m2_clipped;  // xyz: sum of squared deviations from the mean, w: clipped samples
+};
+
+#ifdef __cplusplus
+}  // namespace gusuku::shader_interface
+#endif
+
+// colour_statistics.comp, set 0
+#define COLOUR_STATISTICS_CAMERA_BINDING 0   // uint per pixel: packed RGBA8, R in the low byte, sRGB, row 0 top
+#define COLOUR_STATISTICS_PARTIAL_BINDING 1  // ColourStatisticsPartial per (workgroup, subgroup)
+#define COLOUR_STATISTICS_BINDING_COUNT 2
+
+// colour_statistics.comp: one invocation per sampled pixel, an 8 x 8 tile of the sample grid per workgroup.
+#define COLOUR_STATISTICS_TILE 8
+
+// A GLSL stage may declare one push-constant block: each kernel defines its COLOUR_*_KERNEL before including
+// this header and gets its own block; other GLSL (the building's shader) gets none. C++ gets both.
+#if defined(__cplusplus) || defined(COLOUR_STATISTICS_KERNEL)
+GUSUKU_PUSH_CONSTANTS_BEGIN(ColourStatisticsPushConstants)
+    uint frame_width;            // pixels
+    uint frame_height;
+    uint stride;                 // sample every stride-th pixel in x and y
+    uint first_sample_offset;    // the first sample is pixel (offset, offset): stride / 2, the middle of its cell
+    uint samples_x;              // sampled columns: pixels offset + i * stride, i < samples_x
+    uint samples_y;              // sampled rows
+    uint workgroups_x;           // ceil(samples_x / COLOUR_STATISTICS_TILE)
+    uint partials_per_workgroup;  // subgroups per workgroup: the partial of subgroup s of workgroup w is
+                                  // w * partials_per_workgroup + s
+GUSUKU_PUSH_CONSTANTS_END(ColourStatisticsPushConstants, pc)
+#endif
+
+// colour_statistics_reduce.comp, set 0 (one workgroup)
+#define COLOUR_REDUCE_PARTIAL_BINDING 0  // ColourStatisticsPartial[partial_count]
+#define COLOUR_REDUCE_STATE_BINDING 1    // ColourMatchState
+#define COLOUR_REDUCE_BINDING_COUNT 2
+#define COLOUR_REDUCE_WORKGROUP_SIZE 64
+
+#if defined(__cplusplus) || defined(COLOUR_REDUCE_KERNEL)
+GUSUKU_PUSH_CONSTANTS_BEGIN(ColourReducePushConstants)
+    uint partial_count;
+    uint min_valid_samples;  // fewer valid samples than this: the frame is not accepted (state kept)
+    float smoothing_weight;  // alpha of the moving average: new = old + alpha (frame - old), in (0, 1]
+    uint reset;              // 1: forget the smoothed statistics; this frame, if accepted, becomes them
+GUSUKU_PUSH_CONSTANTS_END(ColourReducePushConstants, pc)
+#endif
+
+#endif
