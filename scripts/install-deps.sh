@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev
-  libopenimageio-dev openimageio-tools libopencolorio-dev libgeographiclib-dev
+  libopenimageio-dev openimageio-tools libopencolorio-dev libgeographiclib-dev libmeshoptimizer-dev
   libgtest-dev
 )
 

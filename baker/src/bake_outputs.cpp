@@ -1,12 +1,14 @@
 #include "bake_outputs.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_manifest_json.h"
+#include "gusuku/glb_positions.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
 #include "gusuku/time_utc.h"
@@ -14,6 +16,7 @@
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/lightmap_denoise.h"
+#include "gusuku_bake/occluder.h"
 
 namespace gusuku::bake {
 
@@ -78,6 +81,24 @@ void BakeOutputWriter::writeGeometry() {
         texels[i] = glm::vec4(cell.normal, cell.height_m);
     }
     writeExr(output_dir_ + "/ground_geometry.exr", imageFromTexels(texels, region.columns, region.rows), true);
+    writeOccluder();
+}
+
+void BakeOutputWriter::writeOccluder() {
+    const std::string path = output_dir_ + "/occluder.glb";
+    // The site's triangles follow the building's in the trace scene; a flat stand-in ground occludes nothing
+    // real, so it gets no occluder (and one left by an older bake of this folder goes).
+    const TraceScene& scene = geometry_.scene;
+    const std::vector<uint32_t> site_indices(scene.mesh.indices.begin() + long(3 * scene.building_triangle_count),
+                                             scene.mesh.indices.end());
+    if (geometry_.site_mesh_is_stand_in || site_indices.empty()) {
+        std::filesystem::remove(path);
+        return;
+    }
+    const OccluderMesh occluder = simplifyOccluder(scene.mesh.positions, site_indices, kOccluderTargetErrorM);
+    writePositionsGlb(path, occluder.positions, occluder.indices, glm::inverse(enuFromGltfYUp()));
+    occluder_ = BakeSetOccluderInfo{"occluder.glb", occluder.triangleCount(), occluder.source_triangles,
+                                    kOccluderTargetErrorM, occluder.error_m};
 }
 
 void BakeOutputWriter::writeGroundImage(const std::string& file, const std::vector<glm::vec4>& sums) {
@@ -152,6 +173,7 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
     manifest.building.texels = geometry_.texels.size();
     manifest.ground_grid.grid = geometry_.ground_region;
     manifest.ground_grid.ground_source = geometry_.site_mesh_is_stand_in ? "flat plane at z = 0" : "sfm_mesh";
+    manifest.occluder = occluder_;
     manifest.slots = slots_;
     manifest.statistics = {report.rays_traced, report.trace_seconds,
                            report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0,

@@ -1,8 +1,9 @@
 #pragma once
 // Writes a bake set's files (layout in docs/bakeset.md): building.glb with its lightmap UVs, ground_geometry.exr,
-// per slot building_<slot>.exr, ground_<slot>_with.exr and ground_<slot>_without.exr, and manifest.json last,
+// occluder.glb (the SfM mesh simplified, when site.json has one), per slot building_<slot>.exr, ground_<slot>_with.exr and ground_<slot>_without.exr, and manifest.json last,
 // so a bake set with a manifest is always complete. Every file is written atomically.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,12 +41,14 @@ public:
 
 private:
     void writeGroundImage(const std::string& file, const std::vector<glm::vec4>& sums);
+    void writeOccluder();
 
     std::string output_dir_;
     const BakeGeometry& geometry_;
     uint32_t samples_;
     bool denoise_;
     std::vector<BakeSetSlot> slots_;  ///< manifest entries of the slots written so far
+    std::optional<BakeSetOccluderInfo> occluder_;  ///< the manifest's entry once occluder.glb is written
 };
 
 }  // namespace gusuku::bake

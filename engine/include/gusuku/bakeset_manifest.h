@@ -69,6 +69,19 @@ struct BakeSetGroundGrid {
     bool operator==(const BakeSetGroundGrid&) const = default;
 };
 
+/// The real site's surfaces for the runtime's depth-only pass (DESIGN.md 8, pass 4): the SfM mesh simplified
+/// to what occlusion needs, positions and indices only. Present only when site.json has an SfM mesh. Fixed by
+/// the format (written, and checked by the reader): the mesh's frame is the building's (site ENU metres in glTF
+/// Y-up axes).
+struct BakeSetOccluderInfo {
+    std::string mesh = "occluder.glb";
+    uint64_t triangles = 0;         ///< in the simplified mesh
+    uint64_t source_triangles = 0;  ///< in the SfM mesh as loaded
+    double target_error_m = 0.0;    ///< the simplifier's error bound, metres
+    double simplification_error_m = 0.0;  ///< the error it reached (the simplifier's own estimate), metres
+    bool operator==(const BakeSetOccluderInfo&) const = default;
+};
+
 enum class BakeSetSky { Sunny, Overcast };
 
 /// Where the sun stood for a sunny slot (SPA at the slot's instant), above the horizon or not.
@@ -138,6 +151,7 @@ struct BakeSetManifest {
     BakeSetSettings settings;
     BakeSetBuilding building;
     BakeSetGroundGrid ground_grid;
+    std::optional<BakeSetOccluderInfo> occluder;  ///< none without an SfM mesh
     std::vector<BakeSetSlot> slots;
     BakeSetStatistics statistics;
     std::vector<std::string> warnings;

@@ -308,6 +308,18 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     manifest.ground_grid.ground_source = readNonEmptyString(ground, "ground_source");
     readFixedText(ground, "irradiance_alpha", kIrradianceAlpha);
 
+    if (const auto occluder = root.optionalObject("occluder", {"mesh", "mesh_frame", "triangles", "source_triangles",
+                                                               "target_error_m", "simplification_error_m"})) {
+        BakeSetOccluderInfo info;
+        info.mesh = readNonEmptyString(*occluder, "mesh");
+        readFixedText(*occluder, "mesh_frame", kMeshFrame);
+        info.source_triangles = readUnsigned(*occluder, "source_triangles", 1, UINT64_MAX);
+        info.triangles = readUnsigned(*occluder, "triangles", 1, info.source_triangles);
+        info.target_error_m = occluder->number("target_error_m", kNonNegative);
+        info.simplification_error_m = occluder->number("simplification_error_m", kNonNegative);
+        manifest.occluder = info;
+    }
+
     const json& slots = root.array("slots");
     for (size_t i = 0; i < slots.size(); ++i) {
         const ObjectReader slot =
@@ -347,7 +359,7 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
     const BakeSetBuilding& building = manifest.building;
     const BakeSetGroundGrid& ground = manifest.ground_grid;
     const BakeSetStatistics& statistics = manifest.statistics;
-    const json document = {
+    json document = {
         {"format", kBakeSetFormat},
         {"input_hash", hex64(manifest.input_hash)},
         {"inputs", inputs},
@@ -384,6 +396,13 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
                         {"wall_seconds", statistics.wall_seconds}}},
         {"warnings", manifest.warnings},
     };
+    if (manifest.occluder)  // absent without an SfM mesh: such manifests keep their bytes
+        document["occluder"] = {{"mesh", manifest.occluder->mesh},
+                                {"mesh_frame", kMeshFrame},
+                                {"triangles", manifest.occluder->triangles},
+                                {"source_triangles", manifest.occluder->source_triangles},
+                                {"target_error_m", manifest.occluder->target_error_m},
+                                {"simplification_error_m", manifest.occluder->simplification_error_m}};
     requireFiniteNumbers(document, "");
     return document.dump(2) + "\n";
 }
@@ -402,8 +421,8 @@ BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string&
                          "\"" + document["format"].get<std::string>() +
                              "\" is not a format this reader knows (expected \"" + kBakeSetFormat + "\")");
     const ObjectReader root(file, document, "",
-                            {"format", "input_hash", "inputs", "site", "settings", "building", "ground_grid", "slots",
-                             "statistics", "warnings"});
+                            {"format", "input_hash", "inputs", "site", "settings", "building", "ground_grid",
+                             "occluder", "slots", "statistics", "warnings"});
     return readManifest(root);
 }
 

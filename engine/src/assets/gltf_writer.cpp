@@ -12,6 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "gusuku/atomic_file.h"
+#include "gusuku/glb_positions.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
 
@@ -79,7 +80,56 @@ private:
     tinygltf::Model& model_;
 };
 
+/// One node with mesh 0 in the default scene, serialised as .glb and written atomically.
+void writeSingleMeshGlb(const std::string& path, tinygltf::Model& model) {
+    tinygltf::Node node;
+    node.mesh = 0;
+    model.nodes.push_back(node);
+    tinygltf::Scene scene;
+    scene.nodes.push_back(0);
+    model.scenes.push_back(scene);
+    model.defaultScene = 0;
+
+    std::ostringstream glb;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, glb, false, true))
+        throw std::runtime_error(path + ": tinygltf could not serialise the mesh");
+    const std::string bytes = glb.str();
+    writeBytesAtomically(path, bytes.data(), bytes.size());
+}
+
 }  // namespace
+
+void writePositionsGlb(const std::string& path, const std::vector<glm::vec3>& positions_enu,
+                       const std::vector<uint32_t>& indices, const glm::dmat4& model_from_enu) {
+    if (indices.size() % 3 != 0)
+        throw std::invalid_argument(path + ": index count " + std::to_string(indices.size()) +
+                                    " is not a multiple of 3");
+    for (const uint32_t index : indices)
+        if (index >= positions_enu.size())
+            throw std::invalid_argument(path + ": index " + std::to_string(index) + " out of range");
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "gusuku";
+    BinaryBuilder binary(model);
+
+    std::vector<glm::vec3> positions(positions_enu.size());
+    for (size_t i = 0; i < positions.size(); ++i)
+        positions[i] = glm::vec3(model_from_enu * glm::dvec4(positions_enu[i], 1.0));
+    std::vector<uint32_t> model_indices = indices;
+    if (glm::determinant(glm::dmat3(model_from_enu)) < 0.0)
+        for (size_t t = 0; t + 2 < model_indices.size(); t += 3) std::swap(model_indices[t + 1], model_indices[t + 2]);
+
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.attributes["POSITION"] = binary.addFloatAccessor(positions, TINYGLTF_TYPE_VEC3, true);
+    primitive.indices = binary.addIndexAccessor(model_indices);
+    tinygltf::Mesh mesh;
+    mesh.name = "occluder";
+    mesh.primitives.push_back(primitive);
+    model.meshes.push_back(mesh);
+    writeSingleMeshGlb(path, model);
+}
 
 void writeGlb(const std::string& path, const TriangleMesh& mesh, const glm::dmat4& model_from_enu) {
     if (mesh.indices.size() % 3 != 0 || mesh.triangle_material.size() != mesh.triangleCount())
@@ -169,21 +219,7 @@ void writeGlb(const std::string& path, const TriangleMesh& mesh, const glm::dmat
         out_mesh.primitives.push_back(primitive);
     }
     model.meshes.push_back(out_mesh);
-
-    tinygltf::Node node;
-    node.mesh = 0;
-    model.nodes.push_back(node);
-    tinygltf::Scene scene;
-    scene.nodes.push_back(0);
-    model.scenes.push_back(scene);
-    model.defaultScene = 0;
-
-    std::ostringstream glb;
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, glb, false, true))
-        throw std::runtime_error(path + ": tinygltf could not serialise the mesh");
-    const std::string bytes = glb.str();
-    writeBytesAtomically(path, bytes.data(), bytes.size());
+    writeSingleMeshGlb(path, model);
 }
 
 }  // namespace gusuku
