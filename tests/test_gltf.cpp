@@ -1,5 +1,8 @@
 // glTF loading (gusuku/gltf_loader.h) and writing. Small glTF files are built here as JSON text plus a .bin, so
 // each expected position, normal and error comes from the test's own arithmetic, not from a previous run.
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "fifo_watchdog.h"
 #include "gpu_test_support.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/gltf_loader.h"
@@ -531,3 +535,185 @@ TEST_F(GltfTest, WriteGlbRoundTrip) {
 }
 
 }  // namespace
+
+namespace {
+
+using gusuku::testing::fifoWasOpenedDuring;
+
+bool isOneLine(const std::string& message) {
+    return message.find('\n') == std::string::npos && message.find("[json.exception") == std::string::npos;
+}
+
+}  // namespace
+
+TEST_F(GltfTest, BufferOrImageUriNamingAFifoDeviceOrDirectoryIsRefusedUnopened) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {}, 0);
+    builder.document().update(texturedMaterial("pipe.png"));
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const std::string path = builder.write(dir_, "special");
+    ASSERT_EQ(mkfifo((dir_ + "/pipe.png").c_str(), 0600), 0);
+    InputError error("", "", "");
+    EXPECT_FALSE(fifoWasOpenedDuring(dir_ + "/pipe.png", [&] { error = expectInputError([&] { gusuku::loadGltf(path, {}); }); }));
+    EXPECT_EQ(error.file(), path);
+    EXPECT_EQ(error.field(), "images[0].uri");
+    EXPECT_EQ(error.problem(), "\"pipe.png\" is a FIFO (named pipe), not a regular file; not read");
+
+    // The buffer itself: a FIFO, then a link to a character device, then a directory.
+    const std::string bin = dir_ + "/special.bin";
+    std::filesystem::remove(bin);
+    ASSERT_EQ(mkfifo(bin.c_str(), 0600), 0);
+    EXPECT_FALSE(fifoWasOpenedDuring(bin, [&] { error = expectInputError([&] { gusuku::loadGltf(path, {}); }); }));
+    EXPECT_EQ(error.field(), "buffers[0].uri");
+    EXPECT_TRUE(error.problem().find("FIFO") != std::string::npos) << error.what();
+    std::filesystem::remove(bin);
+    std::filesystem::create_symlink("/dev/zero", bin);
+    error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_EQ(error.problem(), "\"special.bin\" is a character device, not a regular file; not read");
+    std::filesystem::remove(bin);
+    std::filesystem::create_directory(bin);
+    error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_EQ(error.problem(), "\"special.bin\" is a directory, not a regular file; not read");
+
+    // The glTF file itself.
+    const std::string fifo_gltf = dir_ + "/scene_fifo.gltf";
+    ASSERT_EQ(mkfifo(fifo_gltf.c_str(), 0600), 0);
+    EXPECT_FALSE(fifoWasOpenedDuring(fifo_gltf, [&] { error = expectInputError([&] { gusuku::loadGltf(fifo_gltf, {}); }); }));
+    EXPECT_EQ(error.what(), fifo_gltf + ": is a FIFO (named pipe), not a regular file; not read");
+}
+
+// Two nodes per level, each with both nodes of the next level as children: 2^24 paths reach the last level, whose
+// nodes hold one triangle each. The file is under 3 KB; expanded it would be 16,777,216 triangles (8.6 GB and
+// std::bad_alloc before the limit). It must be refused from the counts alone, before anything is expanded.
+TEST_F(GltfTest, SharedChildrenThatExpandPastTheLimitAreRefusedBeforeExpansion) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    constexpr int kLevels = 24;
+    for (int level = 0; level < kLevels; ++level) {
+        for (int twin = 0; twin < 2; ++twin) {
+            json node = json::object();
+            if (level + 1 < kLevels)
+                node["children"] = {2 * (level + 1), 2 * (level + 1) + 1};
+            else
+                node["mesh"] = mesh;
+            builder.addNode(node);
+        }
+    }
+    builder.setScene({0, 1});
+    const std::string path = builder.write(dir_, "dag");
+    EXPECT_LT(std::filesystem::file_size(path), 3000u);
+    const auto start = std::chrono::steady_clock::now();
+    const InputError error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+    EXPECT_EQ(error.field(), "nodes");
+    EXPECT_EQ(error.problem(), "the scene expands to 16777216 instanced triangles, above the limit 4194304 (a node "
+                               "used by several parents repeats its whole subtree); refused before expanding");
+
+    // The same shape without meshes still visits 2^25 nodes: refused by the node limit.
+    for (json& node : builder.document()["nodes"]) node.erase("mesh");
+    builder.document()["nodes"][0]["mesh"] = mesh;
+    const InputError nodes_error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "dag_nodes"), {}); });
+    EXPECT_TRUE(nodes_error.problem().find("33554430 node instances, above the limit 1048576") != std::string::npos)
+        << nodes_error.what();
+
+    // Below the limits the shared subtree is expanded: 2 levels -> 4 instances of the triangle.
+    GltfBuilder small;
+    const int small_mesh = small.addTriangleMesh(kTriangle);
+    small.addNode({{"children", {2, 3}}});
+    small.addNode({{"children", {2, 3}}});
+    small.addNode({{"mesh", small_mesh}});
+    small.addNode({{"mesh", small_mesh}});
+    small.setScene({0, 1});
+    EXPECT_EQ(gusuku::loadGltf(small.write(dir_, "dag_small"), {}).triangleCount(), 4u);
+}
+
+TEST_F(GltfTest, NonFiniteTransformsAndPositionsBeyondFloatAreRefused) {
+    // A translation of 1e39 is a finite double but no float: the vertex would become infinity.
+    GltfBuilder far;
+    const int far_mesh = far.addTriangleMesh(kTriangle);
+    far.setScene({far.addNode({{"mesh", far_mesh}, {"translation", {1e39, 0, 0}}})});
+    InputError error = expectInputError([&] { gusuku::loadGltf(far.write(dir_, "far"), {}); });
+    EXPECT_EQ(error.field(), "meshes[0].primitives[0].attributes.POSITION");
+    EXPECT_EQ(error.problem(), "vertex 0 lies beyond float range after its node transform");
+
+    // Two scales of 1e200 compose to infinity in double.
+    GltfBuilder huge;
+    const int huge_mesh = huge.addTriangleMesh(kTriangle);
+    const int child = huge.addNode({{"mesh", huge_mesh}, {"scale", {1e200, 1e200, 1e200}}});
+    huge.setScene({huge.addNode({{"children", {child}}, {"scale", {1e200, 1e200, 1e200}}})});
+    error = expectInputError([&] { gusuku::loadGltf(huge.write(dir_, "huge"), {}); });
+    EXPECT_EQ(error.field(), "nodes[0]");
+    EXPECT_TRUE(error.problem().find("not finite") != std::string::npos) << error.what();
+
+    // A literal that overflows a double (1e999) in a matrix: refused on one line, wherever the parser stops it.
+    GltfBuilder overflow;
+    const int overflow_mesh = overflow.addTriangleMesh(kTriangle);
+    overflow.setScene({overflow.addNode({{"mesh", overflow_mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 7, 0, 0, 1}}})});
+    const std::string path = overflow.write(dir_, "overflow");
+    std::string text = gusuku::readWholeFile(path);
+    const size_t seven = text.find("7,");
+    ASSERT_NE(seven, std::string::npos);
+    text.replace(seven, 1, "1e999");
+    gusuku::writeBytesAtomically(path, text.data(), text.size());
+    error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_TRUE(isOneLine(error.what())) << error.what();
+}
+
+TEST_F(GltfTest, EmissionBeyondFloatRangeIsRefused) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle, {}, {}, 0);
+    builder.document()["materials"] = {{{"name", "glow"}, {"emissiveFactor", {1e39, 0, 0}}}};
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); });
+    EXPECT_EQ(error.field(), "materials[0].emissiveFactor[0]");
+    EXPECT_EQ(error.problem(), "1e+39 is beyond float range (at most 1e15 is accepted)");
+}
+
+TEST_F(GltfTest, RequiredExtensionsAreNamedAsUnsupported) {
+    for (const char* extension : {"KHR_draco_mesh_compression", "KHR_texture_basisu", "KHR_materials_variants"}) {
+        GltfBuilder builder;
+        const int mesh = builder.addTriangleMesh(kTriangle);
+        builder.setScene({builder.addNode({{"mesh", mesh}})});
+        builder.document()["extensionsUsed"] = {extension};
+        builder.document()["extensionsRequired"] = {extension};
+        const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "ext"), {}); });
+        EXPECT_EQ(error.field(), "extensionsRequired[0]");
+        EXPECT_NE(error.problem().find(std::string("requires ") + (std::string(extension) == "KHR_materials_variants" ? "the extension " : "") + extension + ", which this loader does not support"), std::string::npos) << error.what();
+    }
+    // A meshopt-compressed file: its buffer has no uri, which tinygltf alone reports as a broken buffer.
+    const std::string path = dir_ + "/meshopt.gltf";
+    const std::string text = R"({"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_meshopt_compression"],
+        "extensionsRequired": ["EXT_meshopt_compression"], "buffers": [{"byteLength": 1200}]})";
+    gusuku::writeBytesAtomically(path, text.data(), text.size());
+    const InputError error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_EQ(error.problem(), "the file requires EXT_meshopt_compression, which this loader does not support: its "
+                               "meshes are compressed; export the glTF without mesh compression");
+}
+
+TEST_F(GltfTest, LibraryErrorsBecomeOneLine) {
+    // Syntax error (nlohmann's message without its exception id), a missing buffer file (tinygltf's two lines).
+    const std::string corrupt = dir_ + "/corrupt_line.gltf";
+    const std::string text = "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ {";
+    gusuku::writeBytesAtomically(corrupt, text.data(), text.size());
+    InputError error = expectInputError([&] { gusuku::loadGltf(corrupt, {}); });
+    EXPECT_TRUE(isOneLine(error.what())) << error.what();
+
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh(kTriangle);
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    const std::string path = builder.write(dir_, "nobin");
+    std::filesystem::remove(dir_ + "/nobin.bin");
+    error = expectInputError([&] { gusuku::loadGltf(path, {}); });
+    EXPECT_TRUE(isOneLine(error.what())) << error.what();
+    EXPECT_NE(error.problem().find("nobin.bin"), std::string::npos) << error.what();
+
+    // An accessor without a bufferView (all zeros) declares a count no file bytes bound: limited, not allocated.
+    GltfBuilder zeros;
+    const int zeros_mesh = zeros.addTriangleMesh(kTriangle);
+    zeros.document()["accessors"].push_back({{"componentType", kFloat}, {"count", 4000000000u}, {"type", "VEC3"}});
+    zeros.document()["meshes"][zeros_mesh]["primitives"][0]["attributes"]["NORMAL"] = 1;
+    zeros.setScene({zeros.addNode({{"mesh", zeros_mesh}})});
+    error = expectInputError([&] { gusuku::loadGltf(zeros.write(dir_, "zeros"), {}); });
+    EXPECT_NE(error.problem().find("4000000000 elements without a bufferView, above the limit"), std::string::npos)
+        << error.what();
+}

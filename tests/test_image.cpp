@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
+#include "fifo_watchdog.h"
 #include "gpu_test_support.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/image.h"
@@ -290,6 +291,125 @@ TEST(RadianceMapTest, RejectsLowDynamicRangeFormats) {
     const std::string path = dir + "/sky.png";
     gusuku::writePngSrgb(path, makeGradient(4, 4, 1.0f));
     EXPECT_THROW(gusuku::readRadianceMap(path), InputError);
+}
+
+TEST(ImageFileTest, FifoDeviceAndDirectoryAreRefusedUnopened) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const std::string fifo = dir + "/pipe.exr";
+    ASSERT_TRUE(gusuku::testing::makeFifo(fifo));
+    std::string message;
+    EXPECT_FALSE(gusuku::testing::fifoWasOpenedDuring(
+        fifo, [&] { message = expectInputError([&] { gusuku::readRadianceMap(fifo); }); }));
+    EXPECT_EQ(message, fifo + ": is a FIFO (named pipe), not a regular file; not read");
+    fs::create_symlink("/dev/zero", dir + "/zero.png");
+    EXPECT_EQ(expectInputError([&] { gusuku::readImage(dir + "/zero.png"); }),
+              dir + "/zero.png: is a character device, not a regular file; not read");
+    fs::create_directory(dir + "/folder.hdr");
+    EXPECT_EQ(expectInputError([&] { gusuku::readRadianceMap(dir + "/folder.hdr"); }),
+              dir + "/folder.hdr: is a directory, not a regular file; not read");
+}
+
+// An image wider than the side limit is box-averaged while it is decoded. Texel (x, y) holds (x, y, 1), so a
+// block of `factor` columns and rows starting at (f i, f j) averages to (f i + (f - 1) / 2, f j + (f - 1) / 2).
+TEST(ImageFileTest, ImagesAboveTheSideLimitAreDownsampledWhileDecoding) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    ImageRGBA image = makeImage(gusuku::kMaxImageSide + 808, 4);  // 9000 x 4
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            image.texel(x, y)[0] = float(x);
+            image.texel(x, y)[1] = float(y);
+            image.texel(x, y)[2] = 1.0f;
+        }
+    const std::string path = dir + "/wide.exr";
+    gusuku::writeExr(path, image);
+    const ImageRGBA read = gusuku::readImage(path);  // factor 2
+    ASSERT_EQ(read.width, 4500);
+    ASSERT_EQ(read.height, 2);
+    for (int x : {0, 1, 2000, 4499}) {
+        EXPECT_FLOAT_EQ(read.texel(x, 1)[0], 2.0f * float(x) + 0.5f);
+        EXPECT_FLOAT_EQ(read.texel(x, 1)[1], 2.5f);
+        EXPECT_FLOAT_EQ(read.texel(x, 1)[2], 1.0f);
+        EXPECT_FLOAT_EQ(read.texel(x, 1)[3], 1.0f);
+    }
+    // A caller's smaller limit: factor 90 gives 100 x 1, every block whole in x, partial (4 rows) in y.
+    const ImageRGBA small = gusuku::readImage(path, gusuku::ImageEncoding::Linear, 100);
+    ASSERT_EQ(small.width, 100);
+    ASSERT_EQ(small.height, 1);
+    EXPECT_FLOAT_EQ(small.texel(7, 0)[0], 90.0f * 7.0f + 44.5f);
+    EXPECT_FLOAT_EQ(small.texel(7, 0)[1], 1.5f);
+}
+
+// A PNG header declaring 100000 x 100000 texels (40 GB as float RGBA) in a file of a few dozen bytes.
+TEST(ImageFileTest, HugeHeaderIsRefusedBeforeDecoding) {
+    const unsigned char png[] = {
+        0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00, 0x01,
+        0x86, 0xA0, 0x00, 0x01, 0x86, 0xA0, 0x08, 0x02, 0x00, 0x00, 0x00, 0x27, 0x30, 0x9C, 0x9F, 0x00, 0x00, 0x00,
+        0x0C, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0x60, 0xA0, 0x0C, 0x00, 0x00, 0x00, 0x40, 0x00, 0x01, 0xB7,
+        0x34, 0x7C, 0xEF, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
+    const std::vector<unsigned char> bytes(png, png + sizeof png);
+    const std::string message = expectInputError([&] { gusuku::readImageFromMemory("huge.png", bytes); });
+    EXPECT_EQ(message, "huge.png: image header declares 100000 x 100000 texels, more than the 268435456 (16384 x "
+                       "16384) this reader decodes; refused before decoding");
+}
+
+// libpng prints "libpng error: ..." on stderr by itself; the reader folds the failure into its one-line error and
+// leaves stderr clean.
+TEST(ImageFileTest, CorruptPngGivesOneLineAndNothingOnStderr) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const std::string path = dir + "/corrupt.png";
+    gusuku::writePngSrgb(path, makeGradient(16, 16, 1.0f));
+    std::string bytes = gusuku::readWholeFile(path);
+    const size_t data = bytes.find("IDAT");
+    ASSERT_NE(data, std::string::npos);
+    bytes[data + 3] = 'B';  // "IDAB": an unknown critical chunk
+    gusuku::writeBytesAtomically(path, bytes.data(), bytes.size());
+    ::testing::internal::CaptureStderr();
+    const std::string message = expectInputError([&] { gusuku::readImage(path); });
+    const std::string printed = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(printed, "");
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(path + ": cannot ", 0), 0u) << message;
+    EXPECT_NE(message.find("IDAB"), std::string::npos) << message;  // libpng's reason, folded in
+}
+
+// 1e39 is no float: an EXR holding it stores infinity (here a half channel, whose range ends at 65504). RGBE's
+// largest exponent byte, 255, encodes 2^127 times the mantissa (1.7e38): a float, but beyond any sky, whose square
+// overflows float sums.
+TEST(RadianceMapTest, RadianceBeyondFloatRangeOrTheLimitIsRefused) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const std::string half_path = dir + "/half.exr";
+    {
+        std::vector<float> pixels = {1.0f, 2.0f, 3.0f, 1e5f, 1.0f, 1.0f};
+        OIIO::ImageSpec spec(2, 1, 3, OIIO::TypeDesc::HALF);
+        auto output = OIIO::ImageOutput::create(half_path);
+        ASSERT_TRUE(output && output->open(half_path, spec));
+        ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        output->close();
+    }
+    EXPECT_EQ(expectInputError([&] { gusuku::readRadianceMap(half_path); }),
+              half_path + ": texel (1, 0) channel R: infinite radiance (a value beyond the range of the file's half "
+                          "or float channels)");
+
+    const std::string rgbe_path = dir + "/overflow.hdr";
+    std::string rgbe = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n";
+    rgbe += std::string("\x80\x80\x80\x81", 4);  // 1.0
+    rgbe += std::string("\xFF\xFF\xFF\xFF", 4);  // 255.5 / 256 * 2^127
+    gusuku::writeBytesAtomically(rgbe_path, rgbe.data(), rgbe.size());
+    const std::string message = expectInputError([&] { gusuku::readRadianceMap(rgbe_path); });
+    EXPECT_EQ(message.rfind(rgbe_path + ": texel (1, 0) channel R: radiance 1.69", 0), 0u) << message;
+    EXPECT_NE(message.find("above the limit 1e+15"), std::string::npos) << message;
+}
+
+// OpenImageIO falls back to whichever reader accepts the bytes: a PNG named sky.hdr would be read as 8-bit sRGB
+// "radiance". The format actually read decides.
+TEST(RadianceMapTest, EightBitImageNamedHdrIsRefused) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const std::string path = dir + "/sky.hdr";
+    const std::vector<unsigned char> png = gusuku::encodePngSrgb(makeGradient(8, 4, 1.0f));
+    gusuku::writeBytesAtomically(path, png.data(), png.size());
+    const std::string message = expectInputError([&] { gusuku::readRadianceMap(path); });
+    EXPECT_EQ(message, path + ": holds png 8-bit data (uint8): a sky must be an HDR radiance map (Radiance .hdr or "
+                              "OpenEXR .exr with half or float channels), not an 8-bit image");
 }
 
 TEST(BoxDownsampleTest, AveragesBlocksAndFitsTheLimit) {

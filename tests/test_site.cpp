@@ -8,6 +8,8 @@
 #include <string>
 
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -462,6 +464,63 @@ TEST_F(SiteJson, CheckCommandReportsFileFieldAndProblem) {
     const CommandResult result = runBakeCheck(directory_, path);
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_EQ(result.stderr_text, "gusuku-bake: error: " + path + ": /site/latitude_deg: 200 is outside [-90, 90]\n");
+}
+
+// A FIFO opened for reading blocks until a writer appears: a referenced sky, glTF or site.json that is one must be
+// refused by its type, never opened. A directory or a device is no file either.
+TEST_F(SiteJson, FifoDirectoryAndDeviceAsReferencedFilesAreRefusedUnopened) {
+    const fs::path fifo = fs::path(directory_) / "sky_fifo.hdr";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    document_["skies"]["sunny"]["path"] = "sky_fifo.hdr";
+    gusuku::InputError error = loadError();
+    EXPECT_EQ(error.field(), "/skies/sunny/path");
+    EXPECT_TRUE(contains(error.problem(), "is a FIFO (named pipe), not a regular file"));
+
+    document_["skies"]["sunny"]["path"] = "sky.hdr";
+    fs::create_directory(fs::path(directory_) / "folder.glb");
+    document_["building"]["path"] = "folder.glb";
+    error = loadError();
+    EXPECT_EQ(error.field(), "/building/path");
+    EXPECT_TRUE(contains(error.problem(), "is a directory, not a regular file"));
+
+    fs::create_symlink("/dev/zero", fs::path(directory_) / "zero.glb");
+    document_["building"]["path"] = "zero.glb";
+    error = loadError();
+    EXPECT_EQ(error.field(), "/building/path");
+    EXPECT_TRUE(contains(error.problem(), "is a character device, not a regular file"));
+
+    const fs::path site_fifo = fs::path(directory_) / "site_fifo.json";
+    ASSERT_EQ(mkfifo(site_fifo.c_str(), 0600), 0);
+    try {
+        gusuku::loadSiteConfig(site_fifo.string());
+        ADD_FAILURE() << "a FIFO site.json was accepted";
+    } catch (const gusuku::InputError& site_error) {
+        EXPECT_EQ(site_error.what(), site_fifo.string() + ": is a FIFO (named pipe), not a regular file; not read");
+    }
+}
+
+// NREL SPA is fitted for the years -2000..6000 and the sun code refuses instants outside them; a date it would
+// refuse is reported at load, with its field, rather than when the bake reaches the sun.
+TEST_F(SiteJson, DateOutsideTheSunModelsYearsIsRefusedAtLoad) {
+    document_["bake"]["date"] = "7000-06-21";
+    gusuku::InputError error = loadError();
+    EXPECT_EQ(error.field(), "/bake/date");
+    EXPECT_TRUE(contains(error.problem(), "slot \"sunny_0900\" at 7000-06-21T09:00:00+09:00"));
+    EXPECT_TRUE(contains(error.problem(), "years -2000 to 6000"));
+
+    // The same file at a date SPA covers loads.
+    document_["bake"]["date"] = "2026-06-21";
+    EXPECT_EQ(load().bake.slots.size(), 4u);  // the three sunny defaults and overcast
+}
+
+TEST_F(SiteJson, CheckCommandReportsADateTheSunCannotTake) {
+    document_["bake"]["date"] = "9999-01-01";
+    const std::string path = writeText(document_.dump(2));
+    const CommandResult result = runBakeCheck(directory_, path);
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_EQ(result.stderr_text, "gusuku-bake: error: " + path +
+                                      ": /bake/date: slot \"sunny_0900\" at 9999-01-01T09:00:00+09:00 is outside the "
+                                      "UTC years -2000 to 6000 that the sun position (NREL SPA) covers\n");
 }
 
 TEST_F(SiteJson, CheckCommandSummarisesASharedDataSite) {

@@ -27,17 +27,34 @@ enum class ImageEncoding {
     Srgb,    ///< values are sRGB-encoded; decoded to linear on read
 };
 
-/// Reads an image file through OpenImageIO. Grey images are expanded to RGB; missing alpha becomes 1.
-/// Throws InputError(path, ...) when the file is missing, unreadable or not an image.
-ImageRGBA readImage(const std::string& path, ImageEncoding encoding = ImageEncoding::Auto);
+/// Reading limits. An image whose header declares more than kMaxImageFileTexels texels (16384 x 16384) is refused
+/// before a texel is decoded (a corrupt or hostile header, or a decompression bomb). One larger than max_side
+/// (at most kMaxImageSide) on either side is box-downsampled while it is decoded, by the smallest integer factor
+/// that fits (as boxDownsample), one band of rows at a time: the full-size image is never held.
+constexpr int kMaxImageSide = 8192;
+constexpr int64_t kMaxImageFileTexels = int64_t(1) << 28;
+/// The largest radiance a radiance map may hold, in its own units: far above any sky (the sun's disc is about
+/// 2e7 W m^-2 sr^-1, 1.6e9 cd m^-2) and low enough that squares summed over a whole map stay within float range.
+constexpr float kMaxRadiance = 1e15f;
+
+/// Reads an image file through OpenImageIO. Grey images are expanded to RGB; missing alpha becomes 1; channels
+/// past the fourth are ignored. Throws InputError(path, ...) when the file is missing, not a regular file (a FIFO,
+/// a device, a directory: never opened), unreadable, not an image or too large (above). Whatever the codec
+/// prints (libpng) is folded into the one-line error, never left on stderr.
+ImageRGBA readImage(const std::string& path, ImageEncoding encoding = ImageEncoding::Auto,
+                    int max_side = kMaxImageSide);
 
 /// Decodes an image held in memory (an image embedded in a .glb); `name` is used in error messages and
 /// `mime_type` or the bytes' signature chooses the format. 8-bit data is taken as sRGB unless encoding says.
+/// Same limits and errors as readImage.
 ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigned char>& bytes,
-                              ImageEncoding encoding = ImageEncoding::Auto);
+                              ImageEncoding encoding = ImageEncoding::Auto, int max_side = kMaxImageSide);
 
-/// Reads a radiance map (.hdr or .exr) and checks it: every RGB texel finite and >= 0. A NaN, an infinity or a
-/// negative texel is an InputError naming the texel and channel.
+/// Reads a radiance map and checks it: the data must be Radiance RGBE (.hdr) or OpenEXR with half or float
+/// channels (an 8-bit PNG or JPEG, even renamed .hdr, is refused), and every RGB texel finite, >= 0 and at most
+/// kMaxRadiance. A NaN, an infinity (a value beyond float range stored in the file), a negative or a too large
+/// texel is an InputError naming the texel and channel. Maps wider or taller than kMaxImageSide are
+/// box-downsampled while loading.
 ImageRGBA readRadianceMap(const std::string& path);
 
 /// Writes RGB (or RGBA when with_alpha) as 32-bit float OpenEXR, atomically (temporary file, then rename).

@@ -7,7 +7,11 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <map>
+#include <new>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -15,10 +19,13 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "gusuku/image.h"
 #include "gusuku/input_error.h"
+#include "one_line.h"
+#include "regular_file.h"
 
 namespace gusuku {
 
@@ -35,6 +42,133 @@ namespace {
 
 // Deeper node nesting than this is taken as a corrupt (or hostile) file rather than a real scene.
 constexpr int kMaxNodeDepth = 256;
+
+// --- files tinygltf opens ----------------------------------------------------------------------------------------
+// tinygltf's own FileExists opens the file (a FIFO blocks it until a writer appears) and its ReadWholeFile reads
+// whatever the path names (/dev/zero never ends). These replacements look at the file's type first.
+
+bool regularFileExists(const std::string& path, void* /*user_data*/) { return regularFileProblem(path).empty(); }
+
+// glTF URIs are relative paths, never shell words: no expansion (older tinygltf ran wordexp on them).
+std::string pathAsIs(const std::string& path, void* /*user_data*/) { return path; }
+
+bool readRegularFile(std::vector<unsigned char>* bytes, std::string* error, const std::string& path,
+                     void* /*user_data*/) {
+    if (const std::string problem = regularFileProblem(path); !problem.empty()) {
+        if (error) *error += problem;
+        return false;
+    }
+    std::ifstream stream(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = stream ? std::streamoff(stream.tellg()) : std::streamoff(-1);
+    if (size < 0) {
+        if (error) *error += "cannot be opened for reading";
+        return false;
+    }
+    bytes->resize(size_t(size));
+    stream.seekg(0);
+    if (size > 0 && !stream.read(reinterpret_cast<char*>(bytes->data()), size)) {
+        if (error) *error += "cannot be read";
+        return false;
+    }
+    return true;
+}
+
+bool unusedWrite(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (error) *error += "the loader writes no files";
+    return false;
+}
+
+// --- a look at the JSON before tinygltf reads it -------------------------------------------------------------
+// Two things must be decided before tinygltf follows the file: a required extension it cannot honour (a
+// meshopt-compressed buffer has no uri, which tinygltf would report as a broken buffer rather than the
+// extension), and buffer or image URIs that name a FIFO, a device or a directory (refused with the element that
+// names them, before anything is opened).
+
+// The JSON chunk of a .glb (12-byte header, then chunk 0 of type "JSON"), or the whole file of a .gltf.
+std::optional<std::string> gltfJsonText(const std::vector<unsigned char>& file_bytes, bool is_glb) {
+    if (!is_glb) return std::string(file_bytes.begin(), file_bytes.end());
+    if (file_bytes.size() < 20 || std::memcmp(file_bytes.data(), "glTF", 4) != 0) return std::nullopt;
+    uint32_t chunk_length = 0;
+    std::memcpy(&chunk_length, file_bytes.data() + 12, 4);
+    if (std::memcmp(file_bytes.data() + 16, "JSON", 4) != 0 || chunk_length > file_bytes.size() - 20)
+        return std::nullopt;
+    return std::string(file_bytes.begin() + 20, file_bytes.begin() + 20 + chunk_length);
+}
+
+// RFC 3986 percent-decoding, as tinygltf applies to relative URIs.
+std::string percentDecoded(const std::string& uri) {
+    std::string decoded;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            decoded += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    return decoded;
+}
+
+std::string requiredExtensionProblem(const std::string& name) {
+    if (name == "KHR_draco_mesh_compression" || name == "EXT_meshopt_compression")
+        return "the file requires " + name + ", which this loader does not support: its meshes are compressed; "
+               "export the glTF without mesh compression";
+    if (name == "KHR_texture_basisu")
+        return "the file requires KHR_texture_basisu, which this loader does not support: its textures are "
+               "KTX2/Basis; export them as PNG or JPEG";
+    return "the file requires the extension " + name + ", which this loader does not support";
+}
+
+void checkBeforeParsing(const std::string& path, const std::vector<unsigned char>& file_bytes, bool is_glb) {
+    const std::optional<std::string> text = gltfJsonText(file_bytes, is_glb);
+    if (!text) return;  // tinygltf reports a malformed container
+    const nlohmann::json document = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
+    if (!document.is_object()) return;  // and malformed JSON
+    if (const auto required = document.find("extensionsRequired");
+        required != document.end() && required->is_array())
+        for (size_t i = 0; i < required->size(); ++i)
+            if ((*required)[i].is_string())
+                throw InputError(path, "extensionsRequired[" + std::to_string(i) + "]",
+                                 requiredExtensionProblem((*required)[i].get<std::string>()));
+    const std::filesystem::path base_dir = std::filesystem::path(path).parent_path();
+    for (const char* list : {"buffers", "images"}) {
+        const auto elements = document.find(list);
+        if (elements == document.end() || !elements->is_array()) continue;
+        for (size_t i = 0; i < elements->size(); ++i) {
+            const nlohmann::json& element = (*elements)[i];
+            if (!element.is_object() || !element.contains("uri") || !element["uri"].is_string()) continue;
+            const std::string uri = element["uri"].get<std::string>();
+            if (uri.empty() || uri.rfind("data:", 0) == 0) continue;
+            const std::string file = (base_dir / percentDecoded(uri)).string();
+            const std::string problem = regularFileProblem(file);
+            if (!problem.empty() && problem != "file not found")
+                throw InputError(path, std::string(list) + "[" + std::to_string(i) + "].uri",
+                                 "\"" + uri + "\" " + problem);
+        }
+    }
+}
+
+std::string describeCount(uint64_t count) {
+    return count == std::numeric_limits<uint64_t>::max() ? "more than 1.8e19" : std::to_string(count);
+}
+
+uint64_t saturatingAdd(uint64_t a, uint64_t b) {
+    return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max() : a + b;
+}
+
+// What the flattened scene would hold, counted from accessor counts without reading or expanding anything.
+struct InstanceCount {
+    uint64_t nodes = 0;
+    uint64_t triangles = 0;
+    uint64_t vertices = 0;
+    InstanceCount& operator+=(const InstanceCount& other) {
+        nodes = saturatingAdd(nodes, other.nodes);
+        triangles = saturatingAdd(triangles, other.triangles);
+        vertices = saturatingAdd(vertices, other.vertices);
+        return *this;
+    }
+};
 
 // tinygltf image callback: keep the encoded bytes (as_is) instead of decoding them with its built-in stb_image.
 // user_data is the Model being loaded. tinygltf hands over an embedded image's bufferView without checking it
@@ -103,7 +237,9 @@ public:
           base_dir_(std::filesystem::path(path).parent_path()) {}
 
     TriangleMesh flatten() {
-        for (int root : rootNodes()) visitNode(root, options_.enu_from_model, 0);
+        const std::vector<int> roots = rootNodes();
+        checkInstanceCount(roots);
+        for (int root : roots) visitNode(root, options_.enu_from_model, 0);
         if (mesh_.indices.empty())
             throw InputError(path_, "", "no triangles in the scene (a building needs at least one triangle)");
         if (primitives_without_uv1_ > 0 || primitives_with_uv1_ == 0) {
@@ -149,7 +285,79 @@ private:
         return roots;
     }
 
+    // Instances of a node shared by several parents multiply along the hierarchy: a few kilobytes of JSON can
+    // describe billions of triangles. The whole expansion is counted (each node once, memoised) and refused
+    // above the options' limits before a vertex is read.
+    void checkInstanceCount(const std::vector<int>& roots) {
+        std::vector<std::optional<InstanceCount>> subtree(model_.nodes.size());
+        InstanceCount total;
+        for (int root : roots) total += countSubtree(root, 0, subtree);
+        const std::string limit_note = " (a node used by several parents repeats its whole subtree); refused "
+                                       "before expanding";
+        if (total.triangles > options_.max_instanced_triangles)
+            fail("nodes", "the scene expands to " + describeCount(total.triangles) +
+                              " instanced triangles, above the limit " +
+                              std::to_string(options_.max_instanced_triangles) + limit_note);
+        if (total.nodes > kMaxNodeInstances)
+            fail("nodes", "the scene expands to " + describeCount(total.nodes) + " node instances, above the limit " +
+                              std::to_string(kMaxNodeInstances) + limit_note);
+        if (total.vertices > options_.max_instanced_vertices)
+            fail("nodes", "the scene expands to " + describeCount(total.vertices) +
+                              " instanced vertices, above the limit " +
+                              std::to_string(options_.max_instanced_vertices) + limit_note);
+    }
+
+    InstanceCount countSubtree(int node_index, int depth, std::vector<std::optional<InstanceCount>>& subtree) {
+        const std::string field = "nodes[" + std::to_string(node_index) + "]";
+        if (node_index < 0 || size_t(node_index) >= model_.nodes.size())
+            fail(field, "node does not exist (" + std::to_string(model_.nodes.size()) + " nodes)");
+        if (subtree[size_t(node_index)]) return *subtree[size_t(node_index)];
+        if (depth > kMaxNodeDepth || !nodes_on_path_.insert(node_index).second)
+            fail(field, "node hierarchy has a cycle or is deeper than " + std::to_string(kMaxNodeDepth));
+        const tinygltf::Node& node = model_.nodes[size_t(node_index)];
+        InstanceCount count;
+        count.nodes = 1;
+        if (node.mesh >= 0 && size_t(node.mesh) < model_.meshes.size()) count += meshCount(node.mesh);
+        for (int child : node.children) count += countSubtree(child, depth + 1, subtree);
+        nodes_on_path_.erase(node_index);
+        subtree[size_t(node_index)] = count;
+        return count;
+    }
+
+    // Triangles and vertices one instance of a mesh adds (a primitive without normals gets one vertex per
+    // triangle corner). Broken references count 0 here; reading them later names the problem.
+    InstanceCount meshCount(int mesh_index) const {
+        const auto accessor_count = [&](int accessor) -> uint64_t {
+            return accessor >= 0 && size_t(accessor) < model_.accessors.size()
+                       ? uint64_t(model_.accessors[size_t(accessor)].count)
+                       : 0;
+        };
+        InstanceCount count;
+        for (const tinygltf::Primitive& primitive : model_.meshes[size_t(mesh_index)].primitives) {
+            if (primitive.mode >= 0 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
+            const auto position = primitive.attributes.find("POSITION");
+            const uint64_t vertex_count = position == primitive.attributes.end() ? 0 : accessor_count(position->second);
+            const uint64_t corner_count = primitive.indices >= 0 ? accessor_count(primitive.indices) : vertex_count;
+            const bool has_normals = primitive.attributes.count("NORMAL") > 0;
+            count.triangles = saturatingAdd(count.triangles, corner_count / 3);
+            count.vertices = saturatingAdd(count.vertices, has_normals ? vertex_count : corner_count);
+        }
+        return count;
+    }
+
+    // Every number of a node's transform must be finite: JSON cannot say NaN, but tinygltf reads an overflowing
+    // literal (1e999) as infinity.
+    void checkFinite(const std::vector<double>& numbers, const std::string& field) const {
+        for (size_t i = 0; i < numbers.size(); ++i)
+            if (!std::isfinite(numbers[i]))
+                fail(field + "[" + std::to_string(i) + "]", std::isnan(numbers[i]) ? "is NaN" : "is not finite");
+    }
+
     glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& field) const {
+        checkFinite(node.matrix, field + ".matrix");
+        checkFinite(node.translation, field + ".translation");
+        checkFinite(node.rotation, field + ".rotation");
+        checkFinite(node.scale, field + ".scale");
         if (!node.matrix.empty()) {
             if (node.matrix.size() != 16) fail(field + ".matrix", "expected 16 numbers");
             return glm::make_mat4(node.matrix.data());  // both column-major
@@ -184,6 +392,11 @@ private:
             fail(field, "node hierarchy has a cycle or is deeper than " + std::to_string(kMaxNodeDepth));
         const tinygltf::Node& node = model_.nodes[size_t(node_index)];
         const glm::dmat4 enu_from_node = enu_from_parent * localTransform(node, field);
+        for (int column = 0; column < 4; ++column)
+            for (int row = 0; row < 4; ++row)
+                if (!std::isfinite(enu_from_node[column][row]))
+                    fail(field, "its transform, composed with its parents' and the placement, is not finite "
+                                "(a scale or translation near the double range)");
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model_.meshes.size())
                 fail(field + ".mesh", "mesh " + std::to_string(node.mesh) + " does not exist");
@@ -211,7 +424,14 @@ private:
         if (view.component_count <= 0 || component_size <= 0)
             fail(accessor_field, "unknown type or componentType");
         const size_t element_size = size_t(view.component_count) * size_t(component_size);
-        if (accessor.bufferView < 0) return view;  // all zeros
+        if (accessor.bufferView < 0) {
+            // All zeros, and no bytes in the file to bound the count: the instancing limits bound it instead.
+            const uint64_t most = std::max(options_.max_instanced_vertices, 3 * options_.max_instanced_triangles);
+            if (uint64_t(view.count) > most)
+                fail(accessor_field, std::to_string(view.count) + " elements without a bufferView, above the limit " +
+                                         std::to_string(most));
+            return view;
+        }
         if (size_t(accessor.bufferView) >= model_.bufferViews.size())
             fail(accessor_field, "bufferView " + std::to_string(accessor.bufferView) + " does not exist");
         const tinygltf::BufferView& buffer_view = model_.bufferViews[size_t(accessor.bufferView)];
@@ -390,8 +610,12 @@ private:
             for (size_t t = 0; t + 2 < data.indices.size(); t += 3) std::swap(data.indices[t + 1], data.indices[t + 2]);
 
         std::vector<glm::vec3> positions(data.positions.size());
-        for (size_t i = 0; i < positions.size(); ++i)
+        for (size_t i = 0; i < positions.size(); ++i) {
             positions[i] = glm::vec3(enu_from_mesh * glm::dvec4(data.positions[i], 1.0));
+            if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+                fail(field + ".attributes.POSITION", "vertex " + std::to_string(i) +
+                                                         " lies beyond float range after its node transform");
+        }
 
         const bool has_normals = !data.normals.empty();
         if (!has_normals) {
@@ -472,6 +696,8 @@ private:
             const std::string field = "materials[" + std::to_string(gltf_material) + "]";
             material.name = source.name.empty() ? field : source.name;
             const auto& pbr = source.pbrMetallicRoughness;
+            checkFactors(pbr.baseColorFactor, field + ".pbrMetallicRoughness.baseColorFactor");
+            checkFactors(source.emissiveFactor, field + ".emissiveFactor");
             if (pbr.baseColorFactor.size() == 4)
                 material.base_color_factor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
                                                        pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
@@ -491,6 +717,21 @@ private:
         mesh_.materials.push_back(std::move(material));
         material_of_gltf_[gltf_material] = index;
         return index;
+    }
+
+    // Colour factors become floats (and emission is radiance the tracer adds up): each must be finite and >= 0
+    // as a float, so 1e39, beyond float range, is refused rather than turned into infinity.
+    void checkFactors(const std::vector<double>& factors, const std::string& field) const {
+        for (size_t i = 0; i < factors.size(); ++i) {
+            const float value = float(factors[i]);
+            if (std::isfinite(value) && value >= 0.0f && value <= kMaxRadiance) continue;
+            std::ostringstream problem;
+            problem << factors[i]
+                    << (std::isnan(factors[i]) ? " is NaN"
+                        : factors[i] < 0.0     ? " is negative"
+                                               : " is beyond float range (at most 1e15 is accepted)");
+            fail(field + "[" + std::to_string(i) + "]", problem.str());
+        }
     }
 
     int textureFor(int texture_index, const std::string& field) {
@@ -517,9 +758,11 @@ private:
                  "'; using the base colour factor only");
         } else {
             try {
-                ImageRGBA decoded = readImageFromMemory(name, image.image, ImageEncoding::Srgb);
+                // Downsampled while decoding (never held at full size), to max_texture_size or kMaxImageSide.
+                ImageRGBA decoded =
+                    readImageFromMemory(name, image.image, ImageEncoding::Srgb, options_.max_texture_size);
                 texture = int(mesh_.textures.size());
-                mesh_.textures.push_back(boxDownsample(decoded, options_.max_texture_size));
+                mesh_.textures.push_back(std::move(decoded));
                 mesh_.texture_names.push_back(name);
             } catch (const InputError& error) {
                 warn(image_field + ": " + error.what() + "; using the base colour factor only");
@@ -542,6 +785,16 @@ private:
     size_t primitives_without_uv1_ = 0;
 };
 
+// nlohmann's messages carry ids ("[json.exception.parse_error.101] "), which mean nothing to a user.
+std::string withoutJsonExceptionIds(std::string text) {
+    for (size_t start; (start = text.find("[json.exception.")) != std::string::npos;) {
+        const size_t end = text.find("] ", start);
+        if (end == std::string::npos) break;
+        text.erase(start, end + 2 - start);
+    }
+    return text;
+}
+
 bool hasGlbExtension(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -551,20 +804,35 @@ bool hasGlbExtension(const std::string& path) {
 }  // namespace
 
 TriangleMesh loadGltf(const std::string& path, const GltfLoadOptions& options, std::vector<std::string>* warnings) {
-    std::error_code error_code;
-    if (!std::filesystem::is_regular_file(path, error_code)) throw InputError(path, "", "file not found");
+    if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
+    std::vector<unsigned char> file_bytes;
+    std::string read_error;
+    if (!readRegularFile(&file_bytes, &read_error, path, nullptr)) throw InputError(path, "", read_error);
+    const bool is_glb = hasGlbExtension(path);
+    try {
+        checkBeforeParsing(path, file_bytes, is_glb);
 
-    tinygltf::TinyGLTF parser;
-    tinygltf::Model model;
-    parser.SetImageLoader(&keepEncodedImage, &model);
-    std::string error, warning;
-    const bool parsed = hasGlbExtension(path) ? parser.LoadBinaryFromFile(&model, &error, &warning, path)
-                                              : parser.LoadASCIIFromFile(&model, &error, &warning, path);
-    if (!parsed) throw InputError(path, "", trimmed(error.empty() ? "cannot parse glTF" : error));
-    addLines(warnings, path + ": ", warning);
+        tinygltf::TinyGLTF parser;
+        parser.SetFsCallbacks({&regularFileExists, &pathAsIs, &readRegularFile, &unusedWrite, nullptr});
+        tinygltf::Model model;
+        parser.SetImageLoader(&keepEncodedImage, &model);
+        std::string error, warning;
+        const std::string base_dir = std::filesystem::path(path).parent_path().string();
+        const bool parsed =
+            is_glb ? parser.LoadBinaryFromMemory(&model, &error, &warning, file_bytes.data(),
+                                                 unsigned(std::min<size_t>(file_bytes.size(), UINT32_MAX)), base_dir)
+                   : parser.LoadASCIIFromString(&model, &error, &warning,
+                                                reinterpret_cast<const char*>(file_bytes.data()),
+                                                unsigned(std::min<size_t>(file_bytes.size(), UINT32_MAX)), base_dir);
+        if (!parsed) throw InputError(path, "", withoutJsonExceptionIds(oneLine(error.empty() ? "cannot parse glTF" : error)));
+        addLines(warnings, path + ": ", warning);
 
-    GltfFlattener flattener(path, model, options, warnings);
-    return flattener.flatten();
+        GltfFlattener flattener(path, model, options, warnings);
+        return flattener.flatten();
+    } catch (const std::bad_alloc&) {
+        // The limits above should make this unreachable; if memory still runs out, say so on one line.
+        throw InputError(path, "", "out of memory while loading (the file's declared sizes exceed this machine)");
+    }
 }
 
 }  // namespace gusuku

@@ -11,7 +11,9 @@
 #include <sstream>
 
 #include "gusuku/input_error.h"
+#include "gusuku/sun.h"
 #include "gusuku/time_utc.h"
+#include "regular_file.h"
 #include "site_json_reader.h"
 
 namespace gusuku {
@@ -114,10 +116,10 @@ std::string readFilePath(const ObjectReader& reader, const std::string& name, co
         allowed += std::string(allowed.empty() ? "" : " or ") + candidate;
     }
     if (!extension_ok) reader.fail(name, inQuotes(text) + " does not end in " + allowed);
-    std::error_code error;
-    const fs::file_status status = fs::status(resolved, error);
-    if (!fs::exists(status)) reader.fail(name, "file not found: " + resolved.string());
-    if (!fs::is_regular_file(status)) reader.fail(name, "is not a regular file: " + resolved.string());
+    // A FIFO would block the loader that opens it; a device or a directory is no model or map.
+    if (const std::string problem = regularFileProblem(resolved.string()); !problem.empty())
+        reader.fail(name, problem == "file not found" ? "file not found: " + resolved.string()
+                                                      : resolved.string() + " " + problem);
     return resolved.string();
 }
 
@@ -256,6 +258,25 @@ std::vector<BakeSlot> readSlots(const ObjectReader& bake, bool has_overcast_sky,
     return slots;
 }
 
+/// The sun code (NREL SPA) refuses instants outside the years it was fitted for (-2000..6000); a slot's instant
+/// is checked here, by the sun code itself, so the date is reported at load rather than half-way into a bake.
+void checkSunCanBeComputed(const ObjectReader& bake, const SiteLocation& site, const BakeSlot& slot) {
+    SunObserver observer;
+    observer.latitude_deg = site.reference.latitude_deg;
+    observer.longitude_deg = site.reference.longitude_deg;
+    observer.height_m = site.reference.height_m;
+    observer.pressure_mbar = site.pressure_mbar;
+    observer.temperature_c = site.temperature_c;
+    try {
+        computeSunPosition(observer, slot.utc_seconds);
+    } catch (const std::invalid_argument&) {
+        // The site's own ranges are narrower than SPA's, so the instant is what it refused.
+        bake.fail("date", "slot " + inQuotes(slot.name) + " at " +
+                              formatIso8601(slot.utc_seconds, site.utc_offset_minutes) +
+                              " is outside the UTC years -2000 to 6000 that the sun position (NREL SPA) covers");
+    }
+}
+
 BakeSettings readBake(const ObjectReader& root, const SiteLocation& site, bool has_overcast_sky,
                       const std::string& file) {
     const ObjectReader reader = root.object(
@@ -275,6 +296,7 @@ BakeSettings readBake(const ObjectReader& root, const SiteLocation& site, bool h
         const int hours = std::stoi(slot.local_time.substr(0, 2));
         const int minutes = std::stoi(slot.local_time.substr(3, 2));
         slot.utc_seconds = midnight_utc_seconds + 3600.0 * hours + 60.0 * minutes;
+        checkSunCanBeComputed(reader, site, slot);
     }
     bake.texels_per_metre = reader.number("texels_per_metre", kTexelsPerMetre, bake.texels_per_metre);
     bake.samples_per_texel = int(reader.integer("samples_per_texel", 1, 1000000, bake.samples_per_texel));
@@ -285,10 +307,7 @@ BakeSettings readBake(const ObjectReader& root, const SiteLocation& site, bool h
 }
 
 std::string readWholeFile(const std::string& path) {
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (!fs::exists(status)) throw InputError(path, "", "file not found");
-    if (!fs::is_regular_file(status)) throw InputError(path, "", "is not a regular file");
+    if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
     std::ifstream stream(path, std::ios::binary);
     if (!stream.is_open()) throw InputError(path, "", "cannot be opened for reading");
     std::ostringstream text;

@@ -1,0 +1,284 @@
+// Reading image files through OpenImageIO into linear float RGBA (gusuku/image.h). The header is checked before
+// a texel is decoded, large images are box-downsampled band by band while they are decoded (never held at full
+// size), and whatever OpenImageIO or its codecs print on stderr (libpng's "libpng error: ...") is captured and
+// folded into the one-line InputError.
+#include "gusuku/image.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include "gusuku/input_error.h"
+#include "one_line.h"
+#include "regular_file.h"
+
+namespace gusuku {
+
+namespace {
+
+std::string lowerCaseExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
+bool isFloatFormat(OIIO::TypeDesc format) {
+    return format.basetype == OIIO::TypeDesc::FLOAT || format.basetype == OIIO::TypeDesc::HALF ||
+           format.basetype == OIIO::TypeDesc::DOUBLE;
+}
+
+// libpng (under OpenImageIO's PNG reader) prints "libpng error: ..." to stderr before OpenImageIO reports the
+// same failure through geterror(). While an image is opened or decoded, file descriptor 2 points at a temporary
+// file; the captured text is handed back so it can be folded into the error, and nothing reaches the terminal.
+// One capture at a time (the descriptor is process-wide).
+class StderrCapture {
+public:
+    StderrCapture() : lock_(mutex()) {
+        std::fflush(stderr);
+        capture_ = std::tmpfile();
+        saved_descriptor_ = capture_ ? dup(STDERR_FILENO) : -1;
+        if (saved_descriptor_ >= 0) dup2(fileno(capture_), STDERR_FILENO);
+    }
+    StderrCapture(const StderrCapture&) = delete;
+    StderrCapture& operator=(const StderrCapture&) = delete;
+    ~StderrCapture() { restore(); }
+
+    /// Restores stderr and returns what was written to it meanwhile.
+    std::string restore() {
+        std::string text;
+        if (saved_descriptor_ < 0) return text;
+        std::fflush(stderr);
+        dup2(saved_descriptor_, STDERR_FILENO);
+        close(saved_descriptor_);
+        saved_descriptor_ = -1;
+        std::rewind(capture_);
+        char buffer[512];
+        size_t count;
+        while ((count = std::fread(buffer, 1, sizeof buffer, capture_)) > 0 && text.size() < 4096)
+            text.append(buffer, count);
+        std::fclose(capture_);
+        capture_ = nullptr;
+        return text;
+    }
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex instance;
+        return instance;
+    }
+    std::unique_lock<std::mutex> lock_;
+    FILE* capture_ = nullptr;
+    int saved_descriptor_ = -1;
+};
+
+// The library's own error if it gave one, else what it printed; one line either way.
+std::string libraryError(const std::string& reported, StderrCapture& capture) {
+    const std::string printed = oneLine(capture.restore());
+    const std::string folded = oneLine(reported);
+    return folded.empty() ? (printed.empty() ? "unknown error" : printed) : folded;
+}
+
+// Keep straight (unassociated) alpha as stored: OpenImageIO would otherwise premultiply PNG colour by alpha.
+OIIO::ImageSpec readConfig() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+// Checks the header's dimensions before anything is allocated for them.
+void checkHeader(const std::string& name, const OIIO::ImageSpec& spec) {
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
+        throw InputError(name, "", "image has no pixels or is not 2D (" + std::to_string(spec.width) + " x " +
+                                       std::to_string(spec.height) + " x " + std::to_string(spec.depth) + ", " +
+                                       std::to_string(spec.nchannels) + " channels)");
+    if (int64_t(spec.width) * int64_t(spec.height) > kMaxImageFileTexels)
+        throw InputError(name, "", "image header declares " + std::to_string(spec.width) + " x " +
+                                       std::to_string(spec.height) + " texels, more than the " +
+                                       std::to_string(kMaxImageFileTexels) +
+                                       " (16384 x 16384) this reader decodes; refused before decoding");
+}
+
+// Reads subimage 0 of an opened input into linear RGBA, box-averaging `factor` x `factor` blocks (linear values,
+// partial blocks at the right and bottom edges averaged over what is there) band by band, so at most one band of
+// the file's rows is held at its full width.
+ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool is_srgb, int factor,
+                        StderrCapture& capture) {
+    const OIIO::ImageSpec spec = input.spec();
+    const int file_channels = std::min(spec.nchannels, 4);  // colour and alpha; further channels are not read
+    ImageRGBA image;
+    image.width = (spec.width + factor - 1) / factor;
+    image.height = (spec.height + factor - 1) / factor;
+    image.texels.assign(size_t(image.width) * size_t(image.height) * 4, 0.0f);
+
+    // A band is a whole number of block rows, about a million file texels.
+    const int block_rows_per_band = std::max(1, int((size_t(1) << 20) / (size_t(spec.width) * size_t(factor))));
+    std::vector<float> file_values;
+    ImageRGBA band;
+    std::vector<double> sums(size_t(image.width) * 4);
+    std::vector<int> counts(size_t(image.width));
+    for (int first_out_row = 0; first_out_row < image.height; first_out_row += block_rows_per_band) {
+        const int out_rows = std::min(block_rows_per_band, image.height - first_out_row);
+        const int y_begin = first_out_row * factor;
+        const int y_end = std::min(spec.height, (first_out_row + out_rows) * factor);
+        const int band_rows = y_end - y_begin;
+        file_values.resize(size_t(spec.width) * size_t(band_rows) * size_t(file_channels));
+        if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
+                                  OIIO::TypeDesc::FLOAT, file_values.data()))
+            throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
+
+        band.width = spec.width;
+        band.height = band_rows;
+        band.texels.resize(size_t(spec.width) * size_t(band_rows) * 4);
+        for (size_t i = 0; i < size_t(spec.width) * size_t(band_rows); ++i) {
+            const float* in = file_values.data() + i * size_t(file_channels);
+            float* out = band.texels.data() + i * 4;
+            if (file_channels <= 2) {  // grey, or grey + alpha
+                out[0] = out[1] = out[2] = in[0];
+                out[3] = file_channels == 2 ? in[1] : 1.0f;
+            } else {
+                out[0] = in[0];
+                out[1] = in[1];
+                out[2] = in[2];
+                out[3] = file_channels >= 4 ? in[3] : 1.0f;
+            }
+        }
+        if (is_srgb) srgbDecodeImage(band);
+
+        for (int out_row = 0; out_row < out_rows; ++out_row) {
+            const int row_begin = out_row * factor;
+            const int row_end = std::min(band_rows, row_begin + factor);
+            std::fill(sums.begin(), sums.end(), 0.0);
+            std::fill(counts.begin(), counts.end(), 0);
+            for (int y = row_begin; y < row_end; ++y) {
+                for (int x = 0; x < spec.width; ++x) {
+                    const int out_x = x / factor;
+                    const float* texel = band.texel(x, y);
+                    for (int c = 0; c < 4; ++c) sums[size_t(out_x) * 4 + size_t(c)] += texel[c];
+                    ++counts[size_t(out_x)];
+                }
+            }
+            float* out = image.texel(0, first_out_row + out_row);
+            for (size_t i = 0; i < sums.size(); ++i) out[i] = float(sums[i] / counts[i / 4]);
+        }
+    }
+    return image;
+}
+
+ImageRGBA readOpenedImage(const std::string& name, OIIO::ImageInput& input, ImageEncoding encoding, int max_side,
+                          StderrCapture& capture) {
+    const OIIO::ImageSpec& spec = input.spec();
+    checkHeader(name, spec);
+    const int side_limit = max_side > 0 ? std::min(max_side, kMaxImageSide) : kMaxImageSide;
+    const int longest_side = std::max(spec.width, spec.height);
+    const int factor = longest_side > side_limit ? (longest_side + side_limit - 1) / side_limit : 1;
+    const bool is_srgb = encoding == ImageEncoding::Srgb ||
+                         (encoding == ImageEncoding::Auto && !isFloatFormat(spec.format));
+    ImageRGBA image = decodeReduced(name, input, is_srgb, factor, capture);
+    capture.restore();  // a codec's warnings on a good image are dropped
+    return image;
+}
+
+// The extension OpenImageIO needs to pick a reader for bytes in memory, from the bytes' signature.
+std::string extensionFromSignature(const std::vector<unsigned char>& bytes) {
+    auto starts_with = [&](const char* signature, size_t length) {
+        return bytes.size() >= length && std::memcmp(bytes.data(), signature, length) == 0;
+    };
+    if (starts_with("\x89PNG", 4)) return ".png";
+    if (starts_with("\xFF\xD8\xFF", 3)) return ".jpg";
+    if (starts_with("#?RADIANCE", 10) || starts_with("#?RGBE", 6)) return ".hdr";
+    if (starts_with("\x76\x2F\x31\x01", 4)) return ".exr";
+    if (starts_with("BM", 2)) return ".bmp";
+    if (starts_with("GIF8", 4)) return ".gif";
+    if (starts_with("RIFF", 4) && bytes.size() >= 12 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+        return ".webp";
+    return "";
+}
+
+std::unique_ptr<OIIO::ImageInput> openFile(const std::string& path, StderrCapture& capture) {
+    if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
+    const OIIO::ImageSpec config = readConfig();
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, &config);
+    if (!input) throw InputError(path, "", "cannot read image: " + libraryError(OIIO::geterror(), capture));
+    return input;
+}
+
+}  // namespace
+
+ImageRGBA readImage(const std::string& path, ImageEncoding encoding, int max_side) {
+    StderrCapture capture;
+    std::unique_ptr<OIIO::ImageInput> input = openFile(path, capture);
+    return readOpenedImage(path, *input, encoding, max_side, capture);
+}
+
+ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigned char>& bytes,
+                              ImageEncoding encoding, int max_side) {
+    if (bytes.empty()) throw InputError(name, "", "image data is empty");
+    const std::string extension = extensionFromSignature(bytes);
+    if (extension.empty()) throw InputError(name, "", "image data in an unknown format");
+    StderrCapture capture;
+    OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+    OIIO::ImageSpec config = readConfig();
+    // The proxy goes both to open() and into the config: OpenImageIO 2.4's readers look for it in the config.
+    void* reader_pointer = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader_pointer);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open("memory" + extension, &config, &reader);
+    if (!input) throw InputError(name, "", "cannot read image: " + libraryError(OIIO::geterror(), capture));
+    return readOpenedImage(name, *input, encoding, max_side, capture);
+}
+
+ImageRGBA readRadianceMap(const std::string& path) {
+    const std::string extension = lowerCaseExtension(path);
+    if (extension != ".hdr" && extension != ".exr")
+        throw InputError(path, "", "a radiance map must be .hdr or .exr (linear HDR), not '" + extension + "'");
+    ImageRGBA image;
+    {
+        StderrCapture capture;
+        std::unique_ptr<OIIO::ImageInput> input = openFile(path, capture);
+        // OpenImageIO falls back to any reader that accepts the bytes, so a PNG renamed sky.hdr opens as a PNG:
+        // the format actually read decides, not the name.
+        const std::string format = input->format_name();
+        if ((format != "hdr" && format != "openexr") || !isFloatFormat(input->spec().format))
+            throw InputError(path, "", "holds " + (format == "png" || format == "jpeg" ? format + " 8-bit" : format) +
+                                           " data (" + input->spec().format.c_str() +
+                                           "): a sky must be an HDR radiance map (Radiance .hdr or OpenEXR .exr "
+                                           "with half or float channels), not an 8-bit image");
+        image = readOpenedImage(path, *input, ImageEncoding::Linear, kMaxImageSide, capture);
+    }
+    static const char* const kChannelNames[3] = {"R", "G", "B"};
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const float* radiance = image.texel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                const float value = radiance[c];
+                if (std::isfinite(value) && value >= 0.0f && value <= kMaxRadiance) continue;
+                std::ostringstream field;
+                field << "texel (" << x << ", " << y << ") channel " << kChannelNames[c];
+                std::ostringstream problem;
+                if (std::isnan(value))
+                    problem << "NaN radiance";
+                else if (std::isinf(value))
+                    problem << "infinite radiance (a value beyond the range of the file's half or float channels)";
+                else if (value < 0.0f)
+                    problem << "negative radiance " << value;
+                else
+                    problem << "radiance " << value << " is above the limit " << kMaxRadiance
+                            << " (beyond any real sky; its square would overflow float sums)";
+                throw InputError(path, field.str(), problem.str());
+            }
+        }
+    }
+    return image;
+}
+
+}  // namespace gusuku
