@@ -1,0 +1,74 @@
+#pragma once
+// A bake set held in memory: what gusuku_runtime draws from. The app (or gusuku_assets' loadBakeSet, which reads
+// a bake set folder, docs/bakeset.md) fills it; the runtime copies what it needs to the GPU when it opens and
+// keeps no pointer into it. Plain data, glm and the standard library only, so the runtime holds it without the
+// I/O stack. Frame and units as in the manifest: site ENU metres, irradiance per linear Rec.709 channel in the
+// bake set's units (sky radiance units times steradians).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "gusuku/bakeset_manifest.h"
+
+namespace gusuku {
+
+/// An 8-bit texture: RGB sRGB-encoded, A linear, row 0 at the top, width * height * 4 bytes.
+struct BakeSetTexture {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba8;
+};
+
+struct BakeSetMaterial {
+    glm::vec4 base_color_factor{1.0f};  ///< linear RGBA, multiplies the texture
+    int base_color_texture = -1;        ///< index into BakeSetMesh::textures, -1 for none
+};
+
+/// The building as the runtime draws it: ENU metres, counter-clockwise front faces, one material per triangle.
+struct BakeSetMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;   ///< unit, per vertex
+    std::vector<glm::vec2> uv0;       ///< base colour texture coordinates, per vertex
+    std::vector<glm::vec2> uv1;       ///< lightmap coordinates in [0, 1], per vertex
+    std::vector<uint32_t> indices;    ///< three per triangle
+    std::vector<uint32_t> triangle_material;  ///< one per triangle
+    std::vector<BakeSetMaterial> materials;
+    std::vector<BakeSetTexture> textures;
+};
+
+/// The real site's surfaces for depth only (so real walls hide the building), simplified to what occlusion needs.
+struct BakeSetOccluder {
+    std::vector<glm::vec3> positions;  ///< ENU metres
+    std::vector<uint32_t> indices;     ///< three per triangle
+};
+
+/// A float RGBA image, row 0 at the top, width * height * 4 floats (the EXR's layout).
+struct BakeSetImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgba;
+};
+
+/// One slot's baked light. building: lightmap_resolution^2, RGB = E_ind, A = 1 on traced texels.
+/// ground_with / ground_without: the ground grid's columns x rows, RGB = sky-and-bounce irradiance with and
+/// without the building, A = 1 where ground exists.
+struct BakeSetSlotImages {
+    BakeSetImage building;
+    BakeSetImage ground_with;
+    BakeSetImage ground_without;
+};
+
+struct BakeSetData {
+    BakeSetManifest manifest;
+    BakeSetMesh building;
+    BakeSetOccluder occluder;               ///< may be empty (no SfM mesh)
+    BakeSetImage ground_geometry;           ///< columns x rows: RGB unit normal (ENU), A height (ENU z, metres)
+    std::vector<BakeSetSlotImages> slots;   ///< one per manifest.slots entry, same order
+};
+
+}  // namespace gusuku

@@ -1,0 +1,199 @@
+#pragma once
+// gusuku_runtime: draws a lost building into the camera frame with baked global illumination, a real-time sun
+// and its shadow on the real ground, and matches its colour to the camera (DESIGN.md 3, 4 and 8).
+//
+// What an AR app links: Vulkan and glm only. It opens on the app's own Vulkan device (GpuDevice, gpu_device.h:
+// the runtime creates nothing global, only its own pools, buffers, images and pipelines on that device) and holds
+// the bake set in GPU memory. Per frame it takes the camera image, intrinsics, pose, UTC time, position and
+// weather, and writes the composited RGBA8 frame. Everything a frame needs is allocated when the runtime opens:
+// a frame allocates nothing, on the host or the device.
+//
+// Conventions, pinned by tests (tests/test_runtime_camera.cpp):
+//   - World: the site's east-north-up frame, metres (the bake set's).
+//   - Camera frame: x right, y down, z forward (the OpenCV / photogrammetry convention). CameraPose holds the
+//     camera's centre in ENU and the rotation whose columns are the camera's x, y and z axes in ENU.
+//   - Pixels: (0, 0) is the top-left corner of the top-left pixel, whose centre is (0.5, 0.5). A point at
+//     camera coordinates (X, Y, Z), Z > 0, lands at u = fx X / Z + cx, v = fy Y / Z + cy.
+//   - Images: RGBA8, RGB sRGB-encoded, row 0 at the top, width * 4 bytes per row, no padding. Alpha passes
+//     through the camera's, 255 on the building.
+//
+// Errors: the C++ API throws gusuku::RuntimeError (code plus one-line message) on bad input; the C API
+// (gusuku.h) turns every error into a code and a message and never lets an exception out.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "gusuku/bakeset_data.h"
+#include "gusuku/gpu_device.h"
+
+namespace gusuku {
+
+enum class RuntimeErrorCode {
+    kInvalidBakeSet = 1,  ///< the bake set is inconsistent (sizes, NaN texels, a slot with no images, ...)
+    kInvalidFrame = 2,    ///< a frame input is invalid (NaN pose, zero focal length, wrong image size, ...)
+    kDevice = 3,          ///< the Vulkan device lacks something the runtime needs, or a Vulkan call failed
+    kOutOfMemory = 4,
+};
+
+class RuntimeError : public std::runtime_error {
+public:
+    RuntimeError(RuntimeErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+    RuntimeErrorCode code() const { return code_; }
+
+private:
+    RuntimeErrorCode code_;
+};
+
+/// Pinhole intrinsics in pixels (see the pixel convention above). The frame's images are width x height.
+struct CameraIntrinsics {
+    double fx = 0.0, fy = 0.0;  ///< focal lengths, pixels, > 0
+    double cx = 0.0, cy = 0.0;  ///< principal point, pixels
+    uint32_t width = 0, height = 0;
+};
+
+/// Where the camera is and where it looks, in the site's ENU frame (see the camera convention above).
+struct CameraPose {
+    glm::dvec3 position_enu{0.0};
+    glm::dmat3 camera_to_enu{1.0};  ///< columns: camera x (right), y (down), z (forward) in ENU; orthonormal
+};
+
+/// A GPS fix. The sun is computed here; the camera pose stays in the site's frame.
+struct GeoPosition {
+    double latitude_deg = 0.0;   ///< [-90, 90]
+    double longitude_deg = 0.0;  ///< [-180, 180]
+    double height_m = 0.0;       ///< above the WGS84 ellipsoid
+};
+
+/// The weather: cloud cover from 0 (clear: the sunny slots and the real-time sun) to 1 (overcast: the overcast
+/// slot, no sun). Between, the baked light blends linearly and the direct sun fades with (1 - cover).
+struct Weather {
+    float cloud_cover = 0.0f;
+    static Weather sunny() { return {0.0f}; }
+    static Weather overcast() { return {1.0f}; }
+};
+
+enum class ColourMatch {
+    kOff,       ///< no colour match
+    kPaper,     ///< Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
+                ///< target the camera frame (the seed paper's method)
+    kPreserve,  ///< moves lightness and white balance towards the camera but keeps the building's chroma spread
+                ///< (the saturation the paper reports losing); see colour_match.h
+};
+
+enum class RenderMode {
+    kProposed,    ///< baked E_ind + real-time sun with shadow map, ground ratio, colour match
+    kDirectOnly,  ///< what AR apps draw today: albedo x (ambient + shadowed sun), a fixed shadow darkening
+};
+
+/// Options fixed when the runtime opens.
+struct RuntimeOptions {
+    uint32_t frame_width = 1280;   ///< every frame's images must have this size
+    uint32_t frame_height = 720;
+    /// Shadow map side, texels. Fitted to the building (and the ground it can shade) as seen from the sun, so
+    /// 1024 gives about bounds / 1024 per texel. Cost grows with its area (DESIGN.md 5).
+    uint32_t shadow_map_size = 1024;
+    /// Depth bias of the shadow test, in shadow-map texels (slope-scaled by the receiver's normal).
+    float shadow_bias_texels = 1.5f;
+    /// PCF kernel: (2 r + 1)^2 taps of the hardware 2x2 compare filter. 0 gives one bilinear compare tap.
+    uint32_t shadow_pcf_radius = 1;
+    /// Colour statistics are gathered on every n-th pixel in x and y of the camera frame (DESIGN.md 5).
+    uint32_t statistics_stride = 8;
+    /// Frames for the exponential smoothing of the camera's colour statistics (time constant), >= 1.
+    float statistics_smoothing_frames = 8.0f;
+    /// Per-channel gain limit of the colour transfer (sigma_target / sigma_source clamped to [1/g, g]).
+    float colour_gain_limit = 2.0f;
+    /// Direct-only mode: the constant ambient irradiance, as a fraction of the current E_sun (per channel).
+    float direct_only_ambient_fraction = 0.25f;
+    /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this.
+    float direct_only_shadow_darkening = 0.6f;
+};
+
+/// One frame's input. Exactly one of camera_rgba8 and camera_image is set.
+struct FrameInput {
+    const uint8_t* camera_rgba8 = nullptr;  ///< host RGBA8 (see the image convention), frame_width x frame_height
+    /// Or the app's VkImage: VK_FORMAT_R8G8B8A8_SRGB or _UNORM holding sRGB bytes, frame size, in
+    /// VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL or TRANSFER_SRC_OPTIMAL (camera_image_layout), usage TRANSFER_SRC.
+    /// The runtime copies it in its own command buffer; the app must have finished writing it.
+    VkImage camera_image = VK_NULL_HANDLE;
+    VkImageLayout camera_image_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    CameraIntrinsics intrinsics;
+    CameraPose pose;
+    double utc_unix_seconds = 0.0;           ///< the instant, seconds since 1970-01-01T00:00:00Z
+    std::optional<GeoPosition> position;     ///< a GPS fix; nothing: the bake set's site reference point
+    Weather weather;
+    /// The camera's exposure: display-linear value per unit of the bake set's radiance. Used when the colour
+    /// match is off or has no camera statistics yet (and in direct-only mode); the match replaces it otherwise.
+    float exposure = 1.0f;
+    RenderMode mode = RenderMode::kProposed;
+    ColourMatch colour_match = ColourMatch::kPreserve;
+    bool blend_slots = true;   ///< blend the two sunny slots whose suns are nearest (false: the nearest alone)
+    bool ground_ratio = true;  ///< apply the shadow-catcher ratio to the camera pixels (false: leave them)
+};
+
+/// What the frame computed on the CPU, for the app and for tests.
+struct FrameInfo {
+    double sun_azimuth_deg = 0.0;
+    double sun_apparent_elevation_deg = 0.0;
+    bool sun_above_horizon = false;
+    glm::dvec3 sun_direction_enu{0.0, 0.0, 1.0};
+    glm::dvec3 sun_irradiance_rgb{0.0};  ///< E_sun used this frame (after cloud cover), bake set units
+    int slot_a = -1, slot_b = -1;        ///< manifest slot indices blended (sunny ones; -1 none)
+    float slot_b_weight = 0.0f;          ///< weight of slot_b; slot_a has 1 - weight
+    int overcast_slot = -1;
+    float overcast_weight = 0.0f;        ///< cloud cover applied to the overcast slot
+};
+
+/// Per-pass time of one frame in profiling mode, milliseconds of wall time (each pass submitted and waited on
+/// alone, which works around lavapipe's timestamps: DESIGN.md 5).
+struct PassTimings {
+    double upload_ms = 0.0;      ///< camera image into the frame
+    double shadow_ms = 0.0;      ///< shadow maps
+    double occluder_ms = 0.0;    ///< site mesh into depth
+    double building_ms = 0.0;    ///< the building
+    double ground_ms = 0.0;      ///< the ground ratio
+    double statistics_ms = 0.0;  ///< the camera's colour statistics
+    double readback_ms = 0.0;    ///< the composite out to the host
+    double total_ms = 0.0;
+};
+
+class Runtime {
+public:
+    /// Opens a runtime on the app's device (gpu must outlive the runtime; see gpu_device.h). Checks the bake
+    /// set (RuntimeError kInvalidBakeSet naming the field), uploads it, builds the pipelines and every per-frame
+    /// resource. The device must support graphics on gpu.queue and the formats the runtime uses.
+    static std::unique_ptr<Runtime> open(const GpuDevice& gpu, const BakeSetData& bake_set,
+                                         const RuntimeOptions& options = {});
+    virtual ~Runtime() = default;
+
+    /// Renders one frame: composited RGBA8 into output_rgba8 (frame_width * frame_height * 4 bytes), when not
+    /// null. Synchronous (waits on a fence). Throws RuntimeError kInvalidFrame for bad input, never writes a NaN
+    /// pixel. A sun below the horizon gives a defined frame: no direct sun, the sunny slots' baked light fading
+    /// to the overcast slot's (twilight) as the sun sets.
+    virtual FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) = 0;
+
+    /// The same frame with each pass submitted and timed alone (slower in total; for the breakdown only).
+    virtual FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) = 0;
+
+    /// The composite of the last frame as a VkImage the app may present or sample (R8G8B8A8_SRGB, frame size,
+    /// left in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL); valid until the next frame or the runtime's end.
+    virtual VkImage compositeImage() const = 0;
+
+    /// Forgets the smoothed colour statistics (a cut in the camera feed).
+    virtual void resetColourStatistics() = 0;
+
+    /// Device memory the runtime holds, bytes (buffers and images, all allocated at open).
+    virtual uint64_t deviceMemoryBytes() const = 0;
+
+    /// Where an ENU point lands in the frame for these intrinsics and pose (the camera convention above);
+    /// nothing when it is behind the camera. Pure maths, for apps and tests.
+    static std::optional<glm::dvec2> projectToPixel(const CameraIntrinsics& intrinsics, const CameraPose& pose,
+                                                    const glm::dvec3& point_enu);
+};
+
+}  // namespace gusuku

@@ -1,0 +1,816 @@
+// gusuku_runtime's frame (runtime.h; DESIGN.md 8): the sun and slot weights on the CPU, then on the GPU the
+// camera image in, colour statistics, the sun's shadow maps, the occluder's depth, the building, the ground
+// ratio, and the composite out. Everything is created in open(); a frame records into one pre-allocated command
+// buffer, submits it and waits on one fence, and allocates nothing.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <mutex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "building_frag_spv.h"
+#include "building_vert_spv.h"
+#include "colour_statistics_pass.h"
+#include "depth_only_vert_spv.h"
+#include "ground_frag_spv.h"
+#include "ground_vert_spv.h"
+#include "gusuku/bakeset_validate.h"
+#include "gusuku/frame_lighting.h"
+#include "gusuku/runtime.h"
+#include "gusuku/shadow_fit.h"
+#include "runtime_camera.h"
+#include "runtime_depth_push.h"
+#include "runtime_interface.h"
+#include "runtime_material_push.h"
+#include "runtime_pipelines.h"
+#include "runtime_scene.h"
+
+namespace gusuku {
+namespace {
+
+using namespace runtime_detail;
+using shader_interface::DepthOnlyPushConstants;
+using shader_interface::FrameUniforms;
+using shader_interface::MaterialPushConstants;
+
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 10 * 16, "std140 layout of runtime_interface.h's FrameUniforms");
+static_assert(sizeof(DepthOnlyPushConstants) == 96);
+
+constexpr double kNearPlaneM = 0.05;
+constexpr float kGroundPullM = 0.10f;      // the ground pass moves towards the camera by this
+constexpr float kOccluderPushM = 0.05f;    // the occluder pass moves away from it by this
+constexpr float kPassThroughThreshold = 0.5f / 255.0f;  // |ratio - 1| below this: the camera pixel is untouched
+
+void toShader(const glm::dmat4& matrix, shader_interface::mat4& out) {
+    for (int column = 0; column < 4; ++column)
+        for (int row = 0; row < 4; ++row) out.columns[column][row] = float(matrix[column][row]);
+}
+
+void toShader(const glm::dvec3& xyz, float w, shader_interface::vec4& out) {
+    out = {{float(xyz.x), float(xyz.y), float(xyz.z), w}};
+}
+
+RuntimeError deviceError(const std::exception& error) {
+    return RuntimeError(RuntimeErrorCode::kDevice, std::string("gusuku runtime: ") + error.what());
+}
+
+class RuntimeImpl final : public Runtime {
+public:
+    RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options);
+    ~RuntimeImpl() override;
+
+    FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) override;
+    FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) override;
+    VkImage compositeImage() const override { return colour_target_.handle(); }
+    void resetColourStatistics() override { statistics_->reset(); }
+    uint64_t deviceMemoryBytes() const override;
+
+private:
+    void createTargets();
+    void createDescriptors();
+    void createPipelines();
+    void destroy() noexcept;
+
+    FrameInfo prepareFrame(const FrameInput& frame);
+    void recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame);
+    void recordStatistics(VkCommandBuffer cmd, const FrameInput& frame);
+    void recordShadows(VkCommandBuffer cmd);
+    void recordOccluder(VkCommandBuffer cmd);
+    void recordBuilding(VkCommandBuffer cmd);
+    void recordGround(VkCommandBuffer cmd);
+    void recordReadback(VkCommandBuffer cmd);
+    void beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass);
+    void submit(const std::function<void(VkCommandBuffer)>& record);
+    void finishOutput(uint8_t* output_rgba8);
+
+    const GpuDevice& gpu_;
+    RuntimeOptions options_;
+    BakeSetManifest manifest_;
+    std::vector<LabStatistics> slot_colour_statistics_;  // per slot (zero when the manifest has none)
+    GpuScene scene_;
+
+    // Per-frame resources, all made in open().
+    GpuImage colour_target_;
+    GpuImage depth_target_;
+    GpuImage building_shadow_;
+    GpuImage site_shadow_;
+    GpuBuffer camera_buffer_;    // host-visible RGBA8 of the camera frame (uploaded, or copied from the app's image)
+    GpuBuffer readback_buffer_;  // host-visible RGBA8 of the composite
+    GpuBuffer uniform_buffer_;   // host-visible FrameUniforms
+    std::unique_ptr<ColourStatisticsPass> statistics_;
+
+    VkRenderPass main_passes_[4] = {};  // MainPassVariant order
+    VkRenderPass shadow_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer main_framebuffer_ = VK_NULL_HANDLE;
+    VkFramebuffer building_shadow_framebuffer_ = VK_NULL_HANDLE;
+    VkFramebuffer site_shadow_framebuffer_ = VK_NULL_HANDLE;
+    VkSampler linear_sampler_ = VK_NULL_HANDLE;
+    VkSampler shadow_sampler_ = VK_NULL_HANDLE;
+    VkSampler texture_sampler_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout frame_set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout material_set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> material_sets_;
+    VkPipelineLayout depth_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout shading_layout_ = VK_NULL_HANDLE;
+    VkPipeline shadow_pipeline_ = VK_NULL_HANDLE;       // the building into a shadow map
+    VkPipeline site_shadow_pipeline_ = VK_NULL_HANDLE;  // the occluder into a shadow map (its own vertex stride)
+    VkPipeline occluder_pipeline_ = VK_NULL_HANDLE;
+    VkPipeline building_pipeline_ = VK_NULL_HANDLE;
+    VkPipeline ground_pipeline_ = VK_NULL_HANDLE;
+    VkCommandPool command_pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+
+    // This frame's CPU-side state, filled by prepareFrame.
+    FrameUniforms uniforms_{};
+    DepthOnlyPushConstants building_shadow_push_{};
+    DepthOnlyPushConstants site_shadow_push_{};
+    DepthOnlyPushConstants occluder_push_{};
+    bool sun_shines_ = false;
+    bool draw_ground_ = false;
+    bool site_shadows_ = false;
+    LabStatistics frame_source_statistics_{};
+    ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;
+};
+
+RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options)
+    : gpu_(gpu), options_(options), manifest_(bake_set.manifest) {
+    if (options.frame_width == 0 || options.frame_height == 0 || options.frame_width > 8192 ||
+        options.frame_height > 8192)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.frame_width/height: must be in [1, 8192]");
+    if (options.shadow_map_size < 64 || options.shadow_map_size > 8192)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_map_size: must be in [64, 8192]");
+    if (options.shadow_pcf_radius > 3)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_pcf_radius: must be in [0, 3]");
+    if (const std::optional<std::string> problem = findBakeSetProblem(bake_set))
+        throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
+    for (const BakeSetSlot& slot : manifest_.slots) {
+        LabStatistics statistics;
+        if (slot.colour_statistics) {
+            statistics.mean = glm::vec3(slot.colour_statistics->lab_mean);
+            statistics.standard_deviation = glm::vec3(slot.colour_statistics->lab_sigma);
+        }
+        slot_colour_statistics_.push_back(statistics);
+    }
+    try {
+        scene_ = uploadScene(gpu, bake_set);
+        createTargets();
+        statistics_ = std::make_unique<ColourStatisticsPass>(gpu, options.frame_width, options.frame_height,
+                                                             options.statistics_stride,
+                                                             options.statistics_smoothing_frames);
+        createDescriptors();
+        createPipelines();
+        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool_info.queueFamilyIndex = gpu.queue_family_index;
+        checkVk(vkCreateCommandPool(gpu.device, &pool_info, nullptr, &command_pool_), "vkCreateCommandPool");
+        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        allocate_info.commandPool = command_pool_;
+        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        allocate_info.commandBufferCount = 1;
+        checkVk(vkAllocateCommandBuffers(gpu.device, &allocate_info, &command_buffer_), "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        checkVk(vkCreateFence(gpu.device, &fence_info, nullptr, &fence_), "vkCreateFence");
+    } catch (const RuntimeError&) {
+        destroy();
+        throw;
+    } catch (const std::exception& error) {
+        destroy();
+        throw deviceError(error);
+    }
+}
+
+RuntimeImpl::~RuntimeImpl() { destroy(); }
+
+void RuntimeImpl::destroy() noexcept {
+    VkDevice device = gpu_.device;
+    if (device == VK_NULL_HANDLE) return;
+    vkDeviceWaitIdle(device);
+    if (fence_) vkDestroyFence(device, fence_, nullptr);
+    if (command_pool_) vkDestroyCommandPool(device, command_pool_, nullptr);
+    for (VkPipeline pipeline :
+         {shadow_pipeline_, site_shadow_pipeline_, occluder_pipeline_, building_pipeline_, ground_pipeline_})
+        if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+    for (VkPipelineLayout layout : {depth_layout_, shading_layout_})
+        if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
+    if (descriptor_pool_) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    for (VkDescriptorSetLayout layout : {frame_set_layout_, material_set_layout_})
+        if (layout) vkDestroyDescriptorSetLayout(device, layout, nullptr);
+    for (VkSampler sampler : {linear_sampler_, shadow_sampler_, texture_sampler_})
+        if (sampler) vkDestroySampler(device, sampler, nullptr);
+    for (VkFramebuffer framebuffer : {main_framebuffer_, building_shadow_framebuffer_, site_shadow_framebuffer_})
+        if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);
+    for (VkRenderPass render_pass : main_passes_)
+        if (render_pass) vkDestroyRenderPass(device, render_pass, nullptr);
+    if (shadow_pass_) vkDestroyRenderPass(device, shadow_pass_, nullptr);
+    fence_ = VK_NULL_HANDLE;
+    command_pool_ = VK_NULL_HANDLE;
+    shadow_pipeline_ = site_shadow_pipeline_ = occluder_pipeline_ = building_pipeline_ = ground_pipeline_ =
+        VK_NULL_HANDLE;
+    depth_layout_ = shading_layout_ = VK_NULL_HANDLE;
+    descriptor_pool_ = VK_NULL_HANDLE;
+    frame_set_layout_ = material_set_layout_ = VK_NULL_HANDLE;
+    linear_sampler_ = shadow_sampler_ = texture_sampler_ = VK_NULL_HANDLE;
+    main_framebuffer_ = building_shadow_framebuffer_ = site_shadow_framebuffer_ = VK_NULL_HANDLE;
+    for (VkRenderPass& render_pass : main_passes_) render_pass = VK_NULL_HANDLE;
+    shadow_pass_ = VK_NULL_HANDLE;
+    // Buffers, images and the statistics pass release themselves.
+}
+
+void RuntimeImpl::createTargets() {
+    const uint32_t width = options_.frame_width, height = options_.frame_height;
+    GpuImageDescription colour;
+    colour.format = kColourFormat;
+    colour.width = width;
+    colour.height = height;
+    colour.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    colour_target_ = GpuImage(gpu_, colour);
+    GpuImageDescription depth;
+    depth.format = kDepthFormat;
+    depth.width = width;
+    depth.height = height;
+    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    depth_target_ = GpuImage(gpu_, depth);
+    GpuImageDescription shadow = depth;
+    shadow.width = shadow.height = options_.shadow_map_size;
+    shadow.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    building_shadow_ = GpuImage(gpu_, shadow);
+    site_shadow_ = GpuImage(gpu_, shadow);
+
+    const size_t frame_bytes = size_t(width) * height * 4;
+    camera_buffer_ = GpuBuffer(gpu_, frame_bytes,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    readback_buffer_ = GpuBuffer(gpu_, frame_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    uniform_buffer_ = GpuBuffer(gpu_, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+
+    const VkDevice device = gpu_.device;
+    main_passes_[0] = createMainRenderPass(device, MainPassVariant::kWhole);
+    main_passes_[1] = createMainRenderPass(device, MainPassVariant::kFirst);
+    main_passes_[2] = createMainRenderPass(device, MainPassVariant::kMiddle);
+    main_passes_[3] = createMainRenderPass(device, MainPassVariant::kLast);
+    shadow_pass_ = createShadowRenderPass(device);
+    main_framebuffer_ =
+        createFramebuffer(device, main_passes_[0], {colour_target_.view(), depth_target_.view()}, width, height);
+    building_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {building_shadow_.view()},
+                                                     options_.shadow_map_size, options_.shadow_map_size);
+    site_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {site_shadow_.view()},
+                                                 options_.shadow_map_size, options_.shadow_map_size);
+
+    // Shadow maps start in the layout the frame set's descriptors name, so a frame that skips them reads a
+    // defined (cleared) map.
+    GpuSubmitter submitter(gpu_);
+    submitter.submitAndWait([&](VkCommandBuffer cmd) {
+        for (const GpuImage* map : {&building_shadow_, &site_shadow_})
+            recordImageLayoutTransition(cmd, map->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT,
+                                        VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
+}
+
+void RuntimeImpl::createDescriptors() {
+    const VkDevice device = gpu_.device;
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = VK_FILTER_LINEAR;
+    sampler.minFilter = VK_FILTER_LINEAR;
+    sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    sampler.maxLod = 0.0f;
+    checkVk(vkCreateSampler(device, &sampler, nullptr, &linear_sampler_), "vkCreateSampler");
+    VkSamplerCreateInfo texture = sampler;
+    texture.addressModeU = texture.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    checkVk(vkCreateSampler(device, &texture, nullptr, &texture_sampler_), "vkCreateSampler");
+    VkSamplerCreateInfo shadow = sampler;
+    shadow.compareEnable = VK_TRUE;
+    shadow.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit when the receiver is no deeper than the stored caster
+    shadow.addressModeU = shadow.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+    shadow.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+    checkVk(vkCreateSampler(device, &shadow, nullptr, &shadow_sampler_), "vkCreateSampler");
+
+    const VkShaderStageFlags graphics = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const VkDescriptorSetLayoutBinding frame_bindings[RUNTIME_FRAME_BINDING_COUNT] = {
+        {RUNTIME_FRAME_UNIFORMS_BINDING, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, graphics, nullptr},
+        {RUNTIME_BUILDING_SHADOW_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_SITE_SHADOW_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_LIGHTMAP_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_GROUND_IRRADIANCE_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_GROUND_GEOMETRY_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+    };
+    VkDescriptorSetLayoutCreateInfo frame_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    frame_layout.bindingCount = RUNTIME_FRAME_BINDING_COUNT;
+    frame_layout.pBindings = frame_bindings;
+    checkVk(vkCreateDescriptorSetLayout(device, &frame_layout, nullptr, &frame_set_layout_),
+            "vkCreateDescriptorSetLayout");
+    const VkDescriptorSetLayoutBinding material_binding = {
+        RUNTIME_BASE_COLOUR_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo material_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    material_layout.bindingCount = 1;
+    material_layout.pBindings = &material_binding;
+    checkVk(vkCreateDescriptorSetLayout(device, &material_layout, nullptr, &material_set_layout_),
+            "vkCreateDescriptorSetLayout");
+
+    const uint32_t material_count = uint32_t(scene_.base_colour_factors.size());
+    const VkDescriptorPoolSize pool_sizes[3] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 + material_count},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+    };
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = 1 + material_count;
+    pool.poolSizeCount = 3;
+    pool.pPoolSizes = pool_sizes;
+    checkVk(vkCreateDescriptorPool(device, &pool, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
+
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = descriptor_pool_;
+    allocate.descriptorSetCount = 1;
+    allocate.pSetLayouts = &frame_set_layout_;
+    checkVk(vkAllocateDescriptorSets(device, &allocate, &frame_set_), "vkAllocateDescriptorSets");
+    material_sets_.resize(material_count);
+    std::vector<VkDescriptorSetLayout> material_layouts(material_count, material_set_layout_);
+    allocate.descriptorSetCount = material_count;
+    allocate.pSetLayouts = material_layouts.data();
+    checkVk(vkAllocateDescriptorSets(device, &allocate, material_sets_.data()), "vkAllocateDescriptorSets");
+
+    const VkDescriptorBufferInfo uniforms{uniform_buffer_.handle(), 0, sizeof(FrameUniforms)};
+    const VkDescriptorBufferInfo colour_state{statistics_->stateBuffer().handle(), 0, VK_WHOLE_SIZE};
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const VkDescriptorImageInfo images[5] = {
+        {shadow_sampler_, building_shadow_.view(), read},
+        {shadow_sampler_, site_shadow_.view(), read},
+        {linear_sampler_, scene_.lightmaps.view(), read},
+        {linear_sampler_, scene_.ground_irradiance.view(), read},
+        {linear_sampler_, scene_.ground_geometry.view(), read},
+    };
+    std::vector<VkWriteDescriptorSet> writes;
+    auto write = [&](VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
+        VkWriteDescriptorSet entry{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        entry.dstSet = set;
+        entry.dstBinding = binding;
+        entry.descriptorCount = 1;
+        entry.descriptorType = type;
+        writes.push_back(entry);
+        return &writes.back();
+    };
+    writes.reserve(8 + material_count);
+    write(frame_set_, RUNTIME_FRAME_UNIFORMS_BINDING, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)->pBufferInfo = &uniforms;
+    const uint32_t image_bindings[5] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
+                                        RUNTIME_LIGHTMAP_BINDING, RUNTIME_GROUND_IRRADIANCE_BINDING,
+                                        RUNTIME_GROUND_GEOMETRY_BINDING};
+    for (int index = 0; index < 5; ++index)
+        write(frame_set_, image_bindings[index], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[index];
+    write(frame_set_, RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)->pBufferInfo = &colour_state;
+    std::vector<VkDescriptorImageInfo> material_images(material_count);
+    for (uint32_t material = 0; material < material_count; ++material) {
+        const int texture = scene_.material_texture[material];
+        const GpuImage& image = texture >= 0 && size_t(texture) < scene_.textures.size()
+                                    ? scene_.textures[size_t(texture)]
+                                    : scene_.white_texture;
+        material_images[material] = {texture_sampler_, image.view(), read};
+        write(material_sets_[material], RUNTIME_BASE_COLOUR_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+            ->pImageInfo = &material_images[material];
+    }
+    vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void RuntimeImpl::createPipelines() {
+    const VkDevice device = gpu_.device;
+    VkPushConstantRange depth_push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(DepthOnlyPushConstants)};
+    VkPipelineLayoutCreateInfo depth_layout{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    depth_layout.pushConstantRangeCount = 1;
+    depth_layout.pPushConstantRanges = &depth_push;
+    checkVk(vkCreatePipelineLayout(device, &depth_layout, nullptr, &depth_layout_), "vkCreatePipelineLayout");
+    const VkDescriptorSetLayout set_layouts[2] = {frame_set_layout_, material_set_layout_};
+    VkPushConstantRange material_push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(MaterialPushConstants)};
+    VkPipelineLayoutCreateInfo shading_layout{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    shading_layout.setLayoutCount = 2;
+    shading_layout.pSetLayouts = set_layouts;
+    shading_layout.pushConstantRangeCount = 1;
+    shading_layout.pPushConstantRanges = &material_push;
+    checkVk(vkCreatePipelineLayout(device, &shading_layout, nullptr, &shading_layout_), "vkCreatePipelineLayout");
+
+    VertexInput positions_only;  // the building's vertices read for position alone, and the occluder's vec3s
+    positions_only.stride = sizeof(BuildingVertex);
+    positions_only.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+    VertexInput occluder_positions = positions_only;
+    occluder_positions.stride = sizeof(float) * 3;
+    VertexInput building_vertex;
+    building_vertex.stride = sizeof(BuildingVertex);
+    building_vertex.attributes = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(BuildingVertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(BuildingVertex, normal)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(BuildingVertex, base_colour_uv)},
+        {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(BuildingVertex, lightmap_uv)},
+    };
+
+    GraphicsPipelineDescription shadow;
+    shadow.layout = depth_layout_;
+    shadow.render_pass = shadow_pass_;
+    shadow.vertex_spirv = kDepthOnlyVertSpirv;
+    shadow.vertex_spirv_bytes = sizeof(kDepthOnlyVertSpirv);
+    shadow.vertex_input = positions_only;
+    shadow.has_colour_attachment = false;
+    shadow_pipeline_ = createGraphicsPipeline(device, shadow);
+    // The occluder's vertices are bare vec3s: the stride is part of a pipeline, so it has pipelines of its own.
+    GraphicsPipelineDescription site_shadow = shadow;
+    site_shadow.vertex_input = occluder_positions;
+    site_shadow_pipeline_ = createGraphicsPipeline(device, site_shadow);
+    GraphicsPipelineDescription occluder = shadow;
+    occluder.render_pass = main_passes_[0];
+    occluder.vertex_input = occluder_positions;
+    occluder.has_colour_attachment = true;
+    occluder.blend = BlendMode::kNoColourWrites;
+    occluder_pipeline_ = createGraphicsPipeline(device, occluder);
+
+    GraphicsPipelineDescription building;
+    building.layout = shading_layout_;
+    building.render_pass = main_passes_[0];
+    building.vertex_spirv = kBuildingVertSpirv;
+    building.vertex_spirv_bytes = sizeof(kBuildingVertSpirv);
+    building.fragment_spirv = kBuildingFragSpirv;
+    building.fragment_spirv_bytes = sizeof(kBuildingFragSpirv);
+    building.vertex_input = building_vertex;
+    building_pipeline_ = createGraphicsPipeline(device, building);
+
+    GraphicsPipelineDescription ground;
+    ground.layout = shading_layout_;
+    ground.render_pass = main_passes_[0];
+    ground.vertex_spirv = kGroundVertSpirv;
+    ground.vertex_spirv_bytes = sizeof(kGroundVertSpirv);
+    ground.fragment_spirv = kGroundFragSpirv;
+    ground.fragment_spirv_bytes = sizeof(kGroundFragSpirv);
+    ground.depth_write = false;
+    ground.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    ground.blend = BlendMode::kMultiplyTwice;
+    ground_pipeline_ = createGraphicsPipeline(device, ground);
+}
+
+uint64_t RuntimeImpl::deviceMemoryBytes() const {
+    uint64_t bytes = 0;
+    for (const GpuImage* image : {&colour_target_, &depth_target_, &building_shadow_, &site_shadow_,
+                                  &scene_.lightmaps, &scene_.ground_irradiance, &scene_.ground_geometry,
+                                  &scene_.white_texture})
+        bytes += image->memoryBytes();
+    for (const GpuImage& texture : scene_.textures) bytes += texture.memoryBytes();
+    for (const GpuBuffer* buffer : {&scene_.building_vertices, &scene_.building_indices, &scene_.occluder_vertices,
+                                    &scene_.occluder_indices, &scene_.ground_indices, &camera_buffer_,
+                                    &readback_buffer_, &uniform_buffer_, &statistics_->stateBuffer()})
+        bytes += buffer->size();
+    return bytes;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The frame on the CPU
+
+FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
+    if (const std::optional<std::string> problem = findFrameProblem(frame, options_.frame_width, options_.frame_height))
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "frame: " + *problem);
+
+    SunObserver observer;
+    const GeoPosition position = frame.position.value_or(
+        GeoPosition{manifest_.site.latitude_deg, manifest_.site.longitude_deg, manifest_.site.height_m});
+    observer.latitude_deg = position.latitude_deg;
+    observer.longitude_deg = position.longitude_deg;
+    observer.height_m = position.height_m;
+    FrameLighting lighting;
+    try {
+        lighting = computeFrameLighting(manifest_, observer, frame.utc_unix_seconds, frame.weather.cloud_cover,
+                                        frame.blend_slots);
+    } catch (const std::exception& error) {
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("frame: ") + error.what());
+    }
+
+    FrameInfo info;
+    info.sun_azimuth_deg = lighting.sun.azimuth_deg;
+    info.sun_apparent_elevation_deg = lighting.sun.apparent_elevation_deg;
+    info.sun_above_horizon = lighting.sun.above_horizon;
+    info.sun_direction_enu = lighting.sun.direction_enu;
+    info.sun_irradiance_rgb = lighting.sun_irradiance_rgb;
+    info.slot_a = lighting.slot_a;
+    info.slot_b = lighting.slot_b;
+    info.slot_b_weight = lighting.slot_b_weight;
+    info.overcast_slot = lighting.overcast_slot;
+    info.overcast_weight = lighting.overcast_weight;
+
+    const bool direct_only = frame.mode == RenderMode::kDirectOnly;
+    sun_shines_ = lighting.sun.above_horizon && glm::length(lighting.sun_irradiance_rgb) > 0.0;
+    site_shadows_ = sun_shines_ && !direct_only && scene_.occluder_index_count > 0;
+    draw_ground_ = scene_.ground_index_count > 0 && (direct_only ? sun_shines_ : frame.ground_ratio);
+
+    FrameUniforms& u = uniforms_;
+    const double far_m = std::max(4.0 * scene_.scene_radius_m + glm::length(frame.pose.position_enu), 100.0);
+    toShader(cameraEnuToClip(frame.intrinsics, frame.pose, kNearPlaneM, far_m), u.enu_to_clip);
+    const ShadowFit fit = fitShadowMap(scene_.receivers_min, scene_.receivers_max, scene_.casters_min,
+                                       scene_.casters_max, lighting.sun.direction_enu, options_.shadow_map_size);
+    toShader(fit.enu_to_clip, u.enu_to_shadow_clip);
+    toShader(frame.pose.position_enu, 1.0f, u.camera_position);
+    toShader(lighting.sun.direction_enu, sun_shines_ ? 1.0f : 0.0f, u.sun_direction);
+    toShader(lighting.sun_irradiance_rgb, frame.exposure, u.sun_irradiance);
+    const float slot_a = float(std::max(lighting.slot_a, 0)), slot_b = float(std::max(lighting.slot_b, 0));
+    const float overcast = float(std::max(lighting.overcast_slot, 0));
+    u.slot_layers = {{slot_a, slot_b, overcast, direct_only ? float(RUNTIME_MODE_DIRECT_ONLY) : 0.0f}};
+    const float weight_a = lighting.slot_a >= 0 ? lighting.sunny_weight * (1.0f - lighting.slot_b_weight) : 0.0f;
+    const float weight_b = lighting.slot_b >= 0 ? lighting.sunny_weight * lighting.slot_b_weight : 0.0f;
+    u.slot_weights = {{weight_a, weight_b, lighting.overcast_slot >= 0 ? lighting.overcast_weight : 0.0f, 0.0f}};
+    // Depth bias: the stated texels of the map, in its depth units.
+    const double bias = options_.shadow_bias_texels * fit.texel_size_m / fit.depth_range_m;
+    u.shadow_parameters = {{1.0f / float(options_.shadow_map_size), float(bias), float(options_.shadow_pcf_radius),
+                            site_shadows_ ? 1.0f : 0.0f}};
+    const GroundGrid& grid = manifest_.ground_grid.grid;
+    u.ground_grid = {{float(grid.origin_enu_m.x), float(grid.origin_enu_m.y), float(grid.cell_m),
+                      float(std::max(grid.columns, 1))}};
+    u.ground_parameters = {{float(std::max(grid.rows, 1)), kGroundPullM, frame.ground_ratio ? 1.0f : 0.0f,
+                            kPassThroughThreshold}};
+    const glm::dvec3 ambient = lighting.sun_irradiance_rgb * double(options_.direct_only_ambient_fraction);
+    toShader(sun_shines_ ? ambient : glm::dvec3(0.0), options_.direct_only_shadow_darkening, u.direct_only);
+    u.colour_match = {{0.0f, options_.colour_gain_limit, scene_.irradiance_scale, 0.0f}};
+    uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
+
+    // The colour match's source: the baked appearance's statistics, blended like the lightmaps.
+    frame_colour_mode_ = direct_only ? ColourMatchMode::kOff : colourMatchModeFor(frame.colour_match);
+    LabStatistics source;
+    const float weights[3] = {weight_a, weight_b, u.slot_weights[2]};
+    const int slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
+    float weight_sum = 0.0f;
+    for (int index = 0; index < 3; ++index) {
+        if (slots[index] < 0 || weights[index] <= 0.0f) continue;
+        source.mean += weights[index] * slot_colour_statistics_[size_t(slots[index])].mean;
+        source.standard_deviation += weights[index] * slot_colour_statistics_[size_t(slots[index])].standard_deviation;
+        weight_sum += weights[index];
+    }
+    if (weight_sum > 0.0f) {
+        source.mean /= weight_sum;
+        source.standard_deviation /= weight_sum;
+    } else {
+        frame_colour_mode_ = ColourMatchMode::kOff;  // night: nothing baked to match from
+    }
+    frame_source_statistics_ = source;
+
+    // Depth passes' push constants.
+    toShader(fit.enu_to_clip, building_shadow_push_.enu_to_clip);
+    site_shadow_push_ = building_shadow_push_;
+    occluder_push_.enu_to_clip = u.enu_to_clip;
+    occluder_push_.pull = {{-kOccluderPushM, 0.0f, 0.0f, 0.0f}};
+    occluder_push_.pull_origin = u.camera_position;
+
+    if (frame.camera_rgba8 != nullptr)
+        camera_buffer_.upload(frame.camera_rgba8, size_t(options_.frame_width) * options_.frame_height * 4);
+    return info;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The frame on the GPU, pass by pass
+
+void RuntimeImpl::recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame) {
+    const VkExtent3D extent{options_.frame_width, options_.frame_height, 1};
+    if (frame.camera_image != VK_NULL_HANDLE) {
+        // The app's image into our buffer (for the statistics and the copy below), in its given layout.
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = extent;
+        vkCmdCopyImageToBuffer(cmd, frame.camera_image, frame.camera_image_layout, camera_buffer_.handle(), 1,
+                               &region);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
+                             nullptr, 0, nullptr);
+    }
+    // The previous frame left the composite in TRANSFER_SRC; its content is replaced whole.
+    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
+                                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                VK_PIPELINE_STAGE_TRANSFER_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = extent;
+    vkCmdCopyBufferToImage(cmd, camera_buffer_.handle(), colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           1, &region);
+    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                VK_ACCESS_TRANSFER_WRITE_BIT,
+                                VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+}
+
+void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
+    statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
+    if (frame_colour_mode_ != ColourMatchMode::kOff) statistics_->record(cmd, camera_buffer_);
+}
+
+void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
+    if (!sun_shines_) return;
+    const VkDeviceSize offset = 0;
+    auto shadowPass = [&](VkFramebuffer framebuffer, const DepthOnlyPushConstants& push, VkPipeline pipeline,
+                          const GpuBuffer& vertices, const GpuBuffer& indices, uint32_t index_count) {
+        VkClearValue clear{};
+        clear.depthStencil = {1.0f, 0};
+        VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        begin.renderPass = shadow_pass_;
+        begin.framebuffer = framebuffer;
+        begin.renderArea = {{0, 0}, {options_.shadow_map_size, options_.shadow_map_size}};
+        begin.clearValueCount = 1;
+        begin.pClearValues = &clear;
+        vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+        recordViewport(cmd, options_.shadow_map_size, options_.shadow_map_size);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vkCmdPushConstants(cmd, depth_layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+        const VkBuffer vertex_buffer = vertices.handle();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        vkCmdEndRenderPass(cmd);
+    };
+    shadowPass(building_shadow_framebuffer_, building_shadow_push_, shadow_pipeline_, scene_.building_vertices,
+               scene_.building_indices, scene_.building_index_count);
+    if (site_shadows_)
+        shadowPass(site_shadow_framebuffer_, site_shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
+                   scene_.occluder_indices, scene_.occluder_index_count);
+}
+
+void RuntimeImpl::beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass) {
+    VkClearValue clears[2]{};
+    clears[1].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = render_pass;
+    begin.framebuffer = main_framebuffer_;  // compatible with every variant
+    begin.renderArea = {{0, 0}, {options_.frame_width, options_.frame_height}};
+    begin.clearValueCount = 2;
+    begin.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    recordViewport(cmd, options_.frame_width, options_.frame_height);
+}
+
+void RuntimeImpl::recordOccluder(VkCommandBuffer cmd) {
+    if (scene_.occluder_index_count == 0) return;
+    const VkDeviceSize offset = 0;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, occluder_pipeline_);
+    vkCmdPushConstants(cmd, depth_layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof occluder_push_, &occluder_push_);
+    const VkBuffer vertex_buffer = scene_.occluder_vertices.handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, scene_.occluder_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, scene_.occluder_index_count, 1, 0, 0, 0);
+}
+
+void RuntimeImpl::recordBuilding(VkCommandBuffer cmd) {
+    const VkDeviceSize offset = 0;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, building_pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
+                            0, nullptr);
+    const VkBuffer vertex_buffer = scene_.building_vertices.handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, scene_.building_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    for (const MaterialDraw& draw : scene_.draws) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_MATERIAL_SET, 1,
+                                &material_sets_[draw.material], 0, nullptr);
+        const glm::vec4& factor = scene_.base_colour_factors[draw.material];
+        const MaterialPushConstants push{{{factor.r, factor.g, factor.b, factor.a}}};
+        vkCmdPushConstants(cmd, shading_layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+        vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
+    }
+}
+
+void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
+    if (!draw_ground_) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ground_pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
+                            0, nullptr);
+    vkCmdBindIndexBuffer(cmd, scene_.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, scene_.ground_index_count, 1, 0, 0, 0);
+}
+
+void RuntimeImpl::recordReadback(VkCommandBuffer cmd) {
+    // The main pass left the composite in TRANSFER_SRC_OPTIMAL (its final layout).
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {options_.frame_width, options_.frame_height, 1};
+    vkCmdCopyImageToBuffer(cmd, colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           readback_buffer_.handle(), 1, &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr,
+                         0, nullptr);
+}
+
+void RuntimeImpl::submit(const std::function<void(VkCommandBuffer)>& record) {
+    checkVk(vkResetCommandBuffer(command_buffer_, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    checkVk(vkBeginCommandBuffer(command_buffer_, &begin), "vkBeginCommandBuffer");
+    record(command_buffer_);
+    checkVk(vkEndCommandBuffer(command_buffer_), "vkEndCommandBuffer");
+    VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit_info.commandBufferCount = 1;
+    submit_info.pCommandBuffers = &command_buffer_;
+    if (gpu_.queue_mutex != nullptr) {
+        std::lock_guard<std::mutex> lock(*gpu_.queue_mutex);
+        checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
+    } else {
+        checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
+    }
+    checkVk(vkWaitForFences(gpu_.device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    checkVk(vkResetFences(gpu_.device, 1, &fence_), "vkResetFences");
+}
+
+void RuntimeImpl::finishOutput(uint8_t* output_rgba8) {
+    if (output_rgba8 != nullptr)
+        readback_buffer_.download(output_rgba8, size_t(options_.frame_width) * options_.frame_height * 4);
+}
+
+FrameInfo RuntimeImpl::renderFrame(const FrameInput& frame, uint8_t* output_rgba8) {
+    const FrameInfo info = prepareFrame(frame);
+    try {
+        submit([&](VkCommandBuffer cmd) {
+            recordCameraIn(cmd, frame);
+            recordStatistics(cmd, frame);
+            recordShadows(cmd);
+            beginMainPass(cmd, main_passes_[0]);
+            recordOccluder(cmd);
+            recordBuilding(cmd);
+            recordGround(cmd);
+            vkCmdEndRenderPass(cmd);
+            recordReadback(cmd);
+        });
+        finishOutput(output_rgba8);
+    } catch (const RuntimeError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw deviceError(error);
+    }
+    return info;
+}
+
+FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) {
+    using Clock = std::chrono::steady_clock;
+    auto milliseconds = [](Clock::time_point from, Clock::time_point to) {
+        return std::chrono::duration<double, std::milli>(to - from).count();
+    };
+    const Clock::time_point start = Clock::now();
+    const FrameInfo info = prepareFrame(frame);
+    // Each pass alone in its own submission, waited for: lavapipe writes timestamps only when graphics work is
+    // flushed (DESIGN.md 5), so wall time around a fenced submission is the honest per-pass figure.
+    auto timed = [&](double& slot, const std::function<void(VkCommandBuffer)>& record) {
+        const Clock::time_point pass_start = Clock::now();
+        submit(record);
+        slot = milliseconds(pass_start, Clock::now());
+    };
+    try {
+        timed(timings.upload_ms, [&](VkCommandBuffer cmd) { recordCameraIn(cmd, frame); });
+        timed(timings.statistics_ms, [&](VkCommandBuffer cmd) { recordStatistics(cmd, frame); });
+        timed(timings.shadow_ms, [&](VkCommandBuffer cmd) { recordShadows(cmd); });
+        timed(timings.occluder_ms, [&](VkCommandBuffer cmd) {
+            beginMainPass(cmd, main_passes_[1]);
+            recordOccluder(cmd);
+            vkCmdEndRenderPass(cmd);
+        });
+        timed(timings.building_ms, [&](VkCommandBuffer cmd) {
+            beginMainPass(cmd, main_passes_[2]);
+            recordBuilding(cmd);
+            vkCmdEndRenderPass(cmd);
+        });
+        timed(timings.ground_ms, [&](VkCommandBuffer cmd) {
+            beginMainPass(cmd, main_passes_[3]);
+            recordGround(cmd);
+            vkCmdEndRenderPass(cmd);
+        });
+        timed(timings.readback_ms, [&](VkCommandBuffer cmd) { recordReadback(cmd); });
+        const Clock::time_point copy_start = Clock::now();
+        finishOutput(output_rgba8);
+        timings.readback_ms += milliseconds(copy_start, Clock::now());
+    } catch (const RuntimeError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw deviceError(error);
+    }
+    timings.total_ms = milliseconds(start, Clock::now());
+    return info;
+}
+
+}  // namespace
+
+std::unique_ptr<Runtime> Runtime::open(const GpuDevice& gpu, const BakeSetData& bake_set,
+                                       const RuntimeOptions& options) {
+    try {
+        return std::make_unique<RuntimeImpl>(gpu, bake_set, options);
+    } catch (const RuntimeError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw RuntimeError(RuntimeErrorCode::kOutOfMemory, "gusuku runtime: out of host memory opening the bake set");
+    } catch (const std::exception& error) {
+        throw deviceError(error);
+    }
+}
+
+}  // namespace gusuku

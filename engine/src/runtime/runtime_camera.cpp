@@ -1,0 +1,89 @@
+// The camera convention of runtime.h: projection of ENU points to pixels, and the matching Vulkan clip matrix.
+
+#include "runtime_camera.h"
+
+#include <cmath>
+
+#include <glm/matrix.hpp>
+
+#include "gusuku/runtime.h"
+
+namespace gusuku {
+
+std::optional<glm::dvec2> Runtime::projectToPixel(const CameraIntrinsics& intrinsics, const CameraPose& pose,
+                                                  const glm::dvec3& point_enu) {
+    // camera_to_enu is orthonormal, so its transpose takes ENU offsets into the camera frame.
+    const glm::dvec3 camera = glm::transpose(pose.camera_to_enu) * (point_enu - pose.position_enu);
+    if (!(camera.z > 0.0)) return std::nullopt;
+    return glm::dvec2(intrinsics.fx * camera.x / camera.z + intrinsics.cx,
+                      intrinsics.fy * camera.y / camera.z + intrinsics.cy);
+}
+
+namespace runtime_detail {
+
+glm::dmat4 cameraEnuToClip(const CameraIntrinsics& intrinsics, const CameraPose& pose, double near_m, double far_m) {
+    // ENU -> camera (x right, y down, z forward).
+    const glm::dmat3 enu_to_camera = glm::transpose(pose.camera_to_enu);
+    glm::dmat4 view(1.0);
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) view[column][row] = enu_to_camera[column][row];
+    const glm::dvec3 translation = -(enu_to_camera * pose.position_enu);
+    view[3] = glm::dvec4(translation, 1.0);
+
+    // Camera -> clip: x_ndc = 2 u / W - 1 with u = fx X / Z + cx (Vulkan's y also points down, so rows map
+    // straight), depth z_ndc = far (Z - near) / (Z (far - near)) in [0, 1], w = Z.
+    const double width = double(intrinsics.width), height = double(intrinsics.height);
+    glm::dmat4 projection(0.0);
+    projection[0][0] = 2.0 * intrinsics.fx / width;
+    projection[2][0] = 2.0 * intrinsics.cx / width - 1.0;
+    projection[1][1] = 2.0 * intrinsics.fy / height;
+    projection[2][1] = 2.0 * intrinsics.cy / height - 1.0;
+    projection[2][2] = far_m / (far_m - near_m);
+    projection[3][2] = -far_m * near_m / (far_m - near_m);
+    projection[2][3] = 1.0;
+    return projection * view;
+}
+
+std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t width, uint32_t height) {
+    const CameraIntrinsics& k = frame.intrinsics;
+    auto finite = [](double value) { return std::isfinite(value); };
+    if (k.width != width || k.height != height)
+        return "intrinsics: the frame is " + std::to_string(k.width) + " x " + std::to_string(k.height) +
+               ", the runtime was opened for " + std::to_string(width) + " x " + std::to_string(height);
+    if (!(finite(k.fx) && finite(k.fy) && k.fx > 0.0 && k.fy > 0.0))
+        return "intrinsics: focal lengths must be finite and positive, got fx " + std::to_string(k.fx) + ", fy " +
+               std::to_string(k.fy);
+    if (!(finite(k.cx) && finite(k.cy))) return "intrinsics: the principal point is not finite";
+    const glm::dvec3& position = frame.pose.position_enu;
+    if (!(finite(position.x) && finite(position.y) && finite(position.z)))
+        return "pose.position_enu: not finite";
+    const glm::dmat3& rotation = frame.pose.camera_to_enu;
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row)
+            if (!finite(rotation[column][row])) return "pose.camera_to_enu: not finite";
+    // Orthonormal within a loose tolerance: a rotation built in float from sensor quaternions passes.
+    const glm::dmat3 should_be_identity = glm::transpose(rotation) * rotation;
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row)
+            if (std::abs(should_be_identity[column][row] - (column == row ? 1.0 : 0.0)) > 1e-3)
+                return "pose.camera_to_enu: not a rotation (its columns are not orthonormal)";
+    if (glm::determinant(rotation) < 0.0) return "pose.camera_to_enu: a reflection, not a rotation";
+    if (!finite(frame.utc_unix_seconds)) return "utc_unix_seconds: not finite";
+    if (!std::isfinite(frame.weather.cloud_cover) || frame.weather.cloud_cover < 0.0f ||
+        frame.weather.cloud_cover > 1.0f)
+        return "weather.cloud_cover: must be in [0, 1], got " + std::to_string(frame.weather.cloud_cover);
+    if (!std::isfinite(frame.exposure) || !(frame.exposure > 0.0f))
+        return "exposure: must be finite and positive, got " + std::to_string(frame.exposure);
+    if ((frame.camera_rgba8 == nullptr) == (frame.camera_image == VK_NULL_HANDLE))
+        return "camera: give exactly one of camera_rgba8 and camera_image";
+    if (frame.position) {
+        const GeoPosition& fix = *frame.position;
+        if (!(std::abs(fix.latitude_deg) <= 90.0)) return "position.latitude_deg: must be in [-90, 90]";
+        if (!(std::abs(fix.longitude_deg) <= 180.0)) return "position.longitude_deg: must be in [-180, 180]";
+        if (!(std::abs(fix.height_m) <= 1e5)) return "position.height_m: must be in [-100000, 100000]";
+    }
+    return std::nullopt;
+}
+
+}  // namespace runtime_detail
+}  // namespace gusuku

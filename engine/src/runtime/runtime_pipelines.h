@@ -1,0 +1,63 @@
+#pragma once
+// The runtime's Vulkan plumbing that is not per frame: render passes, descriptor layouts, graphics pipelines.
+// Private to gusuku_runtime.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gusuku/gpu_device.h"
+
+namespace gusuku::runtime_detail {
+
+constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;  // the composite: sRGB bytes, blending in linear
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+/// The main pass's attachments: colour (loaded: the camera image) and depth. The variants differ only in load
+/// and store operations and layouts, so they are compatible and share pipelines. `whole` = one pass for the
+/// whole frame; `first`, `middle`, `last` split it for the profiling mode.
+enum class MainPassVariant { kWhole, kFirst, kMiddle, kLast };
+VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant);
+/// A depth-only pass into a shadow map, left in SHADER_READ_ONLY_OPTIMAL for sampling.
+VkRenderPass createShadowRenderPass(VkDevice device);
+
+enum class BlendMode {
+    kOpaque,           ///< write the fragment's colour
+    kMultiplyTwice,    ///< destination x source x 2 in colour (the ground ratio), destination alpha kept
+    kNoColourWrites,   ///< depth only inside a pass that has a colour attachment
+};
+
+struct VertexInput {
+    uint32_t stride = 0;                                      ///< 0: no vertex buffer
+    std::vector<VkVertexInputAttributeDescription> attributes;
+};
+
+struct GraphicsPipelineDescription {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkRenderPass render_pass = VK_NULL_HANDLE;
+    const uint32_t* vertex_spirv = nullptr;
+    size_t vertex_spirv_bytes = 0;
+    const uint32_t* fragment_spirv = nullptr;  ///< null: no fragment stage (depth only)
+    size_t fragment_spirv_bytes = 0;
+    VertexInput vertex_input;
+    bool depth_test = true;
+    bool depth_write = true;
+    VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
+    BlendMode blend = BlendMode::kOpaque;
+    bool has_colour_attachment = true;
+};
+
+/// A graphics pipeline with dynamic viewport and scissor; triangle lists, no culling (thin walls and
+/// photogrammetry shells are seen from both sides). Throws std::runtime_error on failure.
+VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& description);
+
+/// A framebuffer over the given views, width x height.
+VkFramebuffer createFramebuffer(VkDevice device, VkRenderPass render_pass, const std::vector<VkImageView>& views,
+                                uint32_t width, uint32_t height);
+
+/// Sets the dynamic viewport and scissor to the whole width x height.
+void recordViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height);
+
+}  // namespace gusuku::runtime_detail

@@ -1,0 +1,213 @@
+// Uploading a bake set to the GPU once, when the runtime opens (see runtime_scene.h).
+
+#include "runtime_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <glm/common.hpp>
+#include <glm/gtc/packing.hpp>
+
+namespace gusuku::runtime_detail {
+namespace {
+
+// Half floats hold up to 65504: irradiance above this fraction of it is stored scaled down.
+constexpr float kLargestStoredHalf = 30000.0f;
+
+template <typename T>
+GpuBuffer deviceBuffer(const GpuDevice& gpu, const std::vector<T>& values, VkBufferUsageFlags usage) {
+    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), 16), usage, GpuMemory::kDeviceLocal);
+    if (!values.empty()) buffer.upload(values.data(), values.size() * sizeof(T));
+    return buffer;
+}
+
+float largestRgb(const BakeSetImage& image) {
+    float largest = 0.0f;
+    for (size_t texel = 0; texel + 3 < image.rgba.size(); texel += 4)
+        largest = std::max({largest, image.rgba[texel], image.rgba[texel + 1], image.rgba[texel + 2]});
+    return largest;
+}
+
+std::vector<uint16_t> toHalf(const BakeSetImage& image, float inverse_scale) {
+    std::vector<uint16_t> halves(image.rgba.size());
+    for (size_t index = 0; index < image.rgba.size(); ++index) {
+        const bool alpha = index % 4 == 3;
+        halves[index] = uint16_t(glm::packHalf1x16(alpha ? image.rgba[index] : image.rgba[index] * inverse_scale));
+    }
+    return halves;
+}
+
+void extend(glm::dvec3& low, glm::dvec3& high, const glm::dvec3& point) {
+    low = glm::min(low, point);
+    high = glm::max(high, point);
+}
+
+}  // namespace
+
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
+    GpuScene scene;
+    const BakeSetMesh& mesh = bake_set.building;
+
+    // Vertices, and indices grouped by material so each material is one draw.
+    std::vector<BuildingVertex> vertices(mesh.positions.size());
+    scene.building_min = glm::dvec3(INFINITY);
+    scene.building_max = glm::dvec3(-INFINITY);
+    for (size_t vertex = 0; vertex < vertices.size(); ++vertex) {
+        BuildingVertex& out = vertices[vertex];
+        const glm::vec3& position = mesh.positions[vertex];
+        const glm::vec3 normal = vertex < mesh.normals.size() ? mesh.normals[vertex] : glm::vec3(0, 0, 1);
+        const glm::vec2 uv0 = vertex < mesh.uv0.size() ? mesh.uv0[vertex] : glm::vec2(0.0f);
+        const glm::vec2 uv1 = vertex < mesh.uv1.size() ? mesh.uv1[vertex] : glm::vec2(0.0f);
+        out = {{position.x, position.y, position.z}, {normal.x, normal.y, normal.z}, {uv0.x, uv0.y}, {uv1.x, uv1.y}};
+        extend(scene.building_min, scene.building_max, glm::dvec3(position));
+    }
+    const size_t triangle_count = mesh.indices.size() / 3;
+    std::vector<uint32_t> order(triangle_count);
+    std::iota(order.begin(), order.end(), 0u);
+    auto materialOf = [&](uint32_t triangle) {
+        return triangle < mesh.triangle_material.size() ? mesh.triangle_material[triangle] : 0u;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return materialOf(a) < materialOf(b); });
+    std::vector<uint32_t> indices;
+    indices.reserve(mesh.indices.size());
+    for (uint32_t triangle : order) {
+        const uint32_t material = materialOf(triangle);
+        if (scene.draws.empty() || scene.draws.back().material != material)
+            scene.draws.push_back({uint32_t(indices.size()), 0, material});
+        for (int corner = 0; corner < 3; ++corner) indices.push_back(mesh.indices[size_t(triangle) * 3 + corner]);
+        scene.draws.back().index_count += 3;
+    }
+    const VkBufferUsageFlags vertex_usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    const VkBufferUsageFlags index_usage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+    scene.building_vertices = deviceBuffer(gpu, vertices, vertex_usage);
+    scene.building_indices = deviceBuffer(gpu, indices, index_usage);
+    scene.building_index_count = uint32_t(indices.size());
+
+    // Materials and their textures (sRGB: the sampler decodes to linear).
+    for (const BakeSetMaterial& material : mesh.materials) {
+        scene.base_colour_factors.push_back(material.base_color_factor);
+        scene.material_texture.push_back(material.base_color_texture);
+    }
+    if (scene.base_colour_factors.empty()) {
+        scene.base_colour_factors.push_back(glm::vec4(1.0f));
+        scene.material_texture.push_back(-1);
+    }
+    for (const BakeSetTexture& texture : mesh.textures) {
+        GpuImageDescription description;
+        description.format = VK_FORMAT_R8G8B8A8_SRGB;
+        description.width = uint32_t(texture.width);
+        description.height = uint32_t(texture.height);
+        scene.textures.emplace_back(gpu, description);
+        scene.textures.back().upload(texture.rgba8.data(), texture.rgba8.size(), 0,
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+    {
+        GpuImageDescription description;
+        description.format = VK_FORMAT_R8G8B8A8_SRGB;
+        scene.white_texture = GpuImage(gpu, description);
+        const uint8_t white[4] = {255, 255, 255, 255};
+        scene.white_texture.upload(white, sizeof white, 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+
+    // The occluder (depth only).
+    scene.casters_min = scene.building_min;
+    scene.casters_max = scene.building_max;
+    scene.occluder_vertices = deviceBuffer(gpu, bake_set.occluder.positions, vertex_usage);
+    scene.occluder_indices = deviceBuffer(gpu, bake_set.occluder.indices, index_usage);
+    scene.occluder_index_count = uint32_t(bake_set.occluder.indices.size());
+    for (const glm::vec3& position : bake_set.occluder.positions)
+        extend(scene.casters_min, scene.casters_max, glm::dvec3(position));
+
+    // Lightmaps and ground terms as half-float arrays, scaled so the largest value fits.
+    float largest = 0.0f;
+    for (const BakeSetSlotImages& slot : bake_set.slots)
+        largest = std::max({largest, largestRgb(slot.building), largestRgb(slot.ground_with),
+                            largestRgb(slot.ground_without)});
+    scene.irradiance_scale = largest > kLargestStoredHalf ? largest / kLargestStoredHalf : 1.0f;
+    const float inverse_scale = 1.0f / scene.irradiance_scale;
+    const uint32_t slot_count = uint32_t(bake_set.slots.size());
+    const int resolution = bake_set.manifest.building.lightmap_resolution;
+    {
+        GpuImageDescription description;
+        description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        description.width = uint32_t(resolution);
+        description.height = uint32_t(resolution);
+        description.layers = slot_count;
+        description.array_view = true;
+        scene.lightmaps = GpuImage(gpu, description);
+        for (uint32_t slot = 0; slot < slot_count; ++slot) {
+            const std::vector<uint16_t> halves = toHalf(bake_set.slots[slot].building, inverse_scale);
+            scene.lightmaps.upload(halves.data(), halves.size() * 2, slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+    }
+    const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
+    const uint32_t columns = uint32_t(std::max(grid.columns, 1)), rows = uint32_t(std::max(grid.rows, 1));
+    const bool has_ground = grid.columns > 0 && grid.rows > 0 && !bake_set.ground_geometry.rgba.empty();
+    {
+        GpuImageDescription description;
+        description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        description.width = columns;
+        description.height = rows;
+        description.layers = std::max(2 * slot_count, 1u);
+        description.array_view = true;
+        scene.ground_irradiance = GpuImage(gpu, description);
+        if (has_ground) {
+            for (uint32_t slot = 0; slot < slot_count; ++slot) {
+                const std::vector<uint16_t> with = toHalf(bake_set.slots[slot].ground_with, inverse_scale);
+                const std::vector<uint16_t> without = toHalf(bake_set.slots[slot].ground_without, inverse_scale);
+                scene.ground_irradiance.upload(with.data(), with.size() * 2, 2 * slot,
+                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                scene.ground_irradiance.upload(without.data(), without.size() * 2, 2 * slot + 1,
+                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            }
+        } else {
+            const std::vector<uint16_t> zeros(size_t(columns) * rows * 4, 0);
+            for (uint32_t layer = 0; layer < description.layers; ++layer)
+                scene.ground_irradiance.upload(zeros.data(), zeros.size() * 2, layer,
+                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+    }
+    {
+        GpuImageDescription description;
+        description.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        description.width = columns;
+        description.height = rows;
+        scene.ground_geometry = GpuImage(gpu, description);
+        std::vector<float> geometry = has_ground ? bake_set.ground_geometry.rgba : std::vector<float>(4, 0.0f);
+        scene.ground_geometry.upload(geometry.data(), geometry.size() * sizeof(float), 0,
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+
+    // The ground grid's triangles: two per square of four neighbouring cell centres.
+    std::vector<uint32_t> ground_indices;
+    scene.receivers_min = scene.building_min;
+    scene.receivers_max = scene.building_max;
+    if (has_ground) {
+        for (uint32_t row = 0; row + 1 < rows; ++row)
+            for (uint32_t column = 0; column + 1 < columns; ++column) {
+                const uint32_t a = row * columns + column, b = a + 1, c = a + columns, d = c + 1;
+                ground_indices.insert(ground_indices.end(), {a, c, b, b, c, d});
+            }
+        double low_height = INFINITY, high_height = -INFINITY;
+        for (size_t texel = 0; texel < size_t(columns) * rows; ++texel) {
+            if (bake_set.slots.empty() || bake_set.slots[0].ground_with.rgba[texel * 4 + 3] <= 0.0f) continue;
+            low_height = std::min(low_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
+            high_height = std::max(high_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
+        }
+        if (low_height <= high_height) {
+            extend(scene.receivers_min, scene.receivers_max,
+                   glm::dvec3(grid.origin_enu_m, low_height));
+            extend(scene.receivers_min, scene.receivers_max,
+                   glm::dvec3(grid.origin_enu_m + glm::dvec2(grid.columns, grid.rows) * grid.cell_m, high_height));
+        }
+    }
+    scene.ground_indices = deviceBuffer(gpu, ground_indices, index_usage);
+    scene.ground_index_count = uint32_t(ground_indices.size());
+    glm::dvec3 all_min = glm::min(scene.receivers_min, scene.casters_min);
+    glm::dvec3 all_max = glm::max(scene.receivers_max, scene.casters_max);
+    scene.scene_radius_m = std::max(0.5 * glm::length(all_max - all_min), 1.0);
+    return scene;
+}
+
+}  // namespace gusuku::runtime_detail

@@ -1,0 +1,59 @@
+#pragma once
+// The bake set on the GPU: what gusuku_runtime uploads once when it opens (the building's vertices by material,
+// its textures, the lightmaps and ground terms as texture arrays, the occluder). Private to gusuku_runtime.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/bakeset_data.h"
+#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu_image.h"
+
+namespace gusuku::runtime_detail {
+
+/// The building's vertex layout (runtime_pipelines' vertex input): position, normal, base colour uv, lightmap uv.
+struct BuildingVertex {
+    float position[3];
+    float normal[3];
+    float base_colour_uv[2];
+    float lightmap_uv[2];
+};
+static_assert(sizeof(BuildingVertex) == 40);
+
+/// One draw of the building: a run of indices that share a material.
+struct MaterialDraw {
+    uint32_t first_index = 0;
+    uint32_t index_count = 0;
+    uint32_t material = 0;  ///< index into GpuScene::material_textures / base_colour_factors
+};
+
+struct GpuScene {
+    GpuBuffer building_vertices;  ///< BuildingVertex, device-local
+    GpuBuffer building_indices;   ///< uint32, sorted by material
+    uint32_t building_index_count = 0;
+    std::vector<MaterialDraw> draws;
+    std::vector<glm::vec4> base_colour_factors;  ///< per material
+    std::vector<int> material_texture;           ///< per material: index into textures, or -1 (white)
+    std::vector<GpuImage> textures;              ///< RGBA8 sRGB base colour textures
+    GpuImage white_texture;                      ///< 1x1 white for materials without a texture
+    GpuBuffer occluder_vertices;                 ///< vec3, device-local (may hold nothing)
+    GpuBuffer occluder_indices;
+    uint32_t occluder_index_count = 0;
+    GpuBuffer ground_indices;                    ///< triangles between neighbouring cell centres
+    uint32_t ground_index_count = 0;
+    GpuImage lightmaps;          ///< RGBA16F array, one layer per slot, values / irradiance_scale
+    GpuImage ground_irradiance;  ///< RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), / scale
+    GpuImage ground_geometry;    ///< RGBA32F: normal, height
+    float irradiance_scale = 1.0f;  ///< stored half-float values times this are the bake set's irradiance
+    glm::dvec3 building_min{0.0}, building_max{0.0};  ///< ENU bounds
+    glm::dvec3 receivers_min{0.0}, receivers_max{0.0};  ///< building and ground grid
+    glm::dvec3 casters_min{1.0}, casters_max{-1.0};     ///< building and occluder (empty when min > max)
+    double scene_radius_m = 1.0;  ///< half the diagonal of everything, for depth ranges
+};
+
+/// Uploads the bake set (already checked by findBakeSetProblem). Throws std::runtime_error on Vulkan failure.
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set);
+
+}  // namespace gusuku::runtime_detail

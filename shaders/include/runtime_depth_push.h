@@ -1,0 +1,10 @@
+// Push constants of shaders/runtime/depth_only.vert (shadow maps and the occluder pass), for GLSL and C++.
+#ifndef GUSUKU_RUNTIME_DEPTH_PUSH_H
+#define GUSUKU_RUNTIME_DEPTH_PUSH_H
+#include "interface_types.h"
+GUSUKU_PUSH_CONSTANTS_BEGIN(DepthOnlyPushConstants)
+    mat4 enu_to_clip;  // the view this depth pass renders (the sun's or the camera's)
+    vec4 pull;         // x metres to move each vertex towards `pull_origin` (0: none), yzw unused
+    vec4 pull_origin;  // xyz ENU
+GUSUKU_PUSH_CONSTANTS_END(DepthOnlyPushConstants, push)
+#endif

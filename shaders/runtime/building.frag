@@ -1,0 +1,70 @@
+#version 450
+// The building (DESIGN.md 3 and 8 step 5): radiance = albedo / pi x (E_ind + V x E_sun x max(0, n . s)), with
+// E_ind the slots' baked lightmaps blended by the frame's weights, V the sun's visibility from the building's
+// and the site's shadow maps, then the colour match to the camera (colour_match.glsl). Direct-only mode: a
+// constant ambient instead of E_ind, no colour match (what AR apps draw today).
+#extension GL_GOOGLE_include_directive : require
+#include "runtime_interface.h"
+#include "runtime_material_push.h"
+
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_BINDING) uniform sampler2DShadow building_shadow;
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_LIGHTMAP_BINDING) uniform sampler2DArray lightmaps;
+layout(set = RUNTIME_MATERIAL_SET, binding = RUNTIME_BASE_COLOUR_BINDING) uniform sampler2D base_colour;
+
+#include "colour_match.glsl"
+layout(std430, set = RUNTIME_FRAME_SET, binding = RUNTIME_COLOUR_MATCH_BINDING) readonly buffer ColourMatchBuffer {
+    ColourMatchState colour_state;
+};
+#include "runtime_shadow.glsl"
+
+layout(location = 0) in vec3 position_enu;
+layout(location = 1) in vec3 normal_enu;
+layout(location = 2) in vec2 base_colour_uv;
+layout(location = 3) in vec2 lightmap_uv;
+
+layout(location = 0) out vec4 out_colour;  // linear; the sRGB attachment encodes it
+
+const float kPi = 3.14159265358979323846;
+
+void main() {
+    vec3 albedo = texture(base_colour, base_colour_uv).rgb * material.base_colour_factor.rgb;
+    vec3 normal = normalize(normal_enu);
+    // Two-sided: a face seen from behind is lit as its front (thin walls, eaves).
+    if (!gl_FrontFacing) normal = -normal;
+
+    bool direct_only = frame.slot_layers.w == RUNTIME_MODE_DIRECT_ONLY;
+    vec3 indirect_irradiance;
+    if (direct_only) {
+        indirect_irradiance = frame.direct_only.rgb;
+    } else {
+        indirect_irradiance = vec3(0.0);
+        if (frame.slot_weights.x > 0.0)
+            indirect_irradiance += frame.slot_weights.x * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.x)).rgb;
+        if (frame.slot_weights.y > 0.0)
+            indirect_irradiance += frame.slot_weights.y * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.y)).rgb;
+        if (frame.slot_weights.z > 0.0)
+            indirect_irradiance += frame.slot_weights.z * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.z)).rgb;
+        indirect_irradiance *= frame.colour_match.z;  // the lightmaps are stored scaled to fit half floats
+    }
+
+    vec3 sun_irradiance = vec3(0.0);
+    float cosine = dot(normal, frame.sun_direction.xyz);
+    if (frame.sun_direction.w > 0.0 && cosine > 0.0) {
+        float visibility = sunVisibility(building_shadow, position_enu, normal);
+        if (frame.shadow_parameters.w > 0.0 && visibility > 0.0)
+            visibility *= sunVisibility(site_shadow, position_enu, normal);
+        sun_irradiance = frame.sun_irradiance.rgb * (visibility * cosine);
+    }
+    vec3 radiance = albedo / kPi * (indirect_irradiance + sun_irradiance);
+    if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
+
+    // Without a colour match (off, direct-only, or no camera statistics yet) the camera's exposure maps radiance
+    // to display values; the match maps the baked appearance's Lab statistics onto the camera's instead.
+    vec3 display_linear;
+    if (direct_only || !colourMatchActive(colour_state))
+        display_linear = clamp(radiance * frame.sun_irradiance.w, vec3(0.0), vec3(1.0));
+    else
+        display_linear = applyColourMatch(radiance, colour_state);
+    out_colour = vec4(display_linear, 1.0);
+}

@@ -1,0 +1,15 @@
+#version 450
+// Depth only: the building and the site's occluder mesh into the sun's shadow maps, and the occluder mesh into
+// the camera's depth (so real walls hide the building; DESIGN.md 8 steps 3 and 4). Positions in ENU metres.
+#extension GL_GOOGLE_include_directive : require
+#include "runtime_depth_push.h"
+
+layout(location = 0) in vec3 position_enu;
+
+void main() {
+    vec3 position = position_enu;
+    // The occluder is pushed a little away from the camera (pull.x < 0) so the ground it was built from does not
+    // hide the ground-ratio pass drawn on the same surface.
+    if (push.pull.x != 0.0) position += normalize(push.pull_origin.xyz - position) * push.pull.x;
+    gl_Position = push.enu_to_clip * vec4(position, 1.0);
+}
