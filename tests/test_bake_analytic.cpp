@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
+#include "gusuku/colour.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"
@@ -25,7 +26,7 @@ constexpr SkySampling kBothSkySamplings[] = {SkySampling::CosineOnly, SkySamplin
 
 double meanLuminance(const std::vector<glm::vec3>& irradiance) {
     double sum = 0.0;
-    for (const glm::vec3& e : irradiance) sum += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+    for (const glm::vec3& e : irradiance) sum += luminanceRec709(glm::dvec3(e));
     return sum / double(irradiance.size());
 }
 

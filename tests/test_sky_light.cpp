@@ -13,6 +13,7 @@
 
 #include "gpu_test_support.h"
 #include "sky_probe.h"
+#include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/image.h"
 #include "gusuku/input_error.h"
@@ -160,8 +161,7 @@ TEST(SunDisc, DiscFarTooFaintForARealSunIsMarkedClipped) {
 
 /// Share of a map's light (luminance integrated over the sphere) that extractSunDisc took out as the disc.
 double sunShareOfLight(const SunDiscEstimate& disc, const ImageRGBA& sky_without_sun) {
-    const double disc_light = 0.2126 * disc.irradiance_rgb.x + 0.7152 * disc.irradiance_rgb.y +
-                              0.0722 * disc.irradiance_rgb.z;  // cos ~ 1 over the disc
+    const double disc_light = gusuku::luminanceRec709(disc.irradiance_rgb);  // cos ~ 1 over the disc
     const double sky_light = buildSkySamplingTables(sky_without_sun, 0.0).table[3];
     return disc_light / (disc_light + sky_light);
 }

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/image.h"
 #include "gusuku_bake/sky_model.h"
@@ -25,7 +26,7 @@ glm::dvec3 fromAzimuthElevation(double azimuth_deg, double elevation_deg) {
     return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
 }
 
-double luminanceOf(const float* texel) { return 0.2126 * texel[0] + 0.7152 * texel[1] + 0.0722 * texel[2]; }
+double luminanceOf(const float* texel) { return luminanceRec709(glm::dvec3(texel[0], texel[1], texel[2])); }
 
 // Darula and Kittler's standard clear sky, type 12: gradation group V (a = -1, b = -0.32), indicatrix group 4
 // (c = 10, d = -3, e = 0.45). L / Lz = f(chi) phi(Z) / (f(Zs) phi(0)).

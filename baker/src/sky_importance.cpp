@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/input_error.h"
 #include "gusuku_bake/sky_light.h"
@@ -27,8 +28,7 @@ constexpr double kMinSinTheta = 1e-7;
 double sanitizedChannel(float value) { return (std::isfinite(value) && value > 0.0f) ? double(value) : 0.0; }
 
 double luminanceOf(const float* rgba) {
-    return 0.2126 * sanitizedChannel(rgba[0]) + 0.7152 * sanitizedChannel(rgba[1]) +
-           0.0722 * sanitizedChannel(rgba[2]);
+    return luminanceRec709(glm::dvec3(sanitizedChannel(rgba[0]), sanitizedChannel(rgba[1]), sanitizedChannel(rgba[2])));
 }
 
 size_t marginalOffset() { return kSkyTableHeaderFloats; }

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 
 namespace gusuku::bake {
@@ -45,7 +46,7 @@ double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
 }
 
 glm::dvec3 normalisedToUnitLuminance(const glm::dvec3& rgb) {
-    const double luminance = rec709Luminance(rgb);
+    const double luminance = luminanceRec709(rgb);
     if (!(luminance > 0.0)) throw std::invalid_argument("sky colour has no positive luminance");
     return rgb / luminance;
 }
@@ -83,8 +84,6 @@ void checkImageSize(int width, int height) {
 }
 
 }  // namespace
-
-double rec709Luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 CieSkyCoefficients cieSkyCoefficients(int sky_type) {
     if (sky_type < 1 || sky_type > 15)

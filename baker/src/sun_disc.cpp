@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/input_error.h"
 #include "gusuku_bake/sky_light.h"
@@ -43,8 +44,6 @@ glm::dvec3 radianceOf(const ImageRGBA& image, int x, int y) {
     const float* t = image.texel(x, y);
     return {channelOf(t[0]), channelOf(t[1]), channelOf(t[2])};
 }
-
-double luminanceOf(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 /// Texel geometry of one map: centre directions and solid angles.
 struct MapGeometry {
@@ -166,7 +165,7 @@ RingStatistics ringStatistics(const ImageRGBA& image, const MapGeometry& geometr
             const double c = glm::dot(geometry.direction(x, y), centre);
             if (c > cos_inner || c < cos_outer) continue;
             const glm::dvec3 radiance = radianceOf(image, x, y);
-            luminances.push_back(luminanceOf(radiance));
+            luminances.push_back(luminanceRec709(radiance));
             sum += radiance;
         }
     }
@@ -196,7 +195,7 @@ SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_im
         throw InputError("sky map", "north_azimuth_in_image_deg", "not finite");
 
     const MapGeometry geometry{width, height, north_azimuth_in_image_deg, 180.0 / height};
-    auto luminanceAt = [&](int x, int y) { return luminanceOf(radianceOf(sky_in_out, x, y)); };
+    auto luminanceAt = [&](int x, int y) { return luminanceRec709(radianceOf(sky_in_out, x, y)); };
 
     SunDiscEstimate estimate;
     int peak_x = 0, peak_y = 0;
@@ -255,7 +254,7 @@ SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_im
 
     // 5. Measure before overwriting: centroid of the excess luminance, then the excess irradiance.
     const glm::dvec3 fill = ring.mean_radiance;
-    const double fill_luminance = luminanceOf(fill);
+    const double fill_luminance = luminanceRec709(fill);
     glm::dvec3 weighted_direction(0.0);
     for (const auto& [x, y] : removed.members()) {
         const double excess = std::max(0.0, luminanceAt(x, y) - fill_luminance);
@@ -285,7 +284,7 @@ SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_im
     estimate.direction_enu = centroid;
     estimate.irradiance_rgb = irradiance;
     estimate.clipped =
-        flat_top || luminanceOf(irradiance) < kFaintIrradianceFraction * kPi * ring_median;
+        flat_top || luminanceRec709(irradiance) < kFaintIrradianceFraction * kPi * ring_median;
     estimate.texel_count = int(removed.members().size());
     estimate.angular_radius_deg = radius_deg;
     estimate.fill_radiance_rgb = fill;

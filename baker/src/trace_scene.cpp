@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "gusuku/colour.h"
 #include "gusuku/image.h"
 
 namespace gusuku::bake {

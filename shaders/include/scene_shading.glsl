@@ -5,6 +5,8 @@
 #ifndef GUSUKU_SCENE_SHADING_GLSL
 #define GUSUKU_SCENE_SHADING_GLSL
 
+#include "colour.glsl"
+
 struct TriangleShadingGpu {
     vec4 normal0_u0;        // vertex 0 normal, xyz; w: vertex 0 uv0.x
     vec4 normal1_v0;        // vertex 1 normal; w: vertex 0 uv0.y
@@ -30,14 +32,10 @@ layout(std430, set = 0, binding = TEXTURE_BINDING) readonly buffer TextureBuffer
     uint texture_words[];
 };
 
-float srgbToLinear(float encoded) {
-    return encoded <= 0.04045 ? encoded / 12.92 : pow((encoded + 0.055) / 1.055, 2.4);
-}
-
 vec3 fetchTexel(uvec4 info, int x, int y) {
     uint word = texture_words[info.x + uint(y) * info.y + uint(x)];
     vec3 encoded = vec3(float(word & 255u), float((word >> 8u) & 255u), float((word >> 16u) & 255u)) / 255.0;
-    return vec3(srgbToLinear(encoded.r), srgbToLinear(encoded.g), srgbToLinear(encoded.b));
+    return srgbDecode(encoded);
 }
 
 // Bilinear lookup with repeat wrapping (glTF's default sampler).

@@ -17,9 +17,6 @@ namespace gusuku::bake {
 /// Angular radius of the sun's disc seen from the Earth (mean), degrees.
 inline constexpr double kSunAngularRadiusDeg = 0.2675;
 
-/// Rec.709 / sRGB luminance weights.
-double rec709Luminance(const glm::dvec3& rgb);
-
 /// Parameters of the CIE general sky's gradation phi(Z) = 1 + a exp(b / cos Z) and indicatrix
 /// f(chi) = 1 + c (exp(d chi) - exp(d pi / 2)) + e cos^2 chi functions.
 struct CieSkyCoefficients {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "gusuku/colour.h"  // srgbEncode, srgbDecode (per value; the whole-image versions are below)
+
 namespace gusuku {
 
 struct ImageRGBA {
@@ -69,9 +71,7 @@ std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha
 /// Writes a Radiance .hdr (RGBE), atomically. Values are linear.
 void writeHdr(const std::string& path, const ImageRGBA& image);
 
-/// sRGB transfer function (IEC 61966-2-1) and its inverse, per channel.
-float srgbEncode(float linear);
-float srgbDecode(float encoded);
+// The scalar sRGB transfer function and its inverse, srgbEncode / srgbDecode, live in gusuku/colour.h.
 
 /// Whole-image sRGB transfer through OpenColorIO (the one place colour conversions go, DESIGN.md 2): RGB
 /// decoded to linear / encoded from linear in place, alpha untouched. Encoding expects values in [0, 1].

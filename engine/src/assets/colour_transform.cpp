@@ -1,25 +1,14 @@
-// The sRGB transfer curve, twice: once as scalar IEC 61966-2-1 formulas (for single values and tests), once as
-// an OpenColorIO CPU processor (for whole images; DESIGN.md 2 routes colour conversions through OpenColorIO).
-// A test pins the two to each other.
-#include <cmath>
-
+// The sRGB transfer curve for whole images, as an OpenColorIO CPU processor (DESIGN.md 2 routes colour
+// conversions through OpenColorIO). The scalar IEC 61966-2-1 formulas are srgbEncode / srgbDecode in
+// gusuku/colour.h (engine/src/maths/colour.cpp); a test pins the two to each other.
 #include <OpenColorIO/OpenColorIO.h>
 
+#include "gusuku/colour.h"
 #include "gusuku/image.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
 namespace gusuku {
-
-float srgbEncode(float linear) {
-    if (linear <= 0.0031308f) return 12.92f * linear;
-    return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-float srgbDecode(float encoded) {
-    if (encoded <= 0.04045f) return encoded / 12.92f;
-    return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
-}
 
 namespace {
 
