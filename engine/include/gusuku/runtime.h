@@ -169,6 +169,10 @@ public:
     /// resource. The device must support graphics on gpu.queue and the formats the runtime uses.
     static std::unique_ptr<Runtime> open(const GpuDevice& gpu, const BakeSetData& bake_set,
                                          const RuntimeOptions& options = {});
+    /// Opens a runtime on a headless Vulkan device of its own (a GPU if there is one, else lavapipe; the
+    /// environment's GUSUKU_VALIDATION and GUSUKU_DEVICE apply, vulkan_context.h), which it owns and destroys.
+    /// For tools and tests; an AR app hands in its own device with open().
+    static std::unique_ptr<Runtime> openHeadless(const BakeSetData& bake_set, const RuntimeOptions& options = {});
     virtual ~Runtime() = default;
 
     /// Renders one frame: composited RGBA8 into output_rgba8 (frame_width * frame_height * 4 bytes), when not

@@ -23,6 +23,7 @@
 #include "gusuku/frame_lighting.h"
 #include "gusuku/runtime.h"
 #include "gusuku/shadow_fit.h"
+#include "gusuku/vulkan_context.h"
 #include "runtime_camera.h"
 #include "runtime_depth_push.h"
 #include "runtime_interface.h"
@@ -798,7 +799,39 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
     return info;
 }
 
+// A runtime that owns the headless device it runs on: the context is made first and destroyed last.
+class HeadlessRuntime final : public Runtime {
+public:
+    HeadlessRuntime(const BakeSetData& bake_set, const RuntimeOptions& options)
+        : context_(vulkanOptionsFromEnvironment()), runtime_(context_.gpu(), bake_set, options) {}
+    FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) override {
+        return runtime_.renderFrame(frame, output_rgba8);
+    }
+    FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) override {
+        return runtime_.renderFrameProfiled(frame, output_rgba8, timings);
+    }
+    VkImage compositeImage() const override { return runtime_.compositeImage(); }
+    void resetColourStatistics() override { runtime_.resetColourStatistics(); }
+    uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }
+
+private:
+    VulkanContext context_;
+    RuntimeImpl runtime_;
+};
+
 }  // namespace
+
+std::unique_ptr<Runtime> Runtime::openHeadless(const BakeSetData& bake_set, const RuntimeOptions& options) {
+    try {
+        return std::make_unique<HeadlessRuntime>(bake_set, options);
+    } catch (const RuntimeError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw RuntimeError(RuntimeErrorCode::kOutOfMemory, "gusuku runtime: out of host memory opening the bake set");
+    } catch (const std::exception& error) {
+        throw deviceError(error);
+    }
+}
 
 std::unique_ptr<Runtime> Runtime::open(const GpuDevice& gpu, const BakeSetData& bake_set,
                                        const RuntimeOptions& options) {
