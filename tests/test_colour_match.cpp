@@ -337,6 +337,7 @@ TEST_F(ColourMatchGpu, TransferMatchesTheCpuWithinHalfADeltaE00) {
         stateFor(ColourMatchMode::kPaper, dvec3(55, 0, 0), dvec3(15, 8, 8), dvec3(70, -3, -35), dvec3(4, 2, 6), 2.0f),
     };
     double worst = 0.0;
+    size_t gamut_mapped = 0;  // colours whose preserve transfer left the gamut and was mapped back
     for (const ColourMatchState& base : states) {
         for (ColourMatchMode mode : {ColourMatchMode::kPaper, ColourMatchMode::kPreserve}) {
             ColourMatchState state = base;
@@ -354,10 +355,18 @@ TEST_F(ColourMatchGpu, TransferMatchesTheCpuWithinHalfADeltaE00) {
                 EXPECT_LE(difference, 0.5) << "mode " << state.mode << ", rgb " << rgb[i].x << " " << rgb[i].y << " "
                                            << rgb[i].z;
                 expectNear(results[i].first, colourMatchTransferLab(lab[i], parameters), 2e-3, "transferLab");
+                if (mode == ColourMatchMode::kPreserve) {
+                    dvec3 transferred = colourMatchTransferLab(labFromLinearRec709(glm::clamp(rgb[i], 0.0, 1e4)),
+                                                               parameters);
+                    transferred.x = std::clamp(transferred.x, 0.0, 100.0);
+                    if (colourMatchChromaIntoGamut(transferred) != transferred) ++gamut_mapped;
+                }
             }
         }
     }
-    std::printf("worst dE00 GPU against CPU over %zu colours x 6 states: %.4f\n", rgb.size(), worst);
+    EXPECT_GT(gamut_mapped, rgb.size() / 4);  // the bisection is exercised, not only the easy path
+    std::printf("worst dE00 GPU against CPU over %zu colours x 6 states: %.4f (%zu gamut-mapped)\n", rgb.size(),
+                worst, gamut_mapped);
 }
 
 TEST_F(ColourMatchGpu, StatisticsMatchTheCpuOnARealLookingFrame) {
@@ -383,6 +392,24 @@ TEST_F(ColourMatchGpu, StatisticsMatchTheCpuOnARealLookingFrame) {
         EXPECT_EQ(state.camera_valid, 1u);
         EXPECT_EQ(state.frame_accepted, 1u);
         expectNear(toDvec3(state.camera_lab_mean), toDvec3(state.frame_lab_mean), 0.0, what + " first frame");
+        // End to end: the transfer the GLSL computes from the pass's own state buffer against the CPU's from the
+        // CPU's statistics (runFrame wrote source (50, 0, 0) / (10, 5, 5), preserve, gain limit 2).
+        ColourMatchParameters parameters;
+        parameters.mode = ColourMatchMode::kPreserve;
+        parameters.source = {glm::vec3(50, 0, 0), glm::vec3(10, 5, 5)};
+        parameters.target = smoothColourStatistics({}, expected, pass.minValidSamples(), pass.smoothingWeight());
+        parameters.gain_limit = 2.0f;
+        std::vector<dvec3> rgb, lab;
+        for (int i = 0; i <= 10; ++i) {
+            rgb.push_back(dvec3(i / 10.0, 0.5 * i / 10.0, 1.0 - i / 10.0));
+            lab.push_back(labFromLinearRec709(rgb.back()));
+        }
+        const auto results = runProbe(pass.stateBuffer(), rgb, lab);
+        for (size_t i = 0; i < rgb.size(); ++i)
+            EXPECT_LE(ciede2000(labFromLinearRec709(applyColourMatch(rgb[i], parameters)),
+                                labFromLinearRec709(results[i].second)),
+                      0.5)
+                << what << ", colour " << i;
         std::printf("%s: mean %.4f %.4f %.4f (CPU %.4f %.4f %.4f), sigma %.4f %.4f %.4f (CPU %.4f %.4f %.4f)\n",
                     what.c_str(), state.frame_lab_mean[0], state.frame_lab_mean[1], state.frame_lab_mean[2],
                     expected.lab_mean.x, expected.lab_mean.y, expected.lab_mean.z, state.frame_lab_sigma[0],
