@@ -1,5 +1,5 @@
 #pragma once
-// A tiny site written to disk for bake tests: a 2 m box house on a flat stand-in ground (no sfm_mesh), a
+// A tiny site written to disk for bake tests: a 2 m box house on a flat stand-in ground (no sfm_mesh unless asked), a
 // smooth sky with no sun disc (so E_sun comes from the clear-sky model), one sunny slot and one overcast slot.
 
 #include <string>
@@ -11,9 +11,12 @@ struct MiniSiteOptions {
     double texels_per_metre = 4.0;
     int max_bounces = 2;
     bool with_overcast_slot = true;
+    /// Adds site.glb as the sfm_mesh (Y-up glTF): a ground finely tessellated at z = 0 (12 m half size, 0.5 m
+    /// quads) and a 1 m wall just south of the house, so the bake writes an occluder worth simplifying.
+    bool with_sfm_mesh = false;
 };
 
-/// Writes building.glb, sky_sunny.hdr, sky_overcast.hdr and site.json into dir; returns the site.json path.
+/// Writes building.glb, sky_sunny.hdr, sky_overcast.hdr, site.json (and site.glb) into dir; returns site.json's path.
 std::string writeMiniSite(const std::string& dir, const MiniSiteOptions& options = {});
 
 }  // namespace gusuku::testing

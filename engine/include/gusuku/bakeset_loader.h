@@ -1,0 +1,29 @@
+#pragma once
+// Reads a bake set folder (docs/bakeset.md) into the in-memory BakeSetData the runtime draws from
+// (gusuku/bakeset_data.h). Part of gusuku_assets (glTF, OpenEXR and JSON readers); an app that holds its bake
+// set some other way fills BakeSetData itself and never links this.
+
+#include <string>
+
+#include "gusuku/bakeset_data.h"
+
+namespace gusuku {
+
+/// Loads folder/manifest.json (readBakeSetManifest: format gusuku-bakeset/1 only, strict) and every file it
+/// names:
+///   - building.glb through loadGltf, back into ENU (glTF (x, y, z) = ENU (x, z, -y)): positions, normals, uv0,
+///     uv1 (TEXCOORD_1, required), indices, a material per triangle, materials (base colour factor, texture),
+///     textures as 8-bit RGBA (RGB sRGB-encoded with srgbEncode, alpha linear, both rounded to nearest);
+///   - occluder.glb when the manifest names one: positions (coincident corners welded) and indices, ENU;
+///   - ground_geometry.exr and each slot's three EXRs as float RGBA, row 0 at the top, at the manifest's sizes.
+/// File names in the manifest must be plain names inside the folder (no '/', no "..").
+/// Every problem is an InputError on one line, FILE: FIELD: PROBLEM: no manifest; the manifest's own errors
+/// (a wrong format version, a missing field); a file the manifest names that is missing ("/slots/2/
+/// building_irradiance: ..."); an EXR whose size is not the manifest's (naming the expected size); a NaN,
+/// infinite or (irradiance RGB) negative texel, naming the first one as "texel (x, y) channel C"; a building.glb
+/// without TEXCOORD_1 or without triangles; an occluder whose triangle count is not the manifest's; then
+/// whatever findBakeSetProblem (gusuku/bakeset_validate.h) finds, as "FOLDER: FIELD: PROBLEM". Nothing is
+/// half-loaded: it returns a complete, consistent BakeSetData or throws.
+BakeSetData loadBakeSet(const std::string& folder);
+
+}  // namespace gusuku

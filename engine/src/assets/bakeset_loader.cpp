@@ -1,0 +1,187 @@
+// loadBakeSet (gusuku/bakeset_loader.h): manifest first, then each file it names, each checked against the
+// manifest as it is read so errors name the file; findBakeSetProblem last, as the runtime will.
+#include "gusuku/bakeset_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "gusuku/bakeset_manifest_json.h"
+#include "gusuku/bakeset_validate.h"
+#include "gusuku/colour.h"
+#include "gusuku/gltf_loader.h"
+#include "gusuku/image.h"
+#include "gusuku/input_error.h"
+
+namespace gusuku {
+
+namespace {
+
+/// A bake set file, by the manifest field that names it (a JSON pointer) and the name found there.
+struct NamedFile {
+    std::string pointer;
+    std::string name;
+};
+
+/// folder/name after checking that the manifest's name stays in the folder and names a regular file.
+std::string bakeSetFile(const std::string& folder, const std::string& manifest_path, const NamedFile& file) {
+    if (file.name.find('/') != std::string::npos || file.name.find('\\') != std::string::npos ||
+        file.name == "." || file.name == "..")
+        throw InputError(manifest_path, file.pointer,
+                         "\"" + file.name + "\" is not a plain file name in the bake set folder");
+    const std::string path = folder + "/" + file.name;
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (!std::filesystem::exists(status))
+        throw InputError(manifest_path, file.pointer, "names \"" + file.name + "\", which is not in " + folder);
+    if (status.type() != std::filesystem::file_type::regular)
+        throw InputError(manifest_path, file.pointer, "names \"" + file.name + "\", which is not a regular file");
+    return path;
+}
+
+uint8_t unorm8(float value) { return uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
+
+BakeSetTexture texture8(const ImageRGBA& image) {
+    BakeSetTexture texture;
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.rgba8.resize(image.texels.size());
+    for (size_t i = 0; i < image.texels.size(); ++i) {
+        const float value = image.texels[i];
+        texture.rgba8[i] = unorm8(i % 4 == 3 ? value : srgbEncode(std::clamp(value, 0.0f, 1.0f)));
+    }
+    return texture;
+}
+
+BakeSetMesh loadBuilding(const std::string& path) {
+    GltfLoadOptions options;
+    options.enu_from_model = enuFromGltfYUp();  // the bake set's frame: glTF Y-up axes on site ENU metres
+    TriangleMesh mesh = loadGltf(path, options);
+    if (mesh.indices.empty()) throw InputError(path, "meshes", "the building has no triangles");
+    if (!mesh.has_uv1)
+        throw InputError(path, "TEXCOORD_1", "missing: a bake set's building carries its lightmap UVs there");
+    BakeSetMesh building;
+    building.positions = std::move(mesh.positions);
+    building.normals = std::move(mesh.normals);
+    building.uv0 = std::move(mesh.uv0);
+    building.uv1 = std::move(mesh.uv1);
+    building.indices = std::move(mesh.indices);
+    building.triangle_material = std::move(mesh.triangle_material);
+    for (const Material& material : mesh.materials)
+        building.materials.push_back({material.base_color_factor, material.base_color_texture});
+    for (const ImageRGBA& texture : mesh.textures) building.textures.push_back(texture8(texture));
+    return building;
+}
+
+/// Positions and indices; loadGltf gives a primitive without normals one vertex per corner, so exactly
+/// coincident corners are welded back (in order of first use, so the result does not depend on hashing).
+BakeSetOccluder loadOccluder(const std::string& path, uint64_t expected_triangles) {
+    GltfLoadOptions options;
+    options.enu_from_model = enuFromGltfYUp();
+    const TriangleMesh mesh = loadGltf(path, options);
+    if (mesh.triangleCount() != expected_triangles)
+        throw InputError(path, "meshes", std::to_string(mesh.triangleCount()) +
+                                             " triangles, the manifest's /occluder/triangles says " +
+                                             std::to_string(expected_triangles));
+    BakeSetOccluder occluder;
+    std::map<std::array<uint32_t, 3>, uint32_t> welded;
+    occluder.indices.reserve(mesh.indices.size());
+    for (const uint32_t corner : mesh.indices) {
+        const glm::vec3& p = mesh.positions[corner];
+        std::array<uint32_t, 3> bits;
+        std::memcpy(bits.data(), &p, sizeof bits);
+        const auto [entry, inserted] = welded.try_emplace(bits, uint32_t(occluder.positions.size()));
+        if (inserted) occluder.positions.push_back(p);
+        occluder.indices.push_back(entry->second);
+    }
+    return occluder;
+}
+
+/// An EXR of the manifest's size (`size_source` says which field sets it), every value finite and, for
+/// irradiance, RGB >= 0. The first bad texel is named.
+BakeSetImage loadExr(const std::string& path, int width, int height, const std::string& size_source,
+                     bool irradiance) {
+    ImageRGBA image = readImage(path, ImageEncoding::Linear);
+    if (image.width != width || image.height != height)
+        throw InputError(path, "image size",
+                         std::to_string(image.width) + " x " + std::to_string(image.height) + " texels, expected " +
+                             std::to_string(width) + " x " + std::to_string(height) + " (" + size_source + ")");
+    static const char* const kChannel[4] = {"R", "G", "B", "A"};
+    const char* const quantity = irradiance ? "irradiance" : "value";
+    for (size_t i = 0; i < image.texels.size(); ++i) {
+        const float value = image.texels[i];
+        const int channel = int(i % 4);
+        const bool negative = irradiance && channel < 3 && value < 0.0f;
+        if (std::isfinite(value) && !negative) continue;
+        const size_t texel = i / 4;
+        std::ostringstream field, problem;
+        field << "texel (" << texel % size_t(width) << ", " << texel / size_t(width) << ") channel " << kChannel[channel];
+        if (std::isnan(value))
+            problem << "NaN " << quantity;
+        else if (std::isinf(value))
+            problem << "infinite " << quantity;
+        else
+            problem << "negative " << quantity << " " << value;
+        throw InputError(path, field.str(), problem.str());
+    }
+    return {image.width, image.height, std::move(image.texels)};
+}
+
+}  // namespace
+
+BakeSetData loadBakeSet(const std::string& folder) {
+    const std::string manifest_path = folder + "/manifest.json";
+    std::error_code error;
+    if (!std::filesystem::exists(manifest_path, error))
+        throw InputError(manifest_path, "",
+                         "file not found: not a bake set folder, or its bake has not finished (the manifest is "
+                         "written last)");
+    BakeSetData data;
+    data.manifest = readBakeSetManifest(manifest_path);
+    const BakeSetManifest& manifest = data.manifest;
+
+    // Every named file must be there before anything large is read.
+    const std::string building_path = bakeSetFile(folder, manifest_path, {"/building/mesh", manifest.building.mesh});
+    std::string occluder_path;
+    if (manifest.occluder) occluder_path = bakeSetFile(folder, manifest_path, {"/occluder/mesh", manifest.occluder->mesh});
+    const std::string geometry_path =
+        bakeSetFile(folder, manifest_path, {"/ground_grid/geometry", manifest.ground_grid.geometry});
+    std::vector<std::array<std::string, 3>> slot_paths;
+    for (size_t s = 0; s < manifest.slots.size(); ++s) {
+        const BakeSetSlot& slot = manifest.slots[s];
+        const std::string pointer = "/slots/" + std::to_string(s) + "/";
+        slot_paths.push_back(
+            {bakeSetFile(folder, manifest_path, {pointer + "building_irradiance", slot.building_irradiance}),
+             bakeSetFile(folder, manifest_path,
+                         {pointer + "ground_irradiance_with_building", slot.ground_irradiance_with_building}),
+             bakeSetFile(folder, manifest_path,
+                         {pointer + "ground_irradiance_without_building", slot.ground_irradiance_without_building})});
+    }
+
+    data.building = loadBuilding(building_path);
+    if (manifest.occluder) data.occluder = loadOccluder(occluder_path, manifest.occluder->triangles);
+    const GroundGrid& grid = manifest.ground_grid.grid;
+    const std::string grid_size = "the manifest's /ground_grid/columns x rows";
+    data.ground_geometry = loadExr(geometry_path, grid.columns, grid.rows, grid_size, false);
+    const int resolution = manifest.building.lightmap_resolution;
+    for (const auto& paths : slot_paths) {
+        BakeSetSlotImages slot;
+        slot.building = loadExr(paths[0], resolution, resolution, "the manifest's /building/lightmap_resolution", true);
+        slot.ground_with = loadExr(paths[1], grid.columns, grid.rows, grid_size, true);
+        slot.ground_without = loadExr(paths[2], grid.columns, grid.rows, grid_size, true);
+        data.slots.push_back(std::move(slot));
+    }
+
+    if (const std::optional<std::string> problem = findBakeSetProblem(data)) {
+        const size_t colon = problem->find(": ");
+        throw InputError(folder, problem->substr(0, colon),
+                         colon == std::string::npos ? "" : problem->substr(colon + 2));
+    }
+    return data;
+}
+
+}  // namespace gusuku
