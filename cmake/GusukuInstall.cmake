@@ -1,0 +1,38 @@
+# `cmake --install BUILD --prefix P` installs what an app links, as the CMake package "gusuku" (find_package):
+#   component runtime  the public headers (engine/include/gusuku: the C++ API runtime.h and the C API gusuku.h
+#                      among them), gusuku_maths, gusuku_gpu and gusuku_runtime (static), and the package files;
+#                      find_package(gusuku) gives gusuku::runtime, which needs Vulkan and glm only
+#   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
+#                      gusuku::loader, which needs the tools' I/O stack (OpenImageIO, OpenColorIO, tinygltf,
+#                      nlohmann-json, GeographicLib: Debian packages, found again by the package config)
+# Not installed: the baker, the tools, the embedded SPIR-V and the shader interface headers (shaders/include),
+# which only the runtime's private sources include.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+set(GUSUKU_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/gusuku)
+
+set_target_properties(gusuku_maths PROPERTIES EXPORT_NAME maths)
+set_target_properties(gusuku_gpu PROPERTIES EXPORT_NAME gpu)
+set_target_properties(gusuku_runtime PROPERTIES EXPORT_NAME runtime)
+set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
+set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
+
+install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime EXPORT gusukuRuntimeTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        COMPONENT runtime FILES_MATCHING PATTERN "*.h")
+install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
+
+install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/gusukuConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/gusukuConfig.cmake INSTALL_DESTINATION ${GUSUKU_INSTALL_CMAKEDIR})
+# 0.x: a new minor version may change the API, so only the same major.minor satisfies a request.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/gusukuConfigVersion.cmake VERSION ${PROJECT_VERSION}
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/gusukuConfig.cmake ${PROJECT_BINARY_DIR}/gusukuConfigVersion.cmake
+        DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)

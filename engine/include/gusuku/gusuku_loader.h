@@ -1,0 +1,28 @@
+/* gusuku_loader.h: reads a bake set folder (docs/bakeset.md) into the C API's bake set handle (gusuku.h), for
+ * apps that have the bake set as files. C99; include it from C or C++.
+ *
+ * Library: gusuku_loader (CMake target gusuku::loader, find_package(gusuku COMPONENTS loader)). It links the
+ * tools' I/O stack (glTF, OpenEXR through OpenImageIO, JSON), which the runtime never does: an app that fills
+ * gusuku_bakeset_desc itself links gusuku::runtime alone. Errors follow gusuku.h: a gusuku_result, and the
+ * message in gusuku_last_error_message(). */
+#ifndef GUSUKU_GUSUKU_LOADER_H
+#define GUSUKU_GUSUKU_LOADER_H
+
+#include "gusuku/gusuku.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Loads folder/manifest.json and every file it names (gusuku/bakeset_loader.h's loadBakeSet), checked as
+ * gusuku_bakeset_create checks a desc, into a new bake set for gusuku_runtime_open(_headless); free it with
+ * gusuku_bakeset_free. A missing folder or file, a corrupt or inconsistent file: GUSUKU_ERROR_INVALID_BAKE_SET
+ * with "gusuku_bakeset_load: FILE: FIELD: PROBLEM". Reads and decodes every file: O(bake set size) time and host
+ * memory (tens of milliseconds for the sample's). */
+gusuku_result gusuku_bakeset_load(const char* folder, gusuku_bakeset** out_bake_set);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GUSUKU_GUSUKU_LOADER_H */

@@ -1,0 +1,44 @@
+# cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DC_COMPILER=... -DCXX_COMPILER=...
+#       -P install_and_consume.cmake
+# Installs the build into WORK_DIR/prefix (both components), configures and builds the consumer against that
+# prefix alone (CMAKE_PREFIX_PATH), and runs its two programs. Any step failing fails the test.
+foreach(variable BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR)
+  if(NOT DEFINED ${variable})
+    message(FATAL_ERROR "install_and_consume.cmake: ${variable} is not set")
+  endif()
+endforeach()
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+
+function(run_step name)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  message(STATUS "${name}:\n${output}")
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${name} failed (${result})")
+  endif()
+endfunction()
+
+run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+foreach(expected include/gusuku/gusuku.h include/gusuku/runtime.h include/gusuku/gusuku_loader.h
+        lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
+  if(NOT EXISTS ${prefix}/${expected})
+    message(FATAL_ERROR "install: ${expected} is missing from the prefix")
+  endif()
+endforeach()
+file(GLOB interface_headers ${prefix}/include/*_interface.h ${prefix}/include/gusuku/*_interface.h)
+if(interface_headers)
+  message(FATAL_ERROR "install: shader interface headers are private, yet installed: ${interface_headers}")
+endif()
+
+set(compilers)
+if(C_COMPILER)
+  list(APPEND compilers -DCMAKE_C_COMPILER=${C_COMPILER})
+endif()
+if(CXX_COMPILER)
+  list(APPEND compilers -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
+endif()
+run_step("configure the consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
+         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers})
+run_step("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
+run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
