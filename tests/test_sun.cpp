@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
+#include "gusuku/site.h"
 #include "gusuku/sun.h"
 #include "gusuku/time_utc.h"
 
@@ -301,6 +302,35 @@ TEST(SunCli, BadArgumentsExitNonZeroNamingTheOption) {
     const CommandResult unknown = runCommand(bakeCommand("--lat 26 --lon 127.8 --frobnicate 2>&1"));
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
+}
+
+// The command refuses exactly what site.json refuses for the reference point and the air (gusuku/site.h's
+// ranges): a value just outside each range is refused naming the option, the range's own ends are accepted.
+TEST(SunCli, RefusesWhatSiteJsonRefuses) {
+    const std::string place_and_time = "--lat 26 --lon 127.8 --time 2026-06-21T09:00:00+09:00 ";
+    const struct {
+        const char* option;
+        gusuku::SiteValueRange range;
+    } cases[] = {{"--height", gusuku::kSiteHeightRangeM},
+                 {"--pressure", gusuku::kSitePressureRangeMbar},
+                 {"--temperature", gusuku::kSiteTemperatureRangeC}};
+    for (const auto& entry : cases) {
+        for (const double outside : {entry.range.minimum - 1.0, entry.range.maximum + 1.0}) {
+            const CommandResult run = runCommand(
+                bakeCommand(place_and_time + entry.option + " " + std::to_string(outside) + " 2>&1"));
+            EXPECT_EQ(run.exit_code, 1) << entry.option << " " << outside << ": " << run.output;
+            EXPECT_NE(run.output.find(entry.option), std::string::npos) << run.output;
+        }
+        for (const double end : {entry.range.minimum, entry.range.maximum}) {
+            const CommandResult run =
+                runCommand(bakeCommand(place_and_time + entry.option + " " + std::to_string(end) + " 2>&1"));
+            EXPECT_EQ(run.exit_code, 0) << entry.option << " " << end << ": " << run.output;
+        }
+    }
+    const CommandResult longitude =
+        runCommand(bakeCommand("--lat 26 --lon 180.5 --time 2026-06-21T09:00:00+09:00 2>&1"));
+    EXPECT_EQ(longitude.exit_code, 1);
+    EXPECT_NE(longitude.output.find("--lon"), std::string::npos) << longitude.output;
 }
 
 }  // namespace

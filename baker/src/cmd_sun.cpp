@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "gusuku/command_line.h"
+#include "gusuku/site.h"
 #include "gusuku/sun.h"
 #include "gusuku/time_utc.h"
 
@@ -29,10 +31,10 @@ constexpr const char* kSunUsage =
     "  --lon DEG            longitude, east positive, [-180, 180]\n"
     "  --time ISO8601       instant with an explicit offset, e.g. 2026-06-21T09:00:00+09:00 or ...Z\n"
     "options:\n"
-    "  --height M           height above the WGS84 ellipsoid, metres (default 0)\n"
-    "  --pressure MBAR      annual mean pressure for refraction, (0, 5000] mbar\n"
+    "  --height M           height above the WGS84 ellipsoid, metres, [-1000, 10000] (default 0)\n"
+    "  --pressure MBAR      annual mean pressure for refraction, [100, 1100] mbar\n"
     "                       (default: the standard atmosphere at --height, 1013.25 mbar at 0 m)\n"
-    "  --temperature C      annual mean temperature for refraction, Celsius (default 15)\n"
+    "  --temperature C      annual mean temperature for refraction, Celsius, [-90, 60] (default 15)\n"
     "  --delta-t S          Delta T = TT - UT1, seconds (default 69.2, the IERS value for the mid-2020s)\n"
     "  --delta-ut1 S        UT1 - UTC, seconds, |S| < 1 (default 0)\n"
     "  --json               print one JSON object instead of text\n"
@@ -40,27 +42,14 @@ constexpr const char* kSunUsage =
     "\n"
     "Azimuth is east of north; elevation and zenith are apparent (refracted) unless said otherwise.\n"
     "The ENU vector points towards the sun: (cos e sin A, cos e cos A, sin e).\n"
-    "Exit status: 0 ok, 1 bad value, 2 bad usage.\n";
+    "The ranges are site.json's. Exit status: 0 ok, 1 bad value, 2 bad usage.\n";
 
-// A problem with one option's value: reported naming the option, exit 1.
+// A problem with one option's value found after parsing (the sun code's own checks): reported naming the
+// option, exit 1, like CommandLine's OptionValueError.
 struct BadValue {
     std::string option;
     std::string problem;
 };
-
-// A malformed command line (unknown option, missing value): exit 2.
-struct BadUsage {
-    std::string problem;
-};
-
-double parseNumber(const std::string& option, const std::string& text) {
-    const char* begin = text.c_str();
-    char* end = nullptr;
-    const double value = std::strtod(begin, &end);
-    if (text.empty() || end != begin + text.size() || !std::isfinite(value))
-        throw BadValue{option, "'" + text + "' is not a finite number"};
-    return value;
-}
 
 // The zone the user wrote the time in (minutes east of UTC), so the local time is echoed back in it. The text
 // has already been accepted by parseIso8601Utc, so it ends in 'Z' or '+hh:mm'/'-hh:mm'.
@@ -93,49 +82,39 @@ struct SunRequest {
 
 SunRequest parseArguments(const std::vector<std::string>& args) {
     SunRequest request;
-    std::optional<double> latitude, longitude;
-    std::optional<std::string> time_text;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& option = args[i];
-        if (option == "-h" || option == "--help") {
-            request.help = true;
-            return request;
-        }
-        if (option == "--json") {
-            request.json = true;
-            continue;
-        }
-        static const char* kValueOptions[] = {"--lat",         "--lon",     "--height",    "--time",
-                                              "--pressure",    "--temperature", "--delta-t", "--delta-ut1"};
-        bool known = false;
-        for (const char* name : kValueOptions) known = known || option == name;
-        if (!known) throw BadUsage{"unknown option '" + option + "'"};
-        if (i + 1 >= args.size()) throw BadUsage{option + " needs a value"};
-        const std::string& value = args[++i];
-        if (option == "--lat") latitude = parseNumber(option, value);
-        else if (option == "--lon") longitude = parseNumber(option, value);
-        else if (option == "--height") request.observer.height_m = parseNumber(option, value);
-        else if (option == "--time") time_text = value;
-        else if (option == "--pressure") {
-            // A typed pressure must be a real one: SunObserver reads a negative value as "use the default".
-            request.observer.pressure_mbar = parseNumber(option, value);
-            if (request.observer.pressure_mbar <= 0.0) throw BadValue{option, value + " mbar is not in (0, 5000]"};
-        }
-        else if (option == "--temperature") request.observer.temperature_c = parseNumber(option, value);
-        else if (option == "--delta-t") request.observer.delta_t_s = parseNumber(option, value);
-        else if (option == "--delta-ut1") request.observer.delta_ut1_s = parseNumber(option, value);
+    CommandLine line("gusuku-bake sun", args);
+    if (line.helpRequested()) {
+        request.help = true;
+        return request;
     }
-    if (!latitude) throw BadValue{"--lat", "missing; give the latitude in degrees, north positive"};
-    if (!longitude) throw BadValue{"--lon", "missing; give the longitude in degrees, east positive"};
+    request.json = line.flag("--json");
+    // The same ranges as site.json's (gusuku/site.h), so the command refuses what a site would.
+    auto inRange = [&](const char* option, const SiteValueRange& range) {
+        return line.number(option, range.minimum, range.maximum);
+    };
+    const std::optional<double> latitude = inRange("--lat", kSiteLatitudeRangeDeg);
+    const std::optional<double> longitude = inRange("--lon", kSiteLongitudeRangeDeg);
+    request.observer.height_m = inRange("--height", kSiteHeightRangeM).value_or(0.0);
+    // Absent, the pressure stays negative: SunObserver then takes the standard atmosphere at the height.
+    if (const std::optional<double> pressure = inRange("--pressure", kSitePressureRangeMbar))
+        request.observer.pressure_mbar = *pressure;
+    request.observer.temperature_c = inRange("--temperature", kSiteTemperatureRangeC).value_or(15.0);
+    request.observer.delta_t_s = line.number("--delta-t", -1e6, 1e6).value_or(request.observer.delta_t_s);
+    request.observer.delta_ut1_s = line.number("--delta-ut1", -0.9, 0.9).value_or(0.0);
+    const std::optional<std::string> time_text = line.text("--time");
+    line.finish();  // anything else, positionals included, is bad usage
+
+    if (!latitude) line.failValue("--lat", "missing; give the latitude in degrees, north positive");
+    if (!longitude) line.failValue("--lon", "missing; give the longitude in degrees, east positive");
     if (!time_text)
-        throw BadValue{"--time", "missing; give an ISO 8601 time with an offset, e.g. 2026-06-21T09:00:00+09:00"};
+        line.failValue("--time", "missing; give an ISO 8601 time with an offset, e.g. 2026-06-21T09:00:00+09:00");
     request.observer.latitude_deg = *latitude;
     request.observer.longitude_deg = *longitude;
     request.time_text = *time_text;
     try {
         request.utc_seconds = parseIso8601Utc(*time_text);
     } catch (const std::invalid_argument& error) {
-        throw BadValue{"--time", error.what()};
+        line.failValue("--time", error.what());
     }
     return request;
 }
@@ -210,8 +189,11 @@ int runSunCommand(const std::vector<std::string>& args) {
         std::fprintf(stderr, "gusuku-bake sun: %s%s%s\n", bad.option.c_str(), bad.option.empty() ? "" : ": ",
                      bad.problem.c_str());
         return 1;
-    } catch (const BadUsage& bad) {
-        std::fprintf(stderr, "gusuku-bake sun: %s\n\n%s", bad.problem.c_str(), kSunUsage);
+    } catch (const OptionValueError& bad) {
+        std::fprintf(stderr, "%s\n", bad.what());
+        return 1;
+    } catch (const UsageError& bad) {
+        std::fprintf(stderr, "%s\n\n%s", bad.what(), kSunUsage);
         return 2;
     }
 }

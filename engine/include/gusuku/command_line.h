@@ -18,10 +18,17 @@
 
 namespace gusuku {
 
-/// A bad command line: an unknown option, a missing or malformed value, a value out of range. Exit code 2.
+/// A bad command line: an unknown option, a missing value, an unexpected argument. Conventionally exit 2.
 class UsageError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+/// An option whose value is malformed or out of range (a latitude of 200): bad input rather than bad usage,
+/// which tools may report with exit code 1. A UsageError, so callers that do not care catch one type.
+class OptionValueError : public UsageError {
+public:
+    using UsageError::UsageError;
 };
 
 class CommandLine {
@@ -59,6 +66,8 @@ public:
 
     /// Throws UsageError("<program>: <what>"), for checks that span several options.
     [[noreturn]] void fail(const std::string& what) const;
+    /// Throws OptionValueError("<program>: <option>: <problem>"), for a value the caller checks itself.
+    [[noreturn]] void failValue(const std::string& option, const std::string& problem) const;
 
     const std::string& program() const { return program_; }
 

@@ -81,6 +81,19 @@ struct SiteConfig {
     BakeSettings bake;
 };
 
+/// A closed range of values site.json accepts.
+struct SiteValueRange {
+    double minimum;
+    double maximum;
+};
+/// The reference point's and the air's ranges (docs/site-json.md). `gusuku-bake sun` checks its options against
+/// the same ranges, so it refuses what site.json refuses.
+inline constexpr SiteValueRange kSiteLatitudeRangeDeg{-90.0, 90.0};
+inline constexpr SiteValueRange kSiteLongitudeRangeDeg{-180.0, 180.0};
+inline constexpr SiteValueRange kSiteHeightRangeM{-1000.0, 10000.0};
+inline constexpr SiteValueRange kSitePressureRangeMbar{100.0, 1100.0};
+inline constexpr SiteValueRange kSiteTemperatureRangeC{-90.0, 60.0};
+
 /// Reads and validates site.json. Every field is checked: type, range, unknown names, referenced files exist.
 /// Throws InputError(path, "/json/pointer", problem) on the first problem found.
 SiteConfig loadSiteConfig(const std::string& path);

@@ -28,11 +28,11 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kFormatName = "gusuku-site/1";
 
 // Ranges, shared with docs/site-json.md (keep them in step).
-constexpr NumberRange kLatitude{-90.0, 90.0};
-constexpr NumberRange kLongitude{-180.0, 180.0};
-constexpr NumberRange kHeight{-1000.0, 10000.0};
-constexpr NumberRange kPressure{100.0, 1100.0};
-constexpr NumberRange kTemperature{-90.0, 60.0};
+constexpr NumberRange kLatitude{kSiteLatitudeRangeDeg.minimum, kSiteLatitudeRangeDeg.maximum};
+constexpr NumberRange kLongitude{kSiteLongitudeRangeDeg.minimum, kSiteLongitudeRangeDeg.maximum};
+constexpr NumberRange kHeight{kSiteHeightRangeM.minimum, kSiteHeightRangeM.maximum};
+constexpr NumberRange kPressure{kSitePressureRangeMbar.minimum, kSitePressureRangeMbar.maximum};
+constexpr NumberRange kTemperature{kSiteTemperatureRangeC.minimum, kSiteTemperatureRangeC.maximum};
 constexpr NumberRange kEnuMetres{-100000.0, 100000.0};
 constexpr NumberRange kScale{0.0, 1e6, true, false};
 constexpr NumberRange kQuaternionComponent{-1.01, 1.01};

@@ -14,6 +14,10 @@ CommandLine::CommandLine(std::string program, std::vector<std::string> arguments
 
 void CommandLine::fail(const std::string& what) const { throw UsageError(program_ + ": " + what); }
 
+void CommandLine::failValue(const std::string& option, const std::string& problem) const {
+    throw OptionValueError(program_ + ": " + option + ": " + problem);
+}
+
 std::optional<std::pair<size_t, std::optional<std::string>>> CommandLine::find(const std::string& name,
                                                                                const std::string& alias) const {
     std::optional<std::pair<size_t, std::optional<std::string>>> last;
@@ -85,8 +89,8 @@ std::optional<int64_t> CommandLine::integer(const std::string& name, int64_t min
     const long long parsed = std::strtoll(value->c_str(), &end, 10);
     const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
     if (value->empty() || end == value->c_str() || *end != '\0' || errno == ERANGE)
-        fail(name + ": '" + *value + "' is not an integer in " + range);
-    if (parsed < minimum || parsed > maximum) fail(name + ": " + *value + " is outside " + range);
+        failValue(name, "'" + *value + "' is not an integer in " + range);
+    if (parsed < minimum || parsed > maximum) failValue(name, *value + " is outside " + range);
     return int64_t(parsed);
 }
 
@@ -108,8 +112,8 @@ std::optional<double> CommandLine::number(const std::string& name, double minimu
     };
     const std::string range = "[" + format(minimum) + ", " + format(maximum) + "]";
     if (value->empty() || end == value->c_str() || *end != '\0' || !std::isfinite(parsed))
-        fail(name + ": '" + *value + "' is not a finite number in " + range);
-    if (parsed < minimum || parsed > maximum) fail(name + ": " + *value + " is outside " + range);
+        failValue(name, "'" + *value + "' is not a finite number in " + range);
+    if (parsed < minimum || parsed > maximum) failValue(name, *value + " is outside " + range);
     return parsed;
 }
 
@@ -124,7 +128,7 @@ std::optional<size_t> CommandLine::choice(const std::string& name, std::initiali
         listed += (index == 0 ? "" : index + 1 == choices.size() ? " or " : ", ") + std::string(candidate);
         ++index;
     }
-    fail(name + ": '" + *value + "' is not " + listed);
+    failValue(name, "'" + *value + "' is not " + listed);
 }
 
 std::vector<std::string> CommandLine::positionals() {
