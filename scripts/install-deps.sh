@@ -11,6 +11,9 @@ packages=(
   libgtest-dev
 )
 
+# --fuzz: also clang-14 and its compiler runtime (libFuzzer, sanitizers), for scripts/fuzz.sh only.
+if [ "${1:-}" = "--fuzz" ]; then packages+=(clang-14 libclang-rt-14-dev); fi
+
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")

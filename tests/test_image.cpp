@@ -372,6 +372,21 @@ TEST(ImageFileTest, CorruptPngGivesOneLineAndNothingOnStderr) {
     EXPECT_NE(message.find("IDAB"), std::string::npos) << message;  // libpng's reason, folded in
 }
 
+// A PNG cut inside a chunk is refused from its chunk chain before the codec runs (OpenImageIO 2.4's PNG reader
+// leaks when libpng long-jumps out of its read callback at the end of the data).
+TEST(ImageFileTest, TruncatedPngIsRefusedFromItsChunkChain) {
+    const std::vector<unsigned char> png = gusuku::encodePngSrgb(makeGradient(16, 16, 1.0f));
+    const std::vector<unsigned char> truncated(png.begin(), png.begin() + 60);
+    const std::string message = expectInputError([&] { gusuku::readImageFromMemory("cut.png", truncated); });
+    EXPECT_EQ(message.rfind("cut.png: truncated PNG: the chunk at byte ", 0), 0u) << message;
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    gusuku::writeBytesAtomically(dir + "/cut.png", truncated.data(), truncated.size());
+    EXPECT_EQ(expectInputError([&] { gusuku::readImage(dir + "/cut.png"); }), dir + "/" + message);
+    const std::vector<unsigned char> no_end(png.begin(), png.end() - 12);  // without IEND
+    EXPECT_EQ(expectInputError([&] { gusuku::readImageFromMemory("noend.png", no_end); }),
+              "noend.png: truncated PNG: no IEND chunk before the data ends at byte " + std::to_string(no_end.size()));
+}
+
 // 1e39 is no float: an EXR holding it stores infinity (here a half channel, whose range ends at 65504). RGBE's
 // largest exponent byte, 255, encodes 2^127 times the mantissa (1.7e38): a float, but beyond any sky, whose square
 // overflows float sums.

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <sstream>
 
@@ -189,6 +190,32 @@ ImageRGBA readOpenedImage(const std::string& name, OIIO::ImageInput& input, Imag
     return image;
 }
 
+// A PNG is a signature and a chain of chunks (length, type, data, CRC) ending with IEND. When the data ends inside
+// a chunk, OpenImageIO 2.4's PNG reader reports it from libpng's read callback and libpng long-jumps over the
+// reader's C++ frames, leaking its error string; so the chain is walked here first and a truncated file is refused
+// before the codec sees it. `read(offset, count, out)` returns the bytes it could read at `offset`.
+template <typename ReadAt>
+std::string truncatedPngProblem(uint64_t size, ReadAt read) {
+    uint64_t offset = 8;
+    unsigned char header[8];
+    while (offset + 8 <= size) {
+        if (read(offset, 8, header) != 8) return "cannot read the PNG chunk header at byte " + std::to_string(offset);
+        const uint64_t length = (uint64_t(header[0]) << 24) | (uint64_t(header[1]) << 16) |
+                                (uint64_t(header[2]) << 8) | uint64_t(header[3]);
+        const uint64_t end = offset + 12 + length;
+        if (end > size)
+            return "truncated PNG: the chunk at byte " + std::to_string(offset) + " needs " + std::to_string(end) +
+                   " bytes, the data has " + std::to_string(size);
+        if (std::memcmp(header + 4, "IEND", 4) == 0) return "";
+        offset = end;
+    }
+    return "truncated PNG: no IEND chunk before the data ends at byte " + std::to_string(size);
+}
+
+bool hasPngSignature(const unsigned char* bytes, size_t size) {
+    return size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+}
+
 // The extension OpenImageIO needs to pick a reader for bytes in memory, from the bytes' signature.
 std::string extensionFromSignature(const std::vector<unsigned char>& bytes) {
     auto starts_with = [&](const char* signature, size_t length) {
@@ -207,6 +234,21 @@ std::string extensionFromSignature(const std::vector<unsigned char>& bytes) {
 
 std::unique_ptr<OIIO::ImageInput> openFile(const std::string& path, StderrCapture& capture) {
     if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
+    if (std::ifstream file(path, std::ios::binary); file) {
+        unsigned char signature[8] = {};
+        file.read(reinterpret_cast<char*>(signature), 8);
+        if (hasPngSignature(signature, size_t(file.gcount()))) {
+            const uint64_t size = std::filesystem::file_size(path);
+            const std::string problem =
+                truncatedPngProblem(size, [&](uint64_t offset, size_t count, unsigned char* out) {
+                    file.clear();
+                    file.seekg(std::streamoff(offset));
+                    file.read(reinterpret_cast<char*>(out), std::streamsize(count));
+                    return size_t(file.gcount());
+                });
+            if (!problem.empty()) throw InputError(path, "", problem);
+        }
+    }
     const OIIO::ImageSpec config = readConfig();
     std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, &config);
     if (!input) throw InputError(path, "", "cannot read image: " + libraryError(OIIO::geterror(), capture));
@@ -226,6 +268,15 @@ ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigne
     if (bytes.empty()) throw InputError(name, "", "image data is empty");
     const std::string extension = extensionFromSignature(bytes);
     if (extension.empty()) throw InputError(name, "", "image data in an unknown format");
+    if (hasPngSignature(bytes.data(), bytes.size())) {
+        const std::string problem =
+            truncatedPngProblem(bytes.size(), [&](uint64_t offset, size_t count, unsigned char* out) {
+                const size_t available = size_t(std::min<uint64_t>(count, bytes.size() - offset));
+                std::memcpy(out, bytes.data() + offset, available);
+                return available;
+            });
+        if (!problem.empty()) throw InputError(name, "", problem);
+    }
     StderrCapture capture;
     OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
     OIIO::ImageSpec config = readConfig();
