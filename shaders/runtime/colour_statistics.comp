@@ -45,7 +45,10 @@ void main() {
     float clipped_count = subgroupAdd(clipped ? 1.0 : 0.0);
     if (subgroupElect()) {
         uint workgroup = gl_WorkGroupID.y * pc.workgroups_x + gl_WorkGroupID.x;
-        partials[workgroup * pc.partials_per_workgroup + gl_SubgroupID] =
-            ColourStatisticsPartial(vec4(mean, count), vec4(m2, clipped_count));
+        uint partial = workgroup * pc.partials_per_workgroup + gl_SubgroupID;
+        // Member by member: one access chain per store, which synchronization validation (layer 1.3.239)
+        // follows; a whole-struct store compiles to a chain of chains that it misses.
+        partials[partial].lab_mean_count = vec4(mean, count);
+        partials[partial].lab_m2_clipped = vec4(m2, clipped_count);
     }
 }
