@@ -11,8 +11,8 @@
  * Errors: every function that can fail returns a gusuku_result; GUSUKU_OK (0) is success and leaves every output
  * parameter written, any other code leaves them untouched (an out handle is set to NULL). No exception ever
  * leaves this API; a NULL handle or pointer where one is required is GUSUKU_ERROR_INVALID_ARGUMENT, never a crash.
- * A failure's message, one line "FIELD: PROBLEM" naming the offending field by the C structs' names (for
- * instance "frame: pose.position_enu: not finite"), is kept in two places until the next failure there:
+ * A failure's message, one line "FUNCTION: FIELD: PROBLEM" naming the offending field by the C structs' names
+ * ("gusuku_runtime_render: frame: pose.position_enu: not finite"), is kept in two places until the next failure:
  *   - gusuku_last_error_message(): the last failure of any gusuku call on the calling thread (thread-local); the
  *     one place to read why an open or a create failed, when there is no handle yet;
  *   - gusuku_runtime_last_error(rt): the last failure of a call on that runtime, whichever thread made it.
@@ -154,9 +154,11 @@ typedef struct gusuku_bakeset_desc {
 /* A bake set held in host memory, made by gusuku_bakeset_create or gusuku_bakeset_load (gusuku_loader.h). */
 typedef struct gusuku_bakeset gusuku_bakeset;
 
-/* Copies desc into a new bake set and checks it (every size, index and texel; messages name the field as in
- * gusuku/bakeset_data.h, e.g. "bake set: slots[2].building: texel (4, 0) channel R is NaN"). O(data size) time
- * and host memory; the app may free its arrays when it returns. */
+/* Copies desc into a new bake set and checks it. A NULL array with a non-zero count: INVALID_ARGUMENT naming the
+ * desc's field ("desc.normals: NULL with vertex_count 24"); bad data (every size, index and texel is checked):
+ * INVALID_BAKE_SET naming the field as gusuku/bakeset_data.h does (desc.indices is building.indices, desc.slots[i]
+ * .building is slots[i].building: "bake set: slots[2].building: texel (4, 0) channel R is NaN"). O(data size)
+ * time and host memory; the app may free its arrays when it returns. */
 gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bakeset** out_bake_set);
 
 /* Frees a bake set from either source; NULL is a no-op (GUSUKU_OK). A runtime opened from it stays valid. */
