@@ -18,6 +18,9 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
+#include "gusuku/input_error.h"
+#include "gusuku/site.h"
+#include "mini_site.h"
 #include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku_bake/camera_denoise.h"
@@ -346,6 +349,43 @@ TEST_F(CameraTracerTest, BadViewIsRefusedWithTheField) {
     }
     EXPECT_THROW(tracer.render({&sky, {}}, intrinsics, pose, samples(0)), std::invalid_argument);
     EXPECT_THROW(tracer.render({nullptr, {}}, intrinsics, pose, samples(1)), std::invalid_argument);
+}
+
+TEST_F(CameraTracerTest, SiteFrameInOneCallForSlotInstantAndOvercast) {
+    // The mini site: a 2 m box house at the origin on the flat stand-in ground, slots "noon" and "cloudy".
+    const SiteConfig site =
+        loadSiteConfig(gusuku::testing::writeMiniSite(gusuku::testing::makeTemporaryDirectory("camera_site")));
+    CameraIntrinsics intrinsics;
+    intrinsics.width = 48;
+    intrinsics.height = 27;
+    intrinsics.fx = intrinsics.fy = 40.0;
+    intrinsics.cx = 24.0;
+    intrinsics.cy = 13.5;
+    const CameraPose pose = lookAlong({0.3, -8.0, 1.2}, {0.0, 1.0, -0.05});
+    SiteCameraOptions options;
+    const BakeSlot noon = findSiteSlot(site, "noon");
+    const SiteCameraFrame camera = renderSiteCameraFrame(context(), site, noon, intrinsics, pose, 4, options);
+    options.include_building = true;
+    const SiteCameraFrame truth = renderSiteCameraFrame(context(), site, noon, intrinsics, pose, 4, options);
+    ASSERT_TRUE(camera.sun.present);
+    EXPECT_EQ(camera.denoised.width, 48);
+    EXPECT_EQ(camera.denoised.height, 27);
+    // The centre pixel: the house's south wall with the building, the ground far behind without it.
+    EXPECT_GT(truth.render.guides.albedoLit(24, 13).w, 0.0f);
+    EXPECT_LT(truth.render.guides.normalDistance(24, 13).w, 8.5f);
+    EXPECT_GT(camera.render.guides.normalDistance(24, 13).w, 8.5f);
+    // A sunny condition at the slot's instant is the slot: the same bits.
+    const SiteCameraFrame at_instant =
+        renderSiteCameraFrame(context(), site, sunnyConditionAt(noon.utc_seconds), intrinsics, pose, 4, options);
+    EXPECT_EQ(at_instant.render.radiance.texels, truth.render.radiance.texels);
+    const SiteCameraFrame cloudy = renderSiteCameraFrame(context(), site, overcastCondition(), intrinsics, pose, 4, options);
+    EXPECT_FALSE(cloudy.sun.present);
+    try {
+        findSiteSlot(site, "dusk");
+        ADD_FAILURE() << "an unknown slot was found";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("noon, cloudy"), std::string::npos) << error.what();
+    }
 }
 
 TEST(CameraFrameOutput, PacksLinearIntoSrgbBytes) {
