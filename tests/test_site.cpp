@@ -513,6 +513,40 @@ TEST_F(SiteJson, DateOutsideTheSunModelsYearsIsRefusedAtLoad) {
     EXPECT_EQ(load().bake.slots.size(), 4u);  // the three sunny defaults and overcast
 }
 
+// `gusuku-bake check` loads the building through the glTF loader, so its limits are reported on one line too: a
+// node DAG whose 2 x 2^21 paths each reach a one-triangle mesh (4,194,306 instanced triangles, over 4,194,304).
+TEST_F(SiteJson, CheckCommandReportsAGltfOverTheInstancingLimit) {
+    json gltf = json::parse(R"({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": []})");
+    constexpr int kLevels = 22;
+    for (int level = 0; level < kLevels; ++level)
+        for (int twin = 0; twin < 2; ++twin)
+            gltf["nodes"].push_back(level + 1 < kLevels ? json{{"children", {2 * level + 2, 2 * level + 3}}}
+                                                        : json{{"mesh", 0}});
+    gltf["nodes"][0]["mesh"] = 0;
+    gltf["nodes"][1]["mesh"] = 0;
+    gltf["scenes"] = {{{"nodes", {0, 1}}}};
+    std::ofstream(fs::path(directory_) / "dag.gltf") << gltf.dump();
+    document_["building"]["path"] = "dag.gltf";
+    const std::string path = writeText(document_.dump(2));
+    const CommandResult result = runBakeCheck(directory_, path);
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_EQ(result.stderr_text, "gusuku-bake: error: " + (fs::path(directory_) / "dag.gltf").string() +
+                                      ": nodes: the scene expands to 4194306 instanced triangles, above the limit "
+                                      "4194304 (a node used by several parents repeats its whole subtree); refused "
+                                      "before expanding\n");
+}
+
+TEST_F(SiteJson, FileOverOneMebibyteIsRefusedUnread) {
+    std::string text = document_.dump();
+    text.insert(text.size() - 1, std::string(size_t(1) << 20, ' '));  // valid JSON, padded with whitespace
+    const gusuku::InputError error = loadError(text);
+    EXPECT_EQ(error.problem(), "is " + std::to_string(text.size()) + " bytes, more than the 1048576 a site.json may have");
+}
+
 TEST_F(SiteJson, CheckCommandReportsADateTheSunCannotTake) {
     document_["bake"]["date"] = "9999-01-01";
     const std::string path = writeText(document_.dump(2));

@@ -42,6 +42,7 @@ constexpr NumberRange kTexelsPerMetre{0.0, 1000.0, true, false};
 constexpr NumberRange kGroundCell{0.0, 100.0, true, false};
 constexpr int kMaxUtcOffsetMinutes = 14 * 60;
 constexpr double kQuaternionUnitTolerance = 1e-3;
+constexpr uintmax_t kMaxSiteJsonBytes = 1 << 20;
 
 bool isDigits(const std::string& text, size_t first, size_t count) {
     if (first + count > text.size()) return false;
@@ -308,6 +309,12 @@ BakeSettings readBake(const ObjectReader& root, const SiteLocation& site, bool h
 
 std::string readWholeFile(const std::string& path) {
     if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
+    // A site.json is a few kilobytes; its parsed tree takes many times its size, so a huge file is refused unread.
+    std::error_code size_error;
+    const uintmax_t size = fs::file_size(path, size_error);
+    if (!size_error && size > kMaxSiteJsonBytes)
+        throw InputError(path, "", "is " + std::to_string(size) + " bytes, more than the " +
+                                       std::to_string(kMaxSiteJsonBytes) + " a site.json may have");
     std::ifstream stream(path, std::ios::binary);
     if (!stream.is_open()) throw InputError(path, "", "cannot be opened for reading");
     std::ostringstream text;
