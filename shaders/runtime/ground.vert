@@ -1,7 +1,9 @@
 #version 450
 // The ground grid drawn from its baked geometry: one vertex per cell centre (gl_VertexIndex = texel index, row 0
-// north), its height and normal from ground_geometry; no vertex buffer. Pulled a little towards the camera so the
-// occluder mesh it was sampled from does not hide it (DESIGN.md 8 step 6).
+// north), its height and normal from ground_geometry; no vertex buffer. The baked terms E_with and E_without are
+// blended over the frame's slots here, once per cell, and interpolated to the fragments: vertices sit on the
+// cell centres, so the interpolation is the texture's own bilinear one, without a texture read per fragment.
+// Pulled a little towards the camera so the occluder mesh it was sampled from does not hide it (DESIGN.md 8).
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_interface.h"
 
@@ -10,8 +12,15 @@ layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_GROUND_IRRADIANCE_BINDING) uni
 
 layout(location = 0) out vec3 out_position_enu;
 layout(location = 1) out vec3 out_normal_enu;
-layout(location = 2) out vec2 out_ground_uv;
-layout(location = 3) out float out_ground_present;
+layout(location = 2) out vec3 out_irradiance_with;     // E_with blended over the slots, bake set units
+layout(location = 3) out vec3 out_irradiance_without;  // E_without, the same
+layout(location = 4) out float out_ground_present;     // 0 no ground, 1 ground, 2 ground the building changes
+
+vec3 slotIrradiance(ivec2 cell, float slot_layer, float weight, bool with_building) {
+    if (weight <= 0.0) return vec3(0.0);
+    int layer = 2 * int(slot_layer) + (with_building ? 0 : 1);
+    return weight * texelFetch(ground_irradiance, ivec3(cell, layer), 0).rgb;
+}
 
 void main() {
     int columns = int(frame.ground_grid.w);
@@ -23,9 +32,16 @@ void main() {
     vec3 position = vec3(centre, geometry.a);
     out_position_enu = position;
     out_normal_enu = geometry.rgb;
-    out_ground_uv = (vec2(cell) + 0.5) / vec2(columns, rows);
-    // Ground exists where the bake found it (alpha of the with-building image of layer 0).
     out_ground_present = texelFetch(ground_irradiance, ivec3(cell, 0), 0).a;
+    vec3 with_building = slotIrradiance(cell, frame.slot_layers.x, frame.slot_weights.x, true) +
+                         slotIrradiance(cell, frame.slot_layers.y, frame.slot_weights.y, true) +
+                         slotIrradiance(cell, frame.slot_layers.z, frame.slot_weights.z, true);
+    vec3 without_building = slotIrradiance(cell, frame.slot_layers.x, frame.slot_weights.x, false) +
+                            slotIrradiance(cell, frame.slot_layers.y, frame.slot_weights.y, false) +
+                            slotIrradiance(cell, frame.slot_layers.z, frame.slot_weights.z, false);
+    // Stored scaled to fit half floats: the scale cancels between the two but not against E_sun.
+    out_irradiance_with = with_building * frame.colour_match.z;
+    out_irradiance_without = without_building * frame.colour_match.z;
     vec3 towards_camera = frame.camera_position.xyz - position;
     float distance_to_camera = length(towards_camera);
     vec3 pulled = position + towards_camera / max(distance_to_camera, 1e-3) *

@@ -65,6 +65,10 @@ void writeExr(const std::string& path, const ImageRGBA& image, bool with_alpha =
 /// Writes an 8-bit sRGB-encoded PNG (linear values are encoded, clamped to [0, 1]), atomically.
 void writePngSrgb(const std::string& path, const ImageRGBA& image, bool with_alpha = true);
 
+/// Writes 8-bit RGBA bytes as they are (already sRGB-encoded, row 0 at the top: the runtime's frames) as a PNG,
+/// atomically. std::invalid_argument when the byte count is not width * height * 4.
+void writePngRgba8(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba8);
+
 /// Encodes linear RGBA as an 8-bit sRGB PNG in memory (as writePngSrgb does to a file), e.g. to embed in a .glb.
 std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha = true);
 

@@ -102,6 +102,10 @@ struct RuntimeOptions {
     float shadow_bias_texels = 1.5f;
     /// PCF kernel: (2 r + 1)^2 taps of the hardware 2x2 compare filter. 0 gives one bilinear compare tap.
     uint32_t shadow_pcf_radius = 1;
+    /// The shadow maps are drawn for the sun's azimuth and elevation rounded to this step (degrees) and redrawn
+    /// only when the rounded sun moves: every 12 s or so at 0.05 degrees, which shifts a 10 m shadow by 9 mm.
+    /// The building and the site are static, so nothing else can change them. 0: redraw every frame.
+    float shadow_sun_step_deg = 0.05f;
     /// Colour statistics are gathered on every n-th pixel in x and y of the camera frame (DESIGN.md 5).
     uint32_t statistics_stride = 8;
     /// Frames for the exponential smoothing of the camera's colour statistics (time constant), >= 1.
@@ -190,6 +194,9 @@ public:
 
     /// Forgets the smoothed colour statistics (a cut in the camera feed).
     virtual void resetColourStatistics() = 0;
+
+    /// Makes the next frame re-render the shadow maps even if the sun has not moved a step (for profiling).
+    virtual void invalidateShadowMaps() = 0;
 
     /// Device memory the runtime holds, bytes (buffers and images, all allocated at open).
     virtual uint64_t deviceMemoryBytes() const = 0;

@@ -94,6 +94,15 @@ void writePngSrgb(const std::string& path, const ImageRGBA& image, bool with_alp
     writeWithOiio(path, pixels.spec, pixels.bytes.data());
 }
 
+void writePngRgba8(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba8) {
+    if (width <= 0 || height <= 0 || rgba8.size() != size_t(width) * size_t(height) * 4)
+        throw std::invalid_argument(path + ": cannot write " + std::to_string(rgba8.size()) + " bytes as a " +
+                                    std::to_string(width) + " x " + std::to_string(height) + " RGBA8 image");
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    writeWithOiio(path, spec, rgba8.data());
+}
+
 std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha) {
     checkWritable("PNG in memory", image);
     const SrgbPngPixels pixels = quantiseToSrgb(image, with_alpha);

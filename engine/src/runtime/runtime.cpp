@@ -10,6 +10,7 @@
 #include <functional>
 #include <mutex>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,7 @@ public:
     FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) override;
     VkImage compositeImage() const override { return colour_target_.handle(); }
     void resetColourStatistics() override { statistics_->reset(); }
+    void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
 
 private:
@@ -87,6 +89,7 @@ private:
     void recordReadback(VkCommandBuffer cmd);
     void beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass);
     void submit(const std::function<void(VkCommandBuffer)>& record);
+    void selectGroundQuads(bool include_baked_changes, bool sun_shines, const glm::dvec3& sun_direction);
     void finishOutput(uint8_t* output_rgba8);
 
     const GpuDevice& gpu_;
@@ -135,6 +138,17 @@ private:
     DepthOnlyPushConstants site_shadow_push_{};
     DepthOnlyPushConstants occluder_push_{};
     bool sun_shines_ = false;
+    // The shadow maps hold the sun's direction rounded to options_.shadow_sun_step_deg; they are re-rendered
+    // only when that rounded direction changes (the building and the site are static).
+    glm::dvec3 shadow_sun_direction_{0.0};
+    bool building_shadow_valid_ = false;
+    bool site_shadow_valid_ = false;
+    bool render_building_shadow_ = false;
+    bool render_site_shadow_ = false;
+    // The ground quads drawn this frame (selectGroundQuads), and the reused host arrays that choose them.
+    uint32_t ground_index_count_ = 0;
+    std::vector<uint8_t> ground_cell_marked_;
+    std::vector<uint32_t> ground_quad_indices_;
     bool draw_ground_ = false;
     bool site_shadows_ = false;
     LabStatistics frame_source_statistics_{};
@@ -162,6 +176,8 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     }
     try {
         scene_ = uploadScene(gpu, bake_set);
+        ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
+        ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
         createTargets();
         statistics_ = std::make_unique<ColourStatisticsPass>(gpu, options.frame_width, options.frame_height,
                                                              options.statistics_stride,
@@ -506,13 +522,32 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     const bool direct_only = frame.mode == RenderMode::kDirectOnly;
     sun_shines_ = lighting.sun.above_horizon && glm::length(lighting.sun_irradiance_rgb) > 0.0;
     site_shadows_ = sun_shines_ && !direct_only && scene_.occluder_index_count > 0;
-    draw_ground_ = scene_.ground_index_count > 0 && (direct_only ? sun_shines_ : frame.ground_ratio);
+    const bool ground_wanted = direct_only ? sun_shines_ : frame.ground_ratio;
+    ground_index_count_ = 0;
+    if (ground_wanted) selectGroundQuads(!direct_only, sun_shines_, lighting.sun.direction_enu);
+    draw_ground_ = ground_index_count_ > 0;
 
     FrameUniforms& u = uniforms_;
     const double far_m = std::max(4.0 * scene_.scene_radius_m + glm::length(frame.pose.position_enu), 100.0);
     toShader(cameraEnuToClip(frame.intrinsics, frame.pose, kNearPlaneM, far_m), u.enu_to_clip);
+    // The shadow maps' sun: rounded so that they are re-rendered only every shadow_sun_step_deg of its motion.
+    glm::dvec3 shadow_sun = lighting.sun.direction_enu;
+    if (options_.shadow_sun_step_deg > 0.0f) {
+        const double step = double(options_.shadow_sun_step_deg);
+        const double azimuth = std::round(lighting.sun.azimuth_deg / step) * step * std::numbers::pi / 180.0;
+        const double elevation =
+            std::round(lighting.sun.apparent_elevation_deg / step) * step * std::numbers::pi / 180.0;
+        shadow_sun = glm::dvec3(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
+                                std::sin(elevation));
+    }
+    if (shadow_sun != shadow_sun_direction_) {
+        shadow_sun_direction_ = shadow_sun;
+        building_shadow_valid_ = site_shadow_valid_ = false;
+    }
+    render_building_shadow_ = sun_shines_ && !building_shadow_valid_;
+    render_site_shadow_ = site_shadows_ && !site_shadow_valid_;
     const ShadowFit fit = fitShadowMap(scene_.receivers_min, scene_.receivers_max, scene_.casters_min,
-                                       scene_.casters_max, lighting.sun.direction_enu, options_.shadow_map_size);
+                                       scene_.casters_max, shadow_sun, options_.shadow_map_size);
     toShader(fit.enu_to_clip, u.enu_to_shadow_clip);
     toShader(frame.pose.position_enu, 1.0f, u.camera_position);
     toShader(lighting.sun.direction_enu, sun_shines_ ? 1.0f : 0.0f, u.sun_direction);
@@ -611,7 +646,7 @@ void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame)
 }
 
 void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
-    if (!sun_shines_) return;
+    if (!render_building_shadow_ && !render_site_shadow_) return;
     const VkDeviceSize offset = 0;
     auto shadowPass = [&](VkFramebuffer framebuffer, const DepthOnlyPushConstants& push, VkPipeline pipeline,
                           const GpuBuffer& vertices, const GpuBuffer& indices, uint32_t index_count) {
@@ -633,11 +668,16 @@ void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
         vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
         vkCmdEndRenderPass(cmd);
     };
-    shadowPass(building_shadow_framebuffer_, building_shadow_push_, shadow_pipeline_, scene_.building_vertices,
-               scene_.building_indices, scene_.building_index_count);
-    if (site_shadows_)
+    if (render_building_shadow_) {
+        shadowPass(building_shadow_framebuffer_, building_shadow_push_, shadow_pipeline_, scene_.building_vertices,
+                   scene_.building_indices, scene_.building_index_count);
+        building_shadow_valid_ = true;
+    }
+    if (render_site_shadow_) {
         shadowPass(site_shadow_framebuffer_, site_shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
                    scene_.occluder_indices, scene_.occluder_index_count);
+        site_shadow_valid_ = true;
+    }
 }
 
 void RuntimeImpl::beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass) {
@@ -688,7 +728,7 @@ void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
                             0, nullptr);
     vkCmdBindIndexBuffer(cmd, scene_.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, scene_.ground_index_count, 1, 0, 0, 0);
+    vkCmdDrawIndexed(cmd, ground_index_count_, 1, 0, 0, 0);
 }
 
 void RuntimeImpl::recordReadback(VkCommandBuffer cmd) {
@@ -703,6 +743,56 @@ void RuntimeImpl::recordReadback(VkCommandBuffer cmd) {
     barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr,
                          0, nullptr);
+}
+
+// The ground quads the building can change this frame: those touching a cell whose baked light it changes
+// (proposed mode), or a cell whose ray towards the sun passes through the building's bounds grown by a margin
+// (its shadow with the PCF's reach). The rest of the grid is not drawn at all: its camera pixels are never
+// touched. Fills the host arrays made at open and the host-visible index buffer; a few microseconds per frame.
+void RuntimeImpl::selectGroundQuads(bool include_baked_changes, bool sun_shines, const glm::dvec3& sun_direction) {
+    const GroundGrid& grid = manifest_.ground_grid.grid;
+    const size_t columns = size_t(std::max(grid.columns, 0)), rows = size_t(std::max(grid.rows, 0));
+    if (scene_.ground_quad_capacity == 0 || scene_.ground_cell_state.size() != columns * rows) return;
+    const double margin = 2.0 * grid.cell_m + 0.25;
+    const glm::dvec3 low = scene_.building_min - margin, high = scene_.building_max + margin;
+    for (size_t row = 0; row < rows; ++row)
+        for (size_t column = 0; column < columns; ++column) {
+            const size_t cell = row * columns + column;
+            const uint8_t state = scene_.ground_cell_state[cell];
+            bool marked = include_baked_changes && state == 2;
+            if (!marked && state != 0 && sun_shines) {
+                // Slab test of the ray cell centre + t s, t > 0, against the grown bounds.
+                const glm::dvec3 origin(grid.origin_enu_m.x + (double(column) + 0.5) * grid.cell_m,
+                                        grid.origin_enu_m.y + (double(rows - row) - 0.5) * grid.cell_m,
+                                        double(scene_.ground_cell_height[cell]));
+                double near_t = 0.0, far_t = 1e30;
+                for (int axis = 0; axis < 3 && near_t <= far_t; ++axis) {
+                    if (std::abs(sun_direction[axis]) < 1e-12) {
+                        if (origin[axis] < low[axis] || origin[axis] > high[axis]) far_t = -1.0;
+                        continue;
+                    }
+                    double t0 = (low[axis] - origin[axis]) / sun_direction[axis];
+                    double t1 = (high[axis] - origin[axis]) / sun_direction[axis];
+                    if (t0 > t1) std::swap(t0, t1);
+                    near_t = std::max(near_t, t0);
+                    far_t = std::min(far_t, t1);
+                }
+                marked = near_t <= far_t;
+            }
+            ground_cell_marked_[cell] = marked ? 1 : 0;
+        }
+    uint32_t quads = 0;
+    for (size_t row = 0; row + 1 < rows; ++row)
+        for (size_t column = 0; column + 1 < columns; ++column) {
+            const uint32_t a = uint32_t(row * columns + column), b = a + 1, c = a + uint32_t(columns), d = c + 1;
+            if (!(ground_cell_marked_[a] | ground_cell_marked_[b] | ground_cell_marked_[c] | ground_cell_marked_[d]))
+                continue;
+            uint32_t* quad = &ground_quad_indices_[size_t(quads) * 6];
+            quad[0] = a, quad[1] = c, quad[2] = b, quad[3] = b, quad[4] = c, quad[5] = d;
+            ++quads;
+        }
+    ground_index_count_ = quads * 6;
+    if (quads > 0) scene_.ground_indices.upload(ground_quad_indices_.data(), size_t(quads) * 6 * sizeof(uint32_t));
 }
 
 void RuntimeImpl::submit(const std::function<void(VkCommandBuffer)>& record) {
@@ -812,6 +902,7 @@ public:
     }
     VkImage compositeImage() const override { return runtime_.compositeImage(); }
     void resetColourStatistics() override { runtime_.resetColourStatistics(); }
+    void invalidateShadowMaps() override { runtime_.invalidateShadowMaps(); }
     uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }
 
 private:

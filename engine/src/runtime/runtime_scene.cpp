@@ -14,6 +14,10 @@ namespace {
 
 // Half floats hold up to 65504: irradiance above this fraction of it is stored scaled down.
 constexpr float kLargestStoredHalf = 30000.0f;
+// A cell whose baked irradiance with the building differs from without it by more than this (relative, in any
+// channel of any slot) counts as changed by the building: below it the ratio moves the brightest camera pixel by
+// under one 8-bit step, and the bake's own noise is of that order.
+constexpr float kBakedChangeThreshold = 1.0f / 255.0f;
 
 template <typename T>
 GpuBuffer deviceBuffer(const GpuDevice& gpu, const std::vector<T>& values, VkBufferUsageFlags usage) {
@@ -153,8 +157,29 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
         description.array_view = true;
         scene.ground_irradiance = GpuImage(gpu, description);
         if (has_ground) {
+            // Layer 0's alpha also marks (2) the cells where the building changes the baked light in any slot
+            // by more than kBakedChangeThreshold: elsewhere only the building's shadow can change the pixel.
+            std::vector<uint16_t> flagged = toHalf(bake_set.slots[0].ground_with, inverse_scale);
+            scene.ground_cell_state.assign(size_t(columns) * rows, 0);
+            scene.ground_cell_height.assign(size_t(columns) * rows, 0.0f);
+            for (size_t cell = 0; cell < size_t(columns) * rows; ++cell) {
+                scene.ground_cell_height[cell] = bake_set.ground_geometry.rgba[cell * 4 + 3];
+                if (bake_set.slots[0].ground_with.rgba[cell * 4 + 3] > 0.0f) scene.ground_cell_state[cell] = 1;
+                bool changed = false;
+                for (const BakeSetSlotImages& slot : bake_set.slots)
+                    for (int channel = 0; channel < 3 && !changed; ++channel) {
+                        const float with = slot.ground_with.rgba[cell * 4 + channel];
+                        const float without = slot.ground_without.rgba[cell * 4 + channel];
+                        changed = std::abs(with - without) > kBakedChangeThreshold * std::max(without, 1e-6f);
+                    }
+                if (changed && scene.ground_cell_state[cell] == 1) {
+                    flagged[cell * 4 + 3] = uint16_t(glm::packHalf1x16(2.0f));
+                    scene.ground_cell_state[cell] = 2;
+                }
+            }
             for (uint32_t slot = 0; slot < slot_count; ++slot) {
-                const std::vector<uint16_t> with = toHalf(bake_set.slots[slot].ground_with, inverse_scale);
+                const std::vector<uint16_t> with =
+                    slot == 0 ? flagged : toHalf(bake_set.slots[slot].ground_with, inverse_scale);
                 const std::vector<uint16_t> without = toHalf(bake_set.slots[slot].ground_without, inverse_scale);
                 scene.ground_irradiance.upload(with.data(), with.size() * 2, 2 * slot,
                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -179,16 +204,14 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 
-    // The ground grid's triangles: two per square of four neighbouring cell centres.
-    std::vector<uint32_t> ground_indices;
+    // Room for the ground grid's triangles, two per square of four neighbouring cell centres; each frame
+    // writes the quads it draws.
     scene.receivers_min = scene.building_min;
     scene.receivers_max = scene.building_max;
+    scene.ground_quad_capacity = has_ground ? (columns - 1) * (rows - 1) : 0;
+    scene.ground_indices = GpuBuffer(gpu, std::max<size_t>(size_t(scene.ground_quad_capacity) * 6 * 4, 16),
+                                     index_usage, GpuMemory::kHostVisible);
     if (has_ground) {
-        for (uint32_t row = 0; row + 1 < rows; ++row)
-            for (uint32_t column = 0; column + 1 < columns; ++column) {
-                const uint32_t a = row * columns + column, b = a + 1, c = a + columns, d = c + 1;
-                ground_indices.insert(ground_indices.end(), {a, c, b, b, c, d});
-            }
         double low_height = INFINITY, high_height = -INFINITY;
         for (size_t texel = 0; texel < size_t(columns) * rows; ++texel) {
             if (bake_set.slots.empty() || bake_set.slots[0].ground_with.rgba[texel * 4 + 3] <= 0.0f) continue;
@@ -202,8 +225,6 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
                    glm::dvec3(grid.origin_enu_m + glm::dvec2(grid.columns, grid.rows) * grid.cell_m, high_height));
         }
     }
-    scene.ground_indices = deviceBuffer(gpu, ground_indices, index_usage);
-    scene.ground_index_count = uint32_t(ground_indices.size());
     glm::dvec3 all_min = glm::min(scene.receivers_min, scene.casters_min);
     glm::dvec3 all_max = glm::max(scene.receivers_max, scene.casters_max);
     scene.scene_radius_m = std::max(0.5 * glm::length(all_max - all_min), 1.0);

@@ -41,10 +41,18 @@ struct GpuScene {
     GpuBuffer occluder_vertices;                 ///< vec3, device-local (may hold nothing)
     GpuBuffer occluder_indices;
     uint32_t occluder_index_count = 0;
-    GpuBuffer ground_indices;                    ///< triangles between neighbouring cell centres
-    uint32_t ground_index_count = 0;
+    /// The ground's triangles between neighbouring cell centres, chosen per frame (host-visible, room for every
+    /// quad): only quads the building can change are drawn (runtime.cpp, selectGroundQuads).
+    GpuBuffer ground_indices;
+    uint32_t ground_quad_capacity = 0;
+    /// Per cell (texel order): 0 no ground, 1 ground, 2 ground whose baked light the building changes; and the
+    /// ground's height (ENU z). The CPU's copy, for choosing the quads to draw.
+    std::vector<uint8_t> ground_cell_state;
+    std::vector<float> ground_cell_height;
     GpuImage lightmaps;          ///< RGBA16F array, one layer per slot, values / irradiance_scale
-    GpuImage ground_irradiance;  ///< RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), / scale
+    /// RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), RGB / irradiance_scale. Alpha: 0 no ground,
+    /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, > 0.5/255).
+    GpuImage ground_irradiance;
     GpuImage ground_geometry;    ///< RGBA32F: normal, height
     float irradiance_scale = 1.0f;  ///< stored half-float values times this are the bake set's irradiance
     glm::dvec3 building_min{0.0}, building_max{0.0};  ///< ENU bounds

@@ -1,0 +1,196 @@
+// gusuku-render: a composite of the baked building into a camera frame with gusuku's runtime, and its frame
+// time. Reads a bake set (gusuku_assets' loader), makes or reads the camera frame, opens the runtime on a headless
+// device, renders warm-up frames, times the whole frame (one fenced submission) for the proposed method and for
+// direct-only (interleaved, so the machine's drift hits both), profiles each pass, and writes the PNGs.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gusuku/bakeset_loader.h"
+#include "gusuku/command_line.h"
+#include "gusuku/image.h"
+#include "gusuku/input_error.h"
+#include "gusuku/runtime.h"
+#include "gusuku/time_utc.h"
+#include "gusuku/vulkan_context.h"
+#include "render_request.h"
+#include "sample_camera.h"
+
+namespace gusuku::render_cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct Spread {
+    double median = 0.0, low = 0.0, high = 0.0;  // median and the 10th and 90th percentiles
+};
+
+Spread spreadOf(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    auto at = [&](double fraction) { return values[size_t(fraction * double(values.size() - 1) + 0.5)]; };
+    return {at(0.5), at(0.1), at(0.9)};
+}
+
+// The instant to render: --time, or the bake date at 12:00 on the site's clock (from a sunny slot's local time).
+double frameInstant(const RenderRequest& request, const BakeSetManifest& manifest) {
+    if (request.time_iso) return parseIso8601Utc(*request.time_iso);
+    for (const BakeSetSlot& slot : manifest.slots)
+        if (!slot.utc.empty()) {
+            const std::string local = formatIso8601(parseIso8601Utc(slot.utc), manifest.site.utc_offset_minutes);
+            return parseDateAtOffset(local.substr(0, 10), manifest.site.utc_offset_minutes) + 12 * 3600.0;
+        }
+    throw InputError(request.bake_set, "--time", "the bake set has no sunny slot to take the date from; give --time");
+}
+
+std::string siteJsonOf(const RenderRequest& request, const BakeSetManifest& manifest) {
+    if (request.site_json) return *request.site_json;
+    // As the bake named it: relative to where the bake ran, or (when moved) to the bake set's folder.
+    for (const BakeSetInput& input : manifest.inputs)
+        if (input.role == "site") {
+            if (std::filesystem::exists(input.path)) return input.path;
+            const std::filesystem::path beside = std::filesystem::path(request.bake_set) / input.path;
+            if (std::filesystem::exists(beside)) return beside.string();
+            throw InputError(request.bake_set + "/manifest.json", "/inputs",
+                             "its site " + input.path + " is not found; give --site SITE.json");
+        }
+    throw InputError(request.bake_set + "/manifest.json", "/inputs", "names no site; give --site SITE.json");
+}
+
+int run(const RenderRequest& request) {
+    const BakeSetData bake_set = loadBakeSet(request.bake_set);
+    const double utc_seconds = frameInstant(request, bake_set.manifest);
+    VulkanContext context(vulkanOptionsFromEnvironment());
+    std::fprintf(stderr, "gusuku-render: device %s\n", context.deviceDescription().c_str());
+
+    // The camera frame.
+    uint32_t width = request.width, height = request.height;
+    std::vector<uint8_t> camera;
+    float exposure = request.exposure.value_or(1.0f);
+    const CameraPose pose = lookAtPose(request.position_enu, request.look_at_enu);
+    if (request.camera == "sample") {
+        const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, request.horizontal_fov_deg);
+        const Clock::time_point start = Clock::now();
+        SampleCameraFrame frame =
+            renderSampleCameraFrame(context, siteJsonOf(request, bake_set.manifest), utc_seconds,
+                                    request.cloud_cover, intrinsics, pose, request.camera_samples,
+                                    request.exposure.value_or(0.0f));
+        std::printf("camera frame:    path-traced, %u spp, %.1f s (%.2f Mrays/s)\n", request.camera_samples,
+                    millisecondsSince(start) / 1000.0,
+                    frame.trace_seconds > 0.0 ? double(frame.rays_traced) / frame.trace_seconds / 1e6 : 0.0);
+        camera = std::move(frame.rgba8);
+        exposure = frame.exposure;
+    } else {
+        const ImageRGBA image = readImage(request.camera, ImageEncoding::Srgb);
+        width = uint32_t(image.width);
+        height = uint32_t(image.height);
+        camera.resize(size_t(width) * height * 4);
+        for (size_t index = 0; index < camera.size(); ++index) {
+            const float value = index % 4 == 3 ? image.texels[index] : srgbEncode(image.texels[index]);
+            camera[index] = uint8_t(std::clamp(value, 0.0f, 1.0f) * 255.0f + 0.5f);
+        }
+    }
+    if (request.camera_png) writePngRgba8(*request.camera_png, int(width), int(height), camera);
+
+    RuntimeOptions options;
+    options.frame_width = width;
+    options.frame_height = height;
+    std::unique_ptr<Runtime> runtime = Runtime::open(context, bake_set, options);
+
+    FrameInput frame;
+    frame.camera_rgba8 = camera.data();
+    frame.intrinsics = intrinsicsForFov(width, height, request.horizontal_fov_deg);
+    frame.pose = pose;
+    frame.utc_unix_seconds = utc_seconds;
+    frame.weather.cloud_cover = request.cloud_cover;
+    frame.exposure = exposure;
+    frame.colour_match = request.colour_match;
+    FrameInput direct_only = frame;
+    direct_only.mode = RenderMode::kDirectOnly;
+
+    std::vector<uint8_t> composite(camera.size()), direct(camera.size());
+    FrameInfo info;
+    for (uint32_t warm_up = 0; warm_up < request.warm_up_frames; ++warm_up) {
+        info = runtime->renderFrame(frame, composite.data());
+        runtime->renderFrame(direct_only, direct.data());
+    }
+    // Interleaved, so the shared machine's drift lands on both alike; the ratio is what to read.
+    std::vector<double> proposed_ms, direct_ms;
+    for (uint32_t index = 0; index < request.timed_frames; ++index) {
+        Clock::time_point start = Clock::now();
+        info = runtime->renderFrame(frame, composite.data());
+        proposed_ms.push_back(millisecondsSince(start));
+        start = Clock::now();
+        runtime->renderFrame(direct_only, direct.data());
+        direct_ms.push_back(millisecondsSince(start));
+    }
+    std::vector<PassTimings> passes(request.timed_frames);
+    std::vector<uint8_t> profiled(camera.size());
+    for (PassTimings& timings : passes) runtime->renderFrameProfiled(frame, profiled.data(), timings);
+    auto passMedian = [&](double PassTimings::*field) {
+        std::vector<double> values;
+        for (const PassTimings& timings : passes) values.push_back(timings.*field);
+        return spreadOf(values).median;
+    };
+
+    writePngRgba8(request.output_png, int(width), int(height), composite);
+    if (request.direct_only_png) writePngRgba8(*request.direct_only_png, int(width), int(height), direct);
+
+    const Spread proposed = spreadOf(proposed_ms), baseline = spreadOf(direct_ms);
+    std::printf("composite:       %s (%u x %u)\n", request.output_png.c_str(), width, height);
+    std::printf("time (UTC):      %s\n", formatIso8601(utc_seconds, 0).c_str());
+    std::printf("sun:             azimuth %.2f deg, elevation %.2f deg%s\n", info.sun_azimuth_deg,
+                info.sun_apparent_elevation_deg, info.sun_above_horizon ? "" : " (below the horizon)");
+    auto slotName = [&](int slot) { return slot >= 0 ? bake_set.manifest.slots[size_t(slot)].name : std::string("-"); };
+    std::printf("slots:           %s %.2f, %s %.2f, %s %.2f (cloud cover %.2f)\n", slotName(info.slot_a).c_str(),
+                info.slot_a >= 0 ? (1.0 - info.overcast_weight) * (1.0 - info.slot_b_weight) : 0.0,
+                slotName(info.slot_b).c_str(),
+                info.slot_b >= 0 ? (1.0 - info.overcast_weight) * info.slot_b_weight : 0.0,
+                slotName(info.overcast_slot).c_str(), double(info.overcast_weight), double(request.cloud_cover));
+    std::printf("frame (fenced):  proposed %.2f ms [%.2f, %.2f], direct-only %.2f ms [%.2f, %.2f], ratio %.3f\n",
+                proposed.median, proposed.low, proposed.high, baseline.median, baseline.low, baseline.high,
+                proposed.median / baseline.median);
+    std::printf("passes (profiling mode, medians of %u): upload %.2f, statistics %.2f, shadows %.2f, occluder %.2f, "
+                "building %.2f, ground %.2f, readback %.2f ms\n",
+                request.timed_frames, passMedian(&PassTimings::upload_ms), passMedian(&PassTimings::statistics_ms),
+                passMedian(&PassTimings::shadow_ms), passMedian(&PassTimings::occluder_ms),
+                passMedian(&PassTimings::building_ms), passMedian(&PassTimings::ground_ms),
+                passMedian(&PassTimings::readback_ms));
+    std::printf("GPU memory:      %.1f MiB held by the runtime\n", double(runtime->deviceMemoryBytes()) / (1 << 20));
+    return 0;
+}
+
+}  // namespace
+}  // namespace gusuku::render_cli
+
+int main(int argc, char** argv) {
+    using namespace gusuku::render_cli;
+    try {
+        const RenderRequest request = parseRenderRequest(std::vector<std::string>(argv + 1, argv + argc));
+        if (request.help) {
+            std::printf("%s", kRenderUsage);
+            return 0;
+        }
+        return run(request);
+    } catch (const gusuku::OptionValueError& error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        return 1;
+    } catch (const gusuku::UsageError& error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        return 2;
+    } catch (const gusuku::InputError& error) {
+        std::fprintf(stderr, "gusuku-render: error: %s\n", error.what());
+        return 1;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "gusuku-render: error: %s\n", error.what());
+        return 1;
+    }
+}

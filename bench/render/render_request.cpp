@@ -1,0 +1,128 @@
+// gusuku-render's command line (see render_request.h).
+
+#include "render_request.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "gusuku/command_line.h"
+
+namespace gusuku::render_cli {
+
+const char* const kRenderUsage =
+    "usage: gusuku-render BAKESET -o COMPOSITE.png [options]\n"
+    "\n"
+    "Draws the baked building into a camera frame with gusuku's runtime (baked light, real-time sun and shadow,\n"
+    "the ground ratio, the colour match), writes the composite as an sRGB PNG, and prints the frame time of each\n"
+    "pass (profiling mode: each pass submitted alone) and of the whole frame (one submission, fence-timed).\n"
+    "\n"
+    "  --camera sample|IMAGE  the camera frame: `sample` path-traces the bake's site without the building from the\n"
+    "                         pose (default), or an 8-bit sRGB image of the frame's size\n"
+    "  --site SITE.json       the site for --camera sample (default: the site.json the bake set was baked from)\n"
+    "  --size WxH             frame size, pixels (default 1280x720; an IMAGE gives its own)\n"
+    "  --position E,N,U       camera centre, site ENU metres (default 0,-25,6)\n"
+    "  --look-at E,N,U        the point at the image centre (default 0,0,2)\n"
+    "  --fov DEG              horizontal field of view, (1, 170) degrees (default 60)\n"
+    "  --time ISO8601         the instant, with its offset (default: the bake date, 12:00 site clock)\n"
+    "  --weather W            sunny, overcast, or a cloud cover in [0, 1] (default sunny)\n"
+    "  --colour-match M       off, paper or preserve (default preserve)\n"
+    "  --exposure X           display value per unit radiance (default: the sample frame's middle grey, or 1)\n"
+    "  --samples N            path-traced samples per pixel of the sample camera frame (default 64)\n"
+    "  --frames N             frames timed after 3 warm-up frames (default 20)\n"
+    "  --direct-only PNG      also write the direct-only frame (what AR apps draw today)\n"
+    "  --camera-out PNG       also write the camera frame the composite was drawn into\n"
+    "\n"
+    "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
+
+namespace {
+
+glm::dvec3 parseTriple(const CommandLine& line, const std::string& option, const std::string& text) {
+    std::istringstream stream(text);
+    glm::dvec3 value;
+    char comma1 = 0, comma2 = 0;
+    stream >> value.x >> comma1 >> value.y >> comma2 >> value.z;
+    if (!stream || comma1 != ',' || comma2 != ',' || !stream.eof() || !std::isfinite(value.x) ||
+        !std::isfinite(value.y) || !std::isfinite(value.z) || glm::length(value) > 1e5)
+        line.failValue(option, "'" + text + "' is not E,N,U in metres (three finite numbers within 100 km)");
+    return value;
+}
+
+}  // namespace
+
+RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
+    RenderRequest request;
+    CommandLine line("gusuku-render", args);
+    if (line.helpRequested()) {
+        request.help = true;
+        return request;
+    }
+    const std::optional<std::string> output = line.text("--output", "-o");
+    if (const auto camera = line.text("--camera")) request.camera = *camera;
+    request.site_json = line.text("--site");
+    if (const auto size = line.text("--size")) {
+        unsigned width = 0, height = 0;
+        char separator = 0;
+        std::istringstream stream(*size);
+        stream >> width >> separator >> height;
+        if (!stream || separator != 'x' || !stream.eof() || width < 16 || height < 16 || width > 4096 ||
+            height > 4096)
+            line.failValue("--size", "'" + *size + "' is not WxH with each side in [16, 4096]");
+        request.width = width;
+        request.height = height;
+    }
+    if (const auto position = line.text("--position")) request.position_enu = parseTriple(line, "--position", *position);
+    if (const auto target = line.text("--look-at")) request.look_at_enu = parseTriple(line, "--look-at", *target);
+    request.horizontal_fov_deg = line.number("--fov", 1.0, 170.0).value_or(request.horizontal_fov_deg);
+    request.time_iso = line.text("--time");
+    if (const auto weather = line.text("--weather")) {
+        if (*weather == "sunny") {
+            request.cloud_cover = 0.0f;
+        } else if (*weather == "overcast") {
+            request.cloud_cover = 1.0f;
+        } else {
+            char* end = nullptr;
+            const double cover = std::strtod(weather->c_str(), &end);
+            if (end == weather->c_str() || *end != '\0' || !(cover >= 0.0 && cover <= 1.0))
+                line.failValue("--weather", "'" + *weather + "' is not sunny, overcast or a cloud cover in [0, 1]");
+            request.cloud_cover = float(cover);
+        }
+    }
+    if (const auto mode = line.choice("--colour-match", {"off", "paper", "preserve"}))
+        request.colour_match = *mode == 0 ? ColourMatch::kOff : *mode == 1 ? ColourMatch::kPaper : ColourMatch::kPreserve;
+    if (const auto exposure = line.number("--exposure", 1e-9, 1e9)) request.exposure = float(*exposure);
+    request.camera_samples = uint32_t(line.integer("--samples", 1, 65536).value_or(request.camera_samples));
+    request.timed_frames = uint32_t(line.integer("--frames", 1, 100000).value_or(request.timed_frames));
+    request.direct_only_png = line.text("--direct-only");
+    request.camera_png = line.text("--camera-out");
+    const std::vector<std::string> positionals = line.positionals();
+    line.finish();
+    if (positionals.size() != 1) line.fail("needs exactly one BAKESET folder (see --help)");
+    if (!output) line.fail("needs -o COMPOSITE.png (see --help)");
+    request.bake_set = positionals[0];
+    request.output_png = *output;
+    return request;
+}
+
+CameraPose lookAtPose(const glm::dvec3& position, const glm::dvec3& target) {
+    const glm::dvec3 offset = target - position;
+    if (!(glm::length(offset) > 1e-6)) throw std::invalid_argument("--look-at: the same point as --position");
+    const glm::dvec3 forward = glm::normalize(offset);
+    const glm::dvec3 world_up = std::abs(forward.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
+    const glm::dvec3 down = glm::cross(forward, right);
+    CameraPose pose;
+    pose.position_enu = position;
+    pose.camera_to_enu = glm::dmat3(right, down, forward);
+    return pose;
+}
+
+CameraIntrinsics intrinsicsForFov(uint32_t width, uint32_t height, double horizontal_fov_deg) {
+    const double focal = 0.5 * double(width) / std::tan(0.5 * horizontal_fov_deg * std::numbers::pi / 180.0);
+    return {focal, focal, 0.5 * width, 0.5 * height, width, height};
+}
+
+}  // namespace gusuku::render_cli

@@ -1,0 +1,48 @@
+#pragma once
+// What one gusuku-render run is asked to do, read from its command line (gusuku/command_line.h).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/runtime.h"
+
+namespace gusuku::render_cli {
+
+struct RenderRequest {
+    std::string bake_set;                   ///< the bake set folder
+    std::string output_png;                 ///< the composite
+    std::string camera = "sample";          ///< "sample" (path-traced from the site) or an 8-bit sRGB image
+    std::optional<std::string> site_json;   ///< for --camera sample; default: the site the manifest names
+    uint32_t width = 1280, height = 720;
+    glm::dvec3 position_enu{0.0, -25.0, 6.0};
+    glm::dvec3 look_at_enu{0.0, 0.0, 2.0};
+    double horizontal_fov_deg = 60.0;
+    std::optional<std::string> time_iso;    ///< default: the bake date at 12:00 on the site's clock
+    float cloud_cover = 0.0f;
+    ColourMatch colour_match = ColourMatch::kPreserve;
+    std::optional<std::string> direct_only_png;
+    std::optional<std::string> camera_png;
+    uint32_t camera_samples = 64;
+    std::optional<float> exposure;          ///< default: middle grey of the sample camera frame, else 1
+    uint32_t timed_frames = 20;
+    uint32_t warm_up_frames = 3;
+    bool help = false;
+};
+
+extern const char* const kRenderUsage;
+
+/// Parses the command line; UsageError / OptionValueError (gusuku/command_line.h) on a bad one.
+RenderRequest parseRenderRequest(const std::vector<std::string>& args);
+
+/// The pose of a camera at `position` looking at `target`, image up towards ENU +z (runtime.h's convention:
+/// columns right, down, forward). std::invalid_argument when the two points coincide.
+CameraPose lookAtPose(const glm::dvec3& position, const glm::dvec3& target);
+
+/// Pinhole intrinsics of a width x height frame with this horizontal field of view, centred principal point.
+CameraIntrinsics intrinsicsForFov(uint32_t width, uint32_t height, double horizontal_fov_deg);
+
+}  // namespace gusuku::render_cli
