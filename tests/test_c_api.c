@@ -217,6 +217,11 @@ static void testBadBakeSetsAreRefusedNamingTheField(void) {
     CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_MESSAGE_HAS(gusuku_last_error_message(), "desc.normals: NULL with vertex_count 24");
     scene->desc.normals = scene->normals;
+    /* An image too large to count its bytes safely. */
+    scene->slots[0].ground_with.width = 70000;
+    CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "desc.slots[0].ground_with: 70000 x 16 texels");
+    scene->slots[0].ground_with.width = kCells;
     /* An index out of range. */
     scene->indices[7] = 24;
     CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);

@@ -98,13 +98,34 @@ gusuku_result failArgument(const char* function, const std::string& problem, Mes
 // ---------------------------------------------------------------------------------------------------------------
 // The bake set desc into BakeSetData
 
-/// Copies a float RGBA image; an error message when its pointer is missing.
-std::string copyImage(const gusuku_image& source, const std::string& field, gusuku::BakeSetImage& image) {
+/// The first problem with a desc: its code and "FIELD: PROBLEM" (no message: none).
+struct DescProblem {
+    gusuku_result code = GUSUKU_OK;
+    std::string message;
+    explicit operator bool() const { return !message.empty(); }
+};
+
+DescProblem argumentProblem(std::string message) { return {GUSUKU_ERROR_INVALID_ARGUMENT, std::move(message)}; }
+DescProblem bakeSetProblem(std::string message) { return {GUSUKU_ERROR_INVALID_BAKE_SET, std::move(message)}; }
+
+/// Larger sides than any device's image limit, refused before a byte count could overflow.
+constexpr int32_t kMaxImageSide = 65536;
+
+DescProblem tooLarge(const std::string& field, int32_t width, int32_t height) {
+    return bakeSetProblem(field + ": " + std::to_string(width) + " x " + std::to_string(height) +
+                          " texels, at most " + std::to_string(kMaxImageSide) + " per side");
+}
+
+/// Copies a float RGBA image, unless it is too large or its pointer is missing.
+DescProblem copyImage(const gusuku_image& source, const std::string& field, gusuku::BakeSetImage& image) {
+    if (source.width > kMaxImageSide || source.height > kMaxImageSide)
+        return tooLarge(field, source.width, source.height);
     image.width = source.width;
     image.height = source.height;
     const uint64_t floats = (source.width > 0 && source.height > 0) ? uint64_t(source.width) * source.height * 4 : 0;
-    if (missingArray(source.rgba, floats)) return field + ".rgba: NULL for a " + std::to_string(source.width) + " x " +
-                                                  std::to_string(source.height) + " image";
+    if (missingArray(source.rgba, floats))
+        return argumentProblem(field + ".rgba: NULL for a " + std::to_string(source.width) + " x " +
+                               std::to_string(source.height) + " image");
     image.rgba.assign(source.rgba, source.rgba + floats);
     return {};
 }
@@ -117,9 +138,8 @@ std::vector<Vector> copyVectors(const float* values, uint32_t count) {
     return vectors;
 }
 
-/// The desc's arrays into data; returns "" or the first problem as "FIELD: PROBLEM" with its code in `code`.
-std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& data, gusuku_result& code) {
-    code = GUSUKU_ERROR_INVALID_ARGUMENT;
+/// The desc's arrays into data, or the first problem found on the way (findBakeSetProblem checks the rest).
+DescProblem convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& data) {
     struct Array {
         const void* pointer;
         uint64_t count;      // elements the pointer must hold
@@ -144,12 +164,12 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
     };
     for (const Array& array : arrays)
         if (missingArray(array.pointer, array.count))
-            return array.name + std::to_string(array.reported);
+            return argumentProblem(array.name + std::to_string(array.reported));
 
-    code = GUSUKU_ERROR_INVALID_BAKE_SET;
-    if (!(std::abs(desc.latitude_deg) <= 90.0)) return "desc.latitude_deg: must be in [-90, 90]";
-    if (!(std::abs(desc.longitude_deg) <= 180.0)) return "desc.longitude_deg: must be in [-180, 180]";
-    if (!(std::abs(desc.height_m) <= 1e5)) return "desc.height_m: must be in [-100000, 100000]";
+    if (!(std::abs(desc.latitude_deg) <= 90.0)) return bakeSetProblem("desc.latitude_deg: must be in [-90, 90]");
+    if (!(std::abs(desc.longitude_deg) <= 180.0))
+        return bakeSetProblem("desc.longitude_deg: must be in [-180, 180]");
+    if (!(std::abs(desc.height_m) <= 1e5)) return bakeSetProblem("desc.height_m: must be in [-100000, 100000]");
 
     gusuku::BakeSetManifest& manifest = data.manifest;
     manifest.site.name = "gusuku_bakeset_desc";
@@ -178,16 +198,16 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
     }
     for (uint32_t t = 0; t < desc.texture_count; ++t) {
         const gusuku_texture& source = desc.textures[t];
+        if (source.width > kMaxImageSide || source.height > kMaxImageSide)
+            return tooLarge("desc.textures[" + std::to_string(t) + "]", source.width, source.height);
         gusuku::BakeSetTexture texture;
         texture.width = source.width;
         texture.height = source.height;
         const uint64_t bytes =
             (source.width > 0 && source.height > 0) ? uint64_t(source.width) * source.height * 4 : 0;
-        if (missingArray(source.rgba8, bytes)) {
-            code = GUSUKU_ERROR_INVALID_ARGUMENT;
-            return "desc.textures[" + std::to_string(t) + "].rgba8: NULL for a " + std::to_string(source.width) +
-                   " x " + std::to_string(source.height) + " texture";
-        }
+        if (missingArray(source.rgba8, bytes))
+            return argumentProblem("desc.textures[" + std::to_string(t) + "].rgba8: NULL for a " +
+                                   std::to_string(source.width) + " x " + std::to_string(source.height) + " texture");
         texture.rgba8.assign(source.rgba8, source.rgba8 + bytes);
         mesh.textures.push_back(std::move(texture));
     }
@@ -196,9 +216,7 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
     if (desc.occluder_index_count > 0)
         data.occluder.indices.assign(desc.occluder_indices, desc.occluder_indices + desc.occluder_index_count);
 
-    code = GUSUKU_ERROR_INVALID_ARGUMENT;
-    if (std::string problem = copyImage(desc.ground_geometry, "desc.ground_geometry", data.ground_geometry);
-        !problem.empty())
+    if (DescProblem problem = copyImage(desc.ground_geometry, "desc.ground_geometry", data.ground_geometry))
         return problem;
 
     for (uint32_t s = 0; s < desc.slot_count; ++s) {
@@ -213,10 +231,9 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
             slot.sky = gusuku::BakeSetSky::Sunny;
             const double azimuth = source.sun_azimuth_deg * std::numbers::pi / 180.0;
             const double elevation = source.sun_apparent_elevation_deg * std::numbers::pi / 180.0;
-            if (!std::isfinite(azimuth) || !(std::abs(source.sun_apparent_elevation_deg) <= 90.0)) {
-                code = GUSUKU_ERROR_INVALID_BAKE_SET;
-                return field + ".sun_azimuth_deg, sun_apparent_elevation_deg: must be finite, elevation in [-90, 90]";
-            }
+            if (!std::isfinite(azimuth) || !(std::abs(source.sun_apparent_elevation_deg) <= 90.0))
+                return bakeSetProblem(field + ".sun_azimuth_deg, sun_apparent_elevation_deg: must be finite, "
+                                              "elevation in [-90, 90]");
             slot.sun.position = gusuku::BakeSetSunPosition{
                 source.sun_azimuth_deg, source.sun_apparent_elevation_deg,
                 glm::dvec3(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
@@ -227,9 +244,8 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
                 slot.sun.irradiance_rgb = glm::dvec3(source.sun_irradiance_rgb[0], source.sun_irradiance_rgb[1],
                                                      source.sun_irradiance_rgb[2]);
         } else {
-            code = GUSUKU_ERROR_INVALID_BAKE_SET;
-            return field + ".sky: " + std::to_string(int(source.sky)) +
-                   " is neither GUSUKU_SKY_SUNNY nor GUSUKU_SKY_OVERCAST";
+            return bakeSetProblem(field + ".sky: " + std::to_string(int(source.sky)) +
+                                  " is neither GUSUKU_SKY_SUNNY nor GUSUKU_SKY_OVERCAST");
         }
         if (source.has_colour_statistics) {
             gusuku::BakeSetColourStatistics statistics;
@@ -244,10 +260,9 @@ std::string convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
              {std::tuple{&images.building, &source.building, ".building"},
               std::tuple{&images.ground_with, &source.ground_with, ".ground_with"},
               std::tuple{&images.ground_without, &source.ground_without, ".ground_without"}})
-            if (std::string problem = copyImage(*source_image, field + name, *image); !problem.empty()) return problem;
+            if (DescProblem problem = copyImage(*source_image, field + name, *image)) return problem;
         data.slots.push_back(std::move(images));
     }
-    code = GUSUKU_OK;
     return {};
 }
 
@@ -363,9 +378,8 @@ gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bake
     try {
         if (desc == nullptr) return failArgument(function, "desc: is NULL");
         auto bake_set = std::make_unique<gusuku_bakeset>();
-        gusuku_result code = GUSUKU_OK;
-        if (std::string problem = convertDesc(*desc, bake_set->data, code); !problem.empty())
-            return fail(code, (std::string(function) + ": " + problem).c_str());
+        if (DescProblem problem = convertDesc(*desc, bake_set->data))
+            return fail(problem.code, (std::string(function) + ": " + problem.message).c_str());
         if (std::optional<std::string> problem = gusuku::findBakeSetProblem(bake_set->data))
             return fail(GUSUKU_ERROR_INVALID_BAKE_SET, (std::string(function) + ": bake set: " + *problem).c_str());
         *out_bake_set = bake_set.release();
