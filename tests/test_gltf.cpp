@@ -666,7 +666,14 @@ TEST_F(GltfTest, EmissionBeyondFloatRangeIsRefused) {
     builder.setScene({builder.addNode({{"mesh", mesh}})});
     const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); });
     EXPECT_EQ(error.field(), "materials[0].emissiveFactor[0]");
-    EXPECT_EQ(error.problem(), "1e+39 is beyond float range (at most 1e15 is accepted)");
+    EXPECT_EQ(error.problem(), "1e+39 is beyond float range");
+    // Within float range but above the radiance limit (gusuku/image.h kMaxRadiance), and negative.
+    builder.document()["materials"][0]["emissiveFactor"] = {0, 1e20, 0};
+    EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); }).problem(),
+              "1e+20 is above the limit 1e+15");
+    builder.document()["materials"][0]["emissiveFactor"] = {0, 0, -1};
+    EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); }).field(),
+              "materials[0].emissiveFactor[2]");
 }
 
 TEST_F(GltfTest, RequiredExtensionsAreNamedAsUnsupported) {

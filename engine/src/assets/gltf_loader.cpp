@@ -727,9 +727,10 @@ private:
             if (std::isfinite(value) && value >= 0.0f && value <= kMaxRadiance) continue;
             std::ostringstream problem;
             problem << factors[i]
-                    << (std::isnan(factors[i]) ? " is NaN"
-                        : factors[i] < 0.0     ? " is negative"
-                                               : " is beyond float range (at most 1e15 is accepted)");
+                    << (std::isnan(factors[i])     ? " is NaN"
+                        : factors[i] < 0.0         ? " is negative"
+                        : !std::isfinite(value)    ? " is beyond float range"
+                                                   : " is above the limit 1e+15");
             fail(field + "[" + std::to_string(i) + "]", problem.str());
         }
     }
