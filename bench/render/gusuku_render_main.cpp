@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -18,51 +17,29 @@
 #include "gusuku/runtime.h"
 #include "gusuku/time_utc.h"
 #include "gusuku/vulkan_context.h"
+#include "bakeset_site.h"
+#include "camera_view.h"
+#include "frame_spread.h"
 #include "render_request.h"
 #include "sample_camera.h"
 
 namespace gusuku::render_cli {
 namespace {
 
+using bench_common::intrinsicsForFov;
+using bench_common::lookAtPose;
+using bench_common::Spread;
+using bench_common::spreadOf;
 using Clock = std::chrono::steady_clock;
 
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-struct Spread {
-    double median = 0.0, low = 0.0, high = 0.0;  // median and the 10th and 90th percentiles
-};
-
-Spread spreadOf(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    auto at = [&](double fraction) { return values[size_t(fraction * double(values.size() - 1) + 0.5)]; };
-    return {at(0.5), at(0.1), at(0.9)};
-}
-
-// The instant to render: --time, or the bake date at 12:00 on the site's clock (from a sunny slot's local time).
+// The instant to render: --time, or the bake date at 12:00 on the site's clock.
 double frameInstant(const RenderRequest& request, const BakeSetManifest& manifest) {
     if (request.time_iso) return parseIso8601Utc(*request.time_iso);
-    for (const BakeSetSlot& slot : manifest.slots)
-        if (!slot.utc.empty()) {
-            const std::string local = formatIso8601(parseIso8601Utc(slot.utc), manifest.site.utc_offset_minutes);
-            return parseDateAtOffset(local.substr(0, 10), manifest.site.utc_offset_minutes) + 12 * 3600.0;
-        }
-    throw InputError(request.bake_set, "--time", "the bake set has no sunny slot to take the date from; give --time");
-}
-
-std::string siteJsonOf(const RenderRequest& request, const BakeSetManifest& manifest) {
-    if (request.site_json) return *request.site_json;
-    // As the bake named it: relative to where the bake ran, or (when moved) to the bake set's folder.
-    for (const BakeSetInput& input : manifest.inputs)
-        if (input.role == "site") {
-            if (std::filesystem::exists(input.path)) return input.path;
-            const std::filesystem::path beside = std::filesystem::path(request.bake_set) / input.path;
-            if (std::filesystem::exists(beside)) return beside.string();
-            throw InputError(request.bake_set + "/manifest.json", "/inputs",
-                             "its site " + input.path + " is not found; give --site SITE.json");
-        }
-    throw InputError(request.bake_set + "/manifest.json", "/inputs", "names no site; give --site SITE.json");
+    return bench_common::bakeDateMidnightUtc(request.bake_set, manifest, "--time") + 12 * 3600.0;
 }
 
 int run(const RenderRequest& request) {
@@ -80,7 +57,7 @@ int run(const RenderRequest& request) {
         const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, request.horizontal_fov_deg);
         const Clock::time_point start = Clock::now();
         SampleCameraFrame frame =
-            renderSampleCameraFrame(context, siteJsonOf(request, bake_set.manifest), utc_seconds,
+            renderSampleCameraFrame(context, bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json), utc_seconds,
                                     request.cloud_cover, intrinsics, pose, request.camera_samples,
                                     request.exposure.value_or(0.0f));
         std::printf("camera frame:    path-traced, %u spp, %.1f s (%.2f Mrays/s)\n", request.camera_samples,

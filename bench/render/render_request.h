@@ -38,11 +38,4 @@ extern const char* const kRenderUsage;
 /// Parses the command line; UsageError / OptionValueError (gusuku/command_line.h) on a bad one.
 RenderRequest parseRenderRequest(const std::vector<std::string>& args);
 
-/// The pose of a camera at `position` looking at `target`, image up towards ENU +z (runtime.h's convention:
-/// columns right, down, forward). std::invalid_argument when the two points coincide.
-CameraPose lookAtPose(const glm::dvec3& position, const glm::dvec3& target);
-
-/// Pinhole intrinsics of a width x height frame with this horizontal field of view, centred principal point.
-CameraIntrinsics intrinsicsForFov(uint32_t width, uint32_t height, double horizontal_fov_deg);
-
 }  // namespace gusuku::render_cli

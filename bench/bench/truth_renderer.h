@@ -1,0 +1,79 @@
+#pragma once
+// The bench's path-traced frames of the site (gusuku_bake/camera_tracer.h), with a cache on disk:
+//   - WITH the building: the truth, and the path tracer's own modes;
+//   - WITHOUT the building: the camera frame the runtime receives.
+// A condition is an instant and a cloud cover: the sunny sky with the SPA sun at that instant, the overcast sky,
+// or (partial cover c) their blend (1 - c) sunny + c overcast, linear in radiance, as gusuku-render makes its
+// camera frames and as the runtime blends its slots. The scene is loaded and uploaded once.
+//
+// Cached frames are keyed by everything that changes their bits: the view and size, the instant, the cover, the
+// samples, the seed, with or without the building, raw or denoised, and a hash of the site (site.json, the
+// skies' paths) and of the bake set's manifest; a key's file holds the key itself and is checked on reading,
+// so a hash collision or a stale file is rendered afresh, never used.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/gpu_device.h"
+#include "gusuku/image.h"
+#include "gusuku/runtime.h"
+#include "gusuku/site.h"
+
+namespace gusuku::bench {
+
+/// Where the camera stands and looks, and its horizontal field of view.
+struct BenchView {
+    glm::dvec3 position_enu{0.0, -25.0, 6.0};
+    glm::dvec3 look_at_enu{0.0, 0.0, 2.0};
+    double horizontal_fov_deg = 60.0;
+};
+
+struct BenchCondition {
+    double utc_seconds = 0.0;
+    float cloud_cover = 0.0f;  ///< 0 sunny, 1 overcast
+};
+
+struct TracedFrameRequest {
+    BenchView view;
+    uint32_t width = 320, height = 180;
+    BenchCondition condition;
+    uint32_t samples_per_pixel = 256;
+    uint32_t seed = 1;
+    bool include_building = true;
+    bool denoise = false;  ///< also return the filtered frame (gusuku_bake/camera_denoise.h)
+};
+
+struct TracedFrame {
+    ImageRGBA linear;            ///< the raw estimate: linear Rec.709 radiance, row 0 at the top
+    ImageRGBA denoised;          ///< the filtered estimate when asked for, else empty
+    double trace_seconds = 0.0;  ///< tracing (guides included); 0 when it came from the cache
+    double denoise_seconds = 0.0;
+    bool from_cache = false;
+};
+
+class TruthRenderer {
+public:
+    /// Loads the site (InputError for its files) and uploads it. cache_folder empty: no cache. `context_hash`
+    /// is mixed into every key (the bake set's manifest, so a new bake makes new truths).
+    TruthRenderer(const GpuDevice& gpu, const SiteConfig& site, std::string cache_folder, std::string context_hash);
+    ~TruthRenderer();
+
+    /// The frame, from the cache when it holds the key (use_cache), else traced (and stored).
+    TracedFrame render(const TracedFrameRequest& request, bool use_cache = true);
+
+    size_t triangleCount() const;
+    const SiteConfig& site() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+/// 64-bit FNV-1a of a string, as 16 hex digits (cache keys and the bake set's hash).
+std::string fnv1aHex(const std::string& text);
+
+}  // namespace gusuku::bench
