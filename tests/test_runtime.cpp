@@ -184,53 +184,92 @@ TEST_F(RuntimeTest, BuildingPixelIsAlbedoOverPiTimesBakedPlusShadowedSun) {
     EXPECT_EQ(output[at + 3], 255);
 }
 
-// The shadow on flat ground: which ground points the CPU says are shaded by the box (their ray towards the sun
-// hits it) must be darkened, and points clearly outside must not; so the shadow lies away from the sun and is
-// as long as height / tan(elevation).
-TEST_F(RuntimeTest, ShadowFallsAwayFromTheSunWithTheLengthGeometryPredicts) {
-    testing::SyntheticBakeSetOptions set;
-    std::unique_ptr<Runtime> runtime = open(set);
+// The shadow on the ground: which ground points the CPU says are shaded by the box (their ray towards the sun
+// hits it) must be darkened by the closed-form ratio, and points clearly outside must not change; so the shadow
+// lies away from the sun and is as long as geometry predicts, on flat ground and down a step like the sample's
+// terrace (the ground 0.5 m lower south of y = -3 m: the shadow falling down it reaches further).
+void expectShadowWhereGeometryPutsIt(Runtime& runtime, const testing::SyntheticBakeSetOptions& set, int hours,
+                                     int minutes) {
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 128);
-    const CameraPose pose = lookAt({0, 0, 30}, {0, 0, 0});  // straight down, image up = north
+    const CameraPose pose = lookAt({0, -2, 30}, {0, -2, 0});  // straight down, image up = north
     std::vector<uint8_t> output(camera.size());
-    FrameInput frame = frameAt(camera, pose, syntheticLocalTime(16, 30));
-    frame.intrinsics = intrinsics(120.0);
-    const FrameInfo info = runtime->renderFrame(frame, output.data());
+    FrameInput frame = frameAt(camera, pose, syntheticLocalTime(hours, minutes));
+    const FrameInfo info = runtime.renderFrame(frame, output.data());
     const glm::dvec3 sun = info.sun_direction_enu;
     ASSERT_GT(sun.z, 0.2);
-    size_t shaded_checked = 0, lit_checked = 0;
+    size_t shaded_checked = 0, lit_checked = 0, shaded_on_lower_level = 0;
     for (uint32_t y = 0; y < kHeight; ++y)
         for (uint32_t x = 0; x < kWidth; ++x) {
             const glm::dvec3 ray = pose.camera_to_enu * glm::dvec3((x + 0.5 - kWidth / 2.0) / 120.0,
                                                                    (y + 0.5 - kHeight / 2.0) / 120.0, 1.0);
-            const glm::dvec3 ground = pose.position_enu + ray * (-pose.position_enu.z / ray.z);
-            if (std::abs(ground.x) < 1.3 && std::abs(ground.y) < 1.3) continue;  // the box's own pixels
-            // Shadow test with a margin: inside by 0.2 m (shaded) or outside by 0.2 m (lit), else skip the edge.
+            // The ray meets the upper level (z = 0) or, south of the step, the lower one.
+            glm::dvec3 ground = pose.position_enu + ray * (-pose.position_enu.z / ray.z);
+            const double lower = -set.step_height_m;
+            if (ground.y < set.step_north_m)
+                ground = pose.position_enu + ray * ((lower - pose.position_enu.z) / ray.z);
+            // Skip pixels near the step's edge (the riser and its silhouette) and the box's own pixels.
+            if (set.step_height_m > 0.0 && std::abs(ground.y - set.step_north_m) < 0.3) continue;
+            if (std::abs(ground.x) < 1.3 && std::abs(ground.y) < 1.3) continue;
+            // Shadow test with a margin: inside by 0.2 m (shaded) or outside by 0.2 m (lit), else the edge.
             auto shadedBy = [&](double grow) {
                 for (double t = 0.0; t < 30.0; t += 0.02) {
                     const glm::dvec3 p = ground + sun * t;
-                    if (std::abs(p.x) < 1.0 + grow && std::abs(p.y) < 1.0 + grow && p.z < set.building_height_m + grow)
+                    if (std::abs(p.x) < 1.0 + grow && std::abs(p.y) < 1.0 + grow && p.z < set.building_height_m + grow &&
+                        p.z > -grow)
                         return true;
                 }
                 return false;
             };
-            const bool surely_shaded = shadedBy(-0.2);
-            const bool surely_lit = !shadedBy(0.2);
+            // The real site's own shadow: on the lower level, the step's edge shades the ground south of it
+            // (its ray towards the sun meets the riser below the upper level). There the building adds no sun
+            // term to take away: the pixel keeps its value (E_with = E_without here). Skip its edge.
+            auto sceneShadedBy = [&](double grow) {
+                if (ground.z > -0.01 || sun.y <= 0.0) return false;
+                const double t = (set.step_north_m - ground.y) / sun.y;
+                return ground.z + sun.z * t < -grow;
+            };
             const uint8_t value = output[(size_t(y) * kWidth + x) * 4];
-            if (surely_shaded) {
+            // The edge band is wider than the building shadow's: at a low sun the site's shadow map (fitted to the
+            // whole ground grid) has 8 cm texels and a slope-scaled bias of 1.5 of them across the lower level.
+            if (sceneShadedBy(-0.15) != sceneShadedBy(0.15)) continue;
+            if (sceneShadedBy(0.0)) {
+                ASSERT_EQ(value, 128) << "pixel " << x << "," << y << " in the real scene's own shadow";
+                continue;
+            }
+            if (shadedBy(-0.2)) {
                 ++shaded_checked;
-                // ratio = E_with / (E_without + E_sun cos) = 2 / (2 + 5 n.s) on flat ground.
+                shaded_on_lower_level += ground.z < -0.01;
+                // ratio = E_with / (E_without + E_sun cos) = 2 / (2 + E_sun n.s) on level ground.
                 const double ratio = set.ground_irradiance /
                                      (set.ground_irradiance + info.sun_irradiance_rgb.x * sun.z);
                 const double expected = 255.0 * srgbEncode(srgbDecode(128.0 / 255.0) * ratio);
                 ASSERT_NEAR(double(value), expected, 2.0) << "shaded pixel " << x << "," << y;
-            } else if (surely_lit) {
+            } else if (!shadedBy(0.2)) {
                 ++lit_checked;
                 ASSERT_EQ(value, 128) << "lit pixel " << x << "," << y;
             }
         }
     EXPECT_GT(shaded_checked, 50u);
     EXPECT_GT(lit_checked, 1000u);
+    if (set.step_height_m > 0.0) EXPECT_GT(shaded_on_lower_level, 20u) << "the shadow should reach down the step";
+}
+
+TEST_F(RuntimeTest, ShadowFallsAwayFromTheSunWithTheLengthGeometryPredicts) {
+    testing::SyntheticBakeSetOptions set;
+    std::unique_ptr<Runtime> runtime = open(set);
+    expectShadowWhereGeometryPutsIt(*runtime, set, 16, 30);
+    expectShadowWhereGeometryPutsIt(*runtime, set, 9, 0);
+}
+
+TEST_F(RuntimeTest, ShadowFallsDownAStepAsGeometryPredicts) {
+    testing::SyntheticBakeSetOptions set;
+    set.step_height_m = 0.5;
+    set.step_north_m = -1.5;
+    std::unique_ptr<Runtime> runtime = open(set);
+    // In June at 26 N the sun rises and sets north of east and west: early and late shadows reach south-west
+    // and south-east, down the step.
+    expectShadowWhereGeometryPutsIt(*runtime, set, 7, 0);
+    expectShadowWhereGeometryPutsIt(*runtime, set, 17, 30);
 }
 
 TEST_F(RuntimeTest, ShadowDoesNotShimmerWhenTheCameraMoves) {

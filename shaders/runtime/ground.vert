@@ -1,6 +1,7 @@
 #version 450
 // The ground grid drawn from its baked geometry: one vertex per cell centre (gl_VertexIndex = texel index, row 0
-// north), its height and normal from ground_geometry; no vertex buffer. The baked terms E_with and E_without are
+// north), its height and normal from ground_geometry; the one vertex stream is this frame's per-cell flag of
+// where the building's shadow may fall (chosen on the CPU). The baked terms and the sun's cosine term E_with and E_without are
 // blended over the frame's slots here, once per cell, and interpolated to the fragments: vertices sit on the
 // cell centres, so the interpolation is the texture's own bilinear one, without a texture read per fragment.
 // Pulled a little towards the camera so the occluder mesh it was sampled from does not hide it (DESIGN.md 8).
@@ -10,11 +11,15 @@
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_GROUND_GEOMETRY_BINDING) uniform sampler2D ground_geometry;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_GROUND_IRRADIANCE_BINDING) uniform sampler2DArray ground_irradiance;
 
+layout(location = 0) in float shadow_candidate;  // per cell, this frame: the building's shadow may fall here
+
 layout(location = 0) out vec3 out_position_enu;
 layout(location = 1) out vec3 out_normal_enu;
 layout(location = 2) out vec3 out_irradiance_with;     // E_with blended over the slots, bake set units
 layout(location = 3) out vec3 out_irradiance_without;  // E_without, the same
 layout(location = 4) out float out_ground_present;     // 0 no ground, 1 ground, 2 ground the building changes
+layout(location = 5) out vec3 out_sun_irradiance;      // I_sun max(0, n . s): E_sun before the real scene's shadow
+layout(location = 6) out float out_shadow_candidate;
 
 vec3 slotIrradiance(ivec2 cell, float slot_layer, float weight, bool with_building) {
     if (weight <= 0.0) return vec3(0.0);
@@ -42,6 +47,10 @@ void main() {
     // Stored scaled to fit half floats: the scale cancels between the two but not against E_sun.
     out_irradiance_with = with_building * frame.colour_match.z;
     out_irradiance_without = without_building * frame.colour_match.z;
+    out_sun_irradiance = frame.sun_direction.w > 0.0
+                             ? frame.sun_irradiance.rgb * max(0.0, dot(geometry.rgb, frame.sun_direction.xyz))
+                             : vec3(0.0);
+    out_shadow_candidate = shadow_candidate;
     vec3 towards_camera = frame.camera_position.xyz - position;
     float distance_to_camera = length(towards_camera);
     vec3 pulled = position + towards_camera / max(distance_to_camera, 1e-3) *

@@ -25,6 +25,10 @@ BakeSetImage constantImage(int width, int height, float value, float alpha) {
 
 }  // namespace
 
+double syntheticGroundHeight(const SyntheticBakeSetOptions& options, double y) {
+    return y < options.step_north_m ? -options.step_height_m : 0.0;
+}
+
 double syntheticLocalTime(int hours, int minutes) {
     return parseDateAtOffset("2026-06-21", kUtcOffsetMinutes) + hours * 3600.0 + minutes * 60.0;
 }
@@ -75,8 +79,11 @@ BakeSetData makeSyntheticBakeSet(const SyntheticBakeSetOptions& options) {
 
     if (options.ground_occluder) {
         const float half = float(options.grid_half_m) * 2.0f;
-        data.occluder.positions = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
-        data.occluder.indices = {0, 1, 2, 0, 2, 3};
+        const float step_y = float(options.step_north_m), low = -float(options.step_height_m);
+        // Upper level north of the step, the riser, the lower level south of it.
+        data.occluder.positions = {{-half, step_y, 0}, {half, step_y, 0}, {half, half, 0},   {-half, half, 0},
+                                   {-half, -half, low}, {half, -half, low}, {half, step_y, low}, {-half, step_y, low}};
+        data.occluder.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 7, 6, 1, 7, 1, 0};
     }
 
     const int cells = int(std::lround(2.0 * options.grid_half_m / options.cell_m));
@@ -87,7 +94,13 @@ BakeSetData makeSyntheticBakeSet(const SyntheticBakeSetOptions& options) {
     grid.rows = cells;
     manifest.ground_grid.ground_source = "synthetic flat plane";
     data.ground_geometry = constantImage(cells, cells, 0.0f, 0.0f);
-    for (size_t texel = 0; texel < size_t(cells) * cells; ++texel) data.ground_geometry.rgba[texel * 4 + 2] = 1.0f;
+    for (int row = 0; row < cells; ++row)
+        for (int column = 0; column < cells; ++column) {
+            const size_t texel = size_t(row) * cells + column;
+            const double y = grid.origin_enu_m.y + (cells - row - 0.5) * grid.cell_m;
+            data.ground_geometry.rgba[texel * 4 + 2] = 1.0f;
+            data.ground_geometry.rgba[texel * 4 + 3] = float(syntheticGroundHeight(options, y));
+        }
 
     SunObserver observer;
     observer.latitude_deg = kLatitude;

@@ -28,7 +28,14 @@ struct SyntheticBakeSetOptions {
     double grid_half_m = 12.0;
     double cell_m = 0.25;
     bool ground_occluder = true;
+    /// A step in the ground: south of y = step_north_m the ground lies step_height_m lower (0: flat). The
+    /// occluder follows it (two levels and the riser), so the sample's terrace steps have a closed-form twin.
+    double step_height_m = 0.0;
+    double step_north_m = -3.0;
 };
+
+/// The ground's height (ENU z) at (x, y) for these options: 0, or -step_height_m south of the step.
+double syntheticGroundHeight(const SyntheticBakeSetOptions& options, double y);
 
 BakeSetData makeSyntheticBakeSet(const SyntheticBakeSetOptions& options = {});
 

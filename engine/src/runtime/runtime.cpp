@@ -148,6 +148,8 @@ private:
     // The ground quads drawn this frame (selectGroundQuads), and the reused host arrays that choose them.
     uint32_t ground_index_count_ = 0;
     std::vector<uint8_t> ground_cell_marked_;
+    std::vector<float> ground_shadow_candidate_;  // per cell: 1 where the building's shadow may fall
+    GpuBuffer ground_candidate_buffer_;           // the same as a host-visible vertex stream
     std::vector<uint32_t> ground_quad_indices_;
     bool draw_ground_ = false;
     bool site_shadows_ = false;
@@ -177,6 +179,9 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     try {
         scene_ = uploadScene(gpu, bake_set);
         ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
+        ground_shadow_candidate_.assign(scene_.ground_cell_state.size(), 0.0f);
+        ground_candidate_buffer_ = GpuBuffer(gpu, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), 16),
+                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
         ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
         createTargets();
         statistics_ = std::make_unique<ColourStatisticsPass>(gpu, options.frame_width, options.frame_height,
@@ -460,6 +465,8 @@ void RuntimeImpl::createPipelines() {
     building_pipeline_ = createGraphicsPipeline(device, building);
 
     GraphicsPipelineDescription ground;
+    ground.vertex_input.stride = sizeof(float);  // per cell: the building's shadow may fall here this frame
+    ground.vertex_input.attributes = {{0, 0, VK_FORMAT_R32_SFLOAT, 0}};
     ground.layout = shading_layout_;
     ground.render_pass = main_passes_[0];
     ground.vertex_spirv = kGroundVertSpirv;
@@ -481,7 +488,7 @@ uint64_t RuntimeImpl::deviceMemoryBytes() const {
     for (const GpuImage& texture : scene_.textures) bytes += texture.memoryBytes();
     for (const GpuBuffer* buffer : {&scene_.building_vertices, &scene_.building_indices, &scene_.occluder_vertices,
                                     &scene_.occluder_indices, &scene_.ground_indices, &camera_buffer_,
-                                    &readback_buffer_, &uniform_buffer_, &statistics_->stateBuffer()})
+                                    &readback_buffer_, &ground_candidate_buffer_, &uniform_buffer_, &statistics_->stateBuffer()})
         bytes += buffer->size();
     return bytes;
 }
@@ -727,6 +734,9 @@ void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ground_pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
                             0, nullptr);
+    const VkBuffer candidates = ground_candidate_buffer_.handle();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &candidates, &offset);
     vkCmdBindIndexBuffer(cmd, scene_.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, ground_index_count_, 1, 0, 0, 0);
 }
@@ -759,8 +769,9 @@ void RuntimeImpl::selectGroundQuads(bool include_baked_changes, bool sun_shines,
         for (size_t column = 0; column < columns; ++column) {
             const size_t cell = row * columns + column;
             const uint8_t state = scene_.ground_cell_state[cell];
-            bool marked = include_baked_changes && state == 2;
-            if (!marked && state != 0 && sun_shines) {
+            const bool baked_change = include_baked_changes && state == 2;
+            bool shadow_candidate = false;
+            if (state != 0 && sun_shines) {
                 // Slab test of the ray cell centre + t s, t > 0, against the grown bounds.
                 const glm::dvec3 origin(grid.origin_enu_m.x + (double(column) + 0.5) * grid.cell_m,
                                         grid.origin_enu_m.y + (double(rows - row) - 0.5) * grid.cell_m,
@@ -777,9 +788,10 @@ void RuntimeImpl::selectGroundQuads(bool include_baked_changes, bool sun_shines,
                     near_t = std::max(near_t, t0);
                     far_t = std::min(far_t, t1);
                 }
-                marked = near_t <= far_t;
+                shadow_candidate = near_t <= far_t;
             }
-            ground_cell_marked_[cell] = marked ? 1 : 0;
+            ground_cell_marked_[cell] = (baked_change || shadow_candidate) ? 1 : 0;
+            ground_shadow_candidate_[cell] = shadow_candidate ? 1.0f : 0.0f;
         }
     uint32_t quads = 0;
     for (size_t row = 0; row + 1 < rows; ++row)
@@ -792,7 +804,10 @@ void RuntimeImpl::selectGroundQuads(bool include_baked_changes, bool sun_shines,
             ++quads;
         }
     ground_index_count_ = quads * 6;
-    if (quads > 0) scene_.ground_indices.upload(ground_quad_indices_.data(), size_t(quads) * 6 * sizeof(uint32_t));
+    if (quads > 0) {
+        scene_.ground_indices.upload(ground_quad_indices_.data(), size_t(quads) * 6 * sizeof(uint32_t));
+        ground_candidate_buffer_.upload(ground_shadow_candidate_.data(), ground_shadow_candidate_.size() * sizeof(float));
+    }
 }
 
 void RuntimeImpl::submit(const std::function<void(VkCommandBuffer)>& record) {
