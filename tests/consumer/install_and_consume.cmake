@@ -1,7 +1,8 @@
 # cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DC_COMPILER=... -DCXX_COMPILER=...
 #       -P install_and_consume.cmake
-# Installs the build into WORK_DIR/prefix (both components), configures and builds the consumer against that
-# prefix alone (CMAKE_PREFIX_PATH), and runs its two programs. Any step failing fails the test.
+# Installs the build into WORK_DIR/prefix (both components; the runtime component alone into another prefix, to
+# check the split), configures and builds the consumer against that prefix alone (CMAKE_PREFIX_PATH), and runs its
+# two programs. Any step failing fails the test.
 foreach(variable BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "install_and_consume.cmake: ${variable} is not set")
@@ -28,6 +29,18 @@ endforeach()
 file(GLOB interface_headers ${prefix}/include/*_interface.h ${prefix}/include/gusuku/*_interface.h)
 if(interface_headers)
   message(FATAL_ERROR "install: shader interface headers are private, yet installed: ${interface_headers}")
+endif()
+
+# The runtime component alone: the lean libraries and the package, nothing of the loader's I/O stack.
+run_step("install the runtime component" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/runtime_only
+         --component runtime)
+foreach(absent lib/libgusuku_assets.a lib/libgusuku_loader.a lib/cmake/gusuku/gusukuLoaderTargets.cmake)
+  if(EXISTS ${WORK_DIR}/runtime_only/${absent})
+    message(FATAL_ERROR "install --component runtime: ${absent} belongs to the loader component")
+  endif()
+endforeach()
+if(NOT EXISTS ${WORK_DIR}/runtime_only/lib/libgusuku_runtime.a)
+  message(FATAL_ERROR "install --component runtime: lib/libgusuku_runtime.a is missing")
 endif()
 
 set(compilers)
