@@ -28,7 +28,7 @@ const char* const kRenderUsage =
     "  --fov DEG              horizontal field of view, (1, 170) degrees (default 60)\n"
     "  --time ISO8601         the instant, with its offset (default: the bake date, 12:00 site clock)\n"
     "  --weather W            sunny, overcast, or a cloud cover in [0, 1] (default sunny)\n"
-    "  --colour-match M       off, paper or preserve (default preserve)\n"
+    "  --colour-match M       off, paper or preserve (default off: the camera's exposure is known)\n"
     "  --exposure X           display value per unit radiance (default: the sample frame's middle grey, or 1)\n"
     "  --samples N            path-traced samples per pixel of the sample camera frame (default 64)\n"
     "  --frames N             frames timed after 3 warm-up frames (default 20)\n"

@@ -23,7 +23,7 @@ struct RenderRequest {
     double horizontal_fov_deg = 60.0;
     std::optional<std::string> time_iso;    ///< default: the bake date at 12:00 on the site's clock
     float cloud_cover = 0.0f;
-    ColourMatch colour_match = ColourMatch::kPreserve;
+    ColourMatch colour_match = ColourMatch::kOff;
     std::optional<std::string> direct_only_png;
     std::optional<std::string> camera_png;
     uint32_t camera_samples = 64;

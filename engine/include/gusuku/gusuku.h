@@ -246,7 +246,7 @@ typedef struct gusuku_frame_input {
     gusuku_weather weather;
     float exposure;                     /* display-linear value per unit radiance, > 0; default 1 */
     gusuku_render_mode mode;            /* default GUSUKU_MODE_PROPOSED */
-    gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_PRESERVE */
+    gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_OFF (exposure given) */
     uint32_t flags;                     /* GUSUKU_FRAME_*; default BLEND_SLOTS | GROUND_RATIO */
 } gusuku_frame_input;
 

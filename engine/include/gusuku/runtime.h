@@ -135,7 +135,10 @@ struct FrameInput {
     /// match is off or has no camera statistics yet (and in direct-only mode); the match replaces it otherwise.
     float exposure = 1.0f;
     RenderMode mode = RenderMode::kProposed;
-    ColourMatch colour_match = ColourMatch::kPreserve;
+    /// Off by default: with the camera's exposure known (the platform's light estimate, or a rendered camera)
+    /// the building is already exposed like the camera. The matches are for a camera whose exposure and white
+    /// balance are unknown; gusuku-bench measures when they help and when they hurt.
+    ColourMatch colour_match = ColourMatch::kOff;
     bool blend_slots = true;   ///< blend the two sunny slots whose suns are nearest (false: the nearest alone)
     bool ground_ratio = true;  ///< apply the shadow-catcher ratio to the camera pixels (false: leave them)
 };

@@ -421,7 +421,7 @@ gusuku_result gusuku_frame_input_default(gusuku_frame_input* frame) {
     frame->weather.cloud_cover = defaults.weather.cloud_cover;
     frame->exposure = defaults.exposure;
     frame->mode = GUSUKU_MODE_PROPOSED;
-    frame->colour_match = GUSUKU_COLOUR_MATCH_PRESERVE;
+    frame->colour_match = GUSUKU_COLOUR_MATCH_OFF;
     frame->flags = (defaults.blend_slots ? GUSUKU_FRAME_BLEND_SLOTS : 0u) |
                    (defaults.ground_ratio ? GUSUKU_FRAME_GROUND_RATIO : 0u);
     return GUSUKU_OK;
