@@ -37,14 +37,13 @@ CloudEstimate estimateCloudCover(const std::vector<uint8_t>& rgba8, uint32_t wid
     estimate.shadow_contrast =
         float(std::log(std::max(percentile(lower, 0.9), kFloor) / std::max(percentile(lower, 0.1), kFloor)));
 
-    // Sky: the top rows' pixels brighter than the frame's median luminance.
-    const double median = percentile(luminance, 0.5);
+    // Sky: the top rows' blueness, at the 75th percentile, so a sky that fills only part of them still counts.
     std::vector<double> blueness;
     for (size_t pixel = 0; pixel < size_t(std::max(1u, height / 8)) * width; ++pixel) {
         const glm::vec3& rgb = linear[pixel];
-        if (luminance[pixel] > median && rgb.b + rgb.r > 0.0f) blueness.push_back((rgb.b - rgb.r) / (rgb.b + rgb.r));
+        if (rgb.b + rgb.r > 0.0f) blueness.push_back((rgb.b - rgb.r) / (rgb.b + rgb.r));
     }
-    estimate.sky_blueness = blueness.empty() ? 0.0f : float(percentile(blueness, 0.5));
+    estimate.sky_blueness = blueness.empty() ? 0.0f : float(percentile(blueness, 0.75));
 
     const float clear = 0.5f * (clearness(estimate.shadow_contrast, kOvercastShadowContrast, kClearShadowContrast) +
                                 clearness(estimate.sky_blueness, kOvercastSkyBlueness, kClearSkyBlueness));

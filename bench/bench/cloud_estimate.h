@@ -4,9 +4,9 @@
 //   - hard shadows: sunlit and shaded ground differ by E_sun cos / E_sky + 1 (4 to 10 in clear air), an overcast
 //     ground only by its albedo and its occlusion. Measured as ln(p90 / p10) of luminance over the frame's lower
 //     half (where the ground is in a phone held up to a building), so a bright sky does not count;
-//   - a blue sky: (B - R) / (B + R) of linear RGB, the median over the top eighth of the frame's rows among
-//     pixels brighter than the frame's median (the sky, in a frame that shows some; a frame without sky gives
-//     the bright ground's near-neutral value and the shadow cue decides).
+//   - a blue sky: (B - R) / (B + R) of linear RGB over the top eighth of the frame's rows, at its 75th
+//     percentile (so a sky that fills a quarter of those rows or more counts; a frame without sky gives the
+//     ground's near-neutral or negative value and the shadow cue decides).
 // Each cue is mapped linearly from its overcast value (0 clear) to its clear value (1 clear) and clamped; cover is
 // 1 minus their mean. The four constants were set from the sample site's 12:00 sunny and overcast frames (the
 // bench then measures the estimate at other hours, covers and camera responses). A white balance that warms
@@ -21,7 +21,7 @@ namespace gusuku::bench {
 struct CloudEstimate {
     float cloud_cover = 0.0f;      ///< [0, 1]: 0 clear, 1 overcast
     float shadow_contrast = 0.0f;  ///< ln(p90 / p10) of the lower half's luminance
-    float sky_blueness = 0.0f;     ///< (B - R) / (B + R) of the top rows' bright pixels, 0 when none
+    float sky_blueness = 0.0f;     ///< (B - R) / (B + R) of the top rows, 75th percentile
 };
 
 /// Shadow-contrast and sky-blueness values of an overcast and of a clear frame (the cue maps' ends).
