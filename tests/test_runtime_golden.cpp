@@ -1,0 +1,121 @@
+// Golden images of the runtime: the closed-form bake set (tests/support/synthetic_bakeset.h, with a step in the
+// ground) drawn into a fixed camera pattern at a few conditions and modes, compared with tests/golden/*.png.
+// They catch any change in what the runtime draws that the analytic tests would let through (shadow filtering,
+// bias, blending, the colour match). Tolerance: every channel within 2 of the golden on all but 0.5 % of the
+// pixels, and the mean absolute difference at most 0.25 (lavapipe's rasteriser is deterministic; the slack is
+// for another LLVM's rounding). Regenerate with scripts/update-goldens.sh (GUSUKU_UPDATE_GOLDEN=1).
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "gpu_test_support.h"
+#include "gusuku/colour.h"
+#include "gusuku/image.h"
+#include "gusuku/runtime.h"
+#include "synthetic_bakeset.h"
+
+namespace gusuku {
+namespace {
+
+constexpr uint32_t kWidth = 160, kHeight = 120;
+
+// A smooth, deterministic camera frame: a sky-like gradient above, a ground-like checker below.
+std::vector<uint8_t> cameraPattern() {
+    std::vector<uint8_t> image(size_t(kWidth) * kHeight * 4);
+    for (uint32_t y = 0; y < kHeight; ++y)
+        for (uint32_t x = 0; x < kWidth; ++x) {
+            uint8_t* pixel = &image[(size_t(y) * kWidth + x) * 4];
+            const bool checker = ((x / 8) + (y / 8)) % 2 == 0;
+            pixel[0] = uint8_t(90 + (checker ? 20 : 0) + y / 4);
+            pixel[1] = uint8_t(110 + (checker ? 20 : 0));
+            pixel[2] = uint8_t(70 + x / 4);
+            pixel[3] = 255;
+        }
+    return image;
+}
+
+CameraPose lookAt(const glm::dvec3& position, const glm::dvec3& target) {
+    const glm::dvec3 forward = glm::normalize(target - position);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
+    CameraPose pose;
+    pose.position_enu = position;
+    pose.camera_to_enu = glm::dmat3(right, glm::cross(forward, right), forward);
+    return pose;
+}
+
+struct GoldenCase {
+    const char* name;
+    int hours, minutes;
+    float cloud_cover;
+    RenderMode mode;
+    ColourMatch colour_match;
+};
+
+class RuntimeGolden : public testing::GpuTest, public ::testing::WithParamInterface<GoldenCase> {};
+
+TEST_P(RuntimeGolden, MatchesItsGoldenImage) {
+    const GoldenCase& golden = GetParam();
+    testing::SyntheticBakeSetOptions set;
+    set.step_height_m = 0.5;
+    set.step_north_m = -2.5;
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 512;
+    std::unique_ptr<Runtime> runtime = Runtime::open(context(), testing::makeSyntheticBakeSet(set), options);
+    const std::vector<uint8_t> camera = cameraPattern();
+    FrameInput frame;
+    frame.camera_rgba8 = camera.data();
+    frame.intrinsics = {110.0, 110.0, kWidth / 2.0, kHeight / 2.0, kWidth, kHeight};
+    frame.pose = lookAt({5, -9, 4}, {0, -1.5, 1});
+    frame.utc_unix_seconds = testing::syntheticLocalTime(golden.hours, golden.minutes);
+    frame.weather.cloud_cover = golden.cloud_cover;
+    frame.exposure = 0.6f;
+    frame.mode = golden.mode;
+    frame.colour_match = golden.colour_match;
+    std::vector<uint8_t> output(camera.size());
+    for (int warm_up = 0; warm_up < 3; ++warm_up) runtime->renderFrame(frame, output.data());  // colour match settles
+
+    const std::string path = std::string(GUSUKU_GOLDEN_DIR) + "/runtime_" + golden.name + ".png";
+    const char* update = std::getenv("GUSUKU_UPDATE_GOLDEN");
+    if (update != nullptr && std::string(update) == "1") {
+        std::filesystem::create_directories(GUSUKU_GOLDEN_DIR);
+        writePngRgba8(path, int(kWidth), int(kHeight), output);
+        GTEST_SKIP() << "wrote " << path;
+    }
+    ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing: run scripts/update-goldens.sh";
+    const ImageRGBA expected = readImage(path, ImageEncoding::Linear);
+    ASSERT_EQ(expected.width, int(kWidth));
+    ASSERT_EQ(expected.height, int(kHeight));
+    size_t outliers = 0;
+    double total_difference = 0.0;
+    for (size_t index = 0; index < output.size(); ++index) {
+        if (index % 4 == 3) continue;
+        const double difference = std::abs(double(output[index]) - std::round(expected.texels[index] * 255.0));
+        total_difference += difference;
+        outliers += difference > 2.0;
+    }
+    const double channels = double(kWidth) * kHeight * 3;
+    EXPECT_LE(double(outliers), 0.005 * channels) << outliers << " channels off by more than 2";
+    EXPECT_LE(total_difference / channels, 0.25);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Conditions, RuntimeGolden,
+    ::testing::Values(GoldenCase{"morning", 9, 0, 0.0f, RenderMode::kProposed, ColourMatch::kOff},
+                      GoldenCase{"evening", 16, 30, 0.0f, RenderMode::kProposed, ColourMatch::kOff},
+                      GoldenCase{"evening_direct_only", 16, 30, 0.0f, RenderMode::kDirectOnly, ColourMatch::kOff},
+                      GoldenCase{"partly_cloudy", 12, 0, 0.5f, RenderMode::kProposed, ColourMatch::kOff},
+                      GoldenCase{"overcast", 12, 0, 1.0f, RenderMode::kProposed, ColourMatch::kOff},
+                      GoldenCase{"noon_paper", 12, 0, 0.0f, RenderMode::kProposed, ColourMatch::kPaper},
+                      GoldenCase{"noon_preserve", 12, 0, 0.0f, RenderMode::kProposed, ColourMatch::kPreserve}),
+    [](const ::testing::TestParamInfo<GoldenCase>& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace gusuku
