@@ -8,3 +8,5 @@ bash scripts/build.sh
 ./build/baker/gusuku-bake sample out/sample --force
 ./build/baker/gusuku-bake sun --lat 26.2856 --lon 127.8008 --height 160 --time 2026-06-21T09:00:00+09:00
 ./build/baker/gusuku-bake bake out/sample/site.json -o out/bakeset --force
+# Composites of the sample at 09:00, 12:00, 15:00, 16:30 and overcast, each beside direct-only, into out/composites.
+bash scripts/render-composites.sh out/bakeset out/composites 480x270 32
