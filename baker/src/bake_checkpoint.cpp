@@ -1,4 +1,4 @@
-#include "gusuku_bake/bake_checkpoint.h"
+#include "bake_checkpoint.h"
 
 #include <cstring>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "gusuku_bake/bake_geometry.h"
+#include "bake_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "gusuku_bake/bake_inputs.h"
+#include "bake_inputs.h"
 
 #include <algorithm>
 #include <cctype>

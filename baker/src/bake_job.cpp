@@ -12,15 +12,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake_checkpoint.h"
+#include "bake_geometry.h"
+#include "bake_inputs.h"
 #include "bake_outputs.h"
+#include "bake_preflight.h"
+#include "content_hash.h"
 #include "gusuku/atomic_file.h"
-#include "gusuku_bake/bake_checkpoint.h"
 #include "gusuku_bake/bake_folder_lock.h"
-#include "gusuku_bake/bake_inputs.h"
-#include "gusuku_bake/bake_preflight.h"
-#include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/bake_progress.h"
-#include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/slot_lighting.h"
 

@@ -6,16 +6,16 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "bake_statistics.h"
+#include "content_hash.h"
+#include "lightmap_denoise.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_manifest_json.h"
 #include "gusuku/glb_positions.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
 #include "gusuku/time_utc.h"
-#include "gusuku_bake/bake_statistics.h"
-#include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/irradiance_tracer.h"
-#include "gusuku_bake/lightmap_denoise.h"
 #include "gusuku_bake/occluder.h"
 
 namespace gusuku::bake {

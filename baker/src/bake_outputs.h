@@ -8,8 +8,8 @@
 #include <vector>
 
 #include <glm/vec4.hpp>
+#include "bake_geometry.h"
 #include "gusuku/bakeset_manifest.h"
-#include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
 

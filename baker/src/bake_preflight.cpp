@@ -1,4 +1,4 @@
-#include "gusuku_bake/bake_preflight.h"
+#include "bake_preflight.h"
 
 #include <algorithm>
 #include <cmath>

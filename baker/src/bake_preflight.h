@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "bake_geometry.h"
 #include "gusuku/input_error.h"
 #include "gusuku/site.h"
 #include "gusuku/sun.h"
-#include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace gusuku::bake {

@@ -1,4 +1,4 @@
-#include "gusuku_bake/bake_statistics.h"
+#include "bake_statistics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku_bake/bake_geometry.h"
+#include "bake_geometry.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "bake_geometry.h"
+#include "bake_preflight.h"
 #include "commands.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
@@ -14,8 +16,6 @@
 #include "gusuku/site.h"
 #include "gusuku/time_utc.h"
 #include "gusuku/vulkan_context.h"
-#include "gusuku_bake/bake_geometry.h"
-#include "gusuku_bake/bake_preflight.h"
 #include "gusuku_bake/slot_lighting.h"
 
 namespace gusuku::bake_cli {

@@ -1,4 +1,4 @@
-#include "gusuku_bake/content_hash.h"
+#include "content_hash.h"
 
 #include <cstdio>
 

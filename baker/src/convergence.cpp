@@ -7,9 +7,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "bake_geometry.h"
 #include "bake_outputs.h"
 #include "gusuku/colour.h"
-#include "gusuku_bake/bake_geometry.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/slot_lighting.h"

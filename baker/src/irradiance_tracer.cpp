@@ -6,11 +6,11 @@
 #include <stdexcept>
 
 #include "bake_accumulate_comp_spv.h"
-#include "bake_irradiance_comp_spv.h"
 #include "bake_accumulate_interface.h"
+#include "bake_irradiance_comp_spv.h"
 #include "bake_irradiance_interface.h"
+#include "content_hash.h"
 #include "gusuku_bake/bvh.h"
-#include "gusuku_bake/content_hash.h"
 
 namespace gusuku::bake {
 

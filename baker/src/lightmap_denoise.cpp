@@ -1,4 +1,4 @@
-#include "gusuku_bake/lightmap_denoise.h"
+#include "lightmap_denoise.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// An edge-keeping filter for path-traced camera frames: the a-trous wavelet filter of lightmap_denoise.h
+// An edge-keeping filter for path-traced camera frames: the a-trous wavelet filter of the lightmaps
 // (Dammertz et al. 2010) moved to image space. It smooths the irradiance each pixel's surface receives, never
 // its texture: each pixel's radiance is demodulated by its first-hit albedo (minus its emission), filtered with
 // weights that stop at geometric edges and at large relative changes of irradiance (a shadow's edge), and
