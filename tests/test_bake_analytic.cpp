@@ -4,6 +4,7 @@
 // - a closed furnace of albedo rho and emission Le: E = pi Le (1 + rho + ... + rho^N) for N bounces;
 // - the sun term alone on a plane tilted by theta from the sun: E = I_sun cos(theta), 0 in shadow.
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -19,8 +20,8 @@ namespace gusuku::bake {
 namespace {
 
 using gusuku::testing::GpuTest;
+using std::numbers::pi;
 
-constexpr float kPi = 3.14159265f;
 // Both ways of gathering the sky must meet the same closed-form answers.
 constexpr SkySampling kBothSkySamplings[] = {SkySampling::CosineOnly, SkySampling::CosineAndMap};
 
@@ -67,9 +68,9 @@ TEST_F(BakeAnalyticTest, PlaneUnderUniformSkyReceivesPiL) {
     for (const SkySampling sky_sampling : kBothSkySamplings) {
         SCOPED_TRACE(skySamplingName(sky_sampling));
         const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, skyPass(sky_sampling));
-        EXPECT_NEAR(meanLuminance(irradiance), kPi * radiance, 0.01 * kPi * radiance);
+        EXPECT_NEAR(meanLuminance(irradiance), pi * radiance, 0.01 * pi * radiance);
         for (const glm::vec3& e : irradiance)
-            EXPECT_NEAR(e.g, kPi * radiance, 0.15 * kPi * radiance) << "one point, 128 samples: within 4 sigma";
+            EXPECT_NEAR(e.g, pi * radiance, 0.15 * pi * radiance) << "one point, 128 samples: within 4 sigma";
     }
 }
 
@@ -88,7 +89,7 @@ TEST_F(BakeAnalyticTest, FootOfTallBlackWallReceivesHalfPiL) {
     for (const SkySampling sky_sampling : kBothSkySamplings) {
         SCOPED_TRACE(skySamplingName(sky_sampling));
         const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 128, skyPass(sky_sampling));
-        EXPECT_NEAR(meanLuminance(irradiance), kPi * radiance / 2.0, 0.01 * kPi * radiance / 2.0);
+        EXPECT_NEAR(meanLuminance(irradiance), pi * radiance / 2.0, 0.01 * pi * radiance / 2.0);
     }
 }
 
@@ -117,7 +118,7 @@ TEST_P(FurnaceTest, ClosedFurnaceMatchesGeometricSeries) {
     const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 256, pass);
     double series = 0.0;
     for (uint32_t k = 0; k <= furnace.bounces; ++k) series += std::pow(double(furnace.albedo), double(k));
-    const double expected = kPi * emitted_radiance * series;
+    const double expected = pi * emitted_radiance * series;
     EXPECT_NEAR(meanLuminance(irradiance), expected, 0.01 * expected)
         << "albedo " << furnace.albedo << ", " << furnace.bounces << " bounces";
 }
@@ -149,14 +150,14 @@ TEST_F(BakeAnalyticTest, SunTermAloneIsIrradianceTimesCosine) {
     const float angles_deg[] = {0.0f, 30.0f, 60.0f, 85.0f, 100.0f};
     std::vector<QueryPointGpu> points;
     for (int i = 0; i < 5; ++i) {
-        const float angle = angles_deg[i] * kPi / 180.0f;
+        const float angle = angles_deg[i] * std::numbers::pi_v<float> / 180.0f;
         const glm::vec3 normal = std::cos(angle) * sun_direction + std::sin(angle) * glm::cross(axis, sun_direction);
         points.push_back({glm::vec4(-20.0f + 2.0f * float(i), 0.0f, 0.0f, 1.0f), glm::vec4(normal, 0.0f)});
     }
     points.push_back({glm::vec4(shaded_point, 1.0f), glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)});
     const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(points, 64, pass);
     for (int i = 0; i < 5; ++i) {
-        const double expected = 1000.0 * std::max(0.0, std::cos(double(angles_deg[i]) * kPi / 180.0));
+        const double expected = 1000.0 * std::max(0.0, std::cos(double(angles_deg[i]) * pi / 180.0));
         EXPECT_NEAR(irradiance[size_t(i)].r, expected, 0.002 * 1000.0) << angles_deg[i] << " degrees";
     }
     EXPECT_NEAR(irradiance[1].b / irradiance[1].r, 0.8, 1e-4);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <set>
@@ -28,7 +29,6 @@ namespace {
 using glm::dvec3;
 using glm::vec3;
 
-constexpr float kPi = 3.14159265358979f;
 
 struct Ray {
     vec3 origin;
@@ -53,7 +53,7 @@ vec3 randomInBox(std::mt19937& rng, vec3 lo, vec3 hi) {
 vec3 randomUnitVector(std::mt19937& rng) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const float z = 2.0f * unit(rng) - 1.0f;
-    const float phi = 2.0f * kPi * unit(rng);
+    const float phi = 2.0f * std::numbers::pi_v<float> * unit(rng);
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
@@ -413,7 +413,7 @@ TEST(BvhCpu, CoincidentCentroidsStillMakeSmallLeavesAndBoundedDepth) {
     TriangleMesh mesh;
     for (int i = 0; i < 2000; ++i) addTriangle(mesh, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
     for (int i = 0; i < 2000; ++i) {
-        const float angle = 2.0f * kPi * i / 2000.0f;
+        const float angle = 2.0f * std::numbers::pi_v<float> * i / 2000.0f;
         addTriangle(mesh, {0, 0, 1}, {std::cos(angle), std::sin(angle), 1},
                     {std::cos(angle + 1e-3f), std::sin(angle + 1e-3f), 1});
     }

@@ -1,6 +1,7 @@
 // Pins the equirectangular sky-map convention (DESIGN.md 2, gusuku/equirect.h): row 0 is the zenith,
 // u = north_azimuth / 360 faces north, azimuth east of north grows with u, and texel solid angles sum to 4 pi.
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -9,7 +10,6 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 void expectDirectionNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance = 1e-12) {
     EXPECT_NEAR(actual.x, expected.x, tolerance);
@@ -35,7 +35,7 @@ TEST(Equirect, AzimuthGrowsEastOfNorthWithU) {
 TEST(Equirect, MatchesTheSunVectorConvention) {
     // DESIGN.md 2: towards azimuth A (east of north) at elevation e is (cos e sin A, cos e cos A, sin e).
     const double north = 37.0, azimuth_deg = 123.0, elevation_deg = 28.0;
-    const double a = azimuth_deg * kPi / 180.0, e = elevation_deg * kPi / 180.0;
+    const double a = azimuth_deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
     const glm::dvec3 expected{std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
     expectDirectionNear(
         gusuku::equirectDirection((azimuth_deg + north) / 360.0, 0.5 - elevation_deg / 180.0, north), expected);
@@ -49,7 +49,7 @@ TEST(Equirect, RowZeroIsTheZenithAndTheLastRowTheNadir) {
     // The centre of row 0 of a 1024 x 512 map is half a row (90 / 512 deg) below the zenith.
     const int height = 512;
     const glm::dvec3 row0 = gusuku::equirectDirection(0.25, 0.5 / height, 0.0);
-    EXPECT_NEAR(std::asin(row0.z) * 180.0 / kPi, 90.0 - 90.0 / height, 1e-9);
+    EXPECT_NEAR(std::asin(row0.z) * 180.0 / std::numbers::pi, 90.0 - 90.0 / height, 1e-9);
 }
 
 TEST(Equirect, CoordinatesAndDirectionsRoundTrip) {
@@ -58,7 +58,7 @@ TEST(Equirect, CoordinatesAndDirectionsRoundTrip) {
     for (int i = 0; i < 1000; ++i) {
         const double north = 360.0 * unit(random);
         // Direction -> coordinates -> direction.
-        const double z = 2.0 * unit(random) - 1.0, phi = 2.0 * kPi * unit(random);
+        const double z = 2.0 * unit(random) - 1.0, phi = 2.0 * std::numbers::pi * unit(random);
         const double r = std::sqrt(1.0 - z * z);
         const glm::dvec3 direction{r * std::cos(phi), r * std::sin(phi), z};
         const glm::dvec2 uv = gusuku::equirectCoordinates(direction, north);
@@ -80,10 +80,10 @@ TEST(Equirect, TexelSolidAnglesSumToTheSphere) {
         const int width = 2 * height;
         double total = 0.0;
         for (int y = 0; y < height; ++y) total += width * gusuku::equirectTexelSolidAngle(y, width, height);
-        const double d = kPi / height;
-        EXPECT_NEAR(total, 2.0 * kPi * d / std::sin(d / 2.0), 1e-9);
+        const double d = std::numbers::pi / height;
+        EXPECT_NEAR(total, 2.0 * std::numbers::pi * d / std::sin(d / 2.0), 1e-9);
         if (height == 512) {
-            EXPECT_NEAR(total, 4.0 * kPi, 4.0 * kPi * 1e-5);
+            EXPECT_NEAR(total, 4.0 * std::numbers::pi, 4.0 * std::numbers::pi * 1e-5);
         }
     }
     // Rows near the horizon hold the most solid angle, rows at the poles the least; north-south symmetric.

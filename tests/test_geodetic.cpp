@@ -1,6 +1,7 @@
 // geodeticToEnu against an independent closed-form WGS84 geodetic -> ECEF -> ENU computation, and against
 // textbook lengths of a degree.
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -8,12 +9,11 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // WGS84 defining constants (NIMA TR8350.2): semi-major axis and flattening.
 constexpr double kSemiMajorAxis_m = 6378137.0;
 constexpr double kFlattening = 1.0 / 298.257223563;
 
-double radians(double degrees) { return degrees * kPi / 180.0; }
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 glm::dvec3 ecefFromGeodetic(const gusuku::GeodeticPoint& point) {
     const double e2 = kFlattening * (2.0 - kFlattening);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <set>
 #include <vector>
@@ -267,8 +268,8 @@ std::vector<Probe> spreadOfProbes(const GroundGrid& grid, size_t count) {
         p.e_without = irradiance(3.0f);
         p.sun_irradiance = irradiance(20.0f);
         p.normal = glm::normalize(glm::vec3(unit(random) - 0.5f, unit(random) - 0.5f, 1.0f));
-        const float elevation = (unit(random) * 100.0f - 10.0f) * 3.14159265f / 180.0f;
-        const float azimuth = unit(random) * 6.2831853f;
+        const float elevation = (unit(random) * 100.0f - 10.0f) * std::numbers::pi_v<float> / 180.0f;
+        const float azimuth = unit(random) * (2.0f * std::numbers::pi_v<float>);
         p.sun_direction = {std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
                            std::sin(elevation)};
         p.building_visibility = visibility();

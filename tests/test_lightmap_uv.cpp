@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -433,7 +434,7 @@ TEST(LightmapCharts, FineSphereChartsWithoutOverlapInSeconds) {
     const int rings = 128, segments = 256;
     for (int ring = 0; ring <= rings; ++ring)
         for (int segment = 0; segment <= segments; ++segment) {
-            const double polar = M_PI * ring / rings, azimuth = 2.0 * M_PI * segment / segments;
+            const double polar = std::numbers::pi * ring / rings, azimuth = 2.0 * std::numbers::pi * segment / segments;
             const glm::vec3 direction(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
                                       std::cos(polar));
             sphere.positions.push_back(direction * 2.0f);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sys/wait.h>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <string>
@@ -197,7 +198,7 @@ TEST_F(SampleSite, HouseFacesPointOutOfTheSolid) {
     const glm::dvec3 centre = houseModelToEnu({0.0, 0.0, 2.0});
     int outside_hits = 0;
     for (int i = 0; i < 300; ++i) {
-        const double z = unit(random) * 0.9, phi = 6.283185307179586 * unit(random);
+        const double z = unit(random) * 0.9, phi = (2.0 * std::numbers::pi) * unit(random);
         const glm::dvec3 from = centre + 15.0 * glm::dvec3(std::sqrt(1 - z * z) * std::cos(phi),
                                                            std::sqrt(1 - z * z) * std::sin(phi), z);
         const glm::dvec3 target =
@@ -210,7 +211,7 @@ TEST_F(SampleSite, HouseFacesPointOutOfTheSolid) {
     }
     EXPECT_GT(outside_hits, 200);
     for (int i = 0; i < 300; ++i) {
-        const double z = 2.0 * unit(random) - 1.0, phi = 6.283185307179586 * unit(random);
+        const double z = 2.0 * unit(random) - 1.0, phi = (2.0 * std::numbers::pi) * unit(random);
         const glm::dvec3 direction{std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
         const auto hit = closestHit(*house_, room, direction);
         if (!hit) continue;  // out through the doorway
@@ -226,7 +227,7 @@ TEST_F(SampleSite, RoomIsClosedExceptTheDoorway) {
     const glm::dvec3 room = houseModelToEnu(room_model);
     int escaped = 0;
     for (int i = 0; i < 400; ++i) {
-        const double z = 2.0 * unit(random) - 1.0, phi = 6.283185307179586 * unit(random);
+        const double z = 2.0 * unit(random) - 1.0, phi = (2.0 * std::numbers::pi) * unit(random);
         const glm::dvec3 model_direction{std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
         const bool towards_front = model_direction.y < 0.0;
         const auto hit = closestHit(*house_, room, houseModelDirectionToEnu(model_direction));
@@ -306,7 +307,7 @@ TEST_F(SampleSite, SkiesLoadAndTheSunIsWhereSpaPutsIt) {
                                                    config_->sunny_sky.north_azimuth_in_image_deg);
     const glm::dvec3 sun = ss::sunnyPhotoSunDirection();
     EXPECT_GT(sun.z, 0.9);  // near the zenith at noon at 26 deg N on the solstice
-    EXPECT_LT(std::acos(std::fmin(1.0, glm::dot(brightest, sun))), 2.0 * 3.14159265358979 / 512);
+    EXPECT_LT(std::acos(std::fmin(1.0, glm::dot(brightest, sun))), 2.0 * std::numbers::pi / 512);
 }
 
 // Exit status of a shell command line (0 when it ran and succeeded).

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -23,7 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr double kPi = 3.14159265358979323846;
 
 // 2026-06-21T00:00:00Z in Unix seconds (20625 days after 1970-01-01: 56 years, 14 leap days, 171 days into 2026).
 constexpr double kJune21_2026_Utc = 1782000000.0;
@@ -421,17 +421,17 @@ TEST(BuildingTransform, GeodeticPositionBecomesTheOrigin) {
     const glm::dvec3 origin = apply(building.enuFromModel(site), {0, 0, 0});
     // Meridian radius of curvature M = a (1 - e^2) / (1 - e^2 sin^2 phi)^1.5 at 26.2175 deg: 0.001 deg north.
     const double e2 = (1.0 / 298.257223563) * (2.0 - 1.0 / 298.257223563);
-    const double sin_phi = std::sin(26.2175 * kPi / 180.0);
+    const double sin_phi = std::sin(26.2175 * std::numbers::pi / 180.0);
     const double meridian_radius = 6378137.0 * (1.0 - e2) / std::pow(1.0 - e2 * sin_phi * sin_phi, 1.5);
     EXPECT_NEAR(origin.x, 0.0, 1e-6);
-    EXPECT_NEAR(origin.y, (meridian_radius + 122.5) * 0.001 * kPi / 180.0, 0.01);
+    EXPECT_NEAR(origin.y, (meridian_radius + 122.5) * 0.001 * std::numbers::pi / 180.0, 0.01);
     EXPECT_NEAR(origin.z, 5.0, 0.01);
 }
 
 TEST(SfmTransform, QuaternionScaleTranslation) {
     gusuku::SfmMeshConfig mesh;
     // 90 degrees about +z (up): east -> north, north -> west.
-    mesh.rotation_wxyz = {std::cos(kPi / 4), 0.0, 0.0, std::sin(kPi / 4)};
+    mesh.rotation_wxyz = {std::cos(std::numbers::pi / 4), 0.0, 0.0, std::sin(std::numbers::pi / 4)};
     mesh.scale = 2.0;
     mesh.translation_enu_m = {1.0, 2.0, 3.0};
     const glm::dmat4 transform = mesh.enuFromModel();

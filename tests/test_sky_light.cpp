@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,8 +25,8 @@ namespace {
 using gusuku::ImageRGBA;
 using namespace gusuku::bake;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using std::numbers::pi;
+constexpr double kDeg = pi / 180.0;
 
 glm::dvec3 enuFromElevationAzimuth(double elevation_deg, double azimuth_deg) {
     const double e = elevation_deg * kDeg, a = azimuth_deg * kDeg;
@@ -53,7 +54,7 @@ ImageRGBA renderSunSky(int width, int height, double north_deg, const glm::dvec3
                        double cap = std::numeric_limits<double>::infinity()) {
     ImageRGBA image = uniformMap(width, height, float(sky_radiance));
     const double cos_radius = std::cos(disc_radius_deg * kDeg);
-    const double cos_near = std::cos(disc_radius_deg * kDeg + 3.0 * kPi / height);  // texels that may touch it
+    const double cos_near = std::cos(disc_radius_deg * kDeg + 3.0 * pi / height);  // texels that may touch it
     constexpr int kSub = 24;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -63,7 +64,7 @@ ImageRGBA renderSunSky(int width, int height, double north_deg, const glm::dvec3
             for (int j = 0; j < kSub; ++j)
                 for (int i = 0; i < kSub; ++i) {
                     const double u = (x + (i + 0.5) / kSub) / width, v = (y + (j + 0.5) / kSub) / height;
-                    const double weight = std::sin(v * kPi);  // solid angle of the sub-sample
+                    const double weight = std::sin(v * pi);  // solid angle of the sub-sample
                     total += weight;
                     if (glm::dot(gusuku::equirectDirection(u, v, north_deg), sun_direction) >= cos_radius)
                         covered += weight;
@@ -77,7 +78,7 @@ ImageRGBA renderSunSky(int width, int height, double north_deg, const glm::dvec3
     return image;
 }
 
-double discSolidAngle(double radius_deg) { return 2.0 * kPi * (1.0 - std::cos(radius_deg * kDeg)); }
+double discSolidAngle(double radius_deg) { return 2.0 * pi * (1.0 - std::cos(radius_deg * kDeg)); }
 
 // ---------------------------------------------------------------------------------------------------------
 // Sun disc extraction
@@ -120,7 +121,7 @@ TEST(SunDisc, OvercastSkyIsNotASunAndStaysUnchanged) {
     // CIE-like overcast: L = (1 + 2 cos theta) / 3 above the horizon, a flat ground below.
     ImageRGBA sky = uniformMap(1024, 512, 0.0f);
     for (int y = 0; y < sky.height; ++y) {
-        const double cos_theta = std::cos((y + 0.5) / sky.height * kPi);
+        const double cos_theta = std::cos((y + 0.5) / sky.height * pi);
         const float radiance = float((1.0 + 2.0 * std::max(0.0, cos_theta)) / 3.0);
         for (int x = 0; x < sky.width; ++x) std::fill(sky.texel(x, y), sky.texel(x, y) + 3, radiance);
     }
@@ -294,7 +295,7 @@ TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
     }
     for (int y = 0; y < 32; y += 3) {  // uniform over the sphere (at texel centres, where sin theta is exact)
         const glm::dvec3 d = gusuku::equirectDirection(0.3, (y + 0.5) / 32.0, 0.0);
-        EXPECT_NEAR(skyPdfCpu(black, d), 1.0 / (4.0 * kPi), 1e-3 / (4.0 * kPi));
+        EXPECT_NEAR(skyPdfCpu(black, d), 1.0 / (4.0 * pi), 1e-3 / (4.0 * pi));
     }
     // Upper half black: every sample goes below the horizon, the pdf up there is 0 (never NaN).
     ImageRGBA ground_only = uniformMap(64, 32, 0.0f);
@@ -309,7 +310,7 @@ TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
     EXPECT_EQ(tables.table[1], 32.0f);
     EXPECT_EQ(tables.table[kSkyTableHeaderFloats + 32], 1.0f);
     EXPECT_EQ(tables.table.size(), kSkyTableHeaderFloats + 33 + 32 * 65);
-    EXPECT_NEAR(tables.table[3], 2.0 * kPi, 0.01);  // luminance 1 over the lower hemisphere
+    EXPECT_NEAR(tables.table[3], 2.0 * pi, 0.01);  // luminance 1 over the lower hemisphere
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 // CIE overcast sky, the sun disc's energy, and the images' integrals. The CIE formula is re-derived here from
 // the published coefficients, independently of sky_model.cpp.
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -18,11 +19,11 @@ namespace {
 using namespace gusuku;
 using namespace gusuku::bake;
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 constexpr int kWidth = 1024, kHeight = 512;
 
 glm::dvec3 fromAzimuthElevation(double azimuth_deg, double elevation_deg) {
-    const double a = azimuth_deg * kPi / 180.0, e = elevation_deg * kPi / 180.0;
+    const double a = azimuth_deg * pi / 180.0, e = elevation_deg * pi / 180.0;
     return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
 }
 
@@ -34,7 +35,7 @@ double referenceType12RelativeLuminance(const glm::dvec3& direction, const glm::
     const double a = -1.0, b = -0.32, c = 10.0, d = -3.0, e = 0.45;
     auto phi = [&](double zenith) { return 1.0 + a * std::exp(b / std::cos(zenith)); };
     auto f = [&](double chi) {
-        return 1.0 + c * (std::exp(d * chi) - std::exp(d * kPi / 2.0)) + e * std::cos(chi) * std::cos(chi);
+        return 1.0 + c * (std::exp(d * chi) - std::exp(d * pi / 2.0)) + e * std::cos(chi) * std::cos(chi);
     };
     const double zenith = std::acos(direction.z), sun_zenith = std::acos(sun.z);
     const double chi = std::acos(std::fmin(1.0, std::fmax(-1.0, direction.x * sun.x + direction.y * sun.y +
@@ -77,9 +78,9 @@ TEST(SkyModel, ClearSkyRelativeLuminanceMatchesTheCieFormula) {
 
 TEST(SkyModel, OvercastQuadratureMatchesClosedForm) {
     // Integral over the hemisphere of (1 + 2 cos Z) / 3 cos Z: 2 pi / 3 (1/2 + 2/3) = 7 pi / 9.
-    EXPECT_NEAR(overcastDiffuseHorizontalPerZenith(), 7.0 * kPi / 9.0, 1e-4);
+    EXPECT_NEAR(overcastDiffuseHorizontalPerZenith(), 7.0 * pi / 9.0, 1e-4);
     // A uniform sky (type 5: a = 0, c = 0) integrates to pi.
-    EXPECT_NEAR(cieDiffuseHorizontalPerZenith(fromAzimuthElevation(0.0, 30.0), 5), kPi, 1e-4);
+    EXPECT_NEAR(cieDiffuseHorizontalPerZenith(fromAzimuthElevation(0.0, 30.0), 5), pi, 1e-4);
 }
 
 class ClearSkyImage : public ::testing::TestWithParam<glm::dvec2> {};  // (sun azimuth, sun elevation) deg
@@ -93,7 +94,7 @@ TEST_P(ClearSkyImage, MatchesFormulaAndCarriesTheRequestedIrradiances) {
     ASSERT_EQ(image.width, kWidth);
     ASSERT_EQ(image.height, kHeight);
 
-    const double cos_near_sun = std::cos(3.0 * kPi / 180.0);
+    const double cos_near_sun = std::cos(3.0 * pi / 180.0);
     double sky_horizontal_irradiance = 0.0, sun_normal_irradiance = 0.0;
     for (int y = 0; y < kHeight; ++y) {
         const double solid_angle = equirectTexelSolidAngle(y, kWidth, kHeight);
@@ -109,7 +110,7 @@ TEST_P(ClearSkyImage, MatchesFormulaAndCarriesTheRequestedIrradiances) {
                 // The ground: albedo times global horizontal irradiance over pi.
                 const double ghi = spec.diffuse_horizontal_irradiance *
                                    (1.0 + spec.direct_normal_to_diffuse_horizontal * spec.sun_direction.z);
-                ASSERT_NEAR(luminance, spec.ground_albedo * ghi / kPi, 1e-5);
+                ASSERT_NEAR(luminance, spec.ground_albedo * ghi / pi, 1e-5);
                 continue;
             }
             const double smooth =
@@ -140,7 +141,7 @@ TEST_P(ClearSkyImage, MatchesFormulaAndCarriesTheRequestedIrradiances) {
             }
     const glm::dvec3 brightest =
         equirectDirection((brightest_x + 0.5) / kWidth, (brightest_y + 0.5) / kHeight, north);
-    const double texel_angle = kPi / kHeight;
+    const double texel_angle = pi / kHeight;
     EXPECT_LT(std::acos(std::fmin(1.0, glm::dot(brightest, spec.sun_direction))), 1.5 * texel_angle);
 }
 
@@ -157,7 +158,7 @@ TEST(SkyModel, SunDiscSurvivesTheHdrFile) {
     ASSERT_EQ(read.width, kWidth);
     ASSERT_EQ(read.height, kHeight);
     const ClearSkyModel model(spec);
-    const double cos_near_sun = std::cos(3.0 * kPi / 180.0);
+    const double cos_near_sun = std::cos(3.0 * pi / 180.0);
     double sun_normal_irradiance = 0.0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
@@ -181,12 +182,12 @@ TEST(SkyModel, OvercastZenithToHorizonRatioIsThree) {
 
     // The map used by the sample: every row follows the formula at its centre, grey, azimuth-independent.
     const ImageRGBA image = renderOvercastSky(spec, kWidth, kHeight, 0.0);
-    const double zenith_luminance = spec.diffuse_horizontal_irradiance / (7.0 * kPi / 9.0);
+    const double zenith_luminance = spec.diffuse_horizontal_irradiance / (7.0 * pi / 9.0);
     double horizontal_irradiance = 0.0;
     for (int y = 0; y < kHeight; ++y) {
-        const double elevation = (0.5 - (y + 0.5) / kHeight) * kPi;
+        const double elevation = (0.5 - (y + 0.5) / kHeight) * pi;
         const double expected = elevation > 0.0 ? zenith_luminance * (1.0 + 2.0 * std::sin(elevation)) / 3.0
-                                                : spec.ground_albedo * spec.diffuse_horizontal_irradiance / kPi;
+                                                : spec.ground_albedo * spec.diffuse_horizontal_irradiance / pi;
         for (int x = 0; x < kWidth; x += 97) {
             const float* texel = image.texel(x, y);
             ASSERT_TRUE(std::isfinite(texel[0]) && std::isfinite(texel[1]) && std::isfinite(texel[2]));

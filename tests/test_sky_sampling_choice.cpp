@@ -2,6 +2,7 @@
 // uneven ones. The measure that decides (skyCosineRelativeVariance) is pinned on skies with closed-form values,
 // and both methods must give the exact irradiance of an uneven sky on an open plane.
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -15,7 +16,6 @@
 namespace gusuku::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 void setRadiance(ImageRGBA& sky, int x, int y, float radiance) {
     float* texel = sky.texel(x, y);
@@ -67,9 +67,9 @@ TEST_F(SkySamplingGpuTest, OpenPlaneUnderUnevenSkyGetsTheExactIrradianceEitherWa
     ImageRGBA sky = gusuku::testing::uniformSky(width, height, glm::vec3(0.0f));
     double expected = 0.0;
     for (int y = 0; y < height / 2; ++y) {
-        const double theta0 = kPi * y / height, theta1 = kPi * (y + 1) / height;
+        const double theta0 = std::numbers::pi * y / height, theta1 = std::numbers::pi * (y + 1) / height;
         const double cosine_weight =
-            (2.0 * kPi / width) * (std::pow(std::sin(theta1), 2) - std::pow(std::sin(theta0), 2)) / 2.0;
+            (2.0 * std::numbers::pi / width) * (std::pow(std::sin(theta1), 2) - std::pow(std::sin(theta0), 2)) / 2.0;
         for (int x = 0; x < width; ++x) {
             float radiance = 0.5f + 1.5f * float(std::cos(0.5 * (theta0 + theta1)));
             if (x >= 10 && x < 18 && y >= 6 && y < 10) radiance *= 6.0f;

@@ -3,6 +3,7 @@
 // behaviour, input validation and the `gusuku-bake sun` command line.
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -24,7 +25,6 @@ using gusuku::SunObserver;
 using gusuku::SunPosition;
 
 constexpr double kToleranceDeg = 1e-4;
-constexpr double kPi = 3.14159265358979323846;
 
 // Smallest difference between two azimuths, degrees (359.99 and 0.01 are 0.02 apart).
 double azimuthDifferenceDeg(double a_deg, double b_deg) {
@@ -148,8 +148,8 @@ TEST(SunSpa, EnuVectorIsUnitAndAgreesWithAzimuthAndElevation) {
         const SunPosition sun = computeSunPosition(observer, parseIso8601Utc(time));
         const glm::dvec3 d = sun.direction_enu;
         EXPECT_NEAR(d.x * d.x + d.y * d.y + d.z * d.z, 1.0, 1e-12);
-        EXPECT_NEAR(std::asin(d.z) * 180.0 / kPi, sun.apparent_elevation_deg, 1e-9);
-        double azimuth_deg = std::atan2(d.x, d.y) * 180.0 / kPi;
+        EXPECT_NEAR(std::asin(d.z) * 180.0 / std::numbers::pi, sun.apparent_elevation_deg, 1e-9);
+        double azimuth_deg = std::atan2(d.x, d.y) * 180.0 / std::numbers::pi;
         if (azimuth_deg < 0.0) azimuth_deg += 360.0;
         EXPECT_LE(azimuthDifferenceDeg(azimuth_deg, sun.azimuth_deg), 1e-9);
         EXPECT_GE(sun.azimuth_deg, 0.0);
@@ -273,8 +273,8 @@ TEST(SunCli, JsonOutputIsOneParsableObjectWithTheFields) {
     EXPECT_EQ(json["utc"].get<std::string>(), "2003-10-17T19:30:30Z");
     EXPECT_TRUE(json["above_horizon"].get<bool>());
     ASSERT_EQ(json["enu"].size(), 3u);
-    EXPECT_NEAR(json["enu"][2].get<double>(), std::sin(json["apparent_elevation_deg"].get<double>() * kPi / 180.0),
-                1e-9);
+    const double elevation_rad = json["apparent_elevation_deg"].get<double>() * std::numbers::pi / 180.0;
+    EXPECT_NEAR(json["enu"][2].get<double>(), std::sin(elevation_rad), 1e-9);
 }
 
 TEST(SunCli, TextOutputSaysBelowTheHorizonAtNight) {

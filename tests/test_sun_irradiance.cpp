@@ -4,6 +4,7 @@
 // gusuku_maths (so bake sets did not change).
 
 #include <cmath>
+#include <numbers>
 
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
@@ -17,8 +18,7 @@ using gusuku::clearSkySunIrradianceRgb;
 using gusuku::kastenYoungAirMass;
 using gusuku::sunElevationScaleRgb;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+constexpr double kDeg = std::numbers::pi / 180.0;
 
 void expectRelativelyNear(const glm::dvec3& actual, const glm::dvec3& expected, double relative) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], relative * std::fabs(expected[c])) << "channel " << c;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -50,7 +51,8 @@ LabStatistics bakedAppearanceStatistics(const BakeGeometry& geometry, const std:
                 !occludedCpu(geometry.cpu_bvh, texel.position + texel.geometric_normal * 1e-3f, sun_direction, 1e30f))
                 total_irradiance += glm::vec3(sun.irradiance_rgb) * cos_theta;
         }
-        const glm::vec3 radiance = albedoAtTexel(geometry.building, texel) * total_irradiance / 3.14159265f;
+        const glm::vec3 radiance =
+            albedoAtTexel(geometry.building, texel) * total_irradiance / std::numbers::pi_v<float>;
         const glm::dvec3 lab(labFromLinearRec709(radiance));
         sum += lab;
         sum_squares += lab * lab;

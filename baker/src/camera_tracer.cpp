@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -124,7 +125,7 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
     // The same sun as the bake's TracePass (IrradianceTracer::addSamples).
     const glm::dvec3 sun_direction = light.sun.present ? glm::normalize(light.sun.direction_enu)
                                                        : glm::dvec3(0.0, 0.0, 1.0);
-    const double cos_max = std::cos(light.sun.angular_radius_deg * 3.14159265358979323846 / 180.0);
+    const double cos_max = std::cos(light.sun.angular_radius_deg * std::numbers::pi / 180.0);
     for (int axis = 0; axis < 3; ++axis) {
         push.sun_direction_cos_max[axis] = float(sun_direction[axis]);
         push.sun_irradiance_ray_offset[axis] = float(light.sun.irradiance_rgb[axis]);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -12,7 +13,7 @@ GroundRegion chooseGroundRegion(const Bounds3& building_bounds, double lowest_su
     const double height = std::max(0.0, double(building_bounds.max.z - building_bounds.min.z));
     double shadow_reach = 0.0;
     if (lowest_sun_elevation_deg >= 0.0) {
-        const double elevation = std::max(lowest_sun_elevation_deg, 10.0) * 3.14159265358979323846 / 180.0;
+        const double elevation = std::max(lowest_sun_elevation_deg, 10.0) * std::numbers::pi / 180.0;
         shadow_reach = height / std::tan(elevation);
     }
     const double margin = shadow_reach + std::max(1.0, 0.5 * height);

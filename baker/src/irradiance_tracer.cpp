@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "bake_accumulate_comp_spv.h"
@@ -102,7 +103,7 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     push.sun_present = pass.sun.present ? 1u : 0u;
     const glm::dvec3 sun_direction = pass.sun.present ? glm::normalize(pass.sun.direction_enu)
                                                       : glm::dvec3(0.0, 0.0, 1.0);
-    const double cos_max = std::cos(pass.sun.angular_radius_deg * 3.14159265358979323846 / 180.0);
+    const double cos_max = std::cos(pass.sun.angular_radius_deg * std::numbers::pi / 180.0);
     push.sun_direction_cos_max[0] = float(sun_direction.x);
     push.sun_direction_cos_max[1] = float(sun_direction.y);
     push.sun_direction_cos_max[2] = float(sun_direction.z);

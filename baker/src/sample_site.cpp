@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,7 +25,6 @@ namespace gusuku::bake::sample_site {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kTextureSize = 128;  // small: the bake needs albedo, not detail
 
 // The staircase climbs the terrace's south face, centred on the path to the house's doorway.
@@ -164,7 +164,7 @@ void addLowWall(sample::MeshBuilder& builder, uint32_t limestone) {
 void addHouseWalls(sample::MeshBuilder& builder, uint32_t plaster, uint32_t wood) {
     const double xe = kHouseHalfWidthM, ye = kHouseHalfDepthM;
     const double xi = xe - kWallThicknessM, yi = ye - kWallThicknessM;
-    const double interior_top = kWallHeightM + kWallThicknessM * std::tan(kRoofPitchDeg * kPi / 180.0);
+    const double interior_top = kWallHeightM + kWallThicknessM * std::tan(kRoofPitchDeg * std::numbers::pi / 180.0);
     const double door = 0.5 * kDoorWidthM;
     // Front (-y), exterior and interior, around the doorway.
     builder.rectY(-ye, -xe, -door, 0.0, kWallHeightM, false, plaster);
@@ -194,7 +194,7 @@ void addHouseWalls(sample::MeshBuilder& builder, uint32_t plaster, uint32_t wood
 // A hip roof of thatch with thickness: an outer surface, an inner one kThatchThicknessM lower, and fascia
 // strips closing the eaves. Its underside meets the walls' tops exactly (see addHouseWalls).
 void addHouseRoof(sample::MeshBuilder& builder, uint32_t thatch) {
-    const double slope = std::tan(kRoofPitchDeg * kPi / 180.0);
+    const double slope = std::tan(kRoofPitchDeg * std::numbers::pi / 180.0);
     const double xr = kHouseHalfWidthM + kEaveOverhangM, yr = kHouseHalfDepthM + kEaveOverhangM;
     // The underside passes through the exterior wall top (kWallHeightM at kEaveOverhangM in from the eave).
     const double eave_top = kWallHeightM + kThatchThicknessM - kEaveOverhangM * slope;

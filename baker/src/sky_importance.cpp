@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,7 +20,7 @@ namespace gusuku::bake {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 // The largest float below 1: xi == 1 would pick the last entry even when it has no mass.
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 // sin theta floor: keeps the pdf finite at the poles (a sample lands there with probability ~0).
@@ -69,9 +70,9 @@ TexelIndex texelOf(const SkySamplingTables& tables, const glm::dvec3& direction_
     const double length = std::sqrt(horizontal * horizontal + direction_enu.z * direction_enu.z);
     const double theta = length > 0.0 ? std::atan2(horizontal, direction_enu.z) : 0.0;
     const double azimuth_rad = horizontal > 0.0 ? std::atan2(direction_enu.x, direction_enu.y) : 0.0;
-    double u = (azimuth_rad * 180.0 / kPi + double(tables.north_azimuth_in_image_deg)) / 360.0;
+    double u = (azimuth_rad * 180.0 / pi + double(tables.north_azimuth_in_image_deg)) / 360.0;
     u -= std::floor(u);
-    const double v = theta / kPi;
+    const double v = theta / pi;
     TexelIndex index;
     index.x = std::clamp(int(u * tables.width), 0, tables.width - 1);
     index.y = std::clamp(int(v * tables.height), 0, tables.height - 1);
@@ -89,7 +90,7 @@ double unitSquareDensity(const SkySamplingTables& tables, int x, int y) {
 }
 
 double solidAnglePdf(double unit_square_density, double sin_theta) {
-    return unit_square_density / (2.0 * kPi * kPi * std::max(sin_theta, kMinSinTheta));
+    return unit_square_density / (2.0 * pi * pi * std::max(sin_theta, kMinSinTheta));
 }
 
 /// Writes a CDF of n + 1 entries from n non-negative weights; uniform when they sum to 0. Sums in double, then
@@ -159,7 +160,7 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
     std::vector<double> row_weights(static_cast<size_t>(height));
     std::vector<double> column_weights(static_cast<size_t>(width));
     for (int y = 0; y < height; ++y) {
-        const double sin_theta = std::sin((double(y) + 0.5) / double(height) * kPi);
+        const double sin_theta = std::sin((double(y) + 0.5) / double(height) * pi);
         double row_sum = 0.0;
         for (int x = 0; x < width; ++x) {
             column_weights[size_t(x)] = luminance[size_t(y) * size_t(width) + size_t(x)];
@@ -206,7 +207,7 @@ double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_
     double largest = 0.0;
     for (int plane = 0; plane < kPlanes; ++plane)
         if (first_moment[plane] > 0.0)
-            largest = std::max(largest, kPi * second_moment[plane] / (first_moment[plane] * first_moment[plane]) - 1.0);
+            largest = std::max(largest, pi * second_moment[plane] / (first_moment[plane] * first_moment[plane]) - 1.0);
     return largest;
 }
 
@@ -234,7 +235,7 @@ SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2) {
             : (double(tables.height - 1 - y) + (double(marginal[y + 1]) - double(xi1)) /
                                                     (double(marginal[y + 1]) - double(marginal[y]))) /
                   double(tables.height);
-    const double sin_theta = std::sin(kPi * v_from_pole);
+    const double sin_theta = std::sin(pi * v_from_pole);
     sample.pdf_solid_angle = solidAnglePdf(unitSquareDensity(tables, x, y), sin_theta);
     return sample;
 }

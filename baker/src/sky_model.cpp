@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,7 +17,7 @@ namespace gusuku::bake {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 
 // ISO 15469:2004 / CIE S 011/E:2003, the six gradation groups (a, b) and six indicatrix groups (c, d, e), and
 // which pair each of the 15 sky types uses (Darula and Kittler 2002, Table 1).
@@ -38,7 +39,7 @@ double gradation(const CieSkyCoefficients& k, double cos_zenith) {
 
 double indicatrix(const CieSkyCoefficients& k, double scattering_angle) {
     const double cos_chi = std::cos(scattering_angle);
-    return 1.0 + k.c * (std::exp(k.d * scattering_angle) - std::exp(k.d * kPi / 2.0)) + k.e * cos_chi * cos_chi;
+    return 1.0 + k.c * (std::exp(k.d * scattering_angle) - std::exp(k.d * pi / 2.0)) + k.e * cos_chi * cos_chi;
 }
 
 double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
@@ -55,8 +56,8 @@ glm::dvec3 normalisedToUnitLuminance(const glm::dvec3& rgb) {
 template <typename RelativeLuminance>
 double hemisphereCosineIntegral(const RelativeLuminance& relative_luminance, int zenith_steps) {
     const int azimuth_steps = 2 * zenith_steps;
-    const double zenith_step = (kPi / 2.0) / zenith_steps;
-    const double azimuth_step = (2.0 * kPi) / azimuth_steps;
+    const double zenith_step = (pi / 2.0) / zenith_steps;
+    const double azimuth_step = (2.0 * pi) / azimuth_steps;
     double integral = 0.0;
     for (int i = 0; i < zenith_steps; ++i) {
         const double zenith = (i + 0.5) * zenith_step;
@@ -139,7 +140,7 @@ double ClearSkyModel::directNormalIrradiance() const {
 }
 
 double ClearSkyModel::sunDiscLuminance() const {
-    const double disc_solid_angle = 2.0 * kPi * (1.0 - std::cos(kSunAngularRadiusDeg * kPi / 180.0));
+    const double disc_solid_angle = 2.0 * pi * (1.0 - std::cos(kSunAngularRadiusDeg * pi / 180.0));
     return directNormalIrradiance() / disc_solid_angle;
 }
 
@@ -148,7 +149,7 @@ double ClearSkyModel::globalHorizontalIrradiance() const {
 }
 
 double ClearSkyModel::groundLuminance() const {
-    return spec_.ground_albedo * globalHorizontalIrradiance() / kPi;
+    return spec_.ground_albedo * globalHorizontalIrradiance() / pi;
 }
 
 glm::dvec3 ClearSkyModel::radiance(const glm::dvec3& direction) const {
@@ -181,10 +182,10 @@ ImageRGBA renderClearSky(const ClearSkySpec& spec, int width, int height, double
     // The disc is 0.535 deg across, one or two texels: a texel's share of the direct irradiance is the solid
     // angle of the disc inside it, estimated with a grid of sub-texel points.
     const glm::dvec3 sun = model.spec().sun_direction;
-    const double disc_radius = kSunAngularRadiusDeg * kPi / 180.0;
+    const double disc_radius = kSunAngularRadiusDeg * pi / 180.0;
     const double cos_disc_radius = std::cos(disc_radius);
-    const double texel_height_angle = kPi / height;
-    const double candidate_angle = disc_radius + 2.0 * std::max(texel_height_angle, 2.0 * kPi / width);
+    const double texel_height_angle = pi / height;
+    const double candidate_angle = disc_radius + 2.0 * std::max(texel_height_angle, 2.0 * pi / width);
     const double sun_v = equirectCoordinates(sun, north_azimuth_in_image_deg).y;
     const int first_row = std::max(0, int(std::floor(sun_v * height - candidate_angle / texel_height_angle)) - 1);
     const int last_row =
@@ -239,7 +240,7 @@ ImageRGBA renderClearSky(const ClearSkySpec& spec, int width, int height, double
 
 double overcastZenithLuminance(const OvercastSkySpec& spec) {
     // Integral of (1 + 2 cos Z) / 3 * cos Z over the hemisphere: 2 pi / 3 * (1/2 + 2/3) = 7 pi / 9.
-    return spec.diffuse_horizontal_irradiance / (7.0 * kPi / 9.0);
+    return spec.diffuse_horizontal_irradiance / (7.0 * pi / 9.0);
 }
 
 ImageRGBA renderOvercastSky(const OvercastSkySpec& spec, int width, int height,
@@ -249,7 +250,7 @@ ImageRGBA renderOvercastSky(const OvercastSkySpec& spec, int width, int height,
         throw std::invalid_argument("overcast sky: irradiance must be positive");
     const double zenith_luminance = overcastZenithLuminance(spec);
     const glm::dvec3 ground =
-        normalisedToUnitLuminance(spec.ground_colour) * (spec.ground_albedo * spec.diffuse_horizontal_irradiance / kPi);
+        normalisedToUnitLuminance(spec.ground_colour) * (spec.ground_albedo * spec.diffuse_horizontal_irradiance / pi);
     ImageRGBA image;
     image.width = width;
     image.height = height;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "gusuku/colour.h"
@@ -13,12 +14,12 @@ namespace gusuku::bake {
 
 namespace {
 
-constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+constexpr double kDegrees = 180.0 / std::numbers::pi;
 
 double diffuseHorizontalLuminance(const ImageRGBA& sky) {
     double irradiance = 0.0;
     for (int y = 0; y < sky.height / 2; ++y) {
-        const double cos_zenith = std::cos((y + 0.5) / sky.height * 3.14159265358979323846);
+        const double cos_zenith = std::cos((y + 0.5) / sky.height * std::numbers::pi);
         const double solid_angle = equirectTexelSolidAngle(y, sky.width, sky.height);
         for (int x = 0; x < sky.width; ++x) {
             const float* texel = sky.texel(x, y);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,7 @@ namespace gusuku::bake {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegToRad = kPi / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // A bright core wider than this is a cloud or a clipped overcast patch, not the sun (0.27 deg) with its glare.
 constexpr double kMaxCoreRadiusDeg = 10.0;
@@ -181,7 +181,7 @@ RingStatistics ringStatistics(const ImageRGBA& image, const MapGeometry& geometr
 
 }  // namespace
 
-double sunDiscSolidAngleSr() { return 2.0 * kPi * (1.0 - std::cos(kSunDiscAngularRadiusDeg * kDegToRad)); }
+double sunDiscSolidAngleSr() { return 2.0 * std::numbers::pi * (1.0 - std::cos(kSunDiscAngularRadiusDeg * kDegToRad)); }
 
 SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_image_deg) {
     const int width = sky_in_out.width;
@@ -284,7 +284,7 @@ SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_im
     estimate.direction_enu = centroid;
     estimate.irradiance_rgb = irradiance;
     estimate.clipped =
-        flat_top || luminanceRec709(irradiance) < kFaintIrradianceFraction * kPi * ring_median;
+        flat_top || luminanceRec709(irradiance) < kFaintIrradianceFraction * std::numbers::pi * ring_median;
     estimate.texel_count = int(removed.members().size());
     estimate.angular_radius_deg = radius_deg;
     estimate.fill_radiance_rgb = fill;

@@ -18,6 +18,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 
 #include "camera_trace_interface.h"
+#include "constants.glsl"
 
 layout(local_size_x = CAMERA_TRACE_WORKGROUP_SIZE) in;
 

@@ -5,14 +5,15 @@
 // Linear Rec.709 RGB (sRGB primaries, D65) <-> CIE XYZ (Y = relative luminance) <-> CIE L*a*b* with white
 // (0.95047, 1, 1.08883), epsilon 216/24389, kappa 24389/27 (DESIGN.md 2); the sRGB curve of IEC 61966-2-1;
 // CIEDE2000 (Sharma, Wu and Dalal 2005); Reinhard's transfer of Lab statistics (DESIGN.md 4).
-// Self-contained: no bindings, no extensions.
+// No bindings, no extensions; includes only constants.glsl.
 #ifndef GUSUKU_COLOUR_GLSL
 #define GUSUKU_COLOUR_GLSL
+
+#include "constants.glsl"
 
 const vec3 kD65WhiteXyz = vec3(0.95047, 1.0, 1.08883);
 const float kLabEpsilon = 216.0 / 24389.0;
 const float kLabKappa = 24389.0 / 27.0;
-const float kColourPi = 3.14159265358979323846;
 
 // ---- sRGB transfer curve, per channel (no clamping) ----
 
@@ -90,11 +91,11 @@ float colourSeventhPower(float x) {
 float colourHueAngle(float b, float a_prime) {
     if (b == 0.0 && a_prime == 0.0) return 0.0;  // GLSL's atan(0, 0) is undefined; the formula says 0
     float h = atan(b, a_prime);
-    return h < 0.0 ? h + 2.0 * kColourPi : h;
+    return h < 0.0 ? h + 2.0 * kPi : h;
 }
 
 float ciede2000(vec3 lab1, vec3 lab2) {
-    const float two_pi = 2.0 * kColourPi;
+    const float two_pi = 2.0 * kPi;
     const float pow25_7 = 6103515625.0;
     float c1 = sqrt(lab1.y * lab1.y + lab1.z * lab1.z);
     float c2 = sqrt(lab2.y * lab2.y + lab2.z * lab2.z);
@@ -113,8 +114,8 @@ float ciede2000(vec3 lab1, vec3 lab2) {
     float delta_hp = 0.0;
     if (chroma_product != 0.0) {
         delta_hp = h2p - h1p;
-        if (delta_hp > kColourPi) delta_hp -= two_pi;
-        else if (delta_hp < -kColourPi) delta_hp += two_pi;
+        if (delta_hp > kPi) delta_hp -= two_pi;
+        else if (delta_hp < -kPi) delta_hp += two_pi;
     }
     float delta_big_hp = 2.0 * sqrt(chroma_product) * sin(delta_hp / 2.0);
 
@@ -122,7 +123,7 @@ float ciede2000(vec3 lab1, vec3 lab2) {
     float cp_mean = (c1p + c2p) / 2.0;
     float hp_mean = h1p + h2p;
     if (chroma_product != 0.0) {
-        if (abs(h1p - h2p) <= kColourPi) hp_mean /= 2.0;
+        if (abs(h1p - h2p) <= kPi) hp_mean /= 2.0;
         else if (hp_mean < two_pi) hp_mean = (hp_mean + two_pi) / 2.0;
         else hp_mean = (hp_mean - two_pi) / 2.0;
     }

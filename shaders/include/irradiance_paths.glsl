@@ -12,6 +12,8 @@
 #ifndef GUSUKU_IRRADIANCE_PATHS_GLSL
 #define GUSUKU_IRRADIANCE_PATHS_GLSL
 
+#include "constants.glsl"
+
 struct PathSettings {
     uint max_bounces;       // surface reflections whose light counts (0: sky and emitters seen directly only)
     uint skip_flags;        // triangles with any of these flags are invisible (the "without building" pass)

@@ -11,7 +11,7 @@
 #ifndef GUSUKU_SAMPLING_GLSL
 #define GUSUKU_SAMPLING_GLSL
 
-const float kPi = 3.14159265358979;
+#include "constants.glsl"
 
 uint pcgHash(uint value) {
     uint state = value * 747796405u + 2891336453u;

@@ -17,6 +17,8 @@
 #error "define SKY_RADIANCE_BINDING and SKY_TABLE_BINDING before including sky_sampling.glsl"
 #endif
 
+#include "constants.glsl"
+
 layout(std430, set = 0, binding = SKY_RADIANCE_BINDING) readonly buffer SkyRadianceBuffer {
     vec4 sky_radiance_rgba[];
 };
@@ -24,7 +26,6 @@ layout(std430, set = 0, binding = SKY_TABLE_BINDING) readonly buffer SkyTableBuf
     float sky_table[];
 };
 
-const float SKY_PI = 3.14159265358979;
 const int SKY_TABLE_HEADER_FLOATS = 4;
 // Largest float below 1: xi == 1 would pick the last CDF entry even when it has no mass.
 const float SKY_ONE_MINUS_EPSILON = 0.99999994;
@@ -61,7 +62,7 @@ float skyUnitSquareDensity(int x, int y) {
 }
 
 float skySolidAnglePdf(float unit_square_density, float sin_theta) {
-    return unit_square_density / (2.0 * SKY_PI * SKY_PI * max(sin_theta, SKY_MIN_SIN_THETA));
+    return unit_square_density / (2.0 * kPi * kPi * max(sin_theta, SKY_MIN_SIN_THETA));
 }
 
 // Texel containing a direction; also returns sin theta of the direction.
@@ -73,7 +74,7 @@ ivec2 skyTexelOf(vec3 direction_enu, out float sin_theta) {
     float azimuth_rad = horizontal > 0.0 ? atan(direction_enu.x, direction_enu.y) : 0.0;
     float u = (degrees(azimuth_rad) + skyNorthAzimuthDeg()) / 360.0;
     u -= floor(u);
-    float v = theta / SKY_PI;
+    float v = theta / kPi;
     sin_theta = len > 0.0 ? horizontal / len : 0.0;
     int width = skyWidth();
     int height = skyHeight();
@@ -114,9 +115,9 @@ vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
     float v_from_pole = (2 * y + 1 < height)
         ? v
         : (float(height - 1 - y) + (row_high - xi.x) / (row_high - row_low)) / float(height);
-    float sin_theta = sin(SKY_PI * v_from_pole);
+    float sin_theta = sin(kPi * v_from_pole);
     float azimuth_rad = radians(360.0 * u - skyNorthAzimuthDeg());
-    vec3 direction_enu = vec3(sin_theta * sin(azimuth_rad), sin_theta * cos(azimuth_rad), sin((0.5 - v) * SKY_PI));
+    vec3 direction_enu = vec3(sin_theta * sin(azimuth_rad), sin_theta * cos(azimuth_rad), sin((0.5 - v) * kPi));
     pdf_solid_angle = skySolidAnglePdf(skyUnitSquareDensity(x, y), sin_theta);
     return direction_enu;
 }

@@ -6,6 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_interface.h"
 #include "runtime_material_push.h"
+#include "constants.glsl"
 
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_BINDING) uniform sampler2DShadow building_shadow;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
@@ -24,8 +25,6 @@ layout(location = 2) in vec2 base_colour_uv;
 layout(location = 3) in vec2 lightmap_uv;
 
 layout(location = 0) out vec4 out_colour;  // linear; the sRGB attachment encodes it
-
-const float kPi = 3.14159265358979323846;
 
 void main() {
     vec3 albedo = texture(base_colour, base_colour_uv).rgb * material.base_colour_factor.rgb;

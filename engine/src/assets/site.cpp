@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include "gusuku/input_error.h"
@@ -24,7 +25,6 @@ using json_reader::NumberRange;
 using json_reader::ObjectReader;
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kFormatName = "gusuku-site/1";
 
 // Ranges, shared with docs/site-json.md (keep them in step).
@@ -368,7 +368,7 @@ glm::dmat4 BuildingConfig::enuFromModel(const GeodeticPoint& site_reference) con
     const glm::dvec3 origin_enu =
         position ? geodeticToEnu(site_reference, *position) : enu_offset_m.value_or(glm::dvec3(0.0));
     // A compass heading turns clockwise seen from above, the opposite of a positive rotation about up.
-    const double turn_rad = -heading_deg * kPi / 180.0;
+    const double turn_rad = -heading_deg * std::numbers::pi / 180.0;
     return translation(origin_enu) * rotationAboutUp(turn_rad) * uniformScale(scale) * enu_from_gltf;
 }
 

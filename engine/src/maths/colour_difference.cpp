@@ -2,6 +2,7 @@
 // the comments. Angles stay in radians throughout (their published values were computed so too), which also
 // decides the rounding on the 180-degree boundary that their pairs 13-16 straddle.
 #include <cmath>
+#include <numbers>
 
 #include "gusuku/colour.h"
 
@@ -9,9 +10,8 @@ namespace gusuku {
 
 namespace {
 
-template <typename T> constexpr T kPiT = T(3.14159265358979323846);
 
-template <typename T> T radians(T degrees) { return degrees * kPiT<T> / T(180); }
+template <typename T> T radians(T degrees) { return degrees * std::numbers::pi_v<T> / T(180); }
 
 // x^7 by multiplication: defined at 0 and the same operations in colour.glsl (GLSL's pow is exp2(y log2 x)).
 template <typename T> T seventhPower(T x) {
@@ -23,11 +23,11 @@ template <typename T> T seventhPower(T x) {
 template <typename T> T hueAngle(T b, T a_prime) {
     if (b == T(0) && a_prime == T(0)) return T(0);
     const T h = std::atan2(b, a_prime);
-    return h < T(0) ? h + T(2) * kPiT<T> : h;
+    return h < T(0) ? h + T(2) * std::numbers::pi_v<T> : h;
 }
 
 template <typename T> T ciede2000T(const glm::vec<3, T>& lab1, const glm::vec<3, T>& lab2) {
-    const T two_pi = T(2) * kPiT<T>;
+    const T two_pi = T(2) * std::numbers::pi_v<T>;
     // 1. a' and C', h' (eqs. 2-7).
     const T c1 = std::sqrt(lab1.y * lab1.y + lab1.z * lab1.z);
     const T c2 = std::sqrt(lab2.y * lab2.y + lab2.z * lab2.z);
@@ -49,8 +49,8 @@ template <typename T> T ciede2000T(const glm::vec<3, T>& lab1, const glm::vec<3,
     T delta_hp = T(0);
     if (chroma_product != T(0)) {
         delta_hp = h2p - h1p;
-        if (delta_hp > kPiT<T>) delta_hp -= two_pi;
-        else if (delta_hp < -kPiT<T>) delta_hp += two_pi;
+        if (delta_hp > std::numbers::pi_v<T>) delta_hp -= two_pi;
+        else if (delta_hp < -std::numbers::pi_v<T>) delta_hp += two_pi;
     }
     const T delta_big_hp = T(2) * std::sqrt(chroma_product) * std::sin(delta_hp / T(2));
 
@@ -59,7 +59,7 @@ template <typename T> T ciede2000T(const glm::vec<3, T>& lab1, const glm::vec<3,
     const T cp_mean = (c1p + c2p) / T(2);
     T hp_mean = h1p + h2p;
     if (chroma_product != T(0)) {
-        if (std::fabs(h1p - h2p) <= kPiT<T>) hp_mean /= T(2);
+        if (std::fabs(h1p - h2p) <= std::numbers::pi_v<T>) hp_mean /= T(2);
         else if (hp_mean < two_pi) hp_mean = (hp_mean + two_pi) / T(2);
         else hp_mean = (hp_mean - two_pi) / T(2);
     }

@@ -5,6 +5,7 @@
 #include "gusuku/sun_irradiance.h"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace gusuku {
@@ -42,8 +43,7 @@ double kastenYoungAirMass(double elevation_deg) {
     if (std::isnan(elevation_deg)) throw std::invalid_argument("kastenYoungAirMass: elevation_deg is NaN");
     if (elevation_deg < 0.0) return INFINITY;
     const double h = std::fmin(elevation_deg, 90.0);
-    constexpr double kPi = 3.14159265358979323846;
-    return 1.0 / (std::sin(h * kPi / 180.0) + 0.50572 * std::pow(h + 6.07995, -1.6364));
+    return 1.0 / (std::sin(h * std::numbers::pi / 180.0) + 0.50572 * std::pow(h + 6.07995, -1.6364));
 }
 
 glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity) {

@@ -4,6 +4,7 @@
 #include "gusuku/sun.h"
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,15 +16,14 @@ namespace gusuku {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kJ2000JulianDay = 2451545.0;
 constexpr double kDaysPerJulianCentury = 36525.0;
 constexpr double kSunRadiusDeg = 0.26667;         // SPA's apparent solar radius, for the refraction cut-off
 constexpr double kEarthEquatorialRadiusM = 6378140.0;
 constexpr double kEarthPolarAxisRatio = 0.99664719;  // b/a of the SPA's Earth ellipsoid
 
-double radians(double degrees) { return degrees * kPi / 180.0; }
-double degrees(double radians) { return radians * 180.0 / kPi; }
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 // Wraps an angle into [0, 360).
 double wrapDegrees360(double angle_deg) {
