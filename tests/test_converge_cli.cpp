@@ -44,19 +44,24 @@ TEST_F(ConvergeCli, PrintsTheCurveAndTheForcedSkySampling) {
     }
 }
 
-TEST_F(ConvergeCli, BadArgumentsExitTwoNamingTheOption) {
+// Exit codes as every gusuku-bake command (commands.h): 1 for a bad option value, 2 for bad usage.
+TEST_F(ConvergeCli, BadArgumentsNameTheOption) {
     const CommandResult unknown_method = converge({"--sky-sampling", "sometimes"});
-    EXPECT_EQ(unknown_method.exit_code, 2);
+    EXPECT_EQ(unknown_method.exit_code, 1);
     EXPECT_TRUE(contains(unknown_method.stderr_text, "--sky-sampling: 'sometimes' is not auto, cosine or mis"))
         << unknown_method.stderr_text;
 
     const CommandResult zero_samples = converge({"--max-samples", "0"});
-    EXPECT_EQ(zero_samples.exit_code, 2);
-    EXPECT_TRUE(contains(zero_samples.stderr_text, "--max-samples")) << zero_samples.stderr_text;
+    EXPECT_EQ(zero_samples.exit_code, 1);
+    EXPECT_EQ(zero_samples.stderr_text, "gusuku-bake converge: --max-samples: 0 is outside [1, 9999999]\n");
+
+    const CommandResult target_one = converge({"--target-rms", "1"});
+    EXPECT_EQ(target_one.exit_code, 1);
+    EXPECT_EQ(target_one.stderr_text, "gusuku-bake converge: --target-rms: 1 is outside (0, 1)\n");
 
     const CommandResult missing_value = converge({"--slot"});
     EXPECT_EQ(missing_value.exit_code, 2);
-    EXPECT_TRUE(contains(missing_value.stderr_text, "--slot needs a value")) << missing_value.stderr_text;
+    EXPECT_TRUE(contains(missing_value.stderr_text, "--slot: needs a value")) << missing_value.stderr_text;
 
     const CommandResult no_site = runBakeCommand({"converge"}, directory_);
     EXPECT_EQ(no_site.exit_code, 2);

@@ -2,10 +2,13 @@
 // chunk with everything checkpointed; the same command resumes.
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.h"
+#include "gusuku/command_line.h"
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
 #include "gusuku_bake/bake_job.h"
@@ -19,83 +22,60 @@ volatile std::sig_atomic_t g_stop_requested = 0;
 
 void requestStop(int) { g_stop_requested = 1; }
 
-void printBakeHelp() {
-    std::printf(
-        "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
-        "\n"
-        "Path-traces the building's indirect irradiance and the ground's sky-and-bounce irradiance (with and\n"
-        "without the building) for every slot of SITE.json, and writes a bake set (docs/bakeset.md).\n"
-        "\n"
-        "options:\n"
-        "  -o, --output DIR   bake set folder (created)\n"
-        "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
-        "  --no-denoise       skip the edge-keeping lightmap filter\n"
-        "  --force            bake even if DIR/manifest.json already matches these inputs\n"
-        "  --quiet            no progress bar\n"
-        "\n"
-        "Ctrl-C stops after the current chunk of samples; everything traced so far is kept in DIR/.checkpoint,\n"
-        "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
-        "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n");
+constexpr const char* kBakeUsage =
+    "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
+    "\n"
+    "Path-traces the building's indirect irradiance and the ground's sky-and-bounce irradiance (with and\n"
+    "without the building) for every slot of SITE.json, and writes a bake set (docs/bakeset.md).\n"
+    "\n"
+    "options:\n"
+    "  -o, --output DIR   bake set folder (created)\n"
+    "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
+    "  --no-denoise       skip the edge-keeping lightmap filter\n"
+    "  --force            bake even if DIR/manifest.json already matches these inputs\n"
+    "  --quiet            no progress bar\n"
+    "\n"
+    "Ctrl-C stops after the current chunk of samples; everything traced so far is kept in DIR/.checkpoint,\n"
+    "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
+    "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
+    "Exit status: 0 done or up to date, 1 bad input or a bad option value, 2 bad usage, 130 interrupted.\n";
+
+struct BakeRequest {
+    std::string site_path;
+    bake::BakeOptions options;
+};
+
+BakeRequest parseArguments(CommandLine& line) {
+    BakeRequest request;
+    bake::BakeOptions& options = request.options;
+    options.output_dir = line.text("--output", "-o").value_or("");
+    if (const std::optional<int64_t> samples = line.integer("--samples", 1, 1000000))
+        options.samples_override = int(*samples);
+    options.denoise = !line.flag("--no-denoise");
+    options.force = line.flag("--force");
+    options.show_progress = !line.flag("--quiet");
+    const std::vector<std::string> sites = line.positionals();
+    line.finish();
+    if (sites.size() > 1) line.fail("one site.json only ('" + sites[1] + "' is extra)");
+    if (sites.empty() || options.output_dir.empty()) line.fail("needs SITE.json and -o BAKESET_DIR (see --help)");
+    request.site_path = sites.front();
+    return request;
 }
 
 }  // namespace
 
 int runBakeCommand(const std::vector<std::string>& args) {
-    std::string site_path;
-    bake::BakeOptions options;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& arg = args[i];
-        const auto needValue = [&](const char* name) -> const std::string* {
-            if (i + 1 >= args.size()) {
-                std::fprintf(stderr, "gusuku-bake bake: %s needs a value\n", name);
-                return nullptr;
-            }
-            return &args[++i];
-        };
-        if (arg == "--help" || arg == "-h") {
-            printBakeHelp();
-            return 0;
-        } else if (arg == "-o" || arg == "--output") {
-            const std::string* value = needValue("--output");
-            if (!value) return 2;
-            options.output_dir = *value;
-        } else if (arg == "--samples") {
-            const std::string* value = needValue("--samples");
-            if (!value) return 2;
-            char* end = nullptr;
-            const long samples = std::strtol(value->c_str(), &end, 10);
-            if (end == value->c_str() || *end != '\0' || samples < 1 || samples > 1000000) {
-                std::fprintf(stderr, "gusuku-bake bake: --samples: '%s' is not an integer in [1, 1000000]\n",
-                             value->c_str());
-                return 2;
-            }
-            options.samples_override = int(samples);
-        } else if (arg == "--no-denoise") {
-            options.denoise = false;
-        } else if (arg == "--force") {
-            options.force = true;
-        } else if (arg == "--quiet") {
-            options.show_progress = false;
-        } else if (!arg.empty() && arg[0] == '-') {
-            std::fprintf(stderr, "gusuku-bake bake: unknown option '%s' (see --help)\n", arg.c_str());
-            return 2;
-        } else if (site_path.empty()) {
-            site_path = arg;
-        } else {
-            std::fprintf(stderr, "gusuku-bake bake: one site.json only ('%s' is extra)\n", arg.c_str());
-            return 2;
-        }
-    }
-    if (site_path.empty() || options.output_dir.empty()) {
-        std::fprintf(stderr, "gusuku-bake bake: needs SITE.json and -o BAKESET_DIR (see --help)\n");
-        return 2;
-    }
+    BakeRequest request;
+    if (const std::optional<int> exit_code = readCommandLine(
+            "gusuku-bake bake", args, kBakeUsage, false, [&](CommandLine& line) { request = parseArguments(line); }))
+        return *exit_code;
+    bake::BakeOptions& options = request.options;
 
     // From the start: a Ctrl-C during setup (device, skies, BVH) stops the bake before its first sample.
     std::signal(SIGINT, requestStop);
     std::signal(SIGTERM, requestStop);
     options.should_stop = [] { return g_stop_requested != 0; };
-    const SiteConfig site = loadSiteConfig(site_path);
+    const SiteConfig site = loadSiteConfig(request.site_path);
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 

@@ -1,14 +1,15 @@
 // gusuku-bake check site.json: validates the site file and loads everything it names (meshes, skies), so a
 // bad input is found in seconds rather than an hour into a bake. Prints what a bake would use.
 #include <cmath>
-#include <optional>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bake_geometry.h"
 #include "bake_preflight.h"
 #include "commands.h"
+#include "gusuku/command_line.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/image.h"
 #include "gusuku/input_error.h"
@@ -22,14 +23,12 @@ namespace gusuku::bake_cli {
 
 namespace {
 
-void printCheckHelp() {
-    std::printf(
-        "usage: gusuku-bake check SITE_JSON\n"
-        "\n"
-        "Validates SITE_JSON (format: docs/site-json.md), loads the building and SfM meshes and the sky maps it\n"
-        "names, and prints a summary: the site, the slots with their site-clock and UTC times, triangle counts,\n"
-        "ENU bounds, sky sizes and warnings. Exit 0 when everything loads, 1 on bad input, 2 on bad usage.\n");
-}
+constexpr const char* kCheckUsage =
+    "usage: gusuku-bake check SITE_JSON\n"
+    "\n"
+    "Validates SITE_JSON (format: docs/site-json.md), loads the building and SfM meshes and the sky maps it\n"
+    "names, and prints a summary: the site, the slots with their site-clock and UTC times, triangle counts,\n"
+    "ENU bounds, sky sizes and warnings. Exit 0 when everything loads, 1 on bad input, 2 on bad usage.\n";
 
 std::string formatUtcOffset(int minutes) {
     char text[16];
@@ -167,25 +166,15 @@ int checkSite(const std::string& site_path) {
 
 int runCheckCommand(const std::vector<std::string>& args) {
     std::string site_path;
-    for (const std::string& arg : args) {
-        if (arg == "--help" || arg == "-h") {
-            printCheckHelp();
-            return 0;
-        }
-        if (!arg.empty() && arg[0] == '-') {
-            std::fprintf(stderr, "gusuku-bake check: unknown option '%s' (see --help)\n", arg.c_str());
-            return 2;
-        }
-        if (!site_path.empty()) {
-            std::fprintf(stderr, "gusuku-bake check: expected one site.json, got more (see --help)\n");
-            return 2;
-        }
-        site_path = arg;
-    }
-    if (site_path.empty()) {
-        std::fprintf(stderr, "gusuku-bake check: missing SITE_JSON (see --help)\n");
-        return 2;
-    }
+    const auto parse = [&](CommandLine& line) {
+        const std::vector<std::string> sites = line.positionals();
+        line.finish();
+        if (sites.size() > 1) line.fail("expected one site.json, got more (see --help)");
+        if (sites.empty()) line.fail("missing SITE_JSON (see --help)");
+        site_path = sites.front();
+    };
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake check", args, kCheckUsage, false, parse))
+        return *exit_code;
     try {
         return checkSite(site_path);
     } catch (const InputError& error) {

@@ -1,9 +1,12 @@
 // gusuku-bake converge site.json: the convergence curve and the tracer's speed on a real site.
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.h"
+#include "gusuku/command_line.h"
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
 #include "gusuku_bake/convergence.h"
@@ -12,92 +15,74 @@ namespace gusuku::bake_cli {
 
 namespace {
 
-bool parsePositive(const std::string& text, double& value) {
-    char* end = nullptr;
-    value = std::strtod(text.c_str(), &end);
-    return end != text.c_str() && *end == '\0' && value > 0.0 && value < 1e7;
+constexpr const char* kConvergeUsage =
+    "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
+    "                            [--target-rms R] [--sky-sampling auto|cosine|mis]\n"
+    "\n"
+    "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
+    "texel and prints the relative RMS error of each against a reference of --reference-samples (default\n"
+    "1024, an independent seed), with and without the edge-keeping filter, the log-log slope (-0.5 for\n"
+    "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
+    "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
+    "default, is what a bake does), to compare the two on a site's own sky.\n"
+    "Exit status: 0 ok, 1 bad input or a bad option value, 2 bad usage.\n";
+
+// The sample counts --reference-samples and --max-samples accept: 1 up to, not including, 1e7.
+constexpr int64_t kMaxSampleCount = 9999999;
+
+struct ConvergeRequest {
+    std::string site_path;
+    bake::ConvergenceOptions options;
+    double target_rms = 0.05;
+};
+
+ConvergeRequest parseArguments(CommandLine& line) {
+    ConvergeRequest request;
+    bake::ConvergenceOptions& options = request.options;
+    options.slot_name = line.text("--slot").value_or("");
+    if (const std::optional<int64_t> samples = line.integer("--reference-samples", 1, kMaxSampleCount))
+        options.reference_samples = uint32_t(*samples);
+    if (const std::optional<int64_t> samples = line.integer("--max-samples", 1, kMaxSampleCount))
+        options.max_samples = uint32_t(*samples);
+    if (const std::optional<double> target_rms = line.number("--target-rms", 0.0, 1.0)) {
+        // An error of 0 is never reached and one of 1 is no target: the open interval (0, 1).
+        if (*target_rms <= 0.0 || *target_rms >= 1.0) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", *target_rms);
+            line.failValue("--target-rms", std::string(value) + " is outside (0, 1)");
+        }
+        request.target_rms = *target_rms;
+    }
+    constexpr bake::SkySampling kSkySamplings[] = {bake::SkySampling::Automatic, bake::SkySampling::CosineOnly,
+                                                   bake::SkySampling::CosineAndMap};
+    if (const std::optional<size_t> method = line.choice("--sky-sampling", {"auto", "cosine", "mis"}))
+        options.sky_sampling = kSkySamplings[*method];
+    const std::vector<std::string> sites = line.positionals();
+    line.finish();
+    if (sites.size() > 1) line.fail("one site.json only ('" + sites[1] + "' is extra)");
+    if (sites.empty()) line.fail("needs SITE.json (see --help)");
+    // The error is measured against the reference: an estimate with more samples than the reference would
+    // measure the reference's own noise.
+    if (options.max_samples > options.reference_samples)
+        line.fail("--max-samples " + std::to_string(options.max_samples) + " is above --reference-samples " +
+                  std::to_string(options.reference_samples) +
+                  "; the reference must have at least as many samples as the largest estimate");
+    request.site_path = sites.front();
+    return request;
 }
 
 }  // namespace
 
 int runConvergeCommand(const std::vector<std::string>& args) {
-    std::string site_path;
-    bake::ConvergenceOptions options;
-    double target_rms = 0.05;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& arg = args[i];
-        double value = 0.0;
-        if (arg == "--help" || arg == "-h") {
-            std::printf(
-                "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
-                "                            [--target-rms R] [--sky-sampling auto|cosine|mis]\n"
-                "\n"
-                "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
-                "texel and prints the relative RMS error of each against a reference of --reference-samples (default\n"
-                "1024, an independent seed), with and without the edge-keeping filter, the log-log slope (-0.5 for\n"
-                "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
-                "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
-                "default, is what a bake does), to compare the two on a site's own sky.\n");
-            return 0;
-        }
-        if ((arg == "--slot" || arg == "--reference-samples" || arg == "--max-samples" || arg == "--target-rms" ||
-             arg == "--sky-sampling") &&
-            i + 1 >= args.size()) {
-            std::fprintf(stderr, "gusuku-bake converge: %s needs a value\n", arg.c_str());
-            return 2;
-        }
-        if (arg == "--slot") {
-            options.slot_name = args[++i];
-        } else if (arg == "--reference-samples" || arg == "--max-samples") {
-            if (!parsePositive(args[++i], value) || value != double(uint32_t(value))) {
-                std::fprintf(stderr, "gusuku-bake converge: %s: '%s' is not a positive integer\n", arg.c_str(),
-                             args[i].c_str());
-                return 2;
-            }
-            (arg == "--max-samples" ? options.max_samples : options.reference_samples) = uint32_t(value);
-        } else if (arg == "--target-rms") {
-            if (!parsePositive(args[++i], target_rms) || target_rms >= 1.0) {
-                std::fprintf(stderr, "gusuku-bake converge: --target-rms: '%s' is not in (0, 1)\n", args[i].c_str());
-                return 2;
-            }
-        } else if (arg == "--sky-sampling") {
-            const std::string& method = args[++i];
-            if (method == "auto") {
-                options.sky_sampling = bake::SkySampling::Automatic;
-            } else if (method == "cosine") {
-                options.sky_sampling = bake::SkySampling::CosineOnly;
-            } else if (method == "mis") {
-                options.sky_sampling = bake::SkySampling::CosineAndMap;
-            } else {
-                std::fprintf(stderr, "gusuku-bake converge: --sky-sampling: '%s' is not auto, cosine or mis\n",
-                             method.c_str());
-                return 2;
-            }
-        } else if (!arg.empty() && arg[0] == '-') {
-            std::fprintf(stderr, "gusuku-bake converge: unknown option '%s' (see --help)\n", arg.c_str());
-            return 2;
-        } else {
-            site_path = arg;
-        }
-    }
-    if (site_path.empty()) {
-        std::fprintf(stderr, "gusuku-bake converge: needs SITE.json (see --help)\n");
-        return 2;
-    }
-    // The error is measured against the reference: an estimate with more samples than the reference would
-    // measure the reference's own noise.
-    if (options.max_samples > options.reference_samples) {
-        std::fprintf(stderr,
-                     "gusuku-bake converge: --max-samples %u is above --reference-samples %u; the reference must "
-                     "have at least as many samples as the largest estimate\n",
-                     options.max_samples, options.reference_samples);
-        return 2;
-    }
-    const SiteConfig site = loadSiteConfig(site_path);
+    ConvergeRequest request;
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake converge", args, kConvergeUsage, false,
+                                                             [&](CommandLine& line) { request = parseArguments(line); }))
+        return *exit_code;
+    const SiteConfig site = loadSiteConfig(request.site_path);
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
-    const bake::ConvergenceStudy study = bake::runConvergenceStudy(context, site, options);
-    std::fputs(bake::formatConvergenceStudy(study, target_rms).c_str(), stdout);
+    const bake::ConvergenceStudy study = bake::runConvergenceStudy(context, site, request.options);
+    std::fputs(bake::formatConvergenceStudy(study, request.target_rms).c_str(), stdout);
     return 0;
 }
 

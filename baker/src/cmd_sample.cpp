@@ -2,61 +2,47 @@
 // clone can bake without external assets.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "commands.h"
+#include "gusuku/command_line.h"
 #include "gusuku_bake/sample_site.h"
 
 namespace gusuku::bake_cli {
 
 namespace {
 
-void printSampleHelp(std::FILE* stream) {
-    std::fprintf(stream,
-                 "usage: gusuku-bake sample DIR [--force]\n"
-                 "\n"
-                 "Writes a sample site generated in code into DIR: site.glb (terrain, terrace, steps and a low\n"
-                 "wall, stored Y-up with its transform in site.json), building.glb (a thatched house with an open\n"
-                 "doorway), sky_sunny.hdr (CIE clear sky type 12 with the sun disc) and sky_overcast.hdr (CIE\n"
-                 "overcast sky), and site.json. Then `gusuku-bake bake DIR/site.json -o BAKESET_DIR` bakes it.\n"
-                 "\n"
-                 "options:\n"
-                 "  --force   write into DIR even if it is not empty (files of the same names are replaced)\n"
-                 "  --help    show this help\n");
-}
+constexpr const char* kSampleUsage =
+    "usage: gusuku-bake sample DIR [--force]\n"
+    "\n"
+    "Writes a sample site generated in code into DIR: site.glb (terrain, terrace, steps and a low\n"
+    "wall, stored Y-up with its transform in site.json), building.glb (a thatched house with an open\n"
+    "doorway), sky_sunny.hdr (CIE clear sky type 12 with the sun disc) and sky_overcast.hdr (CIE\n"
+    "overcast sky), and site.json. Then `gusuku-bake bake DIR/site.json -o BAKESET_DIR` bakes it.\n"
+    "\n"
+    "options:\n"
+    "  --force   write into DIR even if it is not empty (files of the same names are replaced)\n"
+    "  --help    show this help\n";
 
 }  // namespace
 
 int runSampleCommand(const std::vector<std::string>& args) {
     std::string directory;
     bool force = false;
-    for (const std::string& arg : args) {
-        if (arg == "--help" || arg == "-h") {
-            printSampleHelp(stdout);
-            return 0;
-        }
-        if (arg == "--force") {
-            force = true;
-        } else if (!arg.empty() && arg[0] == '-') {
-            std::fprintf(stderr, "gusuku-bake sample: unknown option '%s'\n\n", arg.c_str());
-            printSampleHelp(stderr);
-            return 2;
-        } else if (directory.empty()) {
-            directory = arg;
-        } else {
-            std::fprintf(stderr, "gusuku-bake sample: more than one DIR given ('%s', '%s')\n\n", directory.c_str(),
-                         arg.c_str());
-            printSampleHelp(stderr);
-            return 2;
-        }
-    }
-    if (directory.empty()) {
-        std::fprintf(stderr, "gusuku-bake sample: DIR is missing\n\n");
-        printSampleHelp(stderr);
-        return 2;
-    }
+    const auto parse = [&](CommandLine& line) {
+        force = line.flag("--force");
+        const std::vector<std::string> directories = line.positionals();
+        line.finish();
+        if (directories.size() > 1)
+            line.fail("more than one DIR given ('" + directories[0] + "', '" + directories[1] + "')");
+        if (directories.empty()) line.fail("DIR is missing");
+        directory = directories.front();
+    };
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sample", args, kSampleUsage, true, parse))
+        return *exit_code;
 
     std::error_code error;
     const std::filesystem::path path(directory);

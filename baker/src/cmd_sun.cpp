@@ -44,13 +44,6 @@ constexpr const char* kSunUsage =
     "The ENU vector points towards the sun: (cos e sin A, cos e cos A, sin e).\n"
     "The ranges are site.json's. Exit status: 0 ok, 1 bad value, 2 bad usage.\n";
 
-// A problem with one option's value found after parsing (the sun code's own checks): reported naming the
-// option, exit 1, like CommandLine's OptionValueError.
-struct BadValue {
-    std::string option;
-    std::string problem;
-};
-
 // The zone the user wrote the time in (minutes east of UTC), so the local time is echoed back in it. The text
 // has already been accepted by parseIso8601Utc, so it ends in 'Z' or '+hh:mm'/'-hh:mm'.
 int utcOffsetMinutesOf(const std::string& iso_text) {
@@ -77,16 +70,10 @@ struct SunRequest {
     std::string time_text;
     double utc_seconds = 0.0;
     bool json = false;
-    bool help = false;
 };
 
-SunRequest parseArguments(const std::vector<std::string>& args) {
+SunRequest parseArguments(CommandLine& line) {
     SunRequest request;
-    CommandLine line("gusuku-bake sun", args);
-    if (line.helpRequested()) {
-        request.help = true;
-        return request;
-    }
     request.json = line.flag("--json");
     // The same ranges as site.json's (gusuku/site.h), so the command refuses what a site would.
     auto inRange = [&](const char* option, const SiteValueRange& range) {
@@ -170,32 +157,22 @@ void printText(const SunRequest& request, const SunPosition& sun) {
 }  // namespace
 
 int runSunCommand(const std::vector<std::string>& args) {
+    SunRequest request;
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sun", args, kSunUsage, true,
+                                                             [&](CommandLine& line) { request = parseArguments(line); }))
+        return *exit_code;
+    SunPosition sun;
     try {
-        const SunRequest request = parseArguments(args);
-        if (request.help) {
-            std::printf("%s", kSunUsage);
-            return 0;
-        }
-        SunPosition sun;
-        try {
-            sun = computeSunPosition(request.observer, request.utc_seconds);
-        } catch (const std::invalid_argument& error) {
-            throw BadValue{optionOfField(error.what()), error.what()};
-        }
-        if (request.json) printJson(request, sun);
-        else printText(request, sun);
-        return 0;
-    } catch (const BadValue& bad) {
-        std::fprintf(stderr, "gusuku-bake sun: %s%s%s\n", bad.option.c_str(), bad.option.empty() ? "" : ": ",
-                     bad.problem.c_str());
+        sun = computeSunPosition(request.observer, request.utc_seconds);
+    } catch (const std::invalid_argument& error) {
+        // The sun code's own checks: reported naming the option, exit 1, like CommandLine's OptionValueError.
+        const std::string option = optionOfField(error.what());
+        std::fprintf(stderr, "gusuku-bake sun: %s%s%s\n", option.c_str(), option.empty() ? "" : ": ", error.what());
         return 1;
-    } catch (const OptionValueError& bad) {
-        std::fprintf(stderr, "%s\n", bad.what());
-        return 1;
-    } catch (const UsageError& bad) {
-        std::fprintf(stderr, "%s\n\n%s", bad.what(), kSunUsage);
-        return 2;
     }
+    if (request.json) printJson(request, sun);
+    else printText(request, sun);
+    return 0;
 }
 
 }  // namespace gusuku::bake_cli

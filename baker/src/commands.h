@@ -2,8 +2,14 @@
 // The gusuku-bake subcommands. Each takes the arguments after its name and returns the process exit code
 // (0 ok, 1 bad input or failure, 2 bad usage). Each prints its own --help.
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace gusuku {
+class CommandLine;
+}
 
 namespace gusuku::bake_cli {
 
@@ -12,5 +18,15 @@ int runSampleCommand(const std::vector<std::string>& args);    // cmd_sample.cpp
 int runBakeCommand(const std::vector<std::string>& args);      // cmd_bake.cpp
 int runConvergeCommand(const std::vector<std::string>& args);  // cmd_converge.cpp
 int runCheckCommand(const std::vector<std::string>& args);     // cmd_check.cpp: validate site.json and load all
+
+/// How every subcommand reads its command line (gusuku/command_line.h), so that all behave alike. `parse` takes
+/// the command's options and positionals from `line` and calls line.finish(); it throws UsageError for bad usage
+/// and OptionValueError for a bad value. Returns nullopt when the command is to run, else its exit code: 0 after
+/// --help / -h printed `usage` on stdout; 1 after a bad value and 2 after bad usage, each reported as the error's
+/// one line on stderr ("gusuku-bake bake: --samples: 0 is outside [1, 1000000]"), followed by `usage` after bad
+/// usage when usage_after_bad_usage.
+std::optional<int> readCommandLine(const std::string& program, const std::vector<std::string>& args,
+                                   const char* usage, bool usage_after_bad_usage,
+                                   const std::function<void(CommandLine&)>& parse);  // read_command_line.cpp
 
 }  // namespace gusuku::bake_cli
