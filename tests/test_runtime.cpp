@@ -14,6 +14,8 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/colour.h"
+#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu_image.h"
 #include "gusuku/runtime.h"
 #include "synthetic_bakeset.h"
 
@@ -406,6 +408,46 @@ TEST_F(RuntimeTest, BadBakeSetIsRefusedAtOpen) {
         EXPECT_EQ(error.code(), RuntimeErrorCode::kInvalidBakeSet);
         EXPECT_NE(std::string(error.what()).find("slots"), std::string::npos) << error.what();
     }
+}
+
+// The camera as the app's VkImage (as an AR framework hands it over) gives the same composite, byte for byte, as
+// the same pixels given as a host buffer; and the composite is left in a VkImage the app can present.
+TEST_F(RuntimeTest, CameraAsTheAppsImageGivesTheSameComposite) {
+    std::unique_ptr<Runtime> runtime = open();
+    const std::vector<uint8_t> camera = noiseImage(11);
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R8G8B8A8_UNORM;
+    description.width = kWidth;
+    description.height = kHeight;
+    description.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    GpuImage app_image(context(), description);
+    app_image.upload(camera.data(), camera.size(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+
+    const CameraPose pose = lookAt({3, -12, 3}, {0, 0, 1});
+    std::vector<uint8_t> from_buffer(camera.size()), from_image(camera.size());
+    FrameInput frame = frameAt(camera, pose, syntheticLocalTime(15, 0));
+    runtime->renderFrame(frame, from_buffer.data());
+    frame.camera_rgba8 = nullptr;
+    frame.camera_image = app_image.handle();
+    frame.camera_image_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    runtime->renderFrame(frame, from_image.data());
+    EXPECT_EQ(from_buffer, from_image);
+
+    // The composite image holds the same bytes.
+    GpuBuffer readback(context(), camera.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    context().submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {kWidth, kHeight, 1};
+        vkCmdCopyImageToBuffer(cmd, runtime->compositeImage(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               readback.handle(), 1, &region);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                             nullptr, 0, nullptr);
+    });
+    EXPECT_EQ(readback.downloadVector<uint8_t>(camera.size()), from_buffer);
 }
 
 TEST(RuntimeHeadless, OpensOnADeviceOfItsOwnAndReportsItsMemory) {

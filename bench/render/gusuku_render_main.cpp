@@ -141,6 +141,8 @@ int run(const RenderRequest& request) {
                 passMedian(&PassTimings::shadow_ms), passMedian(&PassTimings::occluder_ms),
                 passMedian(&PassTimings::building_ms), passMedian(&PassTimings::ground_ms),
                 passMedian(&PassTimings::readback_ms));
+    std::printf("ground ratio:    %u of %u grid quads drawn (the rest of the frame is not touched)\n",
+                info.ground_quads_drawn, info.ground_quads_total);
     std::printf("GPU memory:      %.1f MiB held by the runtime\n", double(runtime->deviceMemoryBytes()) / (1 << 20));
     return 0;
 }

@@ -154,6 +154,8 @@ struct FrameInfo {
     float slot_b_weight = 0.0f;          ///< weight of slot_b; slot_a has 1 - weight
     int overcast_slot = -1;
     float overcast_weight = 0.0f;        ///< cloud cover applied to the overcast slot
+    uint32_t ground_quads_drawn = 0;     ///< ground-grid quads the ratio pass drew (the rest were not touched)
+    uint32_t ground_quads_total = 0;     ///< quads in the grid
 };
 
 /// Per-pass time of one frame in profiling mode, milliseconds of wall time (each pass submitted and waited on

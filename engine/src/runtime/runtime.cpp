@@ -533,6 +533,8 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     ground_index_count_ = 0;
     if (ground_wanted) selectGroundQuads(!direct_only, sun_shines_, lighting.sun.direction_enu);
     draw_ground_ = ground_index_count_ > 0;
+    info.ground_quads_drawn = ground_index_count_ / 6;
+    info.ground_quads_total = scene_.ground_quad_capacity;
 
     FrameUniforms& u = uniforms_;
     const double far_m = std::max(4.0 * scene_.scene_radius_m + glm::length(frame.pose.position_enu), 100.0);
