@@ -80,6 +80,7 @@ int run(const RenderRequest& request) {
     RuntimeOptions options;
     options.frame_width = width;
     options.frame_height = height;
+    if (request.ground_change_threshold) options.ground_change_threshold = *request.ground_change_threshold;
     std::unique_ptr<Runtime> runtime = Runtime::open(context, bake_set, options);
 
     FrameInput frame;

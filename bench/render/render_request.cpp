@@ -32,6 +32,8 @@ const char* const kRenderUsage =
     "  --exposure X           display value per unit radiance (default: the sample frame's middle grey, or 1)\n"
     "  --samples N            path-traced samples per pixel of the sample camera frame (default 64)\n"
     "  --frames N             frames timed after 3 warm-up frames (default 20)\n"
+    "  --ground-change R      relative change of the baked ground light below which the building is taken to\n"
+    "                         change nothing there (default 1/255; see RuntimeOptions::ground_change_threshold)\n"
     "  --direct-only PNG      also write the direct-only frame (what AR apps draw today)\n"
     "  --camera-out PNG       also write the camera frame the composite was drawn into\n"
     "\n"
@@ -94,6 +96,7 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
         request.colour_match = *mode == 0 ? ColourMatch::kOff : *mode == 1 ? ColourMatch::kPaper : ColourMatch::kPreserve;
     if (const auto exposure = line.number("--exposure", 1e-9, 1e9)) request.exposure = float(*exposure);
     request.camera_samples = uint32_t(line.integer("--samples", 1, 65536).value_or(request.camera_samples));
+    if (const auto threshold = line.number("--ground-change", 0.0, 1.0)) request.ground_change_threshold = float(*threshold);
     request.timed_frames = uint32_t(line.integer("--frames", 1, 100000).value_or(request.timed_frames));
     request.direct_only_png = line.text("--direct-only");
     request.camera_png = line.text("--camera-out");

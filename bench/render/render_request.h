@@ -28,6 +28,7 @@ struct RenderRequest {
     std::optional<std::string> camera_png;
     uint32_t camera_samples = 64;
     std::optional<float> exposure;          ///< default: middle grey of the sample camera frame, else 1
+    std::optional<float> ground_change_threshold;  ///< RuntimeOptions::ground_change_threshold
     uint32_t timed_frames = 20;
     uint32_t warm_up_frames = 3;
     bool help = false;

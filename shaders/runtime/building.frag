@@ -50,9 +50,17 @@ void main() {
     vec3 sun_irradiance = vec3(0.0);
     float cosine = dot(normal, frame.sun_direction.xyz);
     if (frame.sun_direction.w > 0.0 && cosine > 0.0) {
-        float visibility = sunVisibility(building_shadow, position_enu, normal);
-        if (frame.shadow_parameters.w > 0.0 && visibility > 0.0)
-            visibility *= sunVisibility(site_shadow, position_enu, normal);
+        // Five taps settle most fragments (fully lit); only the rest pay for the whole PCF kernel.
+        float visibility = surelyLit(building_shadow, position_enu, normal)
+                               ? 1.0
+                               : sunVisibility(building_shadow, position_enu, normal);
+        // The real site's shadow on the building: one bilinear compare tap (its edges come from far away and
+        // are soft in the camera image anyway).
+        if (frame.shadow_parameters.w > 0.0 && visibility > 0.0) {
+            vec2 uv;
+            float depth;
+            if (shadowLookup(position_enu, normal, uv, depth)) visibility *= texture(site_shadow, vec3(uv, depth));
+        }
         sun_irradiance = frame.sun_irradiance.rgb * (visibility * cosine);
     }
     vec3 radiance = albedo / kPi * (indirect_irradiance + sun_irradiance);

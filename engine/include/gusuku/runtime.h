@@ -112,6 +112,11 @@ struct RuntimeOptions {
     float statistics_smoothing_frames = 8.0f;
     /// Per-channel gain limit of the colour transfer (sigma_target / sigma_source clamped to [1/g, g]).
     float colour_gain_limit = 2.0f;
+    /// Ground cells whose baked irradiance with the building differs from without it by more than this
+    /// (relative, any channel of any slot) get the ratio pass even where the building casts no shadow this frame;
+    /// below it the building's bounce and sky occlusion are taken as no change and the camera pixel is left.
+    /// 1/255 moves the brightest pixel by under one 8-bit step.
+    float ground_change_threshold = 1.0f / 255.0f;
     /// Direct-only mode: the constant ambient irradiance, as a fraction of the current E_sun (per channel).
     float direct_only_ambient_fraction = 0.25f;
     /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this.

@@ -177,7 +177,7 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         slot_colour_statistics_.push_back(statistics);
     }
     try {
-        scene_ = uploadScene(gpu, bake_set);
+        scene_ = uploadScene(gpu, bake_set, options.ground_change_threshold);
         ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
         ground_shadow_candidate_.assign(scene_.ground_cell_state.size(), 0.0f);
         ground_candidate_buffer_ = GpuBuffer(gpu, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), 16),

@@ -14,10 +14,6 @@ namespace {
 
 // Half floats hold up to 65504: irradiance above this fraction of it is stored scaled down.
 constexpr float kLargestStoredHalf = 30000.0f;
-// A cell whose baked irradiance with the building differs from without it by more than this (relative, in any
-// channel of any slot) counts as changed by the building: below it the ratio moves the brightest camera pixel by
-// under one 8-bit step, and the bake's own noise is of that order.
-constexpr float kBakedChangeThreshold = 1.0f / 255.0f;
 
 template <typename T>
 GpuBuffer deviceBuffer(const GpuDevice& gpu, const std::vector<T>& values, VkBufferUsageFlags usage) {
@@ -49,7 +45,7 @@ void extend(glm::dvec3& low, glm::dvec3& high, const glm::dvec3& point) {
 
 }  // namespace
 
-GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold) {
     GpuScene scene;
     const BakeSetMesh& mesh = bake_set.building;
 
@@ -158,7 +154,7 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
         scene.ground_irradiance = GpuImage(gpu, description);
         if (has_ground) {
             // Layer 0's alpha also marks (2) the cells where the building changes the baked light in any slot
-            // by more than kBakedChangeThreshold: elsewhere only the building's shadow can change the pixel.
+            // by more than change_threshold: elsewhere only the building's shadow can change the pixel.
             std::vector<uint16_t> flagged = toHalf(bake_set.slots[0].ground_with, inverse_scale);
             scene.ground_cell_state.assign(size_t(columns) * rows, 0);
             scene.ground_cell_height.assign(size_t(columns) * rows, 0.0f);
@@ -170,7 +166,7 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set) {
                     for (int channel = 0; channel < 3 && !changed; ++channel) {
                         const float with = slot.ground_with.rgba[cell * 4 + channel];
                         const float without = slot.ground_without.rgba[cell * 4 + channel];
-                        changed = std::abs(with - without) > kBakedChangeThreshold * std::max(without, 1e-6f);
+                        changed = std::abs(with - without) > change_threshold * std::max(without, 1e-6f);
                     }
                 if (changed && scene.ground_cell_state[cell] == 1) {
                     flagged[cell * 4 + 3] = uint16_t(glm::packHalf1x16(2.0f));

@@ -51,7 +51,8 @@ struct GpuScene {
     std::vector<float> ground_cell_height;
     GpuImage lightmaps;          ///< RGBA16F array, one layer per slot, values / irradiance_scale
     /// RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), RGB / irradiance_scale. Alpha: 0 no ground,
-    /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, > 0.5/255).
+    /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, above
+    /// RuntimeOptions::ground_change_threshold).
     GpuImage ground_irradiance;
     GpuImage ground_geometry;    ///< RGBA32F: normal, height
     float irradiance_scale = 1.0f;  ///< stored half-float values times this are the bake set's irradiance
@@ -61,7 +62,8 @@ struct GpuScene {
     double scene_radius_m = 1.0;  ///< half the diagonal of everything, for depth ranges
 };
 
-/// Uploads the bake set (already checked by findBakeSetProblem). Throws std::runtime_error on Vulkan failure.
-GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set);
+/// Uploads the bake set (already checked by findBakeSetProblem); change_threshold is
+/// RuntimeOptions::ground_change_threshold. Throws std::runtime_error on Vulkan failure.
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold);
 
 }  // namespace gusuku::runtime_detail
