@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 namespace gusuku::fuzz {
@@ -45,6 +46,11 @@ std::string makeWorkFolder() {
 
 const std::string& workFolder() {
     static const std::string folder = makeWorkFolder();
+    static const bool removed_at_exit = std::atexit([] {
+        std::error_code ignored;
+        std::filesystem::remove_all(workFolder(), ignored);
+    }) == 0;
+    (void)removed_at_exit;
     return folder;
 }
 

@@ -10,7 +10,7 @@ namespace gusuku::fuzz {
 
 /// The folder, created on first use (mkdtemp under $TMPDIR or /tmp) with: building.glb, site.glb (placeholders),
 /// sky.hdr, sky_overcast.exr (placeholders), buffer.bin (a triangle: 3 float3 positions, then 3 uint16 indices),
-/// texture.png (a 2 x 2 RGBA PNG).
+/// texture.png (a 2 x 2 RGBA PNG). Removed when the process exits.
 const std::string& workFolder();
 
 /// Writes `size` bytes to workFolder()/name and returns the path.
