@@ -581,10 +581,11 @@ void runDay(Bench& bench) {
             const FrameInput input = frameInputFor(mode, camera, intrinsics, pose, utc, 0.0f, frames.exposure);
             return summariseError(steadyComposite(runtime, input), truth, mask);
         };
-        RuntimeMode nearest_mode = runtimeModeNamed("proposed_no_colour_match");
+        RuntimeMode nearest_mode = runtimeModeNamed("proposed");
         nearest_mode.blend_slots = false;
-        const ErrorSummary with_blend = errorOf(runtimeModeNamed("proposed_no_colour_match")),
-                           without_blend = errorOf(nearest_mode), matched = errorOf(runtimeModeNamed("proposed")),
+        const ErrorSummary with_blend = errorOf(runtimeModeNamed("proposed")),
+                           without_blend = errorOf(nearest_mode),
+                           matched = errorOf(runtimeModeNamed("proposed_preserve_match")),
                            direct_only = errorOf(runtimeModeNamed("direct_only"));
         const double hour = (utc - bench.bake_midnight_utc) / 3600.0;
         const double elevation = sunElevationAt(bench, utc);
@@ -653,10 +654,10 @@ void runWeather(Bench& bench) {
                                                        cover, frames.exposure * response.exposure_scale);
                 return summariseError(steadyComposite(runtime, input), truth, mask);
             };
-            const ErrorSummary matched = errorOf("proposed"), unmatched = errorOf("proposed_no_colour_match"),
+            const ErrorSummary matched = errorOf("proposed_preserve_match"), unmatched = errorOf("proposed"),
                                direct = errorOf("direct_only");
             rows.push_back({{"cloud_cover", cover}, {"camera_response", response.name},
-                            {"proposed", errorJson(matched)}, {"proposed_no_colour_match", errorJson(unmatched)},
+                            {"proposed_preserve_match", errorJson(matched)}, {"proposed", errorJson(unmatched)},
                             {"direct_only", errorJson(direct)}});
             bench.say("| " + fixed(cover, 1) + " | " + response.name + " | " + fixed(matched.mean_de00) + " | " +
                       fixed(unmatched.mean_de00) + " | " + fixed(direct.mean_de00) + " |");

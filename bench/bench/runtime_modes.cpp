@@ -8,11 +8,12 @@ namespace gusuku::bench {
 
 std::vector<RuntimeMode> benchRuntimeModes() {
     std::vector<RuntimeMode> modes;
-    modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
-    modes.push_back({"proposed", RenderMode::kProposed, ColourMatch::kPreserve, true, true});
-    modes.push_back({"proposed_no_slot_blend", RenderMode::kProposed, ColourMatch::kPreserve, false, true});
-    modes.push_back({"proposed_no_ground_ratio", RenderMode::kProposed, ColourMatch::kPreserve, true, false});
-    modes.push_back({"proposed_no_colour_match", RenderMode::kProposed, ColourMatch::kOff, true, true});
+modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
+    // The proposed method as the runtime ships it: the camera's exposure given, no colour match.
+    modes.push_back({"proposed", RenderMode::kProposed, ColourMatch::kOff, true, true});
+    modes.push_back({"proposed_no_slot_blend", RenderMode::kProposed, ColourMatch::kOff, false, true});
+    modes.push_back({"proposed_no_ground_ratio", RenderMode::kProposed, ColourMatch::kOff, true, false});
+    modes.push_back({"proposed_preserve_match", RenderMode::kProposed, ColourMatch::kPreserve, true, true});
     modes.push_back({"proposed_paper_match", RenderMode::kProposed, ColourMatch::kPaper, true, true});
     return modes;
 }

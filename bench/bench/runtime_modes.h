@@ -18,8 +18,9 @@ struct RuntimeMode {
     bool ground_ratio = true;
 };
 
-/// direct_only, proposed, proposed_no_slot_blend, proposed_no_ground_ratio, proposed_no_colour_match,
-/// proposed_paper_match (the paper's Reinhard transfer instead of the chroma-keeping one).
+/// direct_only, proposed (as shipped: exposure given, no colour match), proposed_no_slot_blend,
+/// proposed_no_ground_ratio, proposed_preserve_match (the chroma-keeping match on), proposed_paper_match (the
+/// paper's Reinhard transfer on).
 std::vector<RuntimeMode> benchRuntimeModes();
 /// The mode of that name from benchRuntimeModes (std::invalid_argument when none).
 RuntimeMode runtimeModeNamed(const std::string& name);
