@@ -28,18 +28,6 @@ using testing::syntheticLocalTime;
 
 constexpr uint32_t kWidth = 160, kHeight = 120;
 
-// A camera at `position` looking at `target`, the image's up towards ENU +z (or +y when looking straight down).
-CameraPose lookAt(const glm::dvec3& position, const glm::dvec3& target) {
-    const glm::dvec3 forward = glm::normalize(target - position);
-    const glm::dvec3 world_up = std::abs(forward.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
-    const glm::dvec3 down = glm::cross(forward, right);
-    CameraPose pose;
-    pose.position_enu = position;
-    pose.camera_to_enu = glm::dmat3(right, down, forward);
-    return pose;
-}
-
 CameraIntrinsics intrinsics(double focal = 120.0) {
     return {focal, focal, kWidth / 2.0, kHeight / 2.0, kWidth, kHeight};
 }
@@ -81,7 +69,7 @@ protected:
 
 TEST(RuntimeCamera, ProjectionConventionIsPinned) {
     // A camera 10 m south of the origin looking north: ENU east is image right, ENU up is image up.
-    const CameraPose pose = lookAt({0, -10, 0}, {0, 0, 0});
+    const CameraPose pose = CameraPose::lookingAt({0, -10, 0}, {0, 0, 0});
     const CameraIntrinsics k{100.0, 100.0, 80.0, 60.0, kWidth, kHeight};
     const std::optional<glm::dvec2> centre = Runtime::projectToPixel(k, pose, {0, 0, 0});
     ASSERT_TRUE(centre);
@@ -100,7 +88,7 @@ TEST(RuntimeCamera, ProjectionConventionIsPinned) {
 TEST_F(RuntimeTest, RendersTheBuildingWherePinholeProjectionPutsIt) {
     std::unique_ptr<Runtime> runtime = open();
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);  // black: anything drawn shows
-    const CameraPose pose = lookAt({0, -12, 1.5}, {0, 0, 1.5});
+    const CameraPose pose = CameraPose::lookingAt({0, -12, 1.5}, {0, 0, 1.5});
     std::vector<uint8_t> output(camera.size());
     FrameInput frame = frameAt(camera, pose, syntheticLocalTime(12, 0));
     frame.ground_ratio = false;
@@ -122,7 +110,7 @@ TEST_F(RuntimeTest, RendersTheBuildingWherePinholeProjectionPutsIt) {
 TEST_F(RuntimeTest, CameraPixelsOutsideTheBuildingsReachAreUnchangedBitForBit) {
     std::unique_ptr<Runtime> runtime = open();
     const std::vector<uint8_t> camera = noiseImage(7);
-    const CameraPose pose = lookAt({3, -14, 4}, {0, 0, 1});
+    const CameraPose pose = CameraPose::lookingAt({3, -14, 4}, {0, 0, 1});
     std::vector<uint8_t> output(camera.size());
     const FrameInput frame = frameAt(camera, pose, syntheticLocalTime(15, 0));
     const FrameInfo info = runtime->renderFrame(frame, output.data());
@@ -167,7 +155,7 @@ TEST_F(RuntimeTest, BuildingPixelIsAlbedoOverPiTimesBakedPlusShadowedSun) {
     std::unique_ptr<Runtime> runtime = open(set);
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);
     // At 09:00 in June the sun is in the east: the east face is lit, and seen head-on from the east.
-    const CameraPose pose = lookAt({12, 0, 1.5}, {0, 0, 1.5});
+    const CameraPose pose = CameraPose::lookingAt({12, 0, 1.5}, {0, 0, 1.5});
     std::vector<uint8_t> output(camera.size());
     FrameInput frame = frameAt(camera, pose, syntheticLocalTime(9, 0));
     frame.ground_ratio = false;
@@ -193,7 +181,7 @@ TEST_F(RuntimeTest, BuildingPixelIsAlbedoOverPiTimesBakedPlusShadowedSun) {
 void expectShadowWhereGeometryPutsIt(Runtime& runtime, const testing::SyntheticBakeSetOptions& set, int hours,
                                      int minutes) {
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 128);
-    const CameraPose pose = lookAt({0, -2, 30}, {0, -2, 0});  // straight down, image up = north
+    const CameraPose pose = CameraPose::lookingAt({0, -2, 30}, {0, -2, 0});  // straight down, image up = north
     std::vector<uint8_t> output(camera.size());
     FrameInput frame = frameAt(camera, pose, syntheticLocalTime(hours, minutes));
     const FrameInfo info = runtime.renderFrame(frame, output.data());
@@ -280,9 +268,9 @@ TEST_F(RuntimeTest, ShadowDoesNotShimmerWhenTheCameraMoves) {
     // Looking straight down from 30 m with f = 120 px, 0.25 m of camera motion is exactly 1 px: moving by 2 m
     // east shifts the ground's image by exactly 8 px, so the same ground point lands on the same pixel grid.
     std::vector<uint8_t> first(camera.size()), second(camera.size());
-    FrameInput frame = frameAt(camera, lookAt({0, 0, 30}, {0, 0, 0}), syntheticLocalTime(16, 30));
+    FrameInput frame = frameAt(camera, CameraPose::lookingAt({0, 0, 30}, {0, 0, 0}), syntheticLocalTime(16, 30));
     runtime->renderFrame(frame, first.data());
-    frame.pose = lookAt({2, 0, 30}, {2, 0, 0});
+    frame.pose = CameraPose::lookingAt({2, 0, 30}, {2, 0, 0});
     runtime->renderFrame(frame, second.data());
     size_t compared = 0, different = 0;
     for (uint32_t y = 0; y < kHeight; ++y)
@@ -305,7 +293,7 @@ TEST_F(RuntimeTest, ShadowMovesSmoothlyWhenTheSunMovesOneMinute) {
     std::unique_ptr<Runtime> runtime = open();
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 128);
     std::vector<uint8_t> first(camera.size()), second(camera.size());
-    FrameInput frame = frameAt(camera, lookAt({0, 0, 30}, {0, 0, 0}), syntheticLocalTime(16, 0));
+    FrameInput frame = frameAt(camera, CameraPose::lookingAt({0, 0, 30}, {0, 0, 0}), syntheticLocalTime(16, 0));
     runtime->renderFrame(frame, first.data());
     frame.utc_unix_seconds += 60.0;
     runtime->renderFrame(frame, second.data());
@@ -324,7 +312,7 @@ TEST_F(RuntimeTest, ShadowMovesSmoothlyWhenTheSunMovesOneMinute) {
 
 TEST_F(RuntimeTest, HardFramesGiveNoNaNAndNoFlash) {
     std::unique_ptr<Runtime> runtime = open();
-    const CameraPose pose = lookAt({0, -12, 1.5}, {0, 0, 1.5});
+    const CameraPose pose = CameraPose::lookingAt({0, -12, 1.5}, {0, 0, 1.5});
     const size_t bytes = size_t(kWidth) * kHeight * 4;
     std::vector<uint8_t> zero_variance(bytes, 90), black(bytes, 0), white(bytes, 255), sky(bytes);
     std::mt19937 random(3);
@@ -362,7 +350,7 @@ TEST_F(RuntimeTest, BadFrameInputIsRefusedWithAReason) {
     std::unique_ptr<Runtime> runtime = open();
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);
     std::vector<uint8_t> output(camera.size());
-    const FrameInput good = frameAt(camera, lookAt({0, -12, 1.5}, {0, 0, 1.5}), syntheticLocalTime(12, 0));
+    const FrameInput good = frameAt(camera, CameraPose::lookingAt({0, -12, 1.5}, {0, 0, 1.5}), syntheticLocalTime(12, 0));
     auto expectRefused = [&](FrameInput frame, const char* field) {
         try {
             runtime->renderFrame(frame, output.data());
@@ -423,7 +411,7 @@ TEST_F(RuntimeTest, CameraAsTheAppsImageGivesTheSameComposite) {
     GpuImage app_image(context(), description);
     app_image.upload(camera.data(), camera.size(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 
-    const CameraPose pose = lookAt({3, -12, 3}, {0, 0, 1});
+    const CameraPose pose = CameraPose::lookingAt({3, -12, 3}, {0, 0, 1});
     std::vector<uint8_t> from_buffer(camera.size()), from_image(camera.size());
     FrameInput frame = frameAt(camera, pose, syntheticLocalTime(15, 0));
     runtime->renderFrame(frame, from_buffer.data());
@@ -454,7 +442,7 @@ TEST(RuntimeHeadless, OpensOnADeviceOfItsOwnAndReportsItsMemory) {
     std::unique_ptr<Runtime> runtime = Runtime::openHeadless(makeSyntheticBakeSet(), smallOptions());
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);
     std::vector<uint8_t> output(camera.size());
-    runtime->renderFrame(frameAt(camera, lookAt({0, -12, 1.5}, {0, 0, 1.5}), syntheticLocalTime(12, 0)),
+    runtime->renderFrame(frameAt(camera, CameraPose::lookingAt({0, -12, 1.5}, {0, 0, 1.5}), syntheticLocalTime(12, 0)),
                          output.data());
     EXPECT_GT(runtime->deviceMemoryBytes(), size_t(kWidth) * kHeight * 4 * 2);
     EXPECT_NE(runtime->compositeImage(), VK_NULL_HANDLE);

@@ -40,15 +40,6 @@ std::vector<uint8_t> cameraPattern() {
     return image;
 }
 
-CameraPose lookAt(const glm::dvec3& position, const glm::dvec3& target) {
-    const glm::dvec3 forward = glm::normalize(target - position);
-    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
-    CameraPose pose;
-    pose.position_enu = position;
-    pose.camera_to_enu = glm::dmat3(right, glm::cross(forward, right), forward);
-    return pose;
-}
-
 struct GoldenCase {
     const char* name;
     int hours, minutes;
@@ -73,7 +64,7 @@ TEST_P(RuntimeGolden, MatchesItsGoldenImage) {
     FrameInput frame;
     frame.camera_rgba8 = camera.data();
     frame.intrinsics = {110.0, 110.0, kWidth / 2.0, kHeight / 2.0, kWidth, kHeight};
-    frame.pose = lookAt({5, -9, 4}, {0, -1.5, 1});
+    frame.pose = CameraPose::lookingAt({5, -9, 4}, {0, -1.5, 1});
     frame.utc_unix_seconds = testing::syntheticLocalTime(golden.hours, golden.minutes);
     frame.weather.cloud_cover = golden.cloud_cover;
     frame.exposure = 0.6f;

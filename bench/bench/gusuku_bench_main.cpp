@@ -53,7 +53,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
-using bench_common::intrinsicsForFov;
 using bench_common::lookAtPose;
 using bench_common::Spread;
 using bench_common::spreadOf;
@@ -239,7 +238,7 @@ void runMain(Bench& bench) {
     const uint32_t width = settings.accuracy_width, height = settings.accuracy_height;
     const BenchCondition condition{bench.bake_midnight_utc + 10.5 * 3600.0, 0.0f};
     const CameraResponse response = benchCameraResponses()[0];
-    const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, bench.view.horizontal_fov_deg);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
     bench.say("**Truth**");
     const Clock::time_point start = Clock::now();
@@ -322,7 +321,7 @@ void runMain(Bench& bench) {
     for (const auto& [timing_width, timing_height] : std::vector<std::pair<uint32_t, uint32_t>>{{1280, 720}, {640, 360}}) {
         const std::string size = std::to_string(timing_width) + "x" + std::to_string(timing_height);
         const std::vector<uint8_t> big_camera = resizeNearest(camera, width, height, timing_width, timing_height);
-        const CameraIntrinsics big = intrinsicsForFov(timing_width, timing_height, bench.view.horizontal_fov_deg);
+        const CameraIntrinsics big = CameraIntrinsics::fromFieldOfView(timing_width, timing_height, bench.view.horizontal_fov_deg);
         Runtime& timed = bench.runtimeFor(timing_width, timing_height);
         std::vector<FrameInput> inputs;
         std::vector<RuntimeMode> modes = benchRuntimeModes();
@@ -554,7 +553,7 @@ void runDay(Bench& bench) {
     const double sunrise = horizonCrossing(bench, bench.bake_midnight_utc, noon);
     const double sunset = horizonCrossing(bench, bench.bake_midnight_utc + 24 * 3600.0, noon);
     const CameraResponse response = benchCameraResponses()[0];
-    const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, bench.view.horizontal_fov_deg);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
     Runtime& runtime = bench.runtimeFor(width, height);
     bench.say("");
@@ -633,7 +632,7 @@ void runWeather(Bench& bench) {
     const Settings& settings = bench.settings;
     const uint32_t width = settings.sweep_width, height = settings.sweep_height;
     const double utc = bench.bake_midnight_utc + 10.5 * 3600.0;
-    const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, bench.view.horizontal_fov_deg);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
     Runtime& runtime = bench.runtimeFor(width, height);
     bench.say("");
@@ -718,7 +717,7 @@ void runCost(Bench& bench) {
     std::vector<uint8_t> camera(size_t(width) * height * 4, 128);
     for (size_t pixel = 0; pixel < size_t(width) * height; ++pixel) camera[4 * pixel + 3] = 0;
     std::vector<uint8_t> out(camera.size());
-    const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, bench.view.horizontal_fov_deg);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     bench.say("");
     bench.say("**Cost (640x360, median of " + std::to_string(settings.timed_frames) + " fenced frames)**");
     Json triangles = Json::array();
@@ -771,7 +770,7 @@ void runCost(Bench& bench) {
 void runClouds(Bench& bench) {
     const Settings& settings = bench.settings;
     const uint32_t width = settings.sweep_width, height = settings.sweep_height;
-    const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, bench.view.horizontal_fov_deg);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
     Runtime& runtime = bench.runtimeFor(width, height);
     const std::vector<float> candidates{0.0f, 0.5f, 1.0f};
@@ -884,7 +883,7 @@ int run(const Settings& settings) {
 
 int main(int argc, char** argv) {
     using namespace gusuku::bench;
-    try {
+    return gusuku::runToolMain("gusuku-bench", [&] {
         bool help = false;
         const Settings settings = parseSettings(std::vector<std::string>(argv + 1, argv + argc), help);
         if (help) {
@@ -892,17 +891,5 @@ int main(int argc, char** argv) {
             return 0;
         }
         return run(settings);
-    } catch (const gusuku::OptionValueError& error) {
-        std::fprintf(stderr, "%s\n", error.what());
-        return 1;
-    } catch (const gusuku::UsageError& error) {
-        std::fprintf(stderr, "%s\n", error.what());
-        return 2;
-    } catch (const gusuku::InputError& error) {
-        std::fprintf(stderr, "gusuku-bench: error: %s\n", error.what());
-        return 1;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "gusuku-bench: error: %s\n", error.what());
-        return 1;
-    }
+    });
 }

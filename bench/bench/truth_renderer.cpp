@@ -117,7 +117,7 @@ TracedFrame TruthRenderer::render(const TracedFrameRequest& request, bool use_ca
         }
 
     const CameraIntrinsics intrinsics =
-        bench_common::intrinsicsForFov(request.width, request.height, request.view.horizontal_fov_deg);
+        CameraIntrinsics::fromFieldOfView(request.width, request.height, request.view.horizontal_fov_deg);
     const CameraPose pose = bench_common::lookAtPose(request.view.position_enu, request.view.look_at_enu);
     bake::CameraRenderOptions options;
     options.samples_per_pixel = request.samples_per_pixel;

@@ -1,6 +1,6 @@
 #pragma once
-// A camera placed by eye for the tools (gusuku-render, gusuku-bench): a pose that looks from one ENU point at
-// another, and pinhole intrinsics from a horizontal field of view, in gusuku/runtime.h's conventions.
+// A camera placed by eye for the tools (gusuku-render, gusuku-bench), from their --position and --look-at
+// options; the maths is the runtime's own (CameraPose::lookingAt, CameraIntrinsics::fromFieldOfView).
 
 #include <cstdint>
 
@@ -10,11 +10,7 @@
 
 namespace gusuku::bench_common {
 
-/// The pose of a camera at `position` looking at `target`, image up towards ENU +z (runtime.h's convention:
-/// columns right, down, forward). std::invalid_argument when the two points coincide.
+/// CameraPose::lookingAt, with the tools' message (naming --position and --look-at) when the points coincide.
 CameraPose lookAtPose(const glm::dvec3& position, const glm::dvec3& target);
-
-/// Pinhole intrinsics of a width x height frame with this horizontal field of view, centred principal point.
-CameraIntrinsics intrinsicsForFov(uint32_t width, uint32_t height, double horizontal_fov_deg);
 
 }  // namespace gusuku::bench_common

@@ -26,7 +26,6 @@
 namespace gusuku::render_cli {
 namespace {
 
-using bench_common::intrinsicsForFov;
 using bench_common::lookAtPose;
 using bench_common::Spread;
 using bench_common::spreadOf;
@@ -54,7 +53,7 @@ int run(const RenderRequest& request) {
     float exposure = request.exposure.value_or(1.0f);
     const CameraPose pose = lookAtPose(request.position_enu, request.look_at_enu);
     if (request.camera == "sample") {
-        const CameraIntrinsics intrinsics = intrinsicsForFov(width, height, request.horizontal_fov_deg);
+        const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, request.horizontal_fov_deg);
         const Clock::time_point start = Clock::now();
         SampleCameraFrame frame =
             renderSampleCameraFrame(context, bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json), utc_seconds,
@@ -85,7 +84,7 @@ int run(const RenderRequest& request) {
 
     FrameInput frame;
     frame.camera_rgba8 = camera.data();
-    frame.intrinsics = intrinsicsForFov(width, height, request.horizontal_fov_deg);
+    frame.intrinsics = CameraIntrinsics::fromFieldOfView(width, height, request.horizontal_fov_deg);
     frame.pose = pose;
     frame.utc_unix_seconds = utc_seconds;
     frame.weather.cloud_cover = request.cloud_cover;
@@ -153,24 +152,12 @@ int run(const RenderRequest& request) {
 
 int main(int argc, char** argv) {
     using namespace gusuku::render_cli;
-    try {
+    return gusuku::runToolMain("gusuku-render", [&] {
         const RenderRequest request = parseRenderRequest(std::vector<std::string>(argv + 1, argv + argc));
         if (request.help) {
             std::printf("%s", kRenderUsage);
             return 0;
         }
         return run(request);
-    } catch (const gusuku::OptionValueError& error) {
-        std::fprintf(stderr, "%s\n", error.what());
-        return 1;
-    } catch (const gusuku::UsageError& error) {
-        std::fprintf(stderr, "%s\n", error.what());
-        return 2;
-    } catch (const gusuku::InputError& error) {
-        std::fprintf(stderr, "gusuku-render: error: %s\n", error.what());
-        return 1;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "gusuku-render: error: %s\n", error.what());
-        return 1;
-    }
+    });
 }

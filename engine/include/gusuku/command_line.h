@@ -9,6 +9,7 @@
 // then finish(), which refuses anything left over (unknown options, a value given twice is the last one).
 
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <stdexcept>
@@ -78,5 +79,10 @@ private:
     std::string program_;
     std::vector<std::string> arguments_;
 };
+
+/// A tool's main(): runs `body` and turns what escapes it into one line on stderr and an exit code:
+/// OptionValueError 1 and UsageError 2 (their messages already name the program), any other exception 1 as
+/// "<tool>: error: <what>" (InputError's FILE: FIELD: PROBLEM included). Never throws.
+int runToolMain(const char* tool, const std::function<int()>& body) noexcept;
 
 }  // namespace gusuku

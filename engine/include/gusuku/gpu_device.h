@@ -37,6 +37,8 @@ struct GpuDevice {
     const VkPhysicalDeviceLimits& limits() const { return properties.limits; }
     /// Index of a memory type allowed by type_bits whose flags include `required`; std::runtime_error if none.
     uint32_t findMemoryType(uint32_t type_bits, VkMemoryPropertyFlags required) const;
+    /// vkQueueSubmit on `queue`, holding queue_mutex (when given) around it, as the contract above asks.
+    VkResult submitToQueue(const VkSubmitInfo& submit_info, VkFence fence) const;
     /// Like findMemoryType, but first tries required | preferred and returns -1 when even `required` is absent.
     int32_t findMemoryTypePreferring(uint32_t type_bits, VkMemoryPropertyFlags required,
                                      VkMemoryPropertyFlags preferred) const;

@@ -55,12 +55,20 @@ struct CameraIntrinsics {
     double fx = 0.0, fy = 0.0;  ///< focal lengths, pixels, > 0
     double cx = 0.0, cy = 0.0;  ///< principal point, pixels
     uint32_t width = 0, height = 0;
+
+    /// A width x height frame with this horizontal field of view (degrees, (0, 180)), square pixels, the principal
+    /// point at the centre.
+    static CameraIntrinsics fromFieldOfView(uint32_t width, uint32_t height, double horizontal_fov_deg);
 };
 
 /// Where the camera is and where it looks, in the site's ENU frame (see the camera convention above).
 struct CameraPose {
     glm::dvec3 position_enu{0.0};
     glm::dmat3 camera_to_enu{1.0};  ///< columns: camera x (right), y (down), z (forward) in ENU; orthonormal
+
+    /// A camera at `position_enu` looking at `target_enu`, the image's up towards ENU +z (towards north when it
+    /// looks straight down). std::invalid_argument when the two points coincide.
+    static CameraPose lookingAt(const glm::dvec3& position_enu, const glm::dvec3& target_enu);
 };
 
 /// A GPS fix. The sun is computed here; the camera pose stays in the site's frame.

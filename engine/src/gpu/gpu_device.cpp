@@ -47,6 +47,12 @@ uint32_t GpuDevice::findMemoryType(uint32_t type_bits, VkMemoryPropertyFlags req
     throw std::runtime_error(message.str());
 }
 
+VkResult GpuDevice::submitToQueue(const VkSubmitInfo& submit_info, VkFence fence) const {
+    if (queue_mutex == nullptr) return vkQueueSubmit(queue, 1, &submit_info, fence);
+    std::lock_guard<std::mutex> lock(*queue_mutex);
+    return vkQueueSubmit(queue, 1, &submit_info, fence);
+}
+
 GpuSubmitter::GpuSubmitter(const GpuDevice& gpu) : gpu_(gpu) {
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;  // one-shot command buffers only
@@ -86,12 +92,7 @@ void GpuSubmitter::submitAndWait(const std::function<void(VkCommandBuffer)>& rec
         VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
         submit_info.commandBufferCount = 1;
         submit_info.pCommandBuffers = &cmd;
-        if (gpu_.queue_mutex != nullptr) {
-            std::lock_guard<std::mutex> queue_lock(*gpu_.queue_mutex);
-            checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
-        } else {
-            checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
-        }
+        checkVk(gpu_.submitToQueue(submit_info, fence_), "vkQueueSubmit");
     } catch (...) {
         // Not submitted, so not pending: safe to free.
         vkFreeCommandBuffers(device, command_pool_, 1, &cmd);

@@ -822,12 +822,7 @@ void RuntimeImpl::submit(const std::function<void(VkCommandBuffer)>& record) {
     VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit_info.commandBufferCount = 1;
     submit_info.pCommandBuffers = &command_buffer_;
-    if (gpu_.queue_mutex != nullptr) {
-        std::lock_guard<std::mutex> lock(*gpu_.queue_mutex);
-        checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
-    } else {
-        checkVk(vkQueueSubmit(gpu_.queue, 1, &submit_info, fence_), "vkQueueSubmit");
-    }
+    checkVk(gpu_.submitToQueue(submit_info, fence_), "vkQueueSubmit");
     checkVk(vkWaitForFences(gpu_.device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
     checkVk(vkResetFences(gpu_.device, 1, &fence_), "vkResetFences");
 }

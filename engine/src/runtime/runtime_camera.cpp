@@ -3,12 +3,33 @@
 #include "runtime_camera.h"
 
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
 
 #include <glm/matrix.hpp>
 
 #include "gusuku/runtime.h"
 
 namespace gusuku {
+
+CameraIntrinsics CameraIntrinsics::fromFieldOfView(uint32_t width, uint32_t height, double horizontal_fov_deg) {
+    const double focal = 0.5 * double(width) / std::tan(0.5 * horizontal_fov_deg * std::numbers::pi / 180.0);
+    return {focal, focal, 0.5 * width, 0.5 * height, width, height};
+}
+
+CameraPose CameraPose::lookingAt(const glm::dvec3& position_enu, const glm::dvec3& target_enu) {
+    const glm::dvec3 offset = target_enu - position_enu;
+    if (!(glm::length(offset) > 1e-6)) throw std::invalid_argument("CameraPose::lookingAt: the target is the position");
+    const glm::dvec3 forward = glm::normalize(offset);
+    const glm::dvec3 world_up = std::abs(forward.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
+    CameraPose pose;
+    pose.position_enu = position_enu;
+    pose.camera_to_enu = glm::dmat3(right, glm::cross(forward, right), forward);  // right, down, forward
+    return pose;
+}
 
 std::optional<glm::dvec2> Runtime::projectToPixel(const CameraIntrinsics& intrinsics, const CameraPose& pose,
                                                   const glm::dvec3& point_enu) {

@@ -5,7 +5,9 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 namespace gusuku {
 
@@ -152,6 +154,24 @@ void CommandLine::finish() const {
     for (const std::string& argument : arguments_) {
         if (!argument.empty() && argument[0] == '-') fail("unknown option '" + argument + "' (see --help)");
         fail("unexpected argument '" + argument + "' (see --help)");
+    }
+}
+
+int runToolMain(const char* tool, const std::function<int()>& body) noexcept {
+    try {
+        return body();
+    } catch (const OptionValueError& error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        return 1;
+    } catch (const UsageError& error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        return 2;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "%s: error: %s\n", tool, error.what());
+        return 1;
+    } catch (...) {
+        std::fprintf(stderr, "%s: error: an unknown exception\n", tool);
+        return 1;
     }
 }
 
