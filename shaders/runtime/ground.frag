@@ -26,6 +26,12 @@ layout(location = 6) in float shadow_candidate;  // > 0 where the building's sha
 
 layout(location = 0) out vec4 out_ratio;
 
+// False in the variant drawn for quads the building's shadow cannot reach this frame: no building shadow-map
+// reads at all (llvmpipe would run them masked for every fragment of a SIMD group otherwise).
+layout(constant_id = 0) const bool kBuildingShadow = true;
+// False in the variant for frames without sun (overcast, night): no shadow-map reads and no sun term.
+layout(constant_id = 1) const bool kSunShines = true;
+
 void main() {
     const vec4 kUnchanged = vec4(0.5, 0.5, 0.5, 1.0);  // ratio 1 through the blend's factor of 2
     // Between a cell with ground and one without, the interpolated presence falls below 1: no ratio there.
@@ -38,14 +44,15 @@ void main() {
     bool direct_only = frame.slot_layers.w == RUNTIME_MODE_DIRECT_ONLY;
     bool baked_change = ground_present > 1.001 && !direct_only;
     vec3 normal = normalize(normal_enu);
-    bool sun_shines = frame.sun_direction.w > 0.0 && dot(normal, frame.sun_direction.xyz) > 0.0;
+    bool sun_shines = kSunShines && frame.sun_direction.w > 0.0 && dot(normal, frame.sun_direction.xyz) > 0.0;
     // Only cells the CPU found in the building's shadow reach read the building's shadow map at all.
-    bool lit = !sun_shines || shadow_candidate <= 0.0 || surelyLit(building_shadow, position_enu, normal);
+    bool lit = !kBuildingShadow || !sun_shines || shadow_candidate <= 0.0 ||
+               surelyLit(building_shadow, position_enu, normal);
     if (lit && !baked_change) {
         out_ratio = kUnchanged;
         return;
     }
-    float building_visibility = lit ? 1.0 : sunVisibility(building_shadow, position_enu, normal);
+    float building_visibility = (!kBuildingShadow || lit) ? 1.0 : sunVisibility(building_shadow, position_enu, normal);
 
     vec3 ratio;
     if (direct_only) {

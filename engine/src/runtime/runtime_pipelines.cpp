@@ -145,6 +145,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
             stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
             stages[1].module = modules[1];
             stages[1].pName = "main";
+            stages[1].pSpecializationInfo = description.fragment_specialization;
             stage_count = 2;
         }
 

@@ -41,6 +41,7 @@ struct GraphicsPipelineDescription {
     size_t vertex_spirv_bytes = 0;
     const uint32_t* fragment_spirv = nullptr;  ///< null: no fragment stage (depth only)
     size_t fragment_spirv_bytes = 0;
+    const VkSpecializationInfo* fragment_specialization = nullptr;  ///< constant_id values of the fragment stage
     VertexInput vertex_input;
     bool depth_test = true;
     bool depth_write = true;
