@@ -188,7 +188,7 @@ typedef struct gusuku_runtime_options {
     uint32_t statistics_stride;           /* colour statistics on every n-th pixel; default 8 */
     float statistics_smoothing_frames;    /* >= 1; default 8 */
     float colour_gain_limit;              /* default 2 */
-    float direct_only_ambient_fraction;   /* default 0.25 */
+    float direct_only_ambient_fraction;   /* of the slots' mean baked E_ind over the building; default 1 */
     float direct_only_shadow_darkening;   /* default 0.6 */
 } gusuku_runtime_options;
 

@@ -125,8 +125,10 @@ struct RuntimeOptions {
     /// below it the building's bounce and sky occlusion are taken as no change and the camera pixel is left.
     /// 1/255 moves the brightest pixel by under one 8-bit step.
     float ground_change_threshold = 1.0f / 255.0f;
-    /// Direct-only mode: the constant ambient irradiance, as a fraction of the current E_sun (per channel).
-    float direct_only_ambient_fraction = 0.25f;
+    /// Direct-only mode: the constant ambient irradiance, as a fraction of the mean baked E_ind over the
+    /// building of the frame's slots (one colour for the whole building: what an AR platform's ambient light
+    /// estimate gives an app today).
+    float direct_only_ambient_fraction = 1.0f;
     /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this.
     float direct_only_shadow_darkening = 0.6f;
 };

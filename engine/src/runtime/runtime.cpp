@@ -593,8 +593,16 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
                       float(std::max(grid.columns, 1))}};
     u.ground_parameters = {{float(std::max(grid.rows, 1)), kGroundPullM, frame.ground_ratio ? 1.0f : 0.0f,
                             kPassThroughThreshold}};
-    const glm::dvec3 ambient = lighting.sun_irradiance_rgb * double(options_.direct_only_ambient_fraction);
-    toShader(sun_shines_ ? ambient : glm::dvec3(0.0), options_.direct_only_shadow_darkening, u.direct_only);
+    // Direct-only's ambient: one colour, the frame's slots' mean baked E_ind over the building.
+    glm::dvec3 ambient(0.0);
+    const int ambient_slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
+    const float ambient_weights[3] = {weight_a, weight_b, lighting.overcast_slot >= 0 ? lighting.overcast_weight : 0.0f};
+    for (int index = 0; index < 3; ++index)
+        if (ambient_slots[index] >= 0)
+            ambient += double(ambient_weights[index]) *
+                       glm::dvec3(scene_.slot_mean_indirect[size_t(ambient_slots[index])]);
+    toShader(ambient * double(options_.direct_only_ambient_fraction), options_.direct_only_shadow_darkening,
+             u.direct_only);
     u.colour_match = {{0.0f, options_.colour_gain_limit, scene_.irradiance_scale, 0.0f}};
     uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
 

@@ -119,6 +119,18 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
     for (const glm::vec3& position : bake_set.occluder.positions)
         extend(scene.casters_min, scene.casters_max, glm::dvec3(position));
 
+    // Each slot's mean E_ind over the building's valid texels: direct-only's ambient estimate.
+    for (const BakeSetSlotImages& slot : bake_set.slots) {
+        glm::dvec3 sum(0.0);
+        double count = 0.0;
+        for (size_t texel = 0; texel + 3 < slot.building.rgba.size(); texel += 4)
+            if (slot.building.rgba[texel + 3] > 0.0f) {
+                sum += glm::dvec3(slot.building.rgba[texel], slot.building.rgba[texel + 1], slot.building.rgba[texel + 2]);
+                count += 1.0;
+            }
+        scene.slot_mean_indirect.push_back(count > 0.0 ? glm::vec3(sum / count) : glm::vec3(0.0f));
+    }
+
     // Lightmaps and ground terms as half-float arrays, scaled so the largest value fits.
     float largest = 0.0f;
     for (const BakeSetSlotImages& slot : bake_set.slots)
