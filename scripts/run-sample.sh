@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job on the bundled sample site: install, build, generate the sample site, bake it, print the summary.
-# Outputs land in out/sample (the site) and out/bakeset (the bake set).
+# The main job on the bundled sample site: install, build, generate the sample site, bake it, render its
+# composites with the runtime, and print the benchmark's summary (a short run).
+# Outputs land in out/sample (the site), out/bakeset (the bake set), out/composites and out/bench-quick.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -10,4 +11,5 @@ bash scripts/build.sh
 ./build/baker/gusuku-bake bake out/sample/site.json -o out/bakeset --force
 # Composites of the sample at 09:00, 12:00, 15:00, 16:30 and overcast, each beside direct-only, into out/composites.
 bash scripts/render-composites.sh out/bakeset out/composites 480x270 32
+# The benchmark's short run: frame time against accuracy to a path-traced truth (the README's Benchmark section).
 ./build/bench/gusuku-bench out/bakeset -o out/bench-quick --cache out/bench-cache --quick
