@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "app_owned_device.h"
 #include "gpu_test_support.h"
 #include "gusuku/colour.h"
 #include "gusuku/gpu_compute.h"
@@ -436,6 +437,28 @@ TEST_F(RuntimeTest, CameraAsTheAppsImageGivesTheSameComposite) {
                              nullptr, 0, nullptr);
     });
     EXPECT_EQ(readback.downloadVector<uint8_t>(camera.size()), from_buffer);
+}
+
+// On a device the app made itself (instance, device and queue created by the test, not by gusuku), the runtime
+// renders the same frame as on the tests' own context, under validation; and when it is gone, nothing of it is
+// left on the app's device (the layer reports leaks when the app destroys its device).
+TEST(RuntimeAppDevice, RendersOnTheAppsOwnDeviceAndLeavesNothingBehind) {
+    testing::AppOwnedDevice app;
+    {
+        const GpuDevice gpu = GpuDevice::describe(app.instance, app.physical_device, app.device, app.queue,
+                                                  app.queue_family, &app.queue_mutex);
+        std::unique_ptr<Runtime> runtime = Runtime::open(gpu, makeSyntheticBakeSet(), smallOptions());
+        const std::vector<uint8_t> camera = noiseImage(5);
+        std::vector<uint8_t> on_app_device(camera.size()), headless(camera.size());
+        const FrameInput frame = frameAt(camera, CameraPose::lookingAt({3, -12, 3}, {0, 0, 1}), syntheticLocalTime(15, 0));
+        runtime->renderFrame(frame, on_app_device.data());
+        std::unique_ptr<Runtime> own = Runtime::openHeadless(makeSyntheticBakeSet(), smallOptions());
+        own->renderFrame(frame, headless.data());
+        EXPECT_EQ(on_app_device, headless);
+        EXPECT_NE(on_app_device, camera);  // the building was drawn
+    }
+    app.destroyDevice();
+    for (const std::string& message : app.messages()) ADD_FAILURE() << "validation: " << message;
 }
 
 TEST(RuntimeHeadless, OpensOnADeviceOfItsOwnAndReportsItsMemory) {
