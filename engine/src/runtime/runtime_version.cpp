@@ -1,5 +1,4 @@
-// The runtime library's one symbol until the runtime issue fills it: its version, so the target builds and a
-// consumer can link it.
+// The runtime's version, for apps that log what they linked (the package's version, CMakeLists.txt's project()).
 #include "gusuku/runtime_version.h"
 
 namespace gusuku {
