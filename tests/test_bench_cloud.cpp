@@ -1,4 +1,4 @@
-// The cloud-cover estimate from a camera frame (bench/bench/cloud_estimate.h) on synthetic frames whose weather
+// The cloud-cover estimate from a camera frame (gusuku/weather_estimate.h; Weather::estimatedFrom in the runtime) on synthetic frames whose weather
 // is known by construction: a clear frame (blue sky, hard shadows on the ground), an overcast one (grey sky, no
 // shadows), and their blends, which must read as more clouded the more overcast they hold.
 
@@ -7,8 +7,9 @@
 #include <glm/common.hpp>
 #include <gtest/gtest.h>
 
-#include "cloud_estimate.h"
+#include "gusuku/weather_estimate.h"
 #include "gusuku/colour.h"
+#include "gusuku/runtime.h"
 
 namespace gusuku::bench {
 namespace {
@@ -51,6 +52,16 @@ TEST(BenchCloudEstimate, ClearAndOvercastFrames) {
     EXPECT_GT(overcast.cloud_cover, 0.85f);
     EXPECT_LT(overcast.shadow_contrast, kOvercastShadowContrast);
     EXPECT_NEAR(overcast.sky_blueness, 0.014f, 0.01f);  // (0.72 - 0.70) / 1.42
+}
+
+// The runtime's entry point hands the app the same cover as a Weather.
+TEST(BenchCloudEstimate, RuntimeWeatherIsTheEstimate) {
+    for (const float overcast : {0.0f, 0.5f, 1.0f}) {
+        const std::vector<uint8_t> frame = encode(overcast);
+        EXPECT_FLOAT_EQ(Weather::estimatedFrom(frame.data(), kWidth, kHeight).cloud_cover,
+                        estimateCloudCover(frame, kWidth, kHeight).cloud_cover);
+    }
+    EXPECT_FLOAT_EQ(Weather::estimatedFrom(nullptr, kWidth, kHeight).cloud_cover, 1.0f);
 }
 
 TEST(BenchCloudEstimate, MoreOvercastReadsMoreClouded) {

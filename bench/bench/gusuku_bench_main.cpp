@@ -31,7 +31,7 @@
 #include "bakeset_site.h"
 #include "camera_response.h"
 #include "camera_view.h"
-#include "cloud_estimate.h"
+#include "gusuku/weather_estimate.h"
 #include "frame_spread.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_loader.h"

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "gusuku/percentile.h"
+
 #include <glm/vec3.hpp>
 
 namespace gusuku::bench {
@@ -21,9 +23,8 @@ glm::dvec3 labOfSrgb8(uint8_t red, uint8_t green, uint8_t blue);
 /// per pixel, row-major. Colours repeat a lot in 8-bit frames, but 1280 x 720 takes ~0.1 s; no cache needed.
 std::vector<double> ciede2000PerPixel(const std::vector<uint8_t>& frame, const std::vector<uint8_t>& truth);
 
-/// The value at `fraction` (0..1) of the sorted values, interpolated linearly between the two nearest ranks
-/// (position fraction x (n - 1), as numpy's default and Excel's PERCENTILE.INC). 0 for no values.
-double percentile(std::vector<double> values, double fraction);
+/// Percentiles: gusuku/percentile.h, shared with the runtime's weather estimate.
+using gusuku::percentile;
 
 /// Peak signal-to-noise ratio of the RGB bytes (alpha ignored) over the mask's pixels: 10 log10(255^2 / MSE),
 /// MSE the mean of the squared byte differences over 3 x pixels. +infinity when the pixels are equal (or the

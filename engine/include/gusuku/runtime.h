@@ -84,6 +84,11 @@ struct Weather {
     float cloud_cover = 0.0f;
     static Weather sunny() { return {0.0f}; }
     static Weather overcast() { return {1.0f}; }
+    /// The weather read off the camera frame alone (RGBA8 as FrameInput's), for when no weather service
+    /// answers: the cover of gusuku/weather_estimate.h (hard shadows on the lower half, a blue sky on the top
+    /// rows). Allocates two frame-sized arrays: call it every second or so, not per frame. gusuku-bench measures
+    /// how often it picks the better weather.
+    static Weather estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height);
 };
 
 enum class ColourMatch {

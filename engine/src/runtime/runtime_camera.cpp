@@ -1,4 +1,5 @@
-// The camera convention of runtime.h: projection of ENU points to pixels, and the matching Vulkan clip matrix.
+// The camera convention of runtime.h (projection of ENU points to pixels, the matching Vulkan clip matrix, the
+// placement helpers), the frame input's checks, and the weather read off a camera frame.
 
 #include "runtime_camera.h"
 
@@ -11,8 +12,13 @@
 #include <glm/matrix.hpp>
 
 #include "gusuku/runtime.h"
+#include "gusuku/weather_estimate.h"
 
 namespace gusuku {
+
+Weather Weather::estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height) {
+    return {estimateCloudCover(camera_rgba8, width, height).cloud_cover};
+}
 
 CameraIntrinsics CameraIntrinsics::fromFieldOfView(uint32_t width, uint32_t height, double horizontal_fov_deg) {
     const double focal = 0.5 * double(width) / std::tan(0.5 * horizontal_fov_deg * std::numbers::pi / 180.0);

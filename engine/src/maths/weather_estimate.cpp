@@ -1,14 +1,14 @@
-// Cloud cover from the camera frame (see cloud_estimate.h).
+// Cloud cover from the camera frame (see weather_estimate.h).
 
-#include "cloud_estimate.h"
+#include "gusuku/weather_estimate.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "gusuku/colour.h"
-#include "image_metrics.h"
+#include "gusuku/percentile.h"
 
-namespace gusuku::bench {
+namespace gusuku {
 namespace {
 
 float clearness(float value, float overcast_value, float clear_value) {
@@ -18,14 +18,19 @@ float clearness(float value, float overcast_value, float clear_value) {
 }  // namespace
 
 CloudEstimate estimateCloudCover(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height) {
+    if (rgba8.size() != size_t(width) * height * 4) return estimateCloudCover(nullptr, 0, 0);
+    return estimateCloudCover(rgba8.data(), width, height);
+}
+
+CloudEstimate estimateCloudCover(const uint8_t* rgba8, uint32_t width, uint32_t height) {
     CloudEstimate estimate;
     estimate.cloud_cover = 1.0f;
-    if (width < 2 || height < 8 || rgba8.size() != size_t(width) * height * 4) return estimate;
+    if (rgba8 == nullptr || width < 2 || height < 8) return estimate;
 
     std::vector<glm::vec3> linear(size_t(width) * height);
     std::vector<double> luminance(linear.size());
     for (size_t pixel = 0; pixel < linear.size(); ++pixel) {
-        const uint8_t* bytes = rgba8.data() + 4 * pixel;
+        const uint8_t* bytes = rgba8 + 4 * pixel;
         linear[pixel] = srgbDecode(glm::vec3(bytes[0], bytes[1], bytes[2]) / 255.0f);
         luminance[pixel] = luminanceRec709(glm::dvec3(linear[pixel]));
     }
@@ -51,4 +56,4 @@ CloudEstimate estimateCloudCover(const std::vector<uint8_t>& rgba8, uint32_t wid
     return estimate;
 }
 
-}  // namespace gusuku::bench
+}  // namespace gusuku

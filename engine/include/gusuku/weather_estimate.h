@@ -1,6 +1,7 @@
 #pragma once
 // Weather from the camera frame alone: an estimate of cloud cover the app can hand the runtime as its Weather
-// (gusuku/runtime.h), when it has no weather feed. Two cues a sunny frame has and an overcast one lacks:
+// (gusuku/runtime.h: Weather::estimatedFrom), when no weather service answers. CPU, glm only (gusuku_maths);
+// it allocates (two arrays the size of the frame): call it now and then (every second or so), not per frame. Two cues a sunny frame has and an overcast one lacks:
 //   - hard shadows: sunlit and shaded ground differ by E_sun cos / E_sky + 1 (4 to 10 in clear air), an overcast
 //     ground only by its albedo and its occlusion. Measured as ln(p90 / p10) of luminance over the frame's lower
 //     half (where the ground is in a phone held up to a building), so a bright sky does not count;
@@ -16,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace gusuku::bench {
+namespace gusuku {
 
 struct CloudEstimate {
     float cloud_cover = 0.0f;      ///< [0, 1]: 0 clear, 1 overcast
@@ -33,5 +34,7 @@ inline constexpr float kClearSkyBlueness = 0.30f;
 /// The estimate for an RGBA8 frame (RGB sRGB-encoded, row 0 at the top; gusuku/runtime.h). A frame smaller
 /// than 2 x 8 pixels or entirely black is taken as overcast (cover 1: no sun added is the safer error).
 CloudEstimate estimateCloudCover(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height);
+/// The same over width * height * 4 bytes at rgba8 (null: overcast).
+CloudEstimate estimateCloudCover(const uint8_t* rgba8, uint32_t width, uint32_t height);
 
-}  // namespace gusuku::bench
+}  // namespace gusuku
