@@ -99,9 +99,11 @@ TEST(BakePreflight, GroundCellLargerThanTheSiteBakesAtOnce) {
 void expectRefusedBeforeWriting(const BakeRun& run, const std::string& out_dir, const std::string& message) {
     EXPECT_EQ(run.exit_code, 1) << run.err;
     EXPECT_TRUE(contains(run.err, message)) << run.err;
-    if (fs::exists(out_dir))
-        for (const auto& entry : fs::directory_iterator(out_dir))
+    if (fs::exists(out_dir)) {
+        for (const auto& entry : fs::directory_iterator(out_dir)) {
             EXPECT_EQ(entry.path().filename(), ".lock") << "written before the refusal: " << entry.path();
+        }
+    }
 }
 
 TEST(BakePreflight, BuildingOfDegenerateTrianglesIsRefusedByBakeAndCheck) {

@@ -81,10 +81,12 @@ TEST(FrameLighting, WeightsAreContinuousThroughTheDay) {
         std::vector<float> weights(4, 0.0f);
         weights[size_t(lighting.slot_a)] += lighting.sunny_weight * (1.0f - lighting.slot_b_weight);
         weights[size_t(lighting.slot_b)] += lighting.sunny_weight * lighting.slot_b_weight;
-        if (previous[0] >= 0.0f)
-            for (int slot = 0; slot < 3; ++slot)
+        if (previous[0] >= 0.0f) {
+            for (int slot = 0; slot < 3; ++slot) {
                 EXPECT_LT(std::abs(weights[size_t(slot)] - previous[size_t(slot)]), 0.02f)
                     << "minute " << minute << " slot " << slot;
+            }
+        }
         previous = weights;
     }
 }
