@@ -35,9 +35,10 @@ GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFO
     vec4 slot_weights;         // x weight of A, y of B, z of the overcast slot (weights include cloud cover)
     vec4 shadow_parameters;    // x 1 / map size, y depth bias per unit tan(angle), z PCF radius (taps), w 1: site shadows on
     vec4 ground_grid;          // x, y south-west corner (ENU m), z cell size (m), w columns
-    vec4 ground_parameters;    // x rows, y pull towards the camera (m), z 1: ratio on, w pass-through threshold
+    vec4 ground_parameters;    // x rows, y pull towards the camera (m), z unused, w pass-through threshold
     vec4 direct_only;          // rgb ambient irradiance (bake set units), w shadow darkening factor
-    vec4 colour_match;         // x mode (0 off, 1 paper, 2 preserve), y gain limit, z irradiance scale of the stored lightmaps
+    vec4 irradiance_scale;     // x: stored lightmaps and ground terms times this are the bake set's irradiance
+                               // (the colour match's mode and gain live in its own state buffer)
 GUSUKU_UNIFORM_BLOCK_END(FrameUniforms, frame)
 
 #endif

@@ -44,7 +44,7 @@ void main() {
             indirect_irradiance += frame.slot_weights.y * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.y)).rgb;
         if (frame.slot_weights.z > 0.0)
             indirect_irradiance += frame.slot_weights.z * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.z)).rgb;
-        indirect_irradiance *= frame.colour_match.z;  // the lightmaps are stored scaled to fit half floats
+        indirect_irradiance *= frame.irradiance_scale.x;  // the lightmaps are stored scaled to fit half floats
     }
 
     vec3 sun_irradiance = vec3(0.0);

@@ -45,8 +45,8 @@ void main() {
                             slotIrradiance(cell, frame.slot_layers.y, frame.slot_weights.y, false) +
                             slotIrradiance(cell, frame.slot_layers.z, frame.slot_weights.z, false);
     // Stored scaled to fit half floats: the scale cancels between the two but not against E_sun.
-    out_irradiance_with = with_building * frame.colour_match.z;
-    out_irradiance_without = without_building * frame.colour_match.z;
+    out_irradiance_with = with_building * frame.irradiance_scale.x;
+    out_irradiance_without = without_building * frame.irradiance_scale.x;
     out_sun_irradiance = frame.sun_direction.w > 0.0
                              ? frame.sun_irradiance.rgb * max(0.0, dot(geometry.rgb, frame.sun_direction.xyz))
                              : vec3(0.0);

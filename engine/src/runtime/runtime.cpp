@@ -11,6 +11,7 @@
 #include <mutex>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -136,18 +137,27 @@ private:
 
     // This frame's CPU-side state, filled by prepareFrame.
     FrameUniforms uniforms_{};
-    DepthOnlyPushConstants building_shadow_push_{};
-    DepthOnlyPushConstants site_shadow_push_{};
+    DepthOnlyPushConstants shadow_push_{};  // both shadow maps: the sun's view of this frame's fit
     DepthOnlyPushConstants occluder_push_{};
     bool sun_shines_ = false;
     // The shadow maps hold the sun's direction rounded to options_.shadow_sun_step_deg; they are re-rendered
     // only when that rounded direction changes (the building and the site are static).
     glm::dvec3 shadow_sun_direction_{0.0};
+    ShadowFit shadow_fit_;
     bool building_shadow_valid_ = false;
     bool site_shadow_valid_ = false;
     bool render_building_shadow_ = false;
     bool render_site_shadow_ = false;
     // The ground quads drawn this frame (selectGroundQuads), and the reused host arrays that choose them.
+    // What the ground quads were last chosen for (selectGroundQuads runs again only when it changes).
+    struct GroundSelectionKey {
+        bool wanted = false;
+        bool include_baked_changes = false;
+        bool sun_shines = false;
+        glm::dvec3 sun{0.0};
+        bool operator==(const GroundSelectionKey&) const = default;
+    };
+    std::optional<GroundSelectionKey> ground_selection_key_;
     uint32_t ground_index_count_ = 0;         // all quads drawn, times 6
     uint32_t ground_shadow_index_count_ = 0;  // the first of them, which the building's shadow may reach
     std::vector<uint8_t> ground_cell_marked_;
@@ -546,16 +556,6 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     const bool direct_only = frame.mode == RenderMode::kDirectOnly;
     sun_shines_ = lighting.sun.above_horizon && glm::length(lighting.sun_irradiance_rgb) > 0.0;
     site_shadows_ = sun_shines_ && !direct_only && scene_.occluder_index_count > 0;
-    const bool ground_wanted = direct_only ? sun_shines_ : frame.ground_ratio;
-    ground_index_count_ = ground_shadow_index_count_ = 0;
-    if (ground_wanted) selectGroundQuads(!direct_only, sun_shines_, lighting.sun.direction_enu);
-    draw_ground_ = ground_index_count_ > 0;
-    info.ground_quads_drawn = ground_index_count_ / 6;
-    info.ground_quads_total = scene_.ground_quad_capacity;
-
-    FrameUniforms& u = uniforms_;
-    const double far_m = std::max(4.0 * scene_.scene_radius_m + glm::length(frame.pose.position_enu), 100.0);
-    toShader(cameraEnuToClip(frame.intrinsics, frame.pose, kNearPlaneM, far_m), u.enu_to_clip);
     // The shadow maps' sun: rounded so that they are re-rendered only every shadow_sun_step_deg of its motion.
     glm::dvec3 shadow_sun = lighting.sun.direction_enu;
     if (options_.shadow_sun_step_deg > 0.0f) {
@@ -566,14 +566,32 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
         shadow_sun = glm::dvec3(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
                                 std::sin(elevation));
     }
+    // The ground quads to draw: chosen again only when what chooses them changes (the rounded sun, the mode,
+    // whether the sun shines); their margin covers the rounding.
+    const bool ground_wanted = direct_only ? sun_shines_ : frame.ground_ratio;
+    const GroundSelectionKey ground_key{ground_wanted, !direct_only, sun_shines_, shadow_sun};
+    if (ground_selection_key_ != ground_key) {
+        ground_selection_key_ = ground_key;
+        ground_index_count_ = ground_shadow_index_count_ = 0;
+        if (ground_wanted) selectGroundQuads(!direct_only, sun_shines_, shadow_sun);
+    }
+    draw_ground_ = ground_index_count_ > 0;
+    info.ground_quads_drawn = ground_index_count_ / 6;
+    info.ground_quads_total = scene_.ground_quad_capacity;
+
+    FrameUniforms& u = uniforms_;
+    const double far_m = std::max(4.0 * scene_.scene_radius_m + glm::length(frame.pose.position_enu), 100.0);
+    toShader(cameraEnuToClip(frame.intrinsics, frame.pose, kNearPlaneM, far_m), u.enu_to_clip);
+    // The fit depends only on the static bounds and this rounded sun: made again only when the sun moves a step.
     if (shadow_sun != shadow_sun_direction_) {
         shadow_sun_direction_ = shadow_sun;
         building_shadow_valid_ = site_shadow_valid_ = false;
+        shadow_fit_ = fitShadowMap(scene_.receivers_min, scene_.receivers_max, scene_.casters_min,
+                                   scene_.casters_max, shadow_sun, options_.shadow_map_size);
     }
     render_building_shadow_ = sun_shines_ && !building_shadow_valid_;
     render_site_shadow_ = site_shadows_ && !site_shadow_valid_;
-    const ShadowFit fit = fitShadowMap(scene_.receivers_min, scene_.receivers_max, scene_.casters_min,
-                                       scene_.casters_max, shadow_sun, options_.shadow_map_size);
+    const ShadowFit& fit = shadow_fit_;
     toShader(fit.enu_to_clip, u.enu_to_shadow_clip);
     toShader(frame.pose.position_enu, 1.0f, u.camera_position);
     toShader(lighting.sun.direction_enu, sun_shines_ ? 1.0f : 0.0f, u.sun_direction);
@@ -591,44 +609,31 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     const GroundGrid& grid = manifest_.ground_grid.grid;
     u.ground_grid = {{float(grid.origin_enu_m.x), float(grid.origin_enu_m.y), float(grid.cell_m),
                       float(std::max(grid.columns, 1))}};
-    u.ground_parameters = {{float(std::max(grid.rows, 1)), kGroundPullM, frame.ground_ratio ? 1.0f : 0.0f,
-                            kPassThroughThreshold}};
+    u.ground_parameters = {{float(std::max(grid.rows, 1)), kGroundPullM, 0.0f, kPassThroughThreshold}};
     // Direct-only's ambient: one colour, the frame's slots' mean baked E_ind over the building.
+    const int blend_slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
+    const float blend_weights[3] = {u.slot_weights[0], u.slot_weights[1], u.slot_weights[2]};
     glm::dvec3 ambient(0.0);
-    const int ambient_slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
-    const float ambient_weights[3] = {weight_a, weight_b, lighting.overcast_slot >= 0 ? lighting.overcast_weight : 0.0f};
     for (int index = 0; index < 3; ++index)
-        if (ambient_slots[index] >= 0)
-            ambient += double(ambient_weights[index]) *
-                       glm::dvec3(scene_.slot_mean_indirect[size_t(ambient_slots[index])]);
+        if (blend_slots[index] >= 0)
+            ambient += double(blend_weights[index]) * glm::dvec3(scene_.slot_mean_indirect[size_t(blend_slots[index])]);
     toShader(ambient * double(options_.direct_only_ambient_fraction), options_.direct_only_shadow_darkening,
              u.direct_only);
-    u.colour_match = {{0.0f, options_.colour_gain_limit, scene_.irradiance_scale, 0.0f}};
+    u.irradiance_scale = {{scene_.irradiance_scale, 0.0f, 0.0f, 0.0f}};
     uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
 
     // The colour match's source: the baked appearance's statistics, blended like the lightmaps.
     frame_colour_mode_ = direct_only ? ColourMatchMode::kOff : colourMatchModeFor(frame.colour_match);
-    LabStatistics source;
-    const float weights[3] = {weight_a, weight_b, u.slot_weights[2]};
-    const int slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
-    float weight_sum = 0.0f;
-    for (int index = 0; index < 3; ++index) {
-        if (slots[index] < 0 || weights[index] <= 0.0f) continue;
-        source.mean += weights[index] * slot_colour_statistics_[size_t(slots[index])].mean;
-        source.standard_deviation += weights[index] * slot_colour_statistics_[size_t(slots[index])].standard_deviation;
-        weight_sum += weights[index];
-    }
-    if (weight_sum > 0.0f) {
-        source.mean /= weight_sum;
-        source.standard_deviation /= weight_sum;
-    } else {
+    LabStatistics slot_statistics[3];
+    for (int index = 0; index < 3; ++index)
+        if (blend_slots[index] >= 0) slot_statistics[index] = slot_colour_statistics_[size_t(blend_slots[index])];
+    if (blend_weights[0] + blend_weights[1] + blend_weights[2] > 0.0f)
+        frame_source_statistics_ = blendLabStatistics(slot_statistics, blend_weights);
+    else
         frame_colour_mode_ = ColourMatchMode::kOff;  // night: nothing baked to match from
-    }
-    frame_source_statistics_ = source;
 
     // Depth passes' push constants.
-    toShader(fit.enu_to_clip, building_shadow_push_.enu_to_clip);
-    site_shadow_push_ = building_shadow_push_;
+    toShader(shadow_fit_.enu_to_clip, shadow_push_.enu_to_clip);
     occluder_push_.enu_to_clip = u.enu_to_clip;
     occluder_push_.pull = {{-kOccluderPushM, 0.0f, 0.0f, 0.0f}};
     occluder_push_.pull_origin = u.camera_position;
@@ -703,12 +708,12 @@ void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
         vkCmdEndRenderPass(cmd);
     };
     if (render_building_shadow_) {
-        shadowPass(building_shadow_framebuffer_, building_shadow_push_, shadow_pipeline_, scene_.building_vertices,
+        shadowPass(building_shadow_framebuffer_, shadow_push_, shadow_pipeline_, scene_.building_vertices,
                    scene_.building_indices, scene_.building_index_count);
         building_shadow_valid_ = true;
     }
     if (render_site_shadow_) {
-        shadowPass(site_shadow_framebuffer_, site_shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
+        shadowPass(site_shadow_framebuffer_, shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
                    scene_.occluder_indices, scene_.occluder_index_count);
         site_shadow_valid_ = true;
     }
