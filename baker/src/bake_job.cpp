@@ -17,7 +17,7 @@
 #include "bake_inputs.h"
 #include "bake_outputs.h"
 #include "bake_preflight.h"
-#include "content_hash.h"
+#include "gusuku_bake/content_hash.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_progress.h"

@@ -7,7 +7,7 @@
 #include <glm/matrix.hpp>
 
 #include "bake_statistics.h"
-#include "content_hash.h"
+#include "gusuku_bake/content_hash.h"
 #include "lightmap_denoise.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_manifest_json.h"

@@ -1,4 +1,4 @@
-#include "content_hash.h"
+#include "gusuku_bake/content_hash.h"
 
 #include <cstdio>
 

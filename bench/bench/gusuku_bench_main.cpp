@@ -32,6 +32,7 @@
 #include "camera_response.h"
 #include "camera_view.h"
 #include "gusuku/weather_estimate.h"
+#include "gusuku_bake/content_hash.h"
 #include "frame_spread.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_loader.h"
@@ -832,7 +833,7 @@ int run(const Settings& settings) {
     bench.context = std::make_unique<VulkanContext>(vulkanOptionsFromEnvironment());
     const HostInfo host = describeHost(bench.context->deviceDescription());
     const std::string context_hash =
-        fnv1aHex(readWholeFile(settings.bake_set + "/manifest.json") + readWholeFile(site_json));
+        bake::ContentHash().addFile(settings.bake_set + "/manifest.json").addFile(site_json).hex();
     std::filesystem::create_directories(settings.output + "/frames");
     bench.renderer = std::make_unique<TruthRenderer>(*bench.context, site, settings.cache, context_hash);
 

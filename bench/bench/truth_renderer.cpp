@@ -12,19 +12,9 @@
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/camera_frame.h"
 #include "gusuku_bake/camera_tracer.h"
+#include "gusuku_bake/content_hash.h"
 
 namespace gusuku::bench {
-
-std::string fnv1aHex(const std::string& text) {
-    uint64_t hash = 1469598103934665603ull;
-    for (unsigned char byte : text) {
-        hash ^= byte;
-        hash *= 1099511628211ull;
-    }
-    char digits[17];
-    std::snprintf(digits, sizeof digits, "%016llx", static_cast<unsigned long long>(hash));
-    return digits;
-}
 
 struct TruthRenderer::State {
     const GpuDevice& gpu;
@@ -101,7 +91,7 @@ void writeCached(const std::string& path, const std::string& key, const ImageRGB
 TracedFrame TruthRenderer::render(const TracedFrameRequest& request, bool use_cache) {
     const std::string key = keyOf(request, state_->context_hash);
     const std::string path =
-        state_->cache_folder.empty() ? std::string() : state_->cache_folder + "/" + fnv1aHex(key) + ".frame";
+        state_->cache_folder.empty() ? std::string() : state_->cache_folder + "/" + bake::ContentHash().addBytes(key.data(), key.size()).hex() + ".frame";
     const std::string denoised_path = path.empty() ? path : path.substr(0, path.size() - 6) + ".filtered.frame";
     TracedFrame frame;
     if (use_cache && !path.empty())

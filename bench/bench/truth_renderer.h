@@ -73,7 +73,4 @@ private:
     std::unique_ptr<State> state_;
 };
 
-/// 64-bit FNV-1a of a string, as 16 hex digits (cache keys and the bake set's hash).
-std::string fnv1aHex(const std::string& text);
-
 }  // namespace gusuku::bench

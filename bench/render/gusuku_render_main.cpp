@@ -53,15 +53,13 @@ int run(const RenderRequest& request) {
     float exposure = request.exposure.value_or(1.0f);
     const CameraPose pose = lookAtPose(request.position_enu, request.look_at_enu);
     if (request.camera == "sample") {
-        const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, request.horizontal_fov_deg);
         const Clock::time_point start = Clock::now();
-        SampleCameraFrame frame =
-            renderSampleCameraFrame(context, bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json), utc_seconds,
-                                    request.cloud_cover, intrinsics, pose, request.camera_samples,
-                                    request.exposure.value_or(0.0f));
-        std::printf("camera frame:    path-traced, %u spp, %.1f s (%.2f Mrays/s)\n", request.camera_samples,
-                    millisecondsSince(start) / 1000.0,
-                    frame.trace_seconds > 0.0 ? double(frame.rays_traced) / frame.trace_seconds / 1e6 : 0.0);
+        const bench::BenchView view{request.position_enu, request.look_at_enu, request.horizontal_fov_deg};
+        SampleCameraFrame frame = renderSampleCameraFrame(
+            context, bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json), view, width,
+            height, {utc_seconds, request.cloud_cover}, request.camera_samples, request.exposure.value_or(0.0f));
+        std::printf("camera frame:    path-traced and denoised, %u spp, %.1f s\n", request.camera_samples,
+                    millisecondsSince(start) / 1000.0);
         camera = std::move(frame.rgba8);
         exposure = frame.exposure;
     } else {

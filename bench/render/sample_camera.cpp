@@ -7,32 +7,24 @@
 
 namespace gusuku::render_cli {
 
-SampleCameraFrame renderSampleCameraFrame(const GpuDevice& gpu, const std::string& site_json, double utc_seconds,
-                                          float cloud_cover, const CameraIntrinsics& intrinsics,
-                                          const CameraPose& pose, uint32_t samples_per_pixel, float exposure) {
-    const SiteConfig site = loadSiteConfig(site_json);
+SampleCameraFrame renderSampleCameraFrame(const GpuDevice& gpu, const std::string& site_json,
+                                          const bench::BenchView& view, uint32_t width, uint32_t height,
+                                          const bench::BenchCondition& condition, uint32_t samples_per_pixel,
+                                          float exposure) {
+    bench::TruthRenderer renderer(gpu, loadSiteConfig(site_json), /*cache_folder=*/"", /*context_hash=*/"");
+    bench::TracedFrameRequest request;
+    request.view = view;
+    request.width = width;
+    request.height = height;
+    request.condition = condition;
+    request.samples_per_pixel = samples_per_pixel;
+    request.include_building = false;  // the site as it stands: the camera the building is drawn into
+    request.denoise = true;
+    const bench::TracedFrame traced = renderer.render(request, /*use_cache=*/false);
     SampleCameraFrame frame;
-    ImageRGBA blended;
-    auto add = [&](const BakeSlot& condition, float weight) {
-        if (weight <= 0.0f) return;
-        const bake::SiteCameraFrame rendered =
-            bake::renderSiteCameraFrame(gpu, site, condition, intrinsics, pose, samples_per_pixel);
-        frame.trace_seconds += rendered.render.trace_seconds + rendered.denoise_seconds;
-        frame.rays_traced += rendered.render.rays_traced;
-        const ImageRGBA& image = rendered.denoised.texels.empty() ? rendered.render.radiance : rendered.denoised;
-        if (blended.texels.empty()) {
-            blended = image;
-            for (float& value : blended.texels) value *= weight;
-        } else {
-            for (size_t index = 0; index < blended.texels.size(); ++index)
-                blended.texels[index] += weight * image.texels[index];
-        }
-    };
-    add(bake::sunnyConditionAt(utc_seconds), 1.0f - cloud_cover);
-    add(bake::overcastCondition(), cloud_cover);
-    for (size_t texel = 3; texel < blended.texels.size(); texel += 4) blended.texels[texel] = 1.0f;
-    frame.exposure = exposure > 0.0f ? exposure : bake::middleGreyExposure(blended);
-    frame.rgba8 = bake::packRgba8Srgb(blended, frame.exposure);
+    frame.trace_seconds = traced.trace_seconds + traced.denoise_seconds;
+    frame.exposure = exposure > 0.0f ? exposure : bake::middleGreyExposure(traced.denoised);
+    frame.rgba8 = bake::packRgba8Srgb(traced.denoised, frame.exposure);
     return frame;
 }
 
