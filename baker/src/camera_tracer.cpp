@@ -123,15 +123,8 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
         (*rows[row])[3] = float(pose.position_enu[row]);
     }
     // The same sun as the bake's TracePass (IrradianceTracer::addSamples).
-    const glm::dvec3 sun_direction = light.sun.present ? glm::normalize(light.sun.direction_enu)
-                                                       : glm::dvec3(0.0, 0.0, 1.0);
-    const double cos_max = std::cos(light.sun.angular_radius_deg * std::numbers::pi / 180.0);
-    for (int axis = 0; axis < 3; ++axis) {
-        push.sun_direction_cos_max[axis] = float(sun_direction[axis]);
-        push.sun_irradiance_ray_offset[axis] = float(light.sun.irradiance_rgb[axis]);
-    }
-    push.sun_direction_cos_max[3] = float(cos_max);
-    push.sun_irradiance_ray_offset[3] = options.ray_offset_m;
+    packSunLight(light.sun, options.ray_offset_m, push.sun_direction_cos_max.components,
+                 push.sun_irradiance_ray_offset.components);
 
     const uint32_t pixel_groups = (pixel_count + kWorkgroupSize - 1) / kWorkgroupSize;
     const size_t pixel_bytes = size_t(pixel_count) * sizeof(glm::vec4);

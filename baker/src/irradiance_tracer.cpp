@@ -10,7 +10,7 @@
 #include "bake_accumulate_interface.h"
 #include "bake_irradiance_comp_spv.h"
 #include "bake_irradiance_interface.h"
-#include "content_hash.h"
+#include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {
@@ -40,6 +40,16 @@ template <typename T> GpuBuffer uploadedBuffer(VulkanContext& context, const std
 }
 
 }  // namespace
+
+void packSunLight(const SunLight& sun, float ray_offset_m, float direction_cos_max[4], float irradiance_ray_offset[4]) {
+    const glm::dvec3 sun_direction = sun.present ? glm::normalize(sun.direction_enu) : glm::dvec3(0.0, 0.0, 1.0);
+    for (int axis = 0; axis < 3; ++axis) {
+        direction_cos_max[axis] = float(sun_direction[axis]);
+        irradiance_ray_offset[axis] = float(sun.irradiance_rgb[axis]);
+    }
+    direction_cos_max[3] = float(std::cos(sun.angular_radius_deg * std::numbers::pi / 180.0));
+    irradiance_ray_offset[3] = ray_offset_m;
+}
 
 uint64_t tracerCodeHash() {
     return ContentHash().addBytes(kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv)).value();
@@ -101,17 +111,8 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     push.skip_flags = pass.skip_flags;
     push.mode = uint32_t(pass.mode);
     push.sun_present = pass.sun.present ? 1u : 0u;
-    const glm::dvec3 sun_direction = pass.sun.present ? glm::normalize(pass.sun.direction_enu)
-                                                      : glm::dvec3(0.0, 0.0, 1.0);
-    const double cos_max = std::cos(pass.sun.angular_radius_deg * std::numbers::pi / 180.0);
-    push.sun_direction_cos_max[0] = float(sun_direction.x);
-    push.sun_direction_cos_max[1] = float(sun_direction.y);
-    push.sun_direction_cos_max[2] = float(sun_direction.z);
-    push.sun_direction_cos_max[3] = float(cos_max);
-    push.sun_irradiance_ray_offset[0] = float(pass.sun.irradiance_rgb.x);
-    push.sun_irradiance_ray_offset[1] = float(pass.sun.irradiance_rgb.y);
-    push.sun_irradiance_ray_offset[2] = float(pass.sun.irradiance_rgb.z);
-    push.sun_irradiance_ray_offset[3] = pass.ray_offset_m;
+    packSunLight(pass.sun, pass.ray_offset_m, push.sun_direction_cos_max.components,
+                 push.sun_irradiance_ray_offset.components);
     push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
 
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);

@@ -32,6 +32,12 @@ struct SunLight {
     double angular_radius_deg = 0.2675;       ///< the solar disc's mean apparent radius
 };
 
+/// The sun as the bake's and the camera's kernels take it (shaders/include/irradiance_paths.glsl's settings):
+/// direction_cos_max = unit direction towards the sun (ENU; (0, 0, 1) when absent) and the cosine of the disc's
+/// angular radius; irradiance_ray_offset = E_sun per channel and the ray offset in metres. One packing for both
+/// tracers, so the camera's sun is the bake's.
+void packSunLight(const SunLight& sun, float ray_offset_m, float direction_cos_max[4], float irradiance_ray_offset[4]);
+
 enum class TraceMode : uint32_t {
     IndirectIrradiance = 0,  ///< E_ind: everything but the direct sun at the point
     SunDirect = 1,           ///< only the direct sun term (sun disc sampled, shadow ray): a test path
