@@ -53,8 +53,8 @@
 
 namespace gusuku {
 
-/// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h; the
-/// runtime's ColourMatch maps one to one).
+/// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h); the
+/// runtime's API names it ColourMatch.
 enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2 };
 
 /// Longest shift of the a, b means in kPreserve, Lab units (about the cast of a strong white-balance error;

@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 
 #include "gusuku/bakeset_data.h"
+#include "gusuku/colour_match.h"
 #include "gusuku/gpu_device.h"
 
 namespace gusuku {
@@ -91,13 +92,13 @@ struct Weather {
     static Weather estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height);
 };
 
-enum class ColourMatch {
-    kOff,       ///< no colour match
-    kPaper,     ///< Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
-                ///< target the camera frame (the seed paper's method)
-    kPreserve,  ///< moves lightness and white balance towards the camera but keeps the building's chroma spread
-                ///< (the saturation the paper reports losing); see colour_match.h
-};
+/// The colour match of a frame, one enum with the GPU state's (gusuku/colour_match.h):
+///   kOff       no colour match;
+///   kPaper     Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
+///              target the camera frame (the seed paper's method);
+///   kPreserve  moves lightness and white balance towards the camera but keeps the building's chroma spread (the
+///              saturation the paper reports losing).
+using ColourMatch = ColourMatchMode;
 
 enum class RenderMode {
     kProposed,    ///< baked E_ind + real-time sun with shadow map, ground ratio, colour match

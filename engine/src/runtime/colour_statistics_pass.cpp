@@ -84,15 +84,6 @@ bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v
 
 }  // namespace
 
-ColourMatchMode colourMatchModeFor(ColourMatch colour_match) {
-    switch (colour_match) {
-    case ColourMatch::kPaper: return ColourMatchMode::kPaper;
-    case ColourMatch::kPreserve: return ColourMatchMode::kPreserve;
-    case ColourMatch::kOff: break;
-    }
-    return ColourMatchMode::kOff;
-}
-
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
                                            uint32_t stride, float smoothing_frames)
     : gpu_(gpu),

@@ -20,9 +20,6 @@
 
 namespace gusuku {
 
-/// The GPU state's mode for the runtime's ColourMatch.
-ColourMatchMode colourMatchModeFor(ColourMatch colour_match);
-
 class ColourStatisticsPass {
 public:
     /// Builds the pipelines and buffers for frames of frame_width x frame_height sampled every stride-th pixel,

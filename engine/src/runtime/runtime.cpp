@@ -623,7 +623,7 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
 
     // The colour match's source: the baked appearance's statistics, blended like the lightmaps.
-    frame_colour_mode_ = direct_only ? ColourMatchMode::kOff : colourMatchModeFor(frame.colour_match);
+    frame_colour_mode_ = direct_only ? ColourMatchMode::kOff : frame.colour_match;
     LabStatistics slot_statistics[3];
     for (int index = 0; index < 3; ++index)
         if (blend_slots[index] >= 0) slot_statistics[index] = slot_colour_statistics_[size_t(blend_slots[index])];
