@@ -61,6 +61,21 @@ void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, doubl
 
 }  // namespace
 
+TriangleMesh loadSiteMeshOrStandIn(const SiteConfig& site, const Bounds3& building_bounds, int max_texture_size,
+                                   std::vector<std::string>& warnings, bool& is_stand_in) {
+    is_stand_in = !site.sfm_mesh;
+    if (site.sfm_mesh) {
+        GltfLoadOptions site_options;
+        site_options.enu_from_model = site.sfm_mesh->enuFromModel();
+        site_options.max_texture_size = max_texture_size;
+        return loadGltf(site.sfm_mesh->path, site_options, &warnings);
+    }
+    const glm::vec3 extent = building_bounds.max - building_bounds.min;
+    const double half_size = 4.0 * std::max({double(extent.x), double(extent.y), double(extent.z), 10.0});
+    warnings.push_back("site.json has no sfm_mesh: the ground is a flat grey plane at z = 0");
+    return makeFlatGround(half_size);
+}
+
 BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size) {
     BakeGeometry geometry;
     GltfLoadOptions building_options;
@@ -71,19 +86,8 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
     geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
 
     const Bounds3 building_bounds = meshBounds(geometry.building);
-    TriangleMesh site_mesh;
-    if (site.sfm_mesh) {
-        GltfLoadOptions site_options;
-        site_options.enu_from_model = site.sfm_mesh->enuFromModel();
-        site_options.max_texture_size = max_texture_size;
-        site_mesh = loadGltf(site.sfm_mesh->path, site_options, &geometry.warnings);
-    } else {
-        const glm::vec3 extent = building_bounds.max - building_bounds.min;
-        const double half_size = 4.0 * std::max({double(extent.x), double(extent.y), double(extent.z), 10.0});
-        site_mesh = makeFlatGround(half_size);
-        geometry.site_mesh_is_stand_in = true;
-        geometry.warnings.push_back("site.json has no sfm_mesh: the ground is a flat grey plane at z = 0");
-    }
+    const TriangleMesh site_mesh = loadSiteMeshOrStandIn(site, building_bounds, max_texture_size, geometry.warnings,
+                                                         geometry.site_mesh_is_stand_in);
     geometry.scene = makeTraceScene(geometry.building, &site_mesh);
     geometry.cpu_bvh = buildBvh(geometry.scene.mesh, geometry.scene.triangle_flags);
     if (geometry.cpu_bvh.dropped_triangle_count > 0)

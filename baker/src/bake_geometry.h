@@ -32,4 +32,10 @@ struct BakeGeometry {
 /// Bad input throws InputError naming the file and field.
 BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size);
 
+/// The site's SfM mesh placed as site.json says, or, when it names none, the bake's flat grey stand-in ground:
+/// a square 4 x the building's largest extent (at least 10 m) from the origin each way, with a warning saying so.
+/// One function for the bake and the camera (camera_frame.h), so both see the same ground.
+TriangleMesh loadSiteMeshOrStandIn(const SiteConfig& site, const Bounds3& building_bounds, int max_texture_size,
+                                   std::vector<std::string>& warnings, bool& is_stand_in);
+
 }  // namespace gusuku::bake

@@ -30,12 +30,7 @@ std::string metres(double value) {
 }  // namespace
 
 std::vector<SlotSun> slotSunPositions(const SiteConfig& site) {
-    SunObserver observer;
-    observer.latitude_deg = site.site.reference.latitude_deg;
-    observer.longitude_deg = site.site.reference.longitude_deg;
-    observer.height_m = site.site.reference.height_m;
-    observer.pressure_mbar = site.site.pressure_mbar;
-    observer.temperature_c = site.site.temperature_c;
+    const SunObserver observer = site.site.sunObserver();
     std::vector<SlotSun> suns;
     for (const BakeSlot& slot : site.bake.slots) {
         if (slot.sky != SlotSky::Sunny) continue;

@@ -7,6 +7,7 @@
 #include "gusuku/colour.h"
 #include "gusuku/gltf_loader.h"
 #include "gusuku/input_error.h"
+#include "bake_geometry.h"
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/ground_grid.h"
 
@@ -18,20 +19,8 @@ CameraSite loadCameraSite(const SiteConfig& site, int max_texture_size) {
     building_options.enu_from_model = site.building.enuFromModel(site.site.reference);
     building_options.max_texture_size = max_texture_size;
     const TriangleMesh building = loadGltf(site.building.path, building_options, &camera_site.warnings);
-    TriangleMesh site_mesh;
-    if (site.sfm_mesh) {
-        GltfLoadOptions site_options;
-        site_options.enu_from_model = site.sfm_mesh->enuFromModel();
-        site_options.max_texture_size = max_texture_size;
-        site_mesh = loadGltf(site.sfm_mesh->path, site_options, &camera_site.warnings);
-    } else {
-        // The bake's stand-in (bake_geometry.cpp), the same size, so the camera sees the ground the bake traced.
-        const Bounds3 bounds = meshBounds(building);
-        const glm::vec3 extent = bounds.max - bounds.min;
-        site_mesh = makeFlatGround(4.0 * std::max({double(extent.x), double(extent.y), double(extent.z), 10.0}));
-        camera_site.site_mesh_is_stand_in = true;
-        camera_site.warnings.push_back("site.json has no sfm_mesh: the ground is a flat grey plane at z = 0");
-    }
+    const TriangleMesh site_mesh = loadSiteMeshOrStandIn(site, meshBounds(building), max_texture_size,
+                                                         camera_site.warnings, camera_site.site_mesh_is_stand_in);
     camera_site.scene = makeTraceScene(building, &site_mesh);
     camera_site.sunny = prepareSky(site.sunny_sky);
     if (site.overcast_sky) camera_site.overcast = prepareSky(*site.overcast_sky);

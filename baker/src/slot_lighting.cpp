@@ -52,12 +52,7 @@ SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const Prepa
         return lighting;
     }
     lighting.sky = &sunny;
-    SunObserver observer;
-    observer.latitude_deg = site.site.reference.latitude_deg;
-    observer.longitude_deg = site.site.reference.longitude_deg;
-    observer.height_m = site.site.reference.height_m;
-    observer.pressure_mbar = site.site.pressure_mbar;
-    observer.temperature_c = site.site.temperature_c;
+    const SunObserver observer = site.site.sunObserver();
     lighting.sun_position = computeSunPosition(observer, slot.utc_seconds);
     const double elevation = lighting.sun_position.apparent_elevation_deg;
     if (!lighting.sun_position.above_horizon) {

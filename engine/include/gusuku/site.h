@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "gusuku/geodetic.h"
+#include "gusuku/sun.h"
 
 namespace gusuku {
 
@@ -20,6 +21,17 @@ struct SiteLocation {
     int utc_offset_minutes = 0;      ///< the site's clock, minutes east of UTC (used for slot times)
     double pressure_mbar = -1.0;     ///< <0: standard atmosphere at the reference height
     double temperature_c = 15.0;
+
+    /// The sun's observer at the reference point, with this site's air (for refraction).
+    SunObserver sunObserver() const {
+        SunObserver observer;
+        observer.latitude_deg = reference.latitude_deg;
+        observer.longitude_deg = reference.longitude_deg;
+        observer.height_m = reference.height_m;
+        observer.pressure_mbar = pressure_mbar;
+        observer.temperature_c = temperature_c;
+        return observer;
+    }
 };
 
 /// The photogrammetry (SfM) mesh of the real site. Its similarity transform maps the glTF file's own

@@ -262,12 +262,7 @@ std::vector<BakeSlot> readSlots(const ObjectReader& bake, bool has_overcast_sky,
 /// The sun code (NREL SPA) refuses instants outside the years it was fitted for (-2000..6000); a slot's instant
 /// is checked here, by the sun code itself, so the date is reported at load rather than half-way into a bake.
 void checkSunCanBeComputed(const ObjectReader& bake, const SiteLocation& site, const BakeSlot& slot) {
-    SunObserver observer;
-    observer.latitude_deg = site.reference.latitude_deg;
-    observer.longitude_deg = site.reference.longitude_deg;
-    observer.height_m = site.reference.height_m;
-    observer.pressure_mbar = site.pressure_mbar;
-    observer.temperature_c = site.temperature_c;
+    const SunObserver observer = site.sunObserver();
     try {
         computeSunPosition(observer, slot.utc_seconds);
     } catch (const std::invalid_argument&) {
