@@ -89,7 +89,15 @@ private:
     void recordGround(VkCommandBuffer cmd);
     void recordReadback(VkCommandBuffer cmd);
     void beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass);
-    void submit(const std::function<void(VkCommandBuffer)>& record);
+    // Records `record` into the frame's one command buffer, submits it and waits on the fence. A template, not a
+    // std::function, so a frame allocates nothing even where a standard library would box the lambda.
+    template <typename Record> void submit(const Record& record) {
+        beginCommands();
+        record(command_buffer_);
+        submitCommandsAndWait();
+    }
+    void beginCommands();
+    void submitCommandsAndWait();
     void selectGroundQuads(bool include_baked_changes, bool sun_shines, const glm::dvec3& sun_direction);
     void finishOutput(uint8_t* output_rgba8);
 
@@ -856,12 +864,14 @@ void RuntimeImpl::selectGroundQuads(bool include_baked_changes, bool sun_shines,
     }
 }
 
-void RuntimeImpl::submit(const std::function<void(VkCommandBuffer)>& record) {
+void RuntimeImpl::beginCommands() {
     checkVk(vkResetCommandBuffer(command_buffer_, 0), "vkResetCommandBuffer");
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(command_buffer_, &begin), "vkBeginCommandBuffer");
-    record(command_buffer_);
+}
+
+void RuntimeImpl::submitCommandsAndWait() {
     checkVk(vkEndCommandBuffer(command_buffer_), "vkEndCommandBuffer");
     VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit_info.commandBufferCount = 1;
@@ -908,7 +918,7 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
     const FrameInfo info = prepareFrame(frame);
     // Each pass alone in its own submission, waited for: lavapipe writes timestamps only when graphics work is
     // flushed (DESIGN.md 5), so wall time around a fenced submission is the honest per-pass figure.
-    auto timed = [&](double& slot, const std::function<void(VkCommandBuffer)>& record) {
+    auto timed = [&](double& slot, const auto& record) {
         const Clock::time_point pass_start = Clock::now();
         submit(record);
         slot = milliseconds(pass_start, Clock::now());
