@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 namespace gusuku::bake::detail {
 namespace {
 
@@ -101,6 +103,27 @@ glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& poin
         }
     }
     return best_weights;
+}
+
+SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& weights) {
+    glm::dvec3 position{0.0};
+    glm::dvec3 shading_normal{0.0};
+    glm::dvec3 corners[3];
+    for (int corner = 0; corner < 3; ++corner) {
+        const uint32_t vertex = mesh.indices[triangle * 3 + corner];
+        corners[corner] = glm::dvec3(mesh.positions[vertex]);
+        position += corners[corner] * weights[corner];
+        if (vertex < mesh.normals.size()) shading_normal += glm::dvec3(mesh.normals[vertex]) * weights[corner];
+    }
+    const glm::dvec3 geometric_normal = glm::normalize(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));
+    const double shading_length = glm::length(shading_normal);
+    SurfacePoint point;
+    point.position = glm::vec3(position);
+    point.geometric_normal = glm::vec3(geometric_normal);
+    point.shading_normal = shading_length > 1e-12 && std::isfinite(shading_length)
+                               ? glm::vec3(shading_normal / shading_length)
+                               : point.geometric_normal;
+    return point;
 }
 
 }  // namespace gusuku::bake::detail

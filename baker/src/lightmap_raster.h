@@ -8,6 +8,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "gusuku/mesh.h"
+
 namespace gusuku::bake::detail {
 
 using UvTriangle = std::array<glm::dvec2, 3>;
@@ -27,5 +29,15 @@ double areaInsideTexel(const UvTriangle& triangle, int x, int y);
 /// Barycentric weights of the point of the triangle nearest `point` (the point itself when inside); for a
 /// zero-area triangle, the nearest point on its longest edge.
 glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& point);
+
+/// The point of a mesh triangle at barycentric `weights`: position, interpolated vertex normal (normalised;
+/// the geometric normal where it is zero or the mesh has no normals) and the unit geometric normal from the
+/// counter-clockwise winding. One function for the texel centres and the footprint sub-points.
+struct SurfacePoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 shading_normal{0.0f};
+    glm::vec3 geometric_normal{0.0f};
+};
+SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& weights);
 
 }  // namespace gusuku::bake::detail

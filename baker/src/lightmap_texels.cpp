@@ -107,22 +107,10 @@ std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int
         out.triangle = uint32_t(triangle);
         const glm::dvec3 weights =
             detail::nearestBarycentric(uv_triangles[triangle], glm::dvec2(out.x + 0.5, out.y + 0.5));
-        glm::dvec3 position{0.0};
-        glm::dvec3 shading_normal{0.0};
-        glm::dvec3 corners[3];
-        for (int corner = 0; corner < 3; ++corner) {
-            const uint32_t vertex = mesh.indices[triangle * 3 + corner];
-            corners[corner] = glm::dvec3(mesh.positions[vertex]);
-            position += corners[corner] * weights[corner];
-            if (vertex < mesh.normals.size()) shading_normal += glm::dvec3(mesh.normals[vertex]) * weights[corner];
-        }
-        const glm::dvec3 geometric_normal = glm::normalize(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));
-        const double shading_length = glm::length(shading_normal);
-        out.position = glm::vec3(position);
-        out.geometric_normal = glm::vec3(geometric_normal);
-        out.shading_normal = shading_length > 1e-12 && std::isfinite(shading_length)
-                                 ? glm::vec3(shading_normal / shading_length)
-                                 : out.geometric_normal;
+        const detail::SurfacePoint point = detail::surfacePointAt(mesh, triangle, weights);
+        out.position = point.position;
+        out.geometric_normal = point.geometric_normal;
+        out.shading_normal = point.shading_normal;
         texels.push_back(out);
     }
     return texels;

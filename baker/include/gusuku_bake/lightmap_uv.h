@@ -110,6 +110,55 @@ struct LightmapTexel {
 /// Throws InputError when the mesh has no uv1, an index is out of range, or resolution is out of [1, 16384].
 std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh_with_uv1, int resolution);
 
+/// A point of a texel's footprint where irradiance is traced (the texel stands for the mean over its area).
+struct LightmapFootprintPoint {
+    glm::vec3 position{0.0f};        ///< ENU metres, on the triangle under the sub-point
+    glm::vec3 shading_normal{0.0f};  ///< interpolated vertex normal there, normalised (geometric if zero)
+    glm::vec3 geometric_normal{0.0f};  ///< unit normal of that triangle from its counter-clockwise winding
+    /// Share of its texel's mean: 1 / (covered sub-points * slots that repeat this sub-point). The weights of one
+    /// texel's slots sum to 1, so each covered sub-point counts equally however many slots repeat it.
+    float weight = 0.0f;
+};
+
+/// Every texel's footprint as grid_side^2 trace points ("slots"): texel i of the texel list owns slots
+/// [i * K, (i + 1) * K), K = grid_side^2.
+struct LightmapFootprint {
+    int grid_side = 1;
+    std::vector<LightmapFootprintPoint> points;
+    size_t pointsPerTexel() const { return size_t(grid_side) * size_t(grid_side); }
+};
+
+/// The sub-point grid for a per-texel sample budget, so every slot gets the same whole number of samples and
+/// the total number of rays stays samples_per_texel per texel: 4 (16 sub-points) when 16 divides the budget, 2
+/// (4 sub-points) when 4 does, else 1 (the texel centre alone, the texel point of rasterizeLightmapTexels).
+int footprintGridSide(uint32_t samples_per_texel);
+
+/// Spreads each texel over its footprint: K = grid_side^2 sub-points inside the texel square at an n-rooks
+/// pattern (the K sub-points have K distinct u and K distinct v, each at (k + 0.5) / K of the texel, and one
+/// sits in each cell of the grid_side^2 grid), shifted toroidally by an offset drawn per texel from `seed`
+/// (Cranley-Patterson rotation), so the mean over slots is an unbiased estimate of the area mean over the
+/// texel and deterministic per seed. A sub-point counts where a triangle with world area covers it (the
+/// coverage rule above; the texel's owning triangle first, then the others in index order), at that triangle's
+/// interpolated position and normal (offset along the ray as the centre point is). Slots whose sub-point falls
+/// on no triangle repeat the covered ones in turn (same position, another random stream), so every texel
+/// keeps its full sample budget; a texel none of whose sub-points is covered (a thin triangle's fallback
+/// claim) uses its centre point in every slot. grid_side 1 gives exactly the texels' centre points.
+/// O(triangles' texel rectangles * K); allocates resolution^2 ints. Throws InputError for grid_side outside
+/// [1, 8] or what rasterizeLightmapTexels refuses.
+LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh_with_uv1, int resolution,
+                                          const std::vector<LightmapTexel>& texels, int grid_side, uint32_t seed);
+
+/// Combines the running sums traced at a footprint's slots (vec4 per slot: irradiance sum xyz and an
+/// invalid-sample count w, both over samples_per_slot samples) into one sum per texel over K *
+/// samples_per_slot samples, so what reads per-texel sums divides by the texel's full sample count as before.
+/// A slot is invalid when its w / samples_per_slot exceeds max_invalid_fraction; a texel is invalid when the
+/// invalid slots hold more than half its weight. A valid texel's sum is the weighted mean of its valid slots
+/// (geometry inside walls does not darken it), an invalid texel's the mean of its invalid slots (so it stays
+/// invalid under the same threshold). Throws InputError when the sums do not match the footprint.
+std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint,
+                                              const std::vector<glm::vec4>& slot_sums, uint32_t samples_per_slot,
+                                              float max_invalid_fraction);
+
 /// Fills empty texels from their neighbours, `iterations` rings deep, so bilinear filtering at chart edges
 /// reads the chart's own values instead of black. A texel is valid when its alpha > 0. Each iteration, every
 /// invalid texel with at least one valid 8-neighbour (valid at the start of that iteration) gets the plain
