@@ -7,10 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-
-#include <nlohmann/json.hpp>
 
 #include "bake_checkpoint.h"
 #include "bake_geometry.h"
@@ -19,6 +16,9 @@
 #include "bake_preflight.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku/atomic_file.h"
+#include "gusuku/bakeset_loader.h"
+#include "gusuku/bakeset_manifest_json.h"
+#include "gusuku/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"
@@ -33,11 +33,16 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Everything that changes the traced sums: the bytes of every file the bake reads (a glTF's external buffers
-// and textures included), the settings, and the tracer's own code. Checkpoints carry this hash.
-uint64_t traceInputHash(const std::vector<std::string>& input_files, uint32_t samples, const BakeOptions& options) {
+// and textures included), the settings, and the tracer's own code. Checkpoints carry this hash. Files are named
+// relative to site.json's folder, not as this run spelled them: the slots of one site baked on machines that
+// mount it at different places (gusuku-bake merge) agree on the hash, and a partial set can prove its inputs.
+uint64_t traceInputHash(const SiteConfig& site, const std::vector<std::string>& input_files, uint32_t samples,
+                        const BakeOptions& options) {
     ContentHash hash;
     hash.addString(kBakeSetFormat);
-    for (const std::string& file : input_files) hash.addString(file).addFile(file);
+    const std::string site_folder = std::filesystem::absolute(site.file).parent_path().string();
+    for (const std::string& file : input_files)
+        hash.addString(bakeSetRelativeInputPath(site_folder, file)).addFile(file);
     // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
     // be resumed, or the result would differ from an uninterrupted bake.
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
@@ -146,15 +151,30 @@ private:
     bool stop_requested_ = false;
 };
 
-std::optional<uint64_t> manifestInputHash(const std::string& manifest_path) {
-    std::ifstream file(manifest_path);
-    if (!file) return std::nullopt;
+/// True when manifest_path is a finished bake of these inputs, of the same kind: the whole site (slot empty), or
+/// the partial set of that one slot. Anything unreadable is not up to date.
+bool manifestIsUpToDate(const std::string& manifest_path, uint64_t input_hash, const std::string& slot) {
+    if (!std::filesystem::exists(manifest_path)) return false;
     try {
-        const nlohmann::json manifest = nlohmann::json::parse(file);
-        return std::stoull(manifest.at("input_hash").get<std::string>(), nullptr, 16);
+        const BakeSetManifest manifest = readBakeSetManifest(manifest_path);
+        return manifest.input_hash == input_hash && (manifest.partial ? manifest.partial->slot : "") == slot;
     } catch (const std::exception&) {
-        return std::nullopt;
+        return false;
     }
+}
+
+/// The site's slots this run traces: all of them, or the one --slot names (InputError naming site.json's
+/// /bake/slots when the site has no such slot).
+std::vector<const BakeSlot*> slotsToTrace(const SiteConfig& site, const std::string& only) {
+    std::vector<const BakeSlot*> chosen;
+    std::string names;
+    for (const BakeSlot& slot : site.bake.slots) {
+        if (only.empty() || slot.name == only) chosen.push_back(&slot);
+        names += (names.empty() ? "" : ", ") + slot.name;
+    }
+    if (chosen.empty())
+        throw InputError(site.file, "/bake/slots", "has no slot \"" + only + "\" (--slot); its slots: " + names);
+    return chosen;
 }
 
 }  // namespace
@@ -168,19 +188,21 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     // Before anything is created or written: the output folder must not be, or hold, anything the bake reads.
     const std::vector<std::string> input_files = bakeInputFiles(site);
     refuseOutputHoldingInputs(options.output_dir, input_files);
-    const uint64_t trace_hash = traceInputHash(input_files, samples, options);
+    const std::vector<const BakeSlot*> traced_slots = slotsToTrace(site, options.slot);
+    const uint64_t trace_hash = traceInputHash(site, input_files, samples, options);
     const uint64_t input_hash = outputInputHash(trace_hash, options);
     report.manifest_path = options.output_dir + "/manifest.json";
 
     const BakeFolderLock lock(options.output_dir);  // a second bake into this folder is refused here
-    if (!options.force && manifestInputHash(report.manifest_path) == input_hash) {
+    if (!options.force && manifestIsUpToDate(report.manifest_path, input_hash, options.slot)) {
         report.completed = true;
         report.up_to_date = true;
         return report;
     }
 
     // Everything that can refuse the bake comes before the first file is replaced. Light first: the lowest
-    // baked sun sizes the ground grid.
+    // baked sun sizes the ground grid. A partial bake lights every slot too (it is cheap: no tracing), so its
+    // ground grid and warnings are the whole bake's.
     const std::vector<SlotSun> suns = slotSunPositions(site);
     const PreparedSky sunny = prepareSky(site.sunny_sky);
     std::optional<PreparedSky> overcast;
@@ -214,7 +236,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     report.ground_cells = sets[1].points.size();
 
     double total_work = 0.0;
-    for (const PointSet& set : sets) total_work += double(set.points.size()) * samples * double(slots.size());
+    for (const PointSet& set : sets) total_work += double(set.points.size()) * samples * double(traced_slots.size());
     BakeProgress progress(total_work, options.show_progress);
     // The old manifest goes before the first file of this bake replaces one of its files: a bake set with a
     // manifest is then always the complete, matching one, even if this bake is interrupted or fails.
@@ -227,6 +249,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();
     for (const SlotLighting& lighting : slots) {
+        if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);
         TracePass pass;
         pass.max_bounces = uint32_t(site.bake.max_bounces);
@@ -253,7 +276,12 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     report.trace_seconds = set_tracer.traceSeconds();
     report.wall_seconds = secondsSince(wall_start);
     report.resumed_fraction = progress.resumedFraction();
-    writer.writeManifest(site, input_hash, report);
+    std::optional<BakeSetPartial> partial;
+    if (!options.slot.empty()) {
+        partial = BakeSetPartial{options.slot, {}, writer.slotIndependentHash()};
+        for (const BakeSlot& slot : site.bake.slots) partial->site_slots.push_back(slot.name);
+    }
+    writer.writeManifest(site, input_hash, report, partial);
     std::filesystem::remove_all(checkpoint_dir);
     report.completed = true;
     return report;

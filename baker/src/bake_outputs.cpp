@@ -10,6 +10,8 @@
 #include "gusuku_bake/content_hash.h"
 #include "lightmap_denoise.h"
 #include "gusuku/atomic_file.h"
+#include "gusuku/bakeset_loader.h"
+#include "gusuku_bake/bake_merge.h"
 #include "gusuku/bakeset_manifest_json.h"
 #include "gusuku/glb_positions.h"
 #include "gusuku/gltf_loader.h"
@@ -128,7 +130,7 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
     BakeSetSlot entry;
     entry.name = name;
     entry.sky = lighting.slot.sky == SlotSky::Sunny ? BakeSetSky::Sunny : BakeSetSky::Overcast;
-    entry.sky_map = lighting.sky->path;
+    entry.sky_map = bakeSetRelativeInputPath(output_dir_, lighting.sky->path);
     entry.sky_sampling_method = skySamplingName(resolveSkySampling(SkySampling::Automatic, lighting.sky->tables));
     entry.cosine_relative_variance = lighting.sky->tables.cosine_relative_variance;
     entry.sun.present = lighting.sun.present;
@@ -153,11 +155,19 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
     slots_.push_back(entry);
 }
 
-void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report) {
+uint64_t BakeOutputWriter::slotIndependentHash() const {
+    BakeSetManifest names;
+    if (occluder_) names.occluder = occluder_;
+    return slotIndependentFilesHash(output_dir_, names);
+}
+
+void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report,
+                                     const std::optional<BakeSetPartial>& partial) {
     BakeSetManifest manifest;
     manifest.input_hash = input_hash;
+    manifest.input_paths_relative_to_folder = true;
     const auto addInput = [&](const std::string& role, const std::string& path) {
-        manifest.inputs.push_back({role, path, hashFileHex(path)});
+        manifest.inputs.push_back({role, bakeSetRelativeInputPath(output_dir_, path), hashFileHex(path)});
     };
     addInput("site", site.file);
     addInput("building", site.building.path);
@@ -179,6 +189,7 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
                            report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0,
                            report.wall_seconds};
     manifest.warnings = report.warnings;
+    manifest.partial = partial;
     writeBakeSetManifest(output_dir_ + "/manifest.json", manifest);
 }
 

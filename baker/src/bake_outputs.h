@@ -37,7 +37,12 @@ public:
     void writeGeometry();
     void writeSlot(const SlotLighting& lighting, const std::vector<glm::vec4>& building_sums,
                    const std::vector<glm::vec4>& ground_with_sums, const std::vector<glm::vec4>& ground_without_sums);
-    void writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report);
+    /// Input paths are written relative to the output folder (gusuku/bakeset_loader.h's
+    /// bakeSetRelativeInputPath), so the set moves with its inputs. `partial`: this is one slot's partial set.
+    void writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report,
+                       const std::optional<BakeSetPartial>& partial = std::nullopt);
+    /// After writeGeometry: the hash of the files every slot shares (bake_merge.h's slotIndependentFilesHash).
+    uint64_t slotIndependentHash() const;
 
 private:
     void writeGroundImage(const std::string& file, const std::vector<glm::vec4>& sums);

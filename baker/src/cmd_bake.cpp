@@ -31,6 +31,8 @@ constexpr const char* kBakeUsage =
     "options:\n"
     "  -o, --output DIR   bake set folder (created)\n"
     "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
+    "  --slot NAME        bake only this slot of SITE.json into a partial set, to be joined with the other\n"
+    "                     slots' partial sets by `gusuku-bake merge` (one slot per machine)\n"
     "  --no-denoise       skip the edge-keeping lightmap filter\n"
     "  --force            bake even if DIR/manifest.json already matches these inputs\n"
     "  --quiet            no progress bar\n"
@@ -53,6 +55,7 @@ BakeRequest parseArguments(CommandLine& line) {
         options.samples_override = int(*samples);
     options.denoise = !line.flag("--no-denoise");
     options.force = line.flag("--force");
+    options.slot = line.text("--slot").value_or("");
     options.show_progress = !line.flag("--quiet");
     const std::vector<std::string> sites = line.positionals();
     line.finish();
@@ -97,7 +100,11 @@ int runBakeCommand(const std::vector<std::string>& args) {
     }
     const double rays_per_second = report.trace_seconds > 0.0 ? double(report.rays_traced) / report.trace_seconds : 0.0;
     std::printf("bake set:        %s\n", report.manifest_path.c_str());
-    std::printf("slots:           %zu\n", site.bake.slots.size());
+    if (options.slot.empty())
+        std::printf("slots:           %zu\n", site.bake.slots.size());
+    else
+        std::printf("slots:           1 (%s, a partial set of %zu: join them with gusuku-bake merge)\n",
+                    options.slot.c_str(), site.bake.slots.size());
     std::printf("samples:         %u per texel and per ground cell\n", report.samples_per_point);
     std::printf("building:        %zu lightmap texels (%dx%d)\n", report.building_texels, report.lightmap_resolution,
                 report.lightmap_resolution);

@@ -19,6 +19,7 @@ void printUsage() {
                  "  sample    write the bundled sample site (terrain, house, skies, site.json) into a folder\n"
                  "  check     validate a site.json and load everything it names\n"
                  "  bake      bake a site's lightmaps and ground terms into a bake set\n"
+                 "  merge     join partial bake sets (one slot each, `bake --slot`) into one bake set\n"
                  "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
                  "\n"
                  "`gusuku-bake <command> --help` describes each.\n");
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
         if (command == "check") return runCheckCommand(args);
         if (command == "bake") return runBakeCommand(args);
         if (command == "converge") return runConvergeCommand(args);
+        if (command == "merge") return runMergeCommand(args);
         std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
         printUsage();
         return 2;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "gusuku/bakeset_loader.h"
 #include "gusuku/input_error.h"
 #include "gusuku/time_utc.h"
 
@@ -14,7 +15,9 @@ std::string siteJsonOf(const std::string& bake_set_folder, const BakeSetManifest
     if (explicit_site) return *explicit_site;
     for (const BakeSetInput& input : manifest.inputs)
         if (input.role == "site") {
-            if (std::filesystem::exists(input.path)) return input.path;
+            // Relative to the bake set (or, in an older manifest, to where the bake ran).
+            const std::string resolved = resolveBakeSetInputPath(bake_set_folder, manifest, input.path);
+            if (std::filesystem::exists(resolved)) return resolved;
             const std::filesystem::path beside = std::filesystem::path(bake_set_folder) / input.path;
             if (std::filesystem::exists(beside)) return beside.string();
             throw InputError(bake_set_folder + "/manifest.json", "/inputs",

@@ -9,8 +9,8 @@
 
 namespace gusuku::bench_common {
 
-/// site.json of the bake: `explicit_site` when given; else the manifest's site input, as the bake named it
-/// (relative to where the bake ran) or, when the bake set was moved, relative to its folder. InputError naming
+/// site.json of the bake: `explicit_site` when given; else the manifest's site input, resolved against the bake
+/// set's folder (resolveBakeSetInputPath; an older manifest's as the bake named it, or relative to the folder). InputError naming
 /// FOLDER/manifest.json when it names none or the file is gone.
 std::string siteJsonOf(const std::string& bake_set_folder, const BakeSetManifest& manifest,
                        const std::optional<std::string>& explicit_site = std::nullopt);

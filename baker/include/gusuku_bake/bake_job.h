@@ -22,6 +22,10 @@ struct BakeOptions {
     int samples_override = 0;       ///< > 0: use instead of bake.samples_per_texel
     bool denoise = true;            ///< edge-keeping filter on the building lightmap
     bool show_progress = true;
+    /// Non-empty: bake only this slot of the site into a partial bake set (manifest marked "partial", naming
+    /// the slot; docs/bakeset.md), to be joined with the other slots' partial sets by mergePartialBakeSets
+    /// (gusuku_bake/bake_merge.h). Everything but the slot's own files is what the whole bake writes.
+    std::string slot;
     int max_texture_size = 512;     ///< albedo textures are downsampled to this for tracing
     double target_chunk_seconds = 1.0;  ///< dispatch length the sample chunks adapt to
     /// Polled between chunks; returning true checkpoints and stops (BakeReport::completed = false).

@@ -24,6 +24,23 @@ namespace gusuku {
 /// without TEXCOORD_1 or without triangles; an occluder whose triangle count is not the manifest's; then
 /// whatever findBakeSetProblem (gusuku/bakeset_validate.h) finds, as "FOLDER: FIELD: PROBLEM". Nothing is
 /// half-loaded: it returns a complete, consistent BakeSetData or throws.
+/// A partial set (a manifest with "partial", one slot of a split bake) is refused as
+/// "FOLDER/manifest.json: /partial: ...", naming its slot: join partial sets with `gusuku-bake merge` first.
+/// The manifest's input paths are not needed to load (the set's own files are named relative to the folder);
+/// resolve them with resolveBakeSetInputPath.
 BakeSetData loadBakeSet(const std::string& folder);
+
+/// An input path of `manifest` (BakeSetInput::path, BakeSetSlot::sky_map), read from `folder`, as a path to
+/// open: an absolute path as it is; a relative one joined to the folder (symbolic links in the folder's path
+/// resolved first, so ".." climbs from where the files are) and made lexically normal; in an older manifest
+/// (input_paths_relative_to_folder false) a relative path as it is, relative to where its bake ran.
+std::string resolveBakeSetInputPath(const std::string& folder, const BakeSetManifest& manifest,
+                                    const std::string& path);
+
+/// What a bake set in `folder` records for an input at `path`: the path relative to the folder (both with
+/// symbolic links resolved where they exist, then ".." where needed), or the absolute path when no relative
+/// one exists. The inverse of resolveBakeSetInputPath: resolving the result from the same folder opens the same
+/// file, and a bake set moved together with its inputs still finds them.
+std::string bakeSetRelativeInputPath(const std::string& folder, const std::string& path);
 
 }  // namespace gusuku

@@ -27,7 +27,10 @@ inline constexpr const char* kBakeSetFormat = "gusuku-bakeset/1";
 /// One input file of the bake, with the FNV-1a 64 hash of its bytes (16 lower-case hex digits).
 struct BakeSetInput {
     std::string role;     ///< "site", "building", "sfm_mesh", "sunny_sky", "overcast_sky"
-    std::string path;     ///< as site.json named it (resolved), not relative to the bake set
+    /// Relative to the bake set's folder (or absolute), so the set moves with its inputs; in a manifest with
+    /// input_paths_relative_to_folder false (written before this rule), as the bake named it. Resolve it with
+    /// gusuku/bakeset_loader.h's resolveBakeSetInputPath.
+    std::string path;
     std::string fnv1a64;
     bool operator==(const BakeSetInput&) const = default;
 };
@@ -119,7 +122,7 @@ struct BakeSetColourStatistics {
 struct BakeSetSlot {
     std::string name;
     BakeSetSky sky = BakeSetSky::Sunny;
-    std::string sky_map;     ///< the sky map's path, as site.json named it
+    std::string sky_map;     ///< the sky map's path, an input path like BakeSetInput::path
     std::string local_time;  ///< sunny slots: the slot's time on the site's clock (ISO 8601 with offset)
     std::string utc;         ///< sunny slots: the same instant in UTC ("...Z")
     BakeSetSun sun;
@@ -142,10 +145,27 @@ struct BakeSetStatistics {
     bool operator==(const BakeSetStatistics&) const = default;
 };
 
+/// A partial bake set: one slot of a site, baked alone (`gusuku-bake bake --slot NAME`) so that the slots can be
+/// baked on several machines and joined by `gusuku-bake merge`. Its manifest holds that one slot; everything
+/// else (inputs, settings, building, ground grid, occluder, warnings, input_hash) is what the whole bake writes.
+/// loadBakeSet refuses a partial set.
+struct BakeSetPartial {
+    std::string slot;                     ///< the slot this set holds
+    std::vector<std::string> site_slots;  ///< every slot of the site, in site.json's order
+    /// FNV-1a 64 of the files every slot shares (building.glb, ground_geometry.exr, occluder.glb when present),
+    /// in that order, each name then its bytes: partials of one site must agree on it, and merge recomputes it.
+    uint64_t slot_independent_hash = 0;
+    bool operator==(const BakeSetPartial&) const = default;
+};
+
 struct BakeSetManifest {
     /// Hash of everything that changes the traced sums (inputs' bytes, settings, tracer code); a rerun with the
     /// same hash has nothing to do. Written as 16 lower-case hex digits.
     uint64_t input_hash = 0;
+    /// True (written as "input_paths": "relative to this manifest's folder"): relative input paths and sky maps
+    /// are relative to the bake set's folder. False for a manifest written before that (no such field): its
+    /// relative paths were relative to where its bake ran.
+    bool input_paths_relative_to_folder = true;
     std::vector<BakeSetInput> inputs;
     BakeSetSite site;
     BakeSetSettings settings;
@@ -155,6 +175,7 @@ struct BakeSetManifest {
     std::vector<BakeSetSlot> slots;
     BakeSetStatistics statistics;
     std::vector<std::string> warnings;
+    std::optional<BakeSetPartial> partial;  ///< only in a partial set
     bool operator==(const BakeSetManifest&) const = default;
 };
 

@@ -131,7 +131,28 @@ BakeSetImage loadExr(const std::string& path, int width, int height, const std::
     return {image.width, image.height, std::move(image.texels)};
 }
 
+/// The path with symbolic links resolved as far as it exists (the rest appended lexically), absolute.
+std::filesystem::path physicalPath(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path);
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, error);
+    return (error ? absolute : canonical).lexically_normal();
+}
+
 }  // namespace
+
+std::string resolveBakeSetInputPath(const std::string& folder, const BakeSetManifest& manifest,
+                                    const std::string& path) {
+    const std::filesystem::path input(path);
+    if (input.is_absolute() || !manifest.input_paths_relative_to_folder) return path;
+    return (physicalPath(folder) / input).lexically_normal().string();
+}
+
+std::string bakeSetRelativeInputPath(const std::string& folder, const std::string& path) {
+    const std::filesystem::path input = physicalPath(path);
+    const std::filesystem::path relative = input.lexically_relative(physicalPath(folder));
+    return relative.empty() ? input.string() : relative.generic_string();
+}
 
 BakeSetData loadBakeSet(const std::string& folder) {
     const std::string manifest_path = folder + "/manifest.json";
@@ -143,6 +164,11 @@ BakeSetData loadBakeSet(const std::string& folder) {
     BakeSetData data;
     data.manifest = readBakeSetManifest(manifest_path);
     const BakeSetManifest& manifest = data.manifest;
+    if (manifest.partial)
+        throw InputError(manifest_path, "/partial",
+                         "a partial bake set (slot \"" + manifest.partial->slot + "\" of " +
+                             std::to_string(manifest.partial->site_slots.size()) +
+                             "): join the partial sets with gusuku-bake merge first");
 
     // Every named file must be there before anything large is read.
     const std::string building_path = bakeSetFile(folder, manifest_path, {"/building/mesh", manifest.building.mesh});

@@ -5,6 +5,7 @@
 
 #include "gusuku/bakeset_manifest_json.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -35,6 +36,9 @@ constexpr const char* kGeometryChannels = "RGB: unit normal (ENU), A: height (EN
 constexpr const char* kRow0 = "north edge";
 constexpr const char* kIrradianceAlpha = "1 where the ground exists under the cell";
 constexpr const char* kColourSpace = "CIE Lab (D65) of linear radiance rho/pi*(E_ind + V E_sun cos)";
+// Present since input paths are written relative to the bake set (so a set moves with its inputs); a manifest
+// without it is older, and its relative paths were relative to where its bake ran.
+constexpr const char* kInputPaths = "relative to this manifest's folder";
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -252,6 +256,26 @@ BakeSetSlot readSlot(const ObjectReader& reader) {
     return slot;
 }
 
+/// A partial set's marker: its slot is one of the site's slots, named once, and the one slot the manifest holds.
+BakeSetPartial readPartial(const ObjectReader& reader, const BakeSetManifest& manifest) {
+    BakeSetPartial partial;
+    partial.slot = readNonEmptyString(reader, "slot");
+    const json& names = reader.array("site_slots");
+    for (size_t i = 0; i < names.size(); ++i) {
+        const std::string pointer = reader.fieldPointer("site_slots") + "/" + std::to_string(i);
+        partial.site_slots.push_back(json_reader::checkedString(reader.file(), pointer, names[i]));
+        for (size_t j = 0; j < i; ++j)
+            if (partial.site_slots[j] == partial.site_slots[i])
+                throw InputError(reader.file(), pointer, "\"" + partial.site_slots[i] + "\" is named twice");
+    }
+    if (std::find(partial.site_slots.begin(), partial.site_slots.end(), partial.slot) == partial.site_slots.end())
+        reader.fail("slot", "\"" + partial.slot + "\" is not one of site_slots");
+    if (manifest.slots.size() != 1 || manifest.slots.front().name != partial.slot)
+        reader.fail("slot", "a partial set holds exactly its own slot, \"" + partial.slot + "\", in /slots");
+    partial.slot_independent_hash = parseHex64(reader, "slot_independent_hash");
+    return partial;
+}
+
 BakeSetManifest readManifest(const ObjectReader& root) {
     BakeSetManifest manifest;
     root.string("format");  // its value was checked before anything else
@@ -320,6 +344,9 @@ BakeSetManifest readManifest(const ObjectReader& root) {
         manifest.occluder = info;
     }
 
+    if (root.has("input_paths")) readFixedText(root, "input_paths", kInputPaths);
+    manifest.input_paths_relative_to_folder = root.has("input_paths");
+
     const json& slots = root.array("slots");
     for (size_t i = 0; i < slots.size(); ++i) {
         const ObjectReader slot =
@@ -345,6 +372,9 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     for (size_t i = 0; i < warnings.size(); ++i)
         manifest.warnings.push_back(json_reader::checkedString(
             root.file(), root.fieldPointer("warnings") + "/" + std::to_string(i), warnings[i]));
+
+    if (const auto partial = root.optionalObject("partial", {"slot", "site_slots", "slot_independent_hash"}))
+        manifest.partial = readPartial(*partial, manifest);
     return manifest;
 }
 
@@ -396,6 +426,11 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
                         {"wall_seconds", statistics.wall_seconds}}},
         {"warnings", manifest.warnings},
     };
+    if (manifest.input_paths_relative_to_folder) document["input_paths"] = kInputPaths;
+    if (manifest.partial)
+        document["partial"] = {{"slot", manifest.partial->slot},
+                               {"site_slots", manifest.partial->site_slots},
+                               {"slot_independent_hash", hex64(manifest.partial->slot_independent_hash)}};
     if (manifest.occluder)  // absent without an SfM mesh: such manifests keep their bytes
         document["occluder"] = {{"mesh", manifest.occluder->mesh},
                                 {"mesh_frame", kMeshFrame},
@@ -421,8 +456,8 @@ BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string&
                          "\"" + document["format"].get<std::string>() +
                              "\" is not a format this reader knows (expected \"" + kBakeSetFormat + "\")");
     const ObjectReader root(file, document, "",
-                            {"format", "input_hash", "inputs", "site", "settings", "building", "ground_grid",
-                             "occluder", "slots", "statistics", "warnings"});
+                            {"format", "input_hash", "input_paths", "inputs", "site", "settings", "building",
+                             "ground_grid", "occluder", "slots", "statistics", "warnings", "partial"});
     return readManifest(root);
 }
 
