@@ -8,7 +8,7 @@
 #include "gusuku/colour.h"
 #include "gusuku/equirect.h"
 #include "gusuku/image.h"
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/sun_air_mass.h"
 
 namespace gusuku::bake {
 
@@ -16,14 +16,14 @@ namespace {
 
 constexpr double kDegrees = 180.0 / std::numbers::pi;
 
-double diffuseHorizontalLuminance(const ImageRGBA& sky) {
-    double irradiance = 0.0;
+glm::dvec3 diffuseHorizontalRgb(const ImageRGBA& sky) {
+    glm::dvec3 irradiance(0.0);
     for (int y = 0; y < sky.height / 2; ++y) {
         const double cos_zenith = std::cos((y + 0.5) / sky.height * std::numbers::pi);
         const double solid_angle = equirectTexelSolidAngle(y, sky.width, sky.height);
         for (int x = 0; x < sky.width; ++x) {
             const float* texel = sky.texel(x, y);
-            irradiance += luminanceRec709(glm::vec3(texel[0], texel[1], texel[2])) * solid_angle * cos_zenith;
+            irradiance += glm::dvec3(texel[0], texel[1], texel[2]) * (solid_angle * cos_zenith);
         }
     }
     return irradiance;
@@ -36,7 +36,8 @@ PreparedSky prepareSky(const SkyConfig& sky) {
     prepared.path = sky.path;
     ImageRGBA radiance = readRadianceMap(sky.path);
     prepared.disc = extractSunDisc(radiance, sky.north_azimuth_in_image_deg);
-    prepared.diffuse_horizontal_luminance = diffuseHorizontalLuminance(radiance);
+    prepared.diffuse_horizontal_rgb = diffuseHorizontalRgb(radiance);
+    prepared.diffuse_horizontal_luminance = luminanceRec709(prepared.diffuse_horizontal_rgb);
     prepared.tables = buildSkySamplingTables(radiance, sky.north_azimuth_in_image_deg);
     return prepared;
 }
@@ -67,14 +68,14 @@ SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const Prepa
     const double photo_elevation = disc.found ? std::asin(std::clamp(disc.direction_enu.z, -1.0, 1.0)) * kDegrees
                                               : -90.0;
     if (disc.found && !disc.clipped && photo_elevation > 0.5) {
-        lighting.sun.irradiance_rgb = carrySunIrradianceRgb(disc.irradiance_rgb, photo_elevation, elevation);
+        lighting.sun.irradiance_rgb = carryMeasuredSunRgb(disc.irradiance_rgb, photo_elevation, elevation);
         lighting.sun_irradiance_source = "sky map sun disc (measured at " + std::to_string(photo_elevation) +
-                                         " deg elevation, carried by the clear-sky model)";
+                                         " deg elevation, carried by air mass)";
     } else {
-        const glm::dvec3 model = clearSkySunIrradianceRgb(elevation);
-        const double model_at_60 = clearSkySunIrradianceRgb(60.0).y;
-        const double scale = kClearSkyDirectToDiffuseRatio * sunny.diffuse_horizontal_luminance / model_at_60;
-        lighting.sun.irradiance_rgb = model * scale;
+        // A clipped disc still says where the photo's sun stood; without one, assume the slot's own elevation.
+        const double calibration_elevation = (disc.found && photo_elevation > 0.5) ? photo_elevation : elevation;
+        lighting.sun.irradiance_rgb =
+            calibratedClearSkySunRgb(sunny.diffuse_horizontal_rgb, calibration_elevation, elevation);
         lighting.sun_irradiance_source = disc.found ? "clear-sky model (map's sun disc is clipped)"
                                                     : "clear-sky model (no sun disc in the map)";
         lighting.warnings.push_back("slot " + slot.name + ": E_sun from the " + lighting.sun_irradiance_source);

@@ -18,19 +18,23 @@ struct PreparedSky {
     std::string path;
     SunDiscEstimate disc;
     SkySamplingTables tables;
-    /// Diffuse horizontal irradiance of the map without its sun (luminance, upper hemisphere).
+    /// Diffuse horizontal irradiance of the map without its sun, per channel (upper hemisphere): what the
+    /// clear-sky fallback is calibrated on.
+    glm::dvec3 diffuse_horizontal_rgb{0.0};
+    /// Its luminance.
     double diffuse_horizontal_luminance = 0.0;
 };
 
 /// Reads the map (readRadianceMap: bad texels are an InputError naming the file), removes the disc.
 PreparedSky prepareSky(const SkyConfig& sky);
 
-/// E_sun on a plane facing the sun (direct normal irradiance, the map's units) when the map's disc is clipped
-/// or missing: the clear-sky model's colour and elevation dependence, scaled so that at 60 degrees elevation
-/// the direct normal irradiance is kClearSkyDirectToDiffuseRatio times the map's diffuse horizontal
-/// irradiance (a typical clear day; it calibrates the model to the photo's unknown exposure).
-inline constexpr double kClearSkyDirectToDiffuseRatio = 6.0;
-
+/// E_sun on a plane facing the sun (direct normal irradiance, the map's units) for a sunny slot:
+///  - the map's disc found, unclipped and above 0.5 deg: the measured disc carried from the photo's sun elevation
+///    to the slot's by air mass (gusuku/sun_air_mass.h carryMeasuredSunRgb: Rayleigh plus a fitted aerosol depth,
+///    per channel; identity when the slot's sun stands where the photo's did);
+///  - else the clear-sky fallback calibrated on the map's own diffuse light (calibratedClearSkySunRgb: aerosol
+///    depth from the diffuse light's colour, luminance from ESRA's clear-sky direct/diffuse ratio), evaluated at
+///    the clipped disc's elevation when the map shows one, else at the slot's own elevation.
 struct SlotLighting {
     BakeSlot slot;
     SunPosition sun_position;        ///< SPA at the slot's instant (meaningless for overcast)

@@ -21,7 +21,8 @@
 //     linearly to 0 between 0 and -6 degrees apparent elevation (civil twilight) while the overcast slot keeps
 //     its cloud weight. Defined, finite, never NaN; the colour match then adapts the building to the dim camera.
 //   - E_sun: each chosen sunny slot's irradiance_rgb carried from its baked elevation to the current one
-//     (carrySunIrradianceRgb, the baker's clear-sky model), blended with the slot weights.
+//     (carryMeasuredSunRgb of gusuku/sun_air_mass.h, the baker's air-mass model: the aerosol depth refitted to
+//     the slot's own colour is the one the baker used), blended with the slot weights.
 
 #include "gusuku/bakeset_manifest.h"
 #include "gusuku/sun.h"

@@ -38,6 +38,18 @@ double kastenYoungAirMass(double elevation_deg);
 /// Throws std::invalid_argument when elevation is NaN or linke_turbidity is not finite and > 0.
 glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity = kDefaultLinkeTurbidity);
 
+/// Diffuse horizontal irradiance of a clear sky, W m^-2 (broadband), ESRA (Rigollier et al. 2000):
+///   D_h = I0 Trd(T_L) Fd(h), Trd = -1.5843e-2 + 3.0543e-2 T_L + 3.797e-4 T_L^2,
+///   Fd = A0 + A1 sin h + A2 sin^2 h, A0 = 2.6463e-1 - 6.1581e-2 T_L + 3.1408e-3 T_L^2 (raised to 2e-3 / Trd
+///   when A0 Trd < 2e-3), A1 = 2.0402 + 1.8945e-2 T_L - 1.1161e-2 T_L^2, A2 = -1.3025 + 3.9231e-2 T_L +
+///   8.5079e-3 T_L^2. Elevation <= 0 -> 0. Same throws as clearSkySunIrradianceRgb.
+double clearSkyDiffuseHorizontalIrradiance(double elevation_deg, double linke_turbidity = kDefaultLinkeTurbidity);
+
+/// ESRA's clear-sky direct normal over diffuse horizontal irradiance at an elevation (> 0): the broadband (G)
+/// value of clearSkySunIrradianceRgb over clearSkyDiffuseHorizontalIrradiance. With T_L = 3: 9.1 at 60 deg,
+/// 10.4 at 10 deg (the diffuse light falls with the sun as the beam does). 0 at elevation <= 0.
+double clearSkyDirectToDiffuseRatio(double elevation_deg, double linke_turbidity = kDefaultLinkeTurbidity);
+
 /// Per channel, the model's irradiance at to_elevation_deg divided by that at from_elevation_deg: the factor that
 /// carries an E_sun known at one sun elevation to another (the colour shift included). 0 in a channel when either
 /// elevation is <= 0 (no direct beam to carry from or to). Same throws as clearSkySunIrradianceRgb.

@@ -10,7 +10,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/sun_air_mass.h"
 
 namespace gusuku {
 namespace {
@@ -67,7 +67,7 @@ FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObs
         if (lighting.sun.above_horizon) {
             auto carried = [&](int slot_index) {
                 const BakeSetSun& sun = manifest.slots[size_t(slot_index)].sun;
-                return carrySunIrradianceRgb(sun.irradiance_rgb, sun.position->apparent_elevation_deg, elevation);
+                return carryMeasuredSunRgb(sun.irradiance_rgb, sun.position->apparent_elevation_deg, elevation);
             };
             const double t = lighting.slot_b_weight;
             lighting.sun_irradiance_rgb =

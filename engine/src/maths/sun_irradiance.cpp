@@ -62,6 +62,24 @@ glm::dvec3 clearSkySunIrradianceRgb(double elevation_deg, double linke_turbidity
     return irradiance;
 }
 
+double clearSkyDiffuseHorizontalIrradiance(double elevation_deg, double linke_turbidity) {
+    checkArguments(elevation_deg, linke_turbidity);
+    if (elevation_deg <= 0.0) return 0.0;
+    const double t = linke_turbidity;
+    const double transmission = -1.5843e-2 + t * (3.0543e-2 + t * 3.797e-4);
+    double a0 = 2.6463e-1 + t * (-6.1581e-2 + t * 3.1408e-3);
+    if (a0 * transmission < 2e-3) a0 = 2e-3 / transmission;
+    const double a1 = 2.0402 + t * (1.8945e-2 - t * 1.1161e-2);
+    const double a2 = -1.3025 + t * (3.9231e-2 + t * 8.5079e-3);
+    const double s = std::sin(std::fmin(elevation_deg, 90.0) * std::numbers::pi / 180.0);
+    return kSolarConstantWm2 * transmission * (a0 + s * (a1 + s * a2));
+}
+
+double clearSkyDirectToDiffuseRatio(double elevation_deg, double linke_turbidity) {
+    const double diffuse = clearSkyDiffuseHorizontalIrradiance(elevation_deg, linke_turbidity);
+    return diffuse > 0.0 ? clearSkySunIrradianceRgb(elevation_deg, linke_turbidity).y / diffuse : 0.0;
+}
+
 glm::dvec3 sunElevationScaleRgb(double from_elevation_deg, double to_elevation_deg, double linke_turbidity) {
     const glm::dvec3 from = clearSkySunIrradianceRgb(from_elevation_deg, linke_turbidity);
     const glm::dvec3 to = clearSkySunIrradianceRgb(to_elevation_deg, linke_turbidity);
