@@ -23,7 +23,9 @@ void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manife
 /// problem): a "format" other than kBakeSetFormat, invalid JSON, a missing or unknown field, a wrong type, a
 /// number that is not finite or out of its range (latitude outside [-90, 90], a cell size <= 0, a negative
 /// irradiance, a direction that is not a unit vector, a count that is not a whole number >= 0), a sunny slot
-/// without its time or sun position, an overcast slot with them, an input_hash that is not 16 hex digits.
+/// without its time or sun position, an overcast slot with them, an input_hash that is not 16 hex digits, an
+/// "input_paths" other than its fixed text, a "partial" whose slot is not the manifest's one slot or not among
+/// its site_slots. Input paths are returned as written (see resolveBakeSetInputPath in gusuku/bakeset_loader.h).
 /// `file` names the text in messages.
 BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string& text);
 
