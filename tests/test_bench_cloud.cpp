@@ -29,12 +29,13 @@ glm::vec3 overcastPixel(uint32_t x, uint32_t y) {
     return albedo * 0.5f;
 }
 
-std::vector<uint8_t> encode(float overcast_weight) {
+// white_balance: the camera's per-channel gains on linear RGB (a warm camera raises R and lowers B).
+std::vector<uint8_t> encode(float overcast_weight, glm::vec3 white_balance = glm::vec3(1.0f)) {
     std::vector<uint8_t> frame(size_t(kWidth) * kHeight * 4);
     for (uint32_t y = 0; y < kHeight; ++y)
         for (uint32_t x = 0; x < kWidth; ++x) {
             const glm::vec3 linear =
-                (1.0f - overcast_weight) * sunnyPixel(x, y) + overcast_weight * overcastPixel(x, y);
+                white_balance * ((1.0f - overcast_weight) * sunnyPixel(x, y) + overcast_weight * overcastPixel(x, y));
             const glm::vec3 encoded = srgbEncode(glm::clamp(linear, 0.0f, 1.0f));
             uint8_t* pixel = frame.data() + 4 * (size_t(y) * kWidth + x);
             for (int channel = 0; channel < 3; ++channel) pixel[channel] = uint8_t(encoded[channel] * 255.0f + 0.5f);
@@ -47,11 +48,26 @@ TEST(BenchCloudEstimate, ClearAndOvercastFrames) {
     const CloudEstimate clear = estimateCloudCover(encode(0.0f), kWidth, kHeight);
     EXPECT_LT(clear.cloud_cover, 0.15f);
     EXPECT_GT(clear.shadow_contrast, 2.0f);  // ln 8 = 2.08, plus the texture
-    EXPECT_GT(clear.sky_blueness, 0.45f);                          // (0.8 - 0.25) / 1.05 = 0.52
+    // ln(0.80 / 0.25) = 1.163 for the sky, minus the ground's median ln(B / R): ln(0.16 / 0.22) = -0.318.
+    EXPECT_NEAR(clear.sky_blueness, 1.163f + 0.318f, 0.03f);
     const CloudEstimate overcast = estimateCloudCover(encode(1.0f), kWidth, kHeight);
     EXPECT_GT(overcast.cloud_cover, 0.85f);
     EXPECT_LT(overcast.shadow_contrast, kOvercastShadowContrast);
-    EXPECT_NEAR(overcast.sky_blueness, 0.014f, 0.01f);  // (0.72 - 0.70) / 1.42
+    EXPECT_NEAR(overcast.sky_blueness, 0.028f + 0.318f, 0.03f);  // ln(0.72 / 0.70) + 0.318
+    EXPECT_TRUE(overcast.sky_in_view);
+}
+
+// A camera's white balance scales B / R over the whole frame: the sky cue, a difference of ln(B / R), does not
+// move (up to 8-bit rounding), so a warm camera reads the same weather as a neutral one.
+TEST(BenchCloudEstimate, WhiteBalanceDoesNotMoveTheSkyCue) {
+    for (const float overcast : {0.0f, 0.5f, 1.0f}) {
+        const CloudEstimate neutral = estimateCloudCover(encode(overcast), kWidth, kHeight);
+        const CloudEstimate warm = estimateCloudCover(encode(overcast, {1.15f, 1.0f, 0.8f}), kWidth, kHeight);
+        const CloudEstimate cool = estimateCloudCover(encode(overcast, {0.85f, 1.0f, 1.2f}), kWidth, kHeight);
+        EXPECT_NEAR(warm.sky_blueness, neutral.sky_blueness, 0.03f) << "overcast weight " << overcast;
+        EXPECT_NEAR(cool.sky_blueness, neutral.sky_blueness, 0.03f) << "overcast weight " << overcast;
+        EXPECT_NEAR(warm.cloud_cover, neutral.cloud_cover, 0.08f) << "overcast weight " << overcast;
+    }
 }
 
 // The runtime's entry point hands the app the same cover as a Weather.

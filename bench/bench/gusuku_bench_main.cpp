@@ -71,12 +71,17 @@ const char* const kUsage =
     "  --site SITE.json  the site (default: the one the bake set was baked from)\n"
     "  --only LIST       comma-separated sections to run: truth,timing,day,weather,cost,clouds (truth, the\n"
     "                    accuracy of every mode and the chart always run)\n"
+    "  --photographed-skies BAKESET2\n"
+    "                    the same site baked under photographed skies (scripts/bench.sh bakes one under\n"
+    "                    ../shared/data/env when it is there): the weather and clouds sections run under\n"
+    "                    them too, with their own path-traced truths\n"
     "\n"
     "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
 
 struct Settings {
     std::string bake_set, output, cache;
     std::optional<std::string> site_json;
+    std::optional<std::string> photographed_bake_set;
     bool quick = false;
     std::vector<std::string> only;
     // Derived from quick.
@@ -99,6 +104,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     const std::optional<std::string> output = line.text("--output", "-o");
     settings.quick = line.flag("--quick");
     settings.site_json = line.text("--site");
+    settings.photographed_bake_set = line.text("--photographed-skies");
     const std::optional<std::string> cache = line.text("--cache");
     if (const auto only = line.text("--only")) {
         std::stringstream stream(*only);
@@ -185,6 +191,23 @@ ConditionFrames traceCondition(TruthRenderer& renderer, const BenchView& view, u
     return frames;
 }
 
+// One pair of skies the weather sections run under: the path tracer of the site under them and the runtime with
+// the bake set baked under them, at the sweep size.
+struct SkySet {
+    std::string label;
+    TruthRenderer* renderer = nullptr;
+    Runtime* runtime = nullptr;
+};
+
+// The same site baked under the photographed skies of ../shared/data/env (--photographed-skies).
+struct PhotographedSkies {
+    std::string bake_set_folder;
+    BakeSetData bake_set;
+    std::unique_ptr<TruthRenderer> renderer;
+    std::unique_ptr<Runtime> runtime;
+    std::string label;
+};
+
 struct Bench {
     Settings settings;
     BakeSetData bake_set;
@@ -196,6 +219,14 @@ struct Bench {
     Json results;
     std::vector<std::string> summary;  // markdown lines
     std::map<std::string, std::unique_ptr<Runtime>> runtimes;  // by "WxH"
+    std::unique_ptr<PhotographedSkies> photographed;           // null: not given (photographed_skipped says why)
+    std::string photographed_skipped;
+
+    SkySet analyticSkies() {
+        return {"the sample's analytic skies", renderer.get(),
+                &runtimeFor(settings.sweep_width, settings.sweep_height)};
+    }
+    SkySet photographedSkies() { return {photographed->label, photographed->renderer.get(), photographed->runtime.get()}; }
 
     void say(const std::string& line) {
         std::printf("%s\n", line.c_str());
@@ -629,21 +660,23 @@ void runDay(Bench& bench) {
     writeBytesAtomically(bench.settings.output + "/day.svg", svg.data(), svg.size());
 }
 
-void runWeather(Bench& bench) {
+// The weather section for one pair of skies: the sample's analytic ones (the bake set's) or the photographed ones
+// (--photographed-skies: the same site baked under ../shared/data/env). Returns its JSON.
+Json runWeatherUnder(Bench& bench, const SkySet& skies) {
     const Settings& settings = bench.settings;
     const uint32_t width = settings.sweep_width, height = settings.sweep_height;
     const double utc = bench.bake_midnight_utc + 10.5 * 3600.0;
     const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
-    Runtime& runtime = bench.runtimeFor(width, height);
+    Runtime& runtime = *skies.runtime;
     bench.say("");
-    bench.say("**Weather and camera responses (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
-              bench.localTime(utc) + ", mean dE00 over the building and shadow)**");
+    bench.say("**Weather and camera responses, " + skies.label + " (" + std::to_string(width) + "x" +
+              std::to_string(height) + ", " + bench.localTime(utc) + ", mean dE00 over the building and shadow)**");
     bench.say("| cloud cover | camera response | proposed, match | proposed, no match | direct-only |");
     bench.say("| --- | --- | --- | --- | --- |");
     Json rows = Json::array();
     for (float cover : {0.0f, 0.5f, 1.0f}) {
-        const ConditionFrames frames = traceCondition(*bench.renderer, bench.view, width, height, {utc, cover},
+        const ConditionFrames frames = traceCondition(*skies.renderer, bench.view, width, height, {utc, cover},
                                                       settings.sweep_samples);
         for (const CameraResponse& response : benchCameraResponses()) {
             const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
@@ -663,11 +696,18 @@ void runWeather(Bench& bench) {
                       fixed(unmatched.mean_de00) + " | " + fixed(direct.mean_de00) + " |");
         }
     }
-    bench.results["weather"] = {{"size", std::to_string(width) + "x" + std::to_string(height)},
-                                {"local_time", bench.localTime(utc)}, {"rows", rows},
-                                {"photographed_skies", "not run: needs a bake set baked under ../shared/data/env "
-                                                       "skies; this run's bake set uses the sample's analytic skies"}};
-    bench.say("photographed skies (../shared/data/env): not run in this version (they need their own bake set)");
+    return {{"skies", skies.label}, {"size", std::to_string(width) + "x" + std::to_string(height)},
+            {"local_time", bench.localTime(utc)}, {"rows", rows}};
+}
+
+void runWeather(Bench& bench) {
+    bench.results["weather"] = runWeatherUnder(bench, bench.analyticSkies());
+    if (bench.photographed) {
+        bench.results["weather_photographed_skies"] = runWeatherUnder(bench, bench.photographedSkies());
+    } else {
+        bench.results["weather_photographed_skies"] = bench.photographed_skipped;
+        bench.say("photographed skies: " + bench.photographed_skipped);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -768,24 +808,28 @@ void runCost(Bench& bench) {
 // Weather from the camera frame
 // ---------------------------------------------------------------------------------------------------------------
 
-void runClouds(Bench& bench) {
+// The cloud estimate on camera frames of known weather under one pair of skies. The estimate's constants were set on
+// the analytic skies (weather_estimate.h), so the photographed skies are its test on skies it never saw.
+Json runCloudsUnder(Bench& bench, const SkySet& skies) {
     const Settings& settings = bench.settings;
     const uint32_t width = settings.sweep_width, height = settings.sweep_height;
     const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, bench.view.horizontal_fov_deg);
     const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
-    Runtime& runtime = bench.runtimeFor(width, height);
+    Runtime& runtime = *skies.runtime;
     const std::vector<float> candidates{0.0f, 0.5f, 1.0f};
     bench.say("");
-    bench.say("**Weather from the camera frame (" + std::to_string(width) + "x" + std::to_string(height) + ")**");
+    bench.say("**Weather from the camera frame, " + skies.label + " (" + std::to_string(width) + "x" +
+              std::to_string(height) + ")**");
     bench.say("| site clock | true cover | camera response | estimate | picked | closest composite |");
     bench.say("| --- | --- | --- | --- | --- | --- |");
     Json rows = Json::array();
     size_t hits = 0, total = 0;
+    double cover_error_sum = 0.0;  // |estimate - true cover|
     const std::vector<double> hours = settings.quick ? std::vector<double>{10.5} : std::vector<double>{9.0, 10.5, 13.5, 16.0};
     for (double hour : hours) {
         const double utc = bench.bake_midnight_utc + hour * 3600.0;
         for (float cover : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
-            const ConditionFrames frames = traceCondition(*bench.renderer, bench.view, width, height, {utc, cover},
+            const ConditionFrames frames = traceCondition(*skies.renderer, bench.view, width, height, {utc, cover},
                                                           settings.sweep_samples);
             for (const CameraResponse& response : benchCameraResponses()) {
                 const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
@@ -805,6 +849,7 @@ void runClouds(Bench& bench) {
                 }
                 hits += picked == best;
                 ++total;
+                cover_error_sum += std::abs(estimate.cloud_cover - cover);
                 rows.push_back({{"local_time", bench.localTime(utc)}, {"true_cover", cover},
                                 {"camera_response", response.name}, {"estimate", estimate.cloud_cover},
                                 {"shadow_contrast", estimate.shadow_contrast},
@@ -815,10 +860,22 @@ void runClouds(Bench& bench) {
             }
         }
     }
-    bench.results["clouds"] = {{"candidates", candidates}, {"rows", rows}, {"picked_closest", hits},
-                               {"cases", total}};
-    bench.say("clouds: the estimate picks the weather whose composite is closest to the truth in " +
-              std::to_string(hits) + " of " + std::to_string(total) + " frames");
+    const double cover_error = total ? cover_error_sum / double(total) : 0.0;
+    bench.say("clouds, " + skies.label + ": the estimate picks the weather whose composite is closest to the truth in " +
+              std::to_string(hits) + " of " + std::to_string(total) + " frames; its mean error against the true cover " +
+              fixed(cover_error));
+    return {{"skies", skies.label}, {"candidates", candidates}, {"rows", rows}, {"picked_closest", hits},
+            {"cases", total}, {"mean_abs_cover_error", cover_error}};
+}
+
+void runClouds(Bench& bench) {
+    bench.results["clouds"] = runCloudsUnder(bench, bench.analyticSkies());
+    if (bench.photographed) {
+        bench.results["clouds_photographed_skies"] = runCloudsUnder(bench, bench.photographedSkies());
+    } else {
+        bench.results["clouds_photographed_skies"] = bench.photographed_skipped;
+        bench.say("photographed skies: " + bench.photographed_skipped);
+    }
 }
 
 int run(const Settings& settings) {
@@ -852,6 +909,37 @@ int run(const Settings& settings) {
               std::to_string(host.lavapipe_threads) + "; device " + host.device);
     bench.say("bake set: " + settings.bake_set + " (" + std::to_string(bench.bake_set.manifest.settings.samples_per_texel) +
               " samples), building " + std::to_string(bench.bake_set.building.indices.size() / 3) + " triangles");
+
+    if (settings.photographed_bake_set) {
+        auto photographed = std::make_unique<PhotographedSkies>();
+        photographed->bake_set_folder = *settings.photographed_bake_set;
+        photographed->bake_set = loadBakeSet(photographed->bake_set_folder);
+        const std::string photographed_site_json =
+            bench_common::siteJsonOf(photographed->bake_set_folder, photographed->bake_set.manifest, std::nullopt);
+        const SiteConfig photographed_site = loadSiteConfig(photographed_site_json);
+        const std::string photographed_hash = bake::ContentHash()
+                                                  .addFile(photographed->bake_set_folder + "/manifest.json")
+                                                  .addFile(photographed_site_json)
+                                                  .hex();
+        photographed->renderer = std::make_unique<TruthRenderer>(*bench.context, photographed_site, settings.cache,
+                                                                 photographed_hash);
+        RuntimeOptions options;
+        options.frame_width = settings.sweep_width;
+        options.frame_height = settings.sweep_height;
+        photographed->runtime = Runtime::open(*bench.context, photographed->bake_set, options);
+        const auto fileName = [](const std::string& path) { return std::filesystem::path(path).filename().string(); };
+        photographed->label = "photographed skies (sunny " + fileName(photographed_site.sunny_sky.path) +
+                              ", overcast " +
+                              (photographed_site.overcast_sky ? fileName(photographed_site.overcast_sky->path)
+                                                              : std::string("none")) +
+                              ")";
+        bench.say("photographed skies: " + photographed->bake_set_folder + ", " + photographed->label);
+        bench.photographed = std::move(photographed);
+    } else {
+        bench.photographed_skipped =
+            "not run: no --photographed-skies bake set (scripts/bench.sh bakes one under ../shared/data/env when it "
+            "is there, in its full run)";
+    }
 
     runMain(bench);
     if (settings.wants("day")) runDay(bench);

@@ -42,16 +42,29 @@ CloudEstimate estimateCloudCover(const uint8_t* rgba8, uint32_t width, uint32_t 
     estimate.shadow_contrast =
         float(std::log(std::max(percentile(lower, 0.9), kFloor) / std::max(percentile(lower, 0.1), kFloor)));
 
-    // Sky: the top rows' blueness, at the 75th percentile, so a sky that fills only part of them still counts.
-    std::vector<double> blueness;
-    for (size_t pixel = 0; pixel < size_t(std::max(1u, height / 8)) * width; ++pixel) {
-        const glm::vec3& rgb = linear[pixel];
-        if (rgb.b + rgb.r > 0.0f) blueness.push_back((rgb.b - rgb.r) / (rgb.b + rgb.r));
-    }
-    estimate.sky_blueness = blueness.empty() ? 0.0f : float(percentile(blueness, 0.75));
+    // Sky: how much bluer the top rows are than the ground, ln(B / R) at the top eighth's 75th percentile (so a sky
+    // that fills only part of those rows still counts) minus its median over the lower half. A white balance
+    // multiplies B / R everywhere by one factor, so it cancels in the difference: a warm or cool camera reads the
+    // same sky. Channels floored at 1/255 of linear, so black pixels stay finite.
+    const auto logBlueOverRed = [&](const glm::vec3& rgb) {
+        return std::log(std::max(double(rgb.b), kFloor) / std::max(double(rgb.r), kFloor));
+    };
+    std::vector<double> sky_blueness, ground_blueness;
+    for (size_t pixel = 0; pixel < size_t(std::max(1u, height / 8)) * width; ++pixel)
+        sky_blueness.push_back(logBlueOverRed(linear[pixel]));
+    for (size_t pixel = size_t(height / 2) * width; pixel < linear.size(); ++pixel)
+        ground_blueness.push_back(logBlueOverRed(linear[pixel]));
+    estimate.sky_blueness = float(percentile(sky_blueness, 0.75) - percentile(ground_blueness, 0.5));
 
-    const float clear = 0.5f * (clearness(estimate.shadow_contrast, kOvercastShadowContrast, kClearShadowContrast) +
-                                clearness(estimate.sky_blueness, kOvercastSkyBlueness, kClearSkyBlueness));
+    // The sky cue decides when sky is in view (the top eighth's median luminance above the lower half's: a sky is
+    // brighter than the ground under it in any weather); without sky, the shadow cue is all there is. The shadow
+    // cue is the weaker one (the bench measured it not even monotone in cover at the sample's 10:30), so it is not
+    // averaged in when the sky can answer.
+    std::vector<double> sky_luminance(luminance.begin(), luminance.begin() + ptrdiff_t(size_t(std::max(1u, height / 8)) * width));
+    estimate.sky_in_view = percentile(sky_luminance, 0.5) > percentile(lower, 0.5);
+    const float clear = estimate.sky_in_view
+                            ? clearness(estimate.sky_blueness, kOvercastSkyBlueness, kClearSkyBlueness)
+                            : clearness(estimate.shadow_contrast, kOvercastShadowContrast, kClearShadowContrast);
     estimate.cloud_cover = 1.0f - clear;
     return estimate;
 }
