@@ -66,7 +66,8 @@ std::vector<QueryPointGpu> buildingQueryPoints(const BakeGeometry& geometry) {
     std::vector<QueryPointGpu> points;
     points.reserve(geometry.texels.size());
     for (const LightmapTexel& texel : geometry.texels)
-        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f)});
+        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f),
+                          glm::vec4(texel.geometric_normal, 0.0f)});
     return points;
 }
 

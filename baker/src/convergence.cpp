@@ -68,7 +68,8 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
 
     std::vector<QueryPointGpu> points;
     for (const LightmapTexel& texel : geometry.texels)
-        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f)});
+        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f),
+                          glm::vec4(texel.geometric_normal, 0.0f)});
     IrradianceTracer tracer(context, geometry.scene, lighting.sky->tables, options.max_texture_size);
     TracePass pass;
     pass.max_bounces = uint32_t(site.bake.max_bounces);

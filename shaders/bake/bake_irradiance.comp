@@ -30,8 +30,9 @@ layout(local_size_x = BAKE_WORKGROUP_SIZE) in;
 #include "irradiance_paths.glsl"
 
 struct QueryPoint {
-    vec4 position;  // xyz ENU metres
-    vec4 normal;    // xyz unit
+    vec4 position;     // xyz ENU metres
+    vec4 normal;       // xyz unit: the shading normal, about which the cosine lobe gathers
+    vec4 face_normal;  // xyz unit geometric normal (either winding); zero: the shading normal's own plane
 };
 layout(std430, set = 0, binding = BAKE_QUERY_POINT_BINDING) readonly buffer QueryPoints { QueryPoint query_points[]; };
 // Per (sample in chunk, point): xyz the irradiance estimate, w 1 when the first ray hit a back face.
@@ -56,17 +57,22 @@ void main() {
         settings.ray_offset = pc.sun_irradiance_ray_offset.w;
         settings.sky_next_event = pc.sky_next_event != 0u;
 
+        // The face plane on the shading normal's side: the half-space light may come from (irradiance_paths.glsl).
+        vec3 face_normal = point.face_normal.xyz;
+        if (dot(face_normal, face_normal) == 0.0) face_normal = point.normal.xyz;
+        else if (dot(face_normal, point.normal.xyz) < 0.0) face_normal = -face_normal;
+
         Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + sample_in_chunk);
         vec4 estimate = vec4(0.0);
         if (pc.mode == BAKE_MODE_SUN_DIRECT) {
-            estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, rng, settings);
+            estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, face_normal, rng, settings);
         } else {
-            bool backface_hit;
-            estimate.xyz = estimateIndirectIrradiance(point.position.xyz, point.normal.xyz, rng, settings,
-                                                      backface_hit);
+            float backface_score;
+            estimate.xyz = estimateIndirectIrradiance(point.position.xyz, point.normal.xyz, face_normal, rng,
+                                                      settings, backface_score);
             // A NaN from a degenerate input must never reach an output: drop that sample's value.
             if (any(isnan(estimate.xyz)) || any(isinf(estimate.xyz))) estimate.xyz = vec3(0.0);
-            estimate.w = backface_hit ? 1.0 : 0.0;
+            estimate.w = backface_score;
         }
         sample_estimates[sample_in_chunk * pc.point_count + point_index] = estimate;
     }

@@ -100,7 +100,9 @@ void main() {
                     SurfacePoint sub = evaluateSurface(sub_hit.triangle_index, sub_hit.barycentric_u,
                                                        sub_hit.barycentric_v, sub_direction);
                     float cos_sun = dot(sub.shading_normal, settings.sun_direction);
-                    if (!(sub.front_face || sub.double_sided) || cos_sun <= 0.0) continue;
+                    if (!(sub.front_face || sub.double_sided) || cos_sun <= 0.0 ||
+                        dot(sub.geometric_normal, settings.sun_direction) <= 0.0)
+                        continue;
                     vec3 position = origin + sub_direction * sub_hit.t + sub.geometric_normal * settings.ray_offset;
                     if (!traceOccluded(position + sub.shading_normal * settings.ray_offset, settings.sun_direction,
                                        settings))
@@ -115,10 +117,13 @@ void main() {
             } else if (lit_side) {
                 // Leave the surface on the side the ray came from, as the paths do at each vertex.
                 vec3 position = origin + direction * hit.t + surface.geometric_normal * settings.ray_offset;
-                vec3 irradiance = sunIrradianceAt(position, surface.shading_normal, rng, settings);
-                bool backface_hit;
-                irradiance += estimateIndirectIrradiance(position, surface.shading_normal, rng, settings,
-                                                         backface_hit);
+                // The path vertex's convention (irradiance_paths.glsl): the shading normal's cosine lobe, clipped
+                // at the face plane on the side the ray came from.
+                vec3 irradiance = sunIrradianceAt(position, surface.shading_normal, surface.geometric_normal, rng,
+                                                  settings);
+                float backface_score;
+                irradiance += estimateIndirectIrradiance(position, surface.shading_normal, surface.geometric_normal,
+                                                         rng, settings, backface_score);
                 radiance = surface.albedo / kPi * irradiance + surface.emission;
             }
             // A NaN from a degenerate input must never reach an output: drop that sample's value.

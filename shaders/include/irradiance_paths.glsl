@@ -3,6 +3,11 @@
 // every surface they reach (next-event estimation to the disc; the disc is taken out of the sky map so only
 // this estimator sees it) and emission, over up to max_bounces diffuse reflections with Russian roulette.
 //
+// The convention at a surface (the lightmap texel and every path vertex alike, as Cycles and Mitsuba do): light
+// is gathered with the cosine lobe about the shading normal, and directions below the geometric face plane
+// contribute nothing (the ray would leave through the surface itself). So a texel whose smoothed normal leans
+// theta from its face under a uniform sky L gets pi L (1 + cos theta) / 2, not pi L.
+//
 // Units: the estimator returns irradiance E = integral of L cos over the hemisphere. At a diffuse surface of
 // albedo rho the outgoing radiance is rho / pi * E, so a cosine-sampled bounce multiplies the path weight by
 // rho: pi (cos / pdf) * rho / pi.
@@ -33,26 +38,29 @@ bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
 }
 
 // Sun irradiance at a surface point: disc sampled uniformly, one shadow ray. Its own code path so that tests
-// can check it in isolation (E = I_sun cos theta on a plane tilted by theta, 0 in shadow).
-vec3 sunIrradianceAt(vec3 position, vec3 normal, inout Rng rng, PathSettings settings) {
+// can check it in isolation (E = I_sun cos theta on a plane tilted by theta, 0 in shadow). `face_normal` is the
+// geometric normal on the shading normal's side: a sun below the face plane gives nothing (the convention above).
+vec3 sunIrradianceAt(vec3 position, vec3 normal, vec3 face_normal, inout Rng rng, PathSettings settings) {
     if (!settings.sun_present) return vec3(0.0);
     vec3 direction = sampleCone(settings.sun_direction, settings.sun_cos_max, rngNext2(rng));
     float cos_theta = dot(normal, direction);
-    if (cos_theta <= 0.0) return vec3(0.0);
+    if (cos_theta <= 0.0 || dot(face_normal, direction) <= 0.0) return vec3(0.0);
     if (traceOccluded(position + normal * settings.ray_offset, direction, settings)) return vec3(0.0);
     return settings.sun_irradiance * cos_theta;
 }
 
-// One-sample estimate of the indirect irradiance E_ind at (position, normal): everything but the direct sun
-// at this point. `backface_hit` is set when the first ray hits the back of a one-sided surface: the point then
+// One-sample estimate of the indirect irradiance E_ind at (position, normal, face_normal): everything but the
+// direct sun at this point. `face_normal` is the geometric normal on the shading normal's side (the convention
+// above). `backface_score` is 1 when the first ray hits the back of a one-sided surface, else 0: the point then
 // lies inside geometry (a texel behind a wall) and the caller treats it as invalid.
-vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathSettings settings,
-                                out bool backface_hit) {
-    backface_hit = false;
+vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, inout Rng rng, PathSettings settings,
+                                out float backface_score) {
+    backface_score = 0.0;
     vec3 irradiance = vec3(0.0);
     vec3 path_weight = vec3(1.0);
     vec3 vertex_position = position;
     vec3 vertex_normal = normal;
+    vec3 vertex_face_normal = face_normal;
     for (uint depth = 0u;; ++depth) {
         vec3 origin = vertex_position + vertex_normal * settings.ray_offset;
 
@@ -63,16 +71,21 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathS
             float sky_pdf;
             vec3 sky_direction = sampleSkyDirection(rngNext2(rng), sky_pdf);
             float sky_cos = dot(vertex_normal, sky_direction);
-            if (sky_cos > 0.0 && sky_pdf > 0.0 && !traceOccluded(origin, sky_direction, settings)) {
+            if (sky_cos > 0.0 && sky_pdf > 0.0 && dot(vertex_face_normal, sky_direction) > 0.0 &&
+                !traceOccluded(origin, sky_direction, settings)) {
                 float mis = powerHeuristic(sky_pdf, sky_cos / kPi);
                 irradiance += path_weight * skyRadiance(sky_direction) * (sky_cos / sky_pdf * mis);
             }
         }
         // The sun lights every surface the path reaches; at the query point itself it is the real-time term.
-        if (depth > 0u) irradiance += path_weight * sunIrradianceAt(vertex_position, vertex_normal, rng, settings);
+        if (depth > 0u)
+            irradiance += path_weight * sunIrradianceAt(vertex_position, vertex_normal, vertex_face_normal, rng, settings);
 
-        // Cosine-sampled continuation: sky on a miss (the other MIS half), emission and a bounce on a hit.
+        // Cosine-sampled continuation: sky on a miss (the other MIS half), emission and a bounce on a hit. A
+        // direction below the face plane ends the path with nothing (it would leave through the surface); the
+        // MIS weights stay those of the full lobe and map, as both strategies see the same clipped integrand.
         vec3 direction = sampleCosineHemisphere(vertex_normal, rngNext2(rng));
+        if (dot(vertex_face_normal, direction) <= 0.0) break;
         float cos_pdf = max(dot(vertex_normal, direction), 0.0) / kPi;
         BvhHit hit;
         g_rays_traced++;
@@ -84,7 +97,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathS
         SurfacePoint surface = evaluateSurface(hit.triangle_index, hit.barycentric_u, hit.barycentric_v, direction);
         if (!surface.front_face && !surface.double_sided) {
             // Inside a closed solid: no light arrives from here.
-            if (depth == 0u) backface_hit = true;
+            if (depth == 0u) backface_score = 1.0;
             break;
         }
         irradiance += path_weight * kPi * surface.emission;
@@ -99,6 +112,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, inout Rng rng, PathS
         }
         vertex_position = origin + direction * hit.t;
         vertex_normal = surface.shading_normal;
+        vertex_face_normal = surface.geometric_normal;
         // Keep the continuation on the geometric side the ray arrived from.
         vertex_position += surface.geometric_normal * settings.ray_offset;
     }

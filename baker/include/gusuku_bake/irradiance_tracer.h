@@ -17,12 +17,16 @@
 
 namespace gusuku::bake {
 
-/// A point where irradiance is estimated, in the shader's layout.
+/// A point where irradiance is estimated, in the shader's layout. The convention at a surface (README, "How the
+/// baker works"): the cosine lobe about `normal`, with directions below the plane of `face_normal` contributing
+/// nothing, so a lightmap texel and a path vertex on the same surface gather the same light.
 struct QueryPointGpu {
-    glm::vec4 position;  ///< xyz ENU metres
-    glm::vec4 normal;    ///< xyz unit: the hemisphere that gathers light
+    glm::vec4 position;                  ///< xyz ENU metres
+    glm::vec4 normal;                    ///< xyz unit: the shading normal, about which the cosine lobe gathers
+    glm::vec4 face_normal{0.0f};         ///< xyz unit geometric normal of the surface (either winding; the
+                                         ///< shader takes it on `normal`'s side); zero: `normal`'s own plane
 };
-static_assert(sizeof(QueryPointGpu) == 32);
+static_assert(sizeof(QueryPointGpu) == 48);
 
 /// The sun as a light for bounces (and for the sun-only test mode).
 struct SunLight {
