@@ -35,7 +35,8 @@ struct QueryPoint {
     vec4 face_normal;  // xyz unit geometric normal (either winding); zero: the shading normal's own plane
 };
 layout(std430, set = 0, binding = BAKE_QUERY_POINT_BINDING) readonly buffer QueryPoints { QueryPoint query_points[]; };
-// Per (sample in chunk, point): xyz the irradiance estimate, w 1 when the first ray hit a back face.
+// Per (sample in chunk, point): xyz the irradiance estimate, w the first ray's back-face score
+// (estimateIndirectIrradiance: 1 for a one-sided back, kDoubleSidedBackfaceScore for a double-sided one).
 layout(std430, set = 0, binding = BAKE_SAMPLE_ESTIMATE_BINDING) writeonly buffer SampleEstimates { vec4 sample_estimates[]; };
 layout(std430, set = 0, binding = BAKE_RAY_COUNTER_BINDING) buffer RayCounter { uint rays_traced_total[]; };
 

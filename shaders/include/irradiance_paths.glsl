@@ -37,6 +37,15 @@ bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
     return bvhOccluded(origin, direction, 1e30, settings.skip_flags);
 }
 
+// A double-sided surface hit from behind (by its winding) scores this much toward a texel's back-face share,
+// a one-sided one 1. The bake marks a texel invalid when its mean score passes kMaxBackfaceFraction = 0.1
+// (baker/src/bake_outputs.h), so one-sided backs must fill more than 10 % of its first rays (as before) and
+// double-sided backs more than 90 %: a closed part's inside sees back faces in every direction (100 %), while
+// a single open sheet seen from behind fills at most half the hemisphere (a point at the foot of an endless
+// sheet) and the corner of two such sheets three quarters of it. Why not 1: double-sided is how most real
+// models mark every material, so their backs alone are the only sign of a texel inside a closed part.
+const float kDoubleSidedBackfaceScore = 0.1 / 0.9;
+
 // Sun irradiance at a surface point: disc sampled uniformly, one shadow ray. Its own code path so that tests
 // can check it in isolation (E = I_sun cos theta on a plane tilted by theta, 0 in shadow). `face_normal` is the
 // geometric normal on the shading normal's side: a sun below the face plane gives nothing (the convention above).
@@ -51,8 +60,11 @@ vec3 sunIrradianceAt(vec3 position, vec3 normal, vec3 face_normal, inout Rng rng
 
 // One-sample estimate of the indirect irradiance E_ind at (position, normal, face_normal): everything but the
 // direct sun at this point. `face_normal` is the geometric normal on the shading normal's side (the convention
-// above). `backface_score` is 1 when the first ray hits the back of a one-sided surface, else 0: the point then
-// lies inside geometry (a texel behind a wall) and the caller treats it as invalid.
+// above). `backface_score` is the first ray's share of evidence that the point lies inside geometry (a texel
+// behind a wall): 1 when it hits the back of a one-sided surface, kDoubleSidedBackfaceScore when it hits a
+// double-sided surface from behind by its winding, else 0; the caller marks points whose mean score is too high
+// invalid. Only the validity test looks at a double-sided surface's winding: its shading is the same from
+// either side.
 vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, inout Rng rng, PathSettings settings,
                                 out float backface_score) {
     backface_score = 0.0;
@@ -100,6 +112,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
             if (depth == 0u) backface_score = 1.0;
             break;
         }
+        if (depth == 0u && !surface.front_face) backface_score = kDoubleSidedBackfaceScore;
         irradiance += path_weight * kPi * surface.emission;
         if (depth >= settings.max_bounces) break;
 

@@ -68,7 +68,10 @@ struct TracePass {
 /// Running sums for one set of query points, resident on the GPU.
 struct PointAccumulator {
     GpuBuffer points;
-    GpuBuffer sums;          ///< vec4 per point: irradiance sum xyz, back-face first-hit count w
+    GpuBuffer sums;          ///< vec4 per point: irradiance sum xyz, w the sum of the first rays' back-face scores:
+                             ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided one
+                             ///< from behind by its winding (irradiance_paths.glsl), so w / samples above
+                             ///< kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over 90 % double-sided backs
     uint32_t point_count = 0;
     uint32_t samples_done = 0;
 };
