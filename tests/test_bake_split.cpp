@@ -72,17 +72,28 @@ void expectSameBakeSet(const std::string& expected_dir, const std::string& actua
     }
 }
 
-/// A small site (the mini site with an SfM mesh, so the occluder is one of the shared files) baked three ways,
-/// once per test program: one partial set per slot, each by its own process, all running at once as the Job's
-/// pods would; the whole site by one more process; and one slot again from inputs with another sample count.
+/// A small site (the mini site with an SfM mesh, so the occluder is one of the shared files) baked four ways,
+/// once per test program, every bake its own process, all running at once as the Job's pods would: one partial
+/// set per slot; the whole site; slots[1] from a byte copy of the site in another folder (a machine that mounts
+/// it elsewhere); slots[1] from a copy whose site.json has another seed (other inputs).
 struct SplitBakes {
     std::string dir;
     std::string site;
     std::vector<std::string> slots;
     std::vector<std::string> partials;  ///< dir/partials/<slot>
     std::string single;                 ///< dir/single: the one-process bake
-    std::string foreign_partial;        ///< slots[1] of the site with 2 samples instead of 4
+    std::string mounted_partial;        ///< slots[1] of dir/mounted/site.json, the same bytes
+    std::string foreign_partial;        ///< slots[1] of dir/changed/site.json, bake.seed + 1
 };
+
+/// Copies the site's files (not the bake sets) from `from` into the new folder `to`; returns its site.json.
+std::string copySite(const std::string& from, const std::string& to) {
+    fs::create_directories(to);
+    for (const auto& entry : fs::directory_iterator(from))
+        if (entry.is_regular_file() && entry.path().extension() != ".err")
+            fs::copy(entry.path(), to / entry.path().filename());
+    return to + "/site.json";
+}
 
 const SplitBakes& splitBakes() {
     static const SplitBakes bakes = [] {
@@ -94,6 +105,12 @@ const SplitBakes& splitBakes() {
         b.site = gusuku::testing::writeMiniSite(b.dir, options);
         for (const BakeSlot& slot : loadSiteConfig(b.site).bake.slots) b.slots.push_back(slot.name);
         b.single = b.dir + "/single";
+        const std::string mounted_site = copySite(b.dir, b.dir + "/mounted");
+        const std::string changed_site = copySite(b.dir, b.dir + "/changed");
+        nlohmann::json changed = nlohmann::json::parse(readTextFile(changed_site));
+        changed["bake"]["seed"] = changed["bake"].value("seed", 1) + 1;
+        std::ofstream(changed_site, std::ios::trunc) << changed.dump(2);
+        b.mounted_partial = b.dir + "/mounted_partials/" + b.slots.at(1);
         b.foreign_partial = b.dir + "/foreign/" + b.slots.at(1);
         std::vector<std::pair<std::string, pid_t>> runs;
         for (const std::string& slot : b.slots) {
@@ -104,9 +121,12 @@ const SplitBakes& splitBakes() {
         }
         runs.push_back({"single", gusuku::testing::spawnBakeProcess({"bake", b.site, "-o", b.single, "--quiet"},
                                                                     "/dev/null", b.dir + "/single.err")});
-        runs.push_back({"foreign", gusuku::testing::spawnBakeProcess({"bake", b.site, "-o", b.foreign_partial, "--slot",
-                                                                      b.slots.at(1), "--samples", "2", "--quiet"},
-                                                                     "/dev/null", b.dir + "/foreign.err")});
+        runs.push_back({"mounted", gusuku::testing::spawnBakeProcess(
+                                       {"bake", mounted_site, "-o", b.mounted_partial, "--slot", b.slots.at(1), "--quiet"},
+                                       "/dev/null", b.dir + "/mounted.err")});
+        runs.push_back({"foreign", gusuku::testing::spawnBakeProcess(
+                                       {"bake", changed_site, "-o", b.foreign_partial, "--slot", b.slots.at(1), "--quiet"},
+                                       "/dev/null", b.dir + "/foreign.err")});
         for (const auto& [name, pid] : runs) {
             const int exit_code = gusuku::testing::waitBakeProcess(pid, kProcessTimeoutSeconds);
             EXPECT_EQ(exit_code, 0) << name << ": " << readTextFile(b.dir + "/" + name + ".err");
@@ -192,6 +212,15 @@ TEST_F(BakeSplitTest, OneProcessPerSlotThenMergeWritesTheOneProcessBakeSet) {
     const BakeSetData data = loadBakeSet(merged);
     EXPECT_EQ(data.slots.size(), bakes.slots.size());
 
+    // A slot baked on a machine that sees the site at another place has the same input hash (inputs are named
+    // relative to site.json's folder) and merges into the same bytes, the first set's input paths kept.
+    const std::string merged_mounted = bakes.dir + "/merged_mounted";
+    const CommandResult mounted = merge({bakes.partials[0], bakes.mounted_partial}, merged_mounted);
+    ASSERT_EQ(mounted.exit_code, 0) << mounted.stderr_text;
+    EXPECT_NE(readBakeSetManifest(bakes.mounted_partial + "/manifest.json").inputs[0].path,
+              readBakeSetManifest(bakes.partials[1] + "/manifest.json").inputs[0].path);
+    expectSameBakeSet(bakes.single, merged_mounted);
+
     // A second bake of the site into the merged folder has nothing to do: the merge wrote the whole bake's hash.
     const CommandResult rerun = gusuku::testing::runBakeCommand({"bake", bakes.site, "-o", merged}, scratch_);
     EXPECT_EQ(rerun.exit_code, 0) << rerun.stderr_text;
@@ -207,7 +236,7 @@ TEST_F(BakeSplitTest, MergeRefusesMissingAndRepeatedSlotsOtherInputsAndChangedSh
                   "slot \"" + bakes.slots[1] + "\" is in none of the 1 partial sets");
     expectRefused({first, second, first}, first + "/manifest.json", "/partial/slot",
                   "slot \"" + bakes.slots[0] + "\" is also the slot of");
-    // The foreign partial's input hash covers its sample count (its site.json bytes are the same).
+    // The foreign partial's site.json differs (its seed): another input hash.
     expectRefused({first, bakes.foreign_partial}, bakes.foreign_partial + "/manifest.json", "/input_hash",
                   "the partial sets were baked from different inputs or settings");
     expectRefused({first, bakes.single}, bakes.single + "/manifest.json", "/partial",
@@ -239,6 +268,32 @@ TEST_F(BakeSplitTest, MergeRefusesMissingAndRepeatedSlotsOtherInputsAndChangedSh
     EXPECT_EQ(into_partial.stderr_text.rfind("gusuku-bake: error: " + first + ": -o: is the partial set", 0), 0u)
         << into_partial.stderr_text;
     EXPECT_TRUE(readBakeSetManifest(first + "/manifest.json").partial.has_value()) << "the partial set is untouched";
+}
+
+TEST_F(BakeSplitTest, SlotOptionNamesASlotOfTheSiteAndAFinishedPartialIsUpToDate) {
+    const SplitBakes& bakes = splitBakes();
+    const std::string out = scratch_ + "/unknown";
+    const CommandResult unknown =
+        gusuku::testing::runBakeCommand({"bake", bakes.site, "-o", out, "--slot", "dusk"}, scratch_);
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_EQ(unknown.stderr_text.rfind("gusuku-bake: error: " + bakes.site + ": /bake/slots: has no slot \"dusk\"", 0),
+              0u)
+        << unknown.stderr_text;
+    EXPECT_TRUE(contains(unknown.stderr_text, bakes.slots[0] + ", " + bakes.slots[1])) << unknown.stderr_text;
+    EXPECT_FALSE(fs::exists(out));
+
+    // Rerunning a finished slot does nothing; a whole bake into that folder is not taken for done.
+    const CommandResult again = gusuku::testing::runBakeCommand(
+        {"bake", bakes.site, "-o", bakes.partials[0], "--slot", bakes.slots[0]}, scratch_);
+    EXPECT_EQ(again.exit_code, 0) << again.stderr_text;
+    EXPECT_TRUE(contains(again.stdout_text, "up to date")) << again.stdout_text;
+    const std::string copy = bakes.dir + "/partial_copy";
+    fs::copy(bakes.partials[0], copy);
+    const CommandResult whole =
+        gusuku::testing::runBakeCommand({"bake", bakes.site, "-o", copy, "--quiet"}, scratch_);
+    EXPECT_EQ(whole.exit_code, 0) << whole.stderr_text;
+    EXPECT_FALSE(contains(whole.stdout_text, "up to date")) << whole.stdout_text;
+    expectSameBakeSet(bakes.single, copy);
 }
 
 TEST_F(BakeSplitTest, PartialBakeStoppedAndResumedWritesTheSameBytes) {

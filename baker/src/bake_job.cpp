@@ -164,21 +164,25 @@ bool manifestIsUpToDate(const std::string& manifest_path, uint64_t input_hash, c
     }
 }
 
-/// The site's slots this run traces: all of them, or the one --slot names (InputError naming site.json's
-/// /bake/slots when the site has no such slot).
+/// The site's slots this run traces: all of them, or the one --slot names.
 std::vector<const BakeSlot*> slotsToTrace(const SiteConfig& site, const std::string& only) {
+    if (!only.empty()) requireSiteSlot(site, only);
     std::vector<const BakeSlot*> chosen;
-    std::string names;
-    for (const BakeSlot& slot : site.bake.slots) {
+    for (const BakeSlot& slot : site.bake.slots)
         if (only.empty() || slot.name == only) chosen.push_back(&slot);
-        names += (names.empty() ? "" : ", ") + slot.name;
-    }
-    if (chosen.empty())
-        throw InputError(site.file, "/bake/slots", "has no slot \"" + only + "\" (--slot); its slots: " + names);
     return chosen;
 }
 
 }  // namespace
+
+void requireSiteSlot(const SiteConfig& site, const std::string& slot) {
+    std::string names;
+    for (const BakeSlot& candidate : site.bake.slots) {
+        if (candidate.name == slot) return;
+        names += (names.empty() ? "" : ", ") + candidate.name;
+    }
+    throw InputError(site.file, "/bake/slots", "has no slot \"" + slot + "\" (--slot); its slots: " + names);
+}
 
 BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options) {
     const auto wall_start = Clock::now();

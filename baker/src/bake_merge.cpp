@@ -109,6 +109,18 @@ void copyAtomically(const std::string& from, const std::string& to) {
     });
 }
 
+/// A slot's sky map in the merged manifest: the merged path of the input it is (the sets agree on their inputs'
+/// roles and bytes, so this is the first set's path even when this set's machine saw the site somewhere else),
+/// else its own path made relative to the output folder.
+std::string mergedSkyMapPath(const PartialSet& set, const std::string& sky_map,
+                             const std::vector<BakeSetInput>& merged_inputs, const std::string& output_dir) {
+    const std::string resolved = resolveBakeSetInputPath(set.folder, set.manifest, sky_map);
+    for (size_t i = 0; i < set.manifest.inputs.size() && i < merged_inputs.size(); ++i)
+        if (resolveBakeSetInputPath(set.folder, set.manifest, set.manifest.inputs[i].path) == resolved)
+            return merged_inputs[i].path;
+    return bakeSetRelativeInputPath(output_dir, resolved);
+}
+
 }  // namespace
 
 uint64_t slotIndependentFilesHash(const std::string& folder, const BakeSetManifest& manifest) {
@@ -190,8 +202,7 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
     for (const std::string& name : shared.partial->site_slots) {
         const PartialSet& set = sets[set_of_slot.at(name)];
         BakeSetSlot slot = set.manifest.slots.front();
-        slot.sky_map = bakeSetRelativeInputPath(output_dir, resolveBakeSetInputPath(set.folder, set.manifest,
-                                                                                    slot.sky_map));
+        slot.sky_map = mergedSkyMapPath(set, slot.sky_map, merged.inputs, output_dir);
         merged.slots.push_back(slot);
         merged.statistics.rays_traced += set.manifest.statistics.rays_traced;
         merged.statistics.trace_seconds += set.manifest.statistics.trace_seconds;

@@ -79,6 +79,7 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::signal(SIGTERM, requestStop);
     options.should_stop = [] { return g_stop_requested != 0; };
     const SiteConfig site = loadSiteConfig(request.site_path);
+    if (!options.slot.empty()) bake::requireSiteSlot(site, options.slot);  // before the device is opened
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 

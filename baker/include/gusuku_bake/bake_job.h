@@ -49,4 +49,8 @@ struct BakeReport {
 
 BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options);
 
+/// Throws InputError(site.file, "/bake/slots", "has no slot ...", listing the site's slots) unless `slot` is one
+/// of the site's slots. runBake checks BakeOptions::slot with it; a command line can check before it opens a device.
+void requireSiteSlot(const SiteConfig& site, const std::string& slot);
+
 }  // namespace gusuku::bake
