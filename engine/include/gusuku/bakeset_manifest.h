@@ -136,7 +136,8 @@ struct BakeSetSlot {
     bool operator==(const BakeSetSlot&) const = default;
 };
 
-/// This bake's own cost (differs between runs of the same inputs).
+/// This bake's own cost (differs between runs of the same inputs). A merged set's (gusuku-bake merge): rays and
+/// trace seconds summed over its partial sets, rays_per_second their ratio, wall_seconds the longest partial's.
 struct BakeSetStatistics {
     uint64_t rays_traced = 0;
     double trace_seconds = 0.0;
