@@ -63,6 +63,8 @@ PY
 fi
 rm -rf bench/results
 "$bench" "$bakeset" -o bench/results --cache out/bench-cache $quick "${photographed[@]}"
+# The code the figures come from, as the summary's last line.
+printf '\ncode: %s\n' "$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')" >> bench/results/summary.md
 python3 - <<'PY'
 import re
 readme = open("README.md").read()
