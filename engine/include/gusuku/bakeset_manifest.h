@@ -104,7 +104,7 @@ struct BakeSetSun {
     std::string irradiance_source;
     std::optional<BakeSetSunPosition> position;  ///< sunny slots only
     /// E_sun on a plane facing the sun, at position->apparent_elevation_deg; carry it to another elevation with
-    /// gusuku/sun_irradiance.h's carrySunIrradianceRgb.
+    /// gusuku/sun_air_mass.h's carryMeasuredSunRgb (what the baker and the runtime do).
     glm::dvec3 irradiance_rgb{0.0};
     double angular_radius_deg = 0.0;  ///< of the sun disc the tracer samples
     bool operator==(const BakeSetSun&) const = default;
