@@ -176,7 +176,7 @@ TEST(LightmapCharts, CubeChartsDoNotOverlapAndKeepTwoTexelsOfPadding) {
 
 TEST(LightmapCharts, LowersTheDensityWhenTheChartsDoNotFitAndReportsIt) {
     const TriangleMesh cube = unitCube();
-    // Six 1 m faces at 8 texels/m need 6 rectangles of 9 + 4 texels: not in 24^2.
+    // Six 1 m faces at 8 texels/m need 6 shapes of 9 + 2 texels (one of gutter each side): not in 24^2.
     const int resolution = 24;
     const LightmapCharts charts = generateLightmapCharts(cube, kCubeDensity, resolution);
     EXPECT_LT(charts.texels_per_metre, kCubeDensity);

@@ -12,19 +12,6 @@ namespace {
 
 constexpr int kMaxLightmapResolution = 4096;
 
-// A model of many small charts (the shrine: 1640) can need more texels for padding than its area suggests:
-// grow the lightmap by half until every chart fits at least at one texel.
-LightmapCharts chartsGrowingToFit(const TriangleMesh& mesh, double texels_per_metre, int& resolution) {
-    for (;;) {
-        try {
-            return generateLightmapCharts(mesh, texels_per_metre, resolution);
-        } catch (const InputError&) {
-            if (resolution >= kMaxLightmapResolution) throw;
-            resolution = std::min(kMaxLightmapResolution, (resolution * 3 / 2 + 3) / 4 * 4);
-        }
-    }
-}
-
 // Lightmap UVs: the glTF's own when they pass the check at the chosen resolution, else our charts.
 void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, double texels_per_metre) {
     const int resolution = chooseLightmapResolution(loaded, texels_per_metre);
@@ -40,16 +27,9 @@ void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, doubl
         geometry.warnings.push_back("building TEXCOORD_1 not usable as a lightmap (" + report.message +
                                     "); generating charts instead");
     }
-    // The resolution estimate assumes a packing overhead; when the charts pack worse, the packer lowers the
-    // density. Grow the lightmap a little (twice at most) before accepting a lower density.
-    LightmapCharts charts = chartsGrowingToFit(loaded, texels_per_metre, geometry.lightmap_resolution);
-    for (int attempt = 0; attempt < 2 && charts.texels_per_metre < texels_per_metre * 0.999; ++attempt) {
-        const double growth = texels_per_metre / charts.texels_per_metre * 1.05;
-        const int larger = chooseLightmapResolution(loaded, texels_per_metre * growth, kMaxLightmapResolution);
-        if (larger <= geometry.lightmap_resolution) break;
-        geometry.lightmap_resolution = larger;
-        charts = chartsGrowingToFit(loaded, texels_per_metre, geometry.lightmap_resolution);
-    }
+    // Our charts get the smallest lightmap that holds them at the requested density (lower only past the cap).
+    LightmapCharts charts = generateLightmapChartsInSmallestLightmap(loaded, texels_per_metre, kMaxLightmapResolution);
+    geometry.lightmap_resolution = charts.resolution;
     geometry.building = std::move(charts.mesh);
     geometry.effective_texels_per_metre = charts.texels_per_metre;
     geometry.lightmap_uv_source = "generated charts (" + std::to_string(charts.chart_count) + " charts)";

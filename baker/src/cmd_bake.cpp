@@ -107,8 +107,10 @@ int runBakeCommand(const std::vector<std::string>& args) {
         std::printf("slots:           1 (%s, a partial set of %zu: join them with gusuku-bake merge)\n",
                     options.slot.c_str(), site.bake.slots.size());
     std::printf("samples:         %u per texel and per ground cell\n", report.samples_per_point);
-    std::printf("building:        %zu lightmap texels (%dx%d)\n", report.building_texels, report.lightmap_resolution,
-                report.lightmap_resolution);
+    const double lightmap_texels = double(report.lightmap_resolution) * double(report.lightmap_resolution);
+    std::printf("building:        %zu lightmap texels (%dx%d, charts fill %.1f %%)\n", report.building_texels,
+                report.lightmap_resolution, report.lightmap_resolution,
+                lightmap_texels > 0.0 ? 100.0 * double(report.building_texels) / lightmap_texels : 0.0);
     std::printf("ground:          %zu cells\n", report.ground_cells);
     if (report.resumed_fraction > 0.0)
         std::printf("resumed:         %.0f %% of the work came from checkpoints\n", report.resumed_fraction * 100.0);

@@ -16,6 +16,7 @@
 #include "gusuku/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "lightmap_pack.h"
+#include "lightmap_raster.h"
 
 namespace gusuku::bake {
 namespace {
@@ -478,14 +479,87 @@ std::vector<glm::dvec2> fitChartRectangles(const TriangleMesh& mesh, std::vector
     return extents;
 }
 
-// Phase 6: the output mesh. Vertices are split per chart (a vertex on a chart border gets one copy per chart),
-// and each copy's uv1 is its flattened position at the packed density, placed in its chart's rectangle.
+// A chart's vertex in texels of its unturned inner rectangle at `scale` texels per metre: flattened, moved to the
+// rectangle's corner and offset by the margin that keeps its edges clear of rows of texel centres.
+struct ChartFrame {
+    glm::ivec2 inner{1, 1};
+    glm::dvec2 margin{0.0};
+};
+
+ChartFrame chartFrame(const glm::dvec2& extent, double scale) {
+    ChartFrame frame;
+    frame.inner = detail::innerTexelSize(extent, scale);
+    const glm::dvec2 extent_texels = extent * scale;
+    frame.margin = glm::dvec2(marginAwayFromCentres(extent_texels.x, frame.inner.x),
+                              marginAwayFromCentres(extent_texels.y, frame.inner.y));
+    return frame;
+}
+
+glm::dvec2 localTexel(const Chart& chart, const ChartFrame& frame, double scale, const glm::dvec3& position) {
+    return (glm::dvec2(glm::dot(position, chart.tangent), glm::dot(position, chart.bitangent)) - chart.min) * scale +
+           frame.margin;
+}
+
+// Whether a triangle (texel units) overlaps the texel square [x, x + 1] x [y, y + 1] by more than a touch along
+// an edge line: separating axes (the square's own axes are the caller's bounding-box loop). A zero-area triangle
+// meets every texel of its bounding box, conservatively.
+bool triangleMeetsTexel(const detail::UvTriangle& triangle, int x, int y) {
+    const double orientation = detail::signedDoubleArea(triangle);
+    if (!(std::abs(orientation) > 1e-12)) return true;
+    for (int edge = 0; edge < 3; ++edge) {
+        const glm::dvec2& start = triangle[edge];
+        const glm::dvec2& end = triangle[(edge + 1) % 3];
+        // Inward normal of the edge; the square is separated when all its corners lie on the outer side.
+        const glm::dvec2 inward = orientation > 0.0 ? glm::dvec2(start.y - end.y, end.x - start.x)
+                                                    : glm::dvec2(end.y - start.y, start.x - end.x);
+        double most_inside = -INFINITY;
+        for (int corner = 0; corner < 4; ++corner) {
+            const glm::dvec2 point(x + (corner & 1), y + (corner >> 1));
+            most_inside = std::max(most_inside, glm::dot(point - start, inward));
+        }
+        if (most_inside <= 1e-9 * glm::length(inward)) return false;
+    }
+    return true;
+}
+
+// Phase 6: what the packer needs of each chart at a density: which texels of its inner rectangle its triangles
+// touch (overlap by any area; a zero-area triangle touches every texel of its bounding box).
+std::vector<detail::ChartShape> chartShapes(const TriangleMesh& mesh, const std::vector<Chart>& charts,
+                                            const std::vector<glm::dvec2>& extents, double scale) {
+    std::vector<detail::ChartShape> shapes(charts.size());
+    for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
+        const Chart& chart = charts[chart_index];
+        const ChartFrame frame = chartFrame(extents[chart_index], scale);
+        detail::ChartShape& shape = shapes[chart_index];
+        shape.inner = frame.inner;
+        shape.touched.assign(size_t(frame.inner.x) * size_t(frame.inner.y), 0);
+        for (uint32_t triangle : chart.triangles) {
+            detail::UvTriangle local;
+            for (int i = 0; i < 3; ++i)
+                local[i] = localTexel(chart, frame, scale, glm::dvec3(mesh.positions[mesh.indices[size_t(triangle) * 3 + i]]));
+            const glm::dvec2 low = glm::min(local[0], glm::min(local[1], local[2]));
+            const glm::dvec2 high = glm::max(local[0], glm::max(local[1], local[2]));
+            const int first_x = std::clamp(int(std::floor(low.x)), 0, frame.inner.x - 1);
+            const int last_x = std::clamp(int(std::floor(high.x)), 0, frame.inner.x - 1);
+            const int first_y = std::clamp(int(std::floor(low.y)), 0, frame.inner.y - 1);
+            const int last_y = std::clamp(int(std::floor(high.y)), 0, frame.inner.y - 1);
+            for (int y = first_y; y <= last_y; ++y)
+                for (int x = first_x; x <= last_x; ++x)
+                    if (triangleMeetsTexel(local, x, y)) shape.touched[size_t(y) * size_t(frame.inner.x) + size_t(x)] = 1;
+        }
+    }
+    return shapes;
+}
+
+// Phase 7: the output mesh. Vertices are split per chart (a vertex on a chart border gets one copy per chart),
+// and each copy's uv1 is its flattened position at the packed density, placed (and turned) in its chart's spot.
 LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Chart>& charts,
                                 const std::vector<glm::dvec2>& extents, const detail::ChartPacking& packing,
                                 int resolution) {
     const double scale = packing.texels_per_metre;
     LightmapCharts result;
     result.texels_per_metre = scale;
+    result.resolution = resolution;
     result.chart_count = charts.size();
     result.triangle_chart.resize(mesh.triangleCount());
     TriangleMesh& out = result.mesh;
@@ -502,10 +576,7 @@ LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Char
     for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
         const Chart& chart = charts[chart_index];
         const detail::ChartPlacement& placement = packing.placements[chart_index];
-        const glm::ivec2 inner = detail::innerTexelSize(extents[chart_index], scale);
-        const glm::dvec2 extent_texels = extents[chart_index] * scale;
-        const glm::dvec2 margin(marginAwayFromCentres(extent_texels.x, inner.x),
-                                marginAwayFromCentres(extent_texels.y, inner.y));
+        const ChartFrame frame = chartFrame(extents[chart_index], scale);
         for (uint32_t triangle : chart.triangles) {
             result.triangle_chart[triangle] = uint32_t(chart_index);
             for (int i = 0; i < 3; ++i) {
@@ -513,15 +584,8 @@ LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Char
                 if (copy_chart[vertex] != int64_t(chart_index)) {
                     copy_chart[vertex] = int64_t(chart_index);
                     copy_index[vertex] = uint32_t(out.positions.size());
-                    const glm::dvec3 position(mesh.positions[vertex]);
-                    const glm::dvec2 local = (glm::dvec2(glm::dot(position, chart.tangent),
-                                                         glm::dot(position, chart.bitangent)) -
-                                              chart.min) * scale + margin;
-                    // A quarter turn (not a mirror) when the packer laid the rectangle on its side.
-                    const glm::dvec2 texel = placement.rotated
-                                                 ? glm::dvec2(placement.x + double(inner.y) - local.y,
-                                                              placement.y + local.x)
-                                                 : glm::dvec2(placement.x + local.x, placement.y + local.y);
+                    const glm::dvec2 local = localTexel(chart, frame, scale, glm::dvec3(mesh.positions[vertex]));
+                    const glm::dvec2 texel = detail::placedTexel(placement, frame.inner, local);
                     out.positions.push_back(mesh.positions[vertex]);
                     out.normals.push_back(has_normals ? mesh.normals[vertex] : glm::vec3(0.0f));
                     out.uv0.push_back(has_uv0 ? mesh.uv0[vertex] : glm::vec2(0.0f));
@@ -544,8 +608,24 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
     std::vector<Chart> charts = growCharts(mesh, analysis, chart_of);
     attachDegenerateTriangles(analysis.triangles, chart_of, charts);
     const std::vector<glm::dvec2> extents = fitChartRectangles(mesh, charts);
+    const auto shapes_at = [&](double density) { return chartShapes(mesh, charts, extents, density); };
     const detail::ChartPacking packing =
-        detail::packChartRectangles(extents, texels_per_metre, resolution, padding_texels);
+        detail::packChartShapes(shapes_at, texels_per_metre, resolution, padding_texels);
+    return writeChartedMesh(mesh, charts, extents, packing, resolution);
+}
+
+LightmapCharts generateLightmapChartsInSmallestLightmap(const TriangleMesh& mesh, double texels_per_metre,
+                                                        int max_resolution, int padding_texels) {
+    validateChartInputs(mesh, texels_per_metre, max_resolution, padding_texels);
+    const MeshAnalysis analysis = analyseMesh(mesh, texels_per_metre);
+    std::vector<int64_t> chart_of;
+    std::vector<Chart> charts = growCharts(mesh, analysis, chart_of);
+    attachDegenerateTriangles(analysis.triangles, chart_of, charts);
+    const std::vector<glm::dvec2> extents = fitChartRectangles(mesh, charts);
+    const auto shapes_at = [&](double density) { return chartShapes(mesh, charts, extents, density); };
+    const int resolution = detail::smallestFittingResolution(shapes_at(texels_per_metre), max_resolution, padding_texels);
+    const detail::ChartPacking packing =
+        detail::packChartShapes(shapes_at, texels_per_metre, resolution, padding_texels);
     return writeChartedMesh(mesh, charts, extents, packing, resolution);
 }
 

@@ -1,6 +1,13 @@
 // Packing lightmap charts into the square lightmap, and choosing the lightmap's size from the surface area.
+//
+// The packer keeps one height per lightmap column (a skyline) and drops each chart, at each of its four turns
+// and every x, onto it: the chart rests where the first of its columns meets the skyline, judged by the shape
+// of the texels it touches (grown by the padding), not by its bounding rectangle, so a gable's triangle and the
+// next one turned upside down lock into a parallelogram. It takes the placement whose top ends lowest, then the
+// one leaving the fewest empty texels under it, then the leftmost. Texels under an overhang stay empty.
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -15,92 +22,220 @@ namespace gusuku::bake {
 namespace detail {
 namespace {
 
-struct ShelfResult {
-    int total_height = 0;  // texels the shelves would need (may exceed the resolution)
+// A chart's padded footprint at one turn: per column the first and one-past-last occupied row.
+struct TurnedFootprint {
+    int width = 0;
+    int height = 0;
+    std::vector<int> bottom;  // per column: first row occupied (height when none)
+    std::vector<int> top;     // per column: one past the last row occupied (0 when none)
+    bool rectangular = true;  // every column spans every row
+};
+
+// The cell of the unturned inner rectangle that lands at (column, row) of the turned one.
+glm::ivec2 unturnedCell(const glm::ivec2& inner, int quarter_turns, int column, int row) {
+    switch (quarter_turns & 3) {
+        case 0: return {column, row};
+        case 1: return {row, inner.y - 1 - column};
+        case 2: return {inner.x - 1 - column, inner.y - 1 - row};
+        default: return {inner.x - 1 - row, column};
+    }
+}
+
+TurnedFootprint turnedFootprint(const ChartShape& shape, int quarter_turns, int padding) {
+    const bool sideways = (quarter_turns & 1) != 0;
+    const int inner_width = sideways ? shape.inner.y : shape.inner.x;
+    const int inner_height = sideways ? shape.inner.x : shape.inner.y;
+    TurnedFootprint footprint;
+    footprint.width = inner_width + 2 * padding;
+    footprint.height = inner_height + 2 * padding;
+    footprint.bottom.assign(size_t(footprint.width), footprint.height);
+    footprint.top.assign(size_t(footprint.width), 0);
+    // Per turned inner column, the touched rows' span; the padding grows it by `padding` every way.
+    for (int column = 0; column < inner_width; ++column) {
+        int first = -1, last = -1;
+        for (int row = 0; row < inner_height; ++row) {
+            const glm::ivec2 cell = unturnedCell(shape.inner, quarter_turns, column, row);
+            if (!shape.touched[size_t(cell.y) * size_t(shape.inner.x) + size_t(cell.x)]) continue;
+            if (first < 0) first = row;
+            last = row;
+        }
+        if (first < 0) continue;
+        for (int grown = column; grown <= column + 2 * padding; ++grown) {
+            footprint.bottom[size_t(grown)] = std::min(footprint.bottom[size_t(grown)], first);
+            footprint.top[size_t(grown)] = std::max(footprint.top[size_t(grown)], last + 1 + 2 * padding);
+        }
+    }
+    for (int column = 0; column < footprint.width; ++column)
+        footprint.rectangular = footprint.rectangular && footprint.bottom[size_t(column)] == 0 &&
+                                footprint.top[size_t(column)] == footprint.height;
+    return footprint;
+}
+
+struct PackResult {
+    int total_height = 0;  // texels the packing would need (may exceed the resolution)
     bool fits = false;
     std::vector<ChartPlacement> placements;
 };
 
-ShelfResult shelfPack(const std::vector<glm::dvec2>& extents_m, double texels_per_metre, int resolution,
-                      int padding) {
-    ShelfResult result;
-    result.placements.resize(extents_m.size());
-    for (size_t chart = 0; chart < extents_m.size(); ++chart) {
-        glm::ivec2 inner = innerTexelSize(extents_m[chart], texels_per_metre);
-        ChartPlacement& placement = result.placements[chart];
-        placement.rotated = inner.y > inner.x;
-        if (placement.rotated) std::swap(inner.x, inner.y);
-        placement.inner_width = inner.x;
-        placement.inner_height = inner.y;
+// Every chart's footprints at the turns worth trying: all four, or two when the chart touches every texel of its
+// rectangle (a half turn then changes nothing).
+std::vector<std::vector<TurnedFootprint>> turnedFootprints(const std::vector<ChartShape>& shapes, int padding) {
+    std::vector<std::vector<TurnedFootprint>> footprints(shapes.size());
+    for (size_t chart = 0; chart < shapes.size(); ++chart) {
+        const ChartShape& shape = shapes[chart];
+        const bool full = std::all_of(shape.touched.begin(), shape.touched.end(), [](uint8_t cell) { return cell != 0; });
+        for (int turns = 0; turns < (full ? 2 : 4); ++turns)
+            footprints[chart].push_back(turnedFootprint(shape, turns, padding));
     }
-    std::vector<size_t> order(extents_m.size());
+    return footprints;
+}
+
+PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<std::vector<TurnedFootprint>>& footprints,
+                       int resolution, int padding) {
+    PackResult result;
+    result.placements.resize(shapes.size());
+    std::vector<size_t> order(shapes.size());
     std::iota(order.begin(), order.end(), size_t(0));
+    auto shortSide = [&](size_t chart) { return std::min(shapes[chart].inner.x, shapes[chart].inner.y); };
+    auto longSide = [&](size_t chart) { return std::max(shapes[chart].inner.x, shapes[chart].inner.y); };
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        const ChartPlacement& pa = result.placements[a];
-        const ChartPlacement& pb = result.placements[b];
-        if (pa.inner_height != pb.inner_height) return pa.inner_height > pb.inner_height;
-        if (pa.inner_width != pb.inner_width) return pa.inner_width > pb.inner_width;
+        if (shortSide(a) != shortSide(b)) return shortSide(a) > shortSide(b);
+        if (longSide(a) != longSide(b)) return longSide(a) > longSide(b);
         return a < b;
     });
     result.fits = true;
-    int shelf_y = 0, shelf_height = 0, cursor_x = 0;
+    std::vector<int> skyline(size_t(resolution), 0);
+    std::vector<int> steps;
+    std::vector<uint32_t> tried(size_t(resolution), 0);
+    uint32_t stamp = 0;
     for (size_t chart : order) {
-        ChartPlacement& placement = result.placements[chart];
-        const int outer_width = placement.inner_width + 2 * padding;
-        const int outer_height = placement.inner_height + 2 * padding;
-        if (outer_width > resolution) result.fits = false;
-        if (cursor_x + outer_width > resolution && cursor_x > 0) {
-            shelf_y += shelf_height;
-            shelf_height = 0;
-            cursor_x = 0;
+        int best_top = INT_MAX, best_x = 0, best_y = 0, best_turns = 0;
+        long long best_waste = LLONG_MAX;
+        TurnedFootprint best_footprint;
+        (void)shapes;
+        // Candidate x: a chart's left or right side against a step of the skyline (or a lightmap edge); between
+        // steps a chart only slides along a level stretch, where it rests no lower.
+        steps.clear();
+        steps.push_back(0);
+        for (int x = 1; x < resolution; ++x)
+            if (skyline[size_t(x)] != skyline[size_t(x - 1)]) steps.push_back(x);
+        steps.push_back(resolution);
+        for (int turns = 0; turns < int(footprints[chart].size()); ++turns) {
+            const TurnedFootprint& footprint = footprints[chart][size_t(turns)];
+            const int* bottom = footprint.bottom.data();
+            const int* column_top = footprint.top.data();
+            ++stamp;
+            // A shaped chart (one that leaves texels of its rectangle untouched) may lock into the skyline's
+            // slopes anywhere: it tries every x.
+            const bool every_x = !footprint.rectangular;
+            const size_t candidates = every_x ? size_t(resolution) : 2 * steps.size();
+            for (size_t candidate = 0; candidate < candidates; ++candidate) {
+                const int x = every_x ? int(candidate)
+                                      : candidate % 2 == 0 ? steps[candidate / 2] : steps[candidate / 2] - footprint.width;
+                if (x < 0 || x + footprint.width > resolution || tried[size_t(x)] == stamp) continue;
+                tried[size_t(x)] = stamp;
+                const int* heights = skyline.data() + x;
+                int y = 0;
+                for (int column = 0; column < footprint.width; ++column)
+                    if (column_top[column] > 0) y = std::max(y, heights[column] - bottom[column]);
+                int top = 0;
+                for (int column = 0; column < footprint.width; ++column)
+                    if (column_top[column] > 0) top = std::max(top, y + column_top[column]);
+                if (top > best_top) continue;
+                long long waste = 0;
+                for (int column = 0; column < footprint.width; ++column)
+                    if (column_top[column] > 0) waste += y + bottom[column] - heights[column];
+                if (top < best_top || (top == best_top && waste < best_waste)) {
+                    best_top = top;
+                    best_waste = waste;
+                    best_x = x;
+                    best_y = y;
+                    best_turns = turns;
+                    best_footprint = footprint;
+                }
+            }
         }
-        placement.x = cursor_x + padding;
-        placement.y = shelf_y + padding;
-        cursor_x += outer_width;
-        shelf_height = std::max(shelf_height, outer_height);
+        ChartPlacement& placement = result.placements[chart];
+        if (best_top == INT_MAX) {  // wider than the lightmap every way
+            result.fits = false;
+            best_footprint = footprints[chart][0];
+            best_x = 0;
+            best_y = result.total_height;
+            best_top = best_y + best_footprint.height;
+        } else {
+            for (int column = 0; column < best_footprint.width; ++column)
+                if (best_footprint.top[size_t(column)] > 0)
+                    skyline[size_t(best_x + column)] = best_y + best_footprint.top[size_t(column)];
+        }
+        placement.quarter_turns = best_turns;
+        placement.inner_width = best_footprint.width - 2 * padding;
+        placement.inner_height = best_footprint.height - 2 * padding;
+        placement.x = best_x + padding;
+        placement.y = best_y + padding;
+        result.total_height = std::max(result.total_height, best_top);
     }
-    result.total_height = shelf_y + shelf_height;
     if (result.total_height > resolution) result.fits = false;
     return result;
 }
 
+// One texel per chart: what must fit even at the lowest density.
+std::vector<ChartShape> pointShapes(size_t count) {
+    ChartShape point;
+    point.inner = {1, 1};
+    point.touched = {1};
+    return std::vector<ChartShape>(count, point);
+}
+
 }  // namespace
+
+glm::dvec2 placedTexel(const ChartPlacement& placement, const glm::ivec2& inner, const glm::dvec2& local) {
+    const glm::dvec2 origin(placement.x, placement.y);
+    switch (placement.quarter_turns & 3) {
+        case 0: return origin + local;
+        case 1: return origin + glm::dvec2(double(inner.y) - local.y, local.x);
+        case 2: return origin + glm::dvec2(double(inner.x) - local.x, double(inner.y) - local.y);
+        default: return origin + glm::dvec2(local.y, double(inner.x) - local.x);
+    }
+}
 
 glm::ivec2 innerTexelSize(const glm::dvec2& extent_m, double texels_per_metre) {
     return glm::ivec2(int(std::floor(extent_m.x * texels_per_metre)) + 1,
                       int(std::floor(extent_m.y * texels_per_metre)) + 1);
 }
 
-ChartPacking packChartRectangles(const std::vector<glm::dvec2>& extents_m, double texels_per_metre, int resolution,
-                                 int padding) {
+ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_metre, int resolution, int padding) {
     ChartPacking packing;
-    ShelfResult attempt = shelfPack(extents_m, texels_per_metre, resolution, padding);
+    std::vector<ChartShape> shapes = shapes_at(texels_per_metre);
+    auto pack = [&](const std::vector<ChartShape>& charts) {
+        return skylinePack(charts, turnedFootprints(charts, padding), resolution, padding);
+    };
+    PackResult attempt = pack(shapes);
     if (attempt.fits) {
         packing.texels_per_metre = texels_per_metre;
         packing.placements = std::move(attempt.placements);
         return packing;
     }
-    if (!shelfPack(extents_m, 0.0, resolution, padding).fits)
+    if (!pack(pointShapes(shapes.size())).fits)
         throw InputError("lightmap", "resolution",
-                         std::to_string(extents_m.size()) + " charts with " + std::to_string(padding) +
+                         std::to_string(shapes.size()) + " charts with " + std::to_string(padding) +
                              " texels of padding do not fit in " + std::to_string(resolution) + "^2 texels even at " +
                              "one texel each; raise the lightmap resolution");
 
     // Bracket the largest density that fits, then bisect it.
     double failing_density = texels_per_metre;
     double fitting_density = texels_per_metre;
-    ShelfResult fitting;
+    PackResult fitting;
     for (;;) {
         const double shrink = std::clamp(std::sqrt(double(resolution) / double(attempt.total_height)), 0.3, 0.95);
         fitting_density *= shrink;
-        attempt = shelfPack(extents_m, fitting_density, resolution, padding);
+        attempt = pack(shapes_at(fitting_density));
         if (attempt.fits) break;
         failing_density = fitting_density;
     }
     fitting = std::move(attempt);
     for (int step = 0; step < 12; ++step) {
         const double middle = 0.5 * (fitting_density + failing_density);
-        ShelfResult trial = shelfPack(extents_m, middle, resolution, padding);
+        PackResult trial = pack(shapes_at(middle));
         if (trial.fits) {
             fitting_density = middle;
             fitting = std::move(trial);
@@ -111,6 +246,42 @@ ChartPacking packChartRectangles(const std::vector<glm::dvec2>& extents_m, doubl
     packing.texels_per_metre = fitting_density;
     packing.placements = std::move(fitting.placements);
     return packing;
+}
+
+int smallestFittingResolution(const std::vector<ChartShape>& shapes, int max_resolution, int padding) {
+    const int capped_maximum = max_resolution / 4 * 4;
+    double touched_area = 0.0;
+    int longest_side = 1;
+    for (const ChartShape& shape : shapes) {
+        for (uint8_t cell : shape.touched) touched_area += cell ? 1.0 : 0.0;
+        longest_side = std::max(longest_side, std::max(shape.inner.x, shape.inner.y) + 2 * padding);
+    }
+    const std::vector<std::vector<TurnedFootprint>> footprints = turnedFootprints(shapes, padding);
+    auto fits = [&](int resolution) { return skylinePack(shapes, footprints, resolution, padding).fits; };
+    // Multiples of 4 from the touched area's bound: grow by an eighth until one fits, then bisect down to within
+    // 1.6 % of the smallest (packing is nearly monotone in the side; the answer returned always fits).
+    int low = std::max(4, (std::max(int(std::ceil(std::sqrt(touched_area))), longest_side) + 3) / 4 * 4);
+    if (low >= capped_maximum) return capped_maximum;
+    if (fits(low)) return low;
+    int high = low;
+    for (;;) {
+        low = high;
+        high = std::min(capped_maximum, (high + high / 8 + 7) / 4 * 4);
+        if (high >= capped_maximum) {
+            if (!fits(capped_maximum)) return capped_maximum;
+            break;
+        }
+        if (fits(high)) break;
+    }
+    while (high - low > std::max(4, high / 64)) {  // low does not fit, high does; within 1.6 % is enough
+        const int middle = (low + high) / 8 * 4;
+        if (middle <= low || middle >= high) break;
+        if (fits(middle))
+            high = middle;
+        else
+            low = middle;
+    }
+    return high;
 }
 
 }  // namespace detail

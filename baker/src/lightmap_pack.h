@@ -1,21 +1,33 @@
 #pragma once
-// Private to the lightmap code: packing chart rectangles into the square lightmap.
+// Private to the lightmap code: packing charts into the square lightmap by the shape of the texels they touch.
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 namespace gusuku::bake::detail {
 
+/// A chart as the packer sees it: the rectangle of texels its triangles may touch, and which of them they do.
+struct ChartShape {
+    glm::ivec2 inner{1, 1};        ///< texels, as charted (before any turn)
+    std::vector<uint8_t> touched;  ///< inner.x * inner.y, row-major: 1 where a triangle touches the texel
+};
+
 /// Where one chart went. Its triangles live in the inner rectangle [x, x + inner_width] x [y, y + inner_height]
-/// (texels); `padding` empty texels surround it on every side, inside the lightmap.
+/// (texels, after the turn); `padding` empty texels surround its touched texels inside the lightmap.
 struct ChartPlacement {
     int x = 0;
     int y = 0;
-    int inner_width = 0;   ///< after rotation
-    int inner_height = 0;  ///< after rotation
-    bool rotated = false;  ///< turned 90 degrees so the rectangle lies wide (packs better on shelves)
+    int inner_width = 0;   ///< after the turn
+    int inner_height = 0;  ///< after the turn
+    int quarter_turns = 0;  ///< 0-3 counter-clockwise quarter turns (rotations, never mirrors) of the chart
 };
+
+/// Texel coordinates of a point at `local` (texels, in the unturned inner rectangle of size `inner`) once the
+/// chart is placed.
+glm::dvec2 placedTexel(const ChartPlacement& placement, const glm::ivec2& inner, const glm::dvec2& local);
 
 struct ChartPacking {
     double texels_per_metre = 0.0;  ///< the density that fitted: the requested one, or the largest lower one found
@@ -26,10 +38,17 @@ struct ChartPacking {
 /// chart's far edge never lands on a texel boundary and even a point-sized chart gets one texel.
 glm::ivec2 innerTexelSize(const glm::dvec2& extent_m, double texels_per_metre);
 
-/// Shelf-packs the charts (tallest first) at `texels_per_metre`, lowering it (bisection on the density, 12
-/// steps after a bracket is found) until everything fits in resolution^2. Throws InputError when even the
-/// smallest footprints (1 + 2 * padding texels square) do not fit.
-ChartPacking packChartRectangles(const std::vector<glm::dvec2>& extents_m, double texels_per_metre, int resolution,
-                                 int padding);
+/// The charts' shapes at a density (the charting code rasterises them).
+using ChartShapesAt = std::function<std::vector<ChartShape>(double texels_per_metre)>;
+
+/// Packs the charts at `texels_per_metre` (lightmap_pack.cpp: a skyline of column heights, each chart dropped
+/// where it ends lowest, any of four turns, its touched texels grown by `padding` never meeting another's), lowering
+/// the density (bisection, 12 steps after a bracket is found) until everything fits in resolution^2. Throws
+/// InputError when even the smallest footprints (1 + 2 * padding texels square) do not fit.
+ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_metre, int resolution, int padding);
+
+/// A side (a multiple of 4, at most max_resolution rounded down to 4) within 1.6 % of the smallest whose square
+/// holds `shapes` with packChartShapes' packer; max_resolution (rounded) when even that does not.
+int smallestFittingResolution(const std::vector<ChartShape>& shapes, int max_resolution, int padding);
 
 }  // namespace gusuku::bake::detail
