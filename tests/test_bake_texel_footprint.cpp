@@ -209,6 +209,9 @@ TEST(LightmapFootprint, GridSideFollowsTheSampleBudget) {
     EXPECT_EQ(footprintGridSide(24), 2);
     EXPECT_EQ(footprintGridSide(64), 4);
     EXPECT_EQ(footprintGridSide(512), 4);
+    EXPECT_EQ(footprintGridSide(512, 1000, 16000), 4);
+    EXPECT_EQ(footprintGridSide(512, 1000, 15999), 2) << "16 slots per texel would pass the point limit";
+    EXPECT_EQ(footprintGridSide(512, 1000, 3999), 1);
 }
 
 TEST(LightmapFootprint, SubPointsLieInTheirTexelOnCoveredTrianglesWithWeightsSummingToOne) {
@@ -284,20 +287,40 @@ TEST(LightmapFootprint, FoldKeepsValidSlotsAndCallsATexelInvalidOnlyWhenMostOfIt
     LightmapFootprintPoint quarter;
     quarter.weight = 0.25f;
     footprint.points.assign(8, quarter);
-    // 10 samples per slot. Texel 0: one slot of four inside a wall (all back faces, dark); texel 1: three.
+    // 20 samples per slot (enough to judge each: 20 * 0.1 >= 2). Texel 0: one slot of four inside a wall (all
+    // back faces, dark); texel 1: three.
     const std::vector<glm::vec4> sums = {
-        {20, 20, 20, 0}, {30, 30, 30, 0}, {40, 40, 40, 1}, {0, 0, 0, 10},
-        {50, 50, 50, 0}, {0, 0, 0, 10}, {0, 0, 0, 9}, {2, 2, 2, 8},
+        {40, 40, 40, 0}, {60, 60, 60, 0}, {80, 80, 80, 2}, {0, 0, 0, 20},
+        {100, 100, 100, 0}, {0, 0, 0, 20}, {0, 0, 0, 18}, {4, 4, 4, 16},
     };
-    const std::vector<glm::vec4> texels = texelSumsFromFootprint(footprint, sums, 10, 0.1f);
+    const std::vector<glm::vec4> texels = texelSumsFromFootprint(footprint, sums, 20, 0.1f);
     ASSERT_EQ(texels.size(), 2u);
-    // Texel 0: the mean of its three valid slots (2, 3, 4) over 40 samples; back-face share (0 + 0 + 0.1) / 3.
-    EXPECT_NEAR(texels[0].r / 40.0f, 3.0f, 1e-5f);
-    EXPECT_NEAR(texels[0].w / 40.0f, 0.1f / 3.0f, 1e-6f);
+    // Texel 0: the mean of its three valid slots (2, 3, 4) over 80 samples; back-face share (0 + 0 + 0.1) / 3.
+    EXPECT_NEAR(texels[0].r / 80.0f, 3.0f, 1e-5f);
+    EXPECT_NEAR(texels[0].w / 80.0f, 0.1f / 3.0f, 1e-6f);
     // Texel 1: invalid (three quarters inside), and stays above the threshold.
-    EXPECT_GT(texels[1].w / 40.0f, 0.1f);
-    EXPECT_NEAR(texels[1].r / 40.0f, 0.2f / 3.0f, 1e-5f);
-    EXPECT_THROW(texelSumsFromFootprint(footprint, std::vector<glm::vec4>(7), 10, 0.1f), InputError);
+    EXPECT_GT(texels[1].w / 80.0f, 0.1f);
+    EXPECT_NEAR(texels[1].r / 80.0f, 0.2f / 3.0f, 1e-5f);
+    EXPECT_THROW(texelSumsFromFootprint(footprint, std::vector<glm::vec4>(7), 20, 0.1f), InputError);
+}
+
+TEST(LightmapFootprint, FewRaysPerSlotJudgeTheTexelOnItsPooledRays) {
+    LightmapFootprint footprint;
+    footprint.grid_side = 2;
+    LightmapFootprintPoint quarter;
+    quarter.weight = 0.25f;
+    footprint.points.assign(8, quarter);
+    // One sample per slot. Texel 0: a wall's underground part, half its rays on the ground's back: two of its
+    // four single rays hit it (a per-slot vote would be a coin toss). Texel 1: one stray back hit in four.
+    const std::vector<glm::vec4> sums = {
+        {0, 0, 0, 1}, {1, 1, 1, 0}, {0, 0, 0, 1}, {2, 2, 2, 0},
+        {1, 1, 1, 0}, {2, 2, 2, 0}, {3, 3, 3, 0}, {2, 2, 2, 1},
+    };
+    const std::vector<glm::vec4> texels = texelSumsFromFootprint(footprint, sums, 1, 0.1f);
+    EXPECT_NEAR(texels[0].w / 4.0f, 0.5f, 1e-6f);  // invalid: pooled share 0.5 > 0.1
+    EXPECT_NEAR(texels[0].r / 4.0f, 0.75f, 1e-6f);  // the mean of all four slots
+    EXPECT_NEAR(texels[1].w / 4.0f, 0.25f, 1e-6f);  // pooled: 1 of 4 rays
+    EXPECT_NEAR(texels[1].r / 4.0f, 2.0f, 1e-6f);
 }
 
 }  // namespace

@@ -45,6 +45,7 @@ uint64_t traceInputHash(const SiteConfig& site, const std::vector<std::string>& 
         hash.addString(bakeSetRelativeInputPath(site_folder, file)).addFile(file);
     // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
     // be resumed, or the result would differ from an uninterrupted bake.
+    hash.addString("texel footprints 1");  // texels traced over their footprints (lightmap_uv.h), not at centres
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
         .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
@@ -60,14 +61,17 @@ struct PointSet {
     std::string name;                  ///< "building", "ground_with", "ground_without"
     std::vector<QueryPointGpu> points;
     uint32_t skip_flags = 0;
+    uint32_t samples_per_point = 0;    ///< 0: the bake's samples (the building's footprint slots take a share)
+    uint32_t samples(uint32_t bake_samples) const { return samples_per_point ? samples_per_point : bake_samples; }
 };
 
-std::vector<QueryPointGpu> buildingQueryPoints(const BakeGeometry& geometry) {
+// The building's texels spread over their footprints (lightmap_uv.h): every slot a point of its own.
+std::vector<QueryPointGpu> buildingQueryPoints(const LightmapFootprint& footprint) {
     std::vector<QueryPointGpu> points;
-    points.reserve(geometry.texels.size());
-    for (const LightmapTexel& texel : geometry.texels)
-        points.push_back({glm::vec4(texel.position, 1.0f), glm::vec4(texel.shading_normal, 0.0f),
-                          glm::vec4(texel.geometric_normal, 0.0f)});
+    points.reserve(footprint.points.size());
+    for (const LightmapFootprintPoint& point : footprint.points)
+        points.push_back({glm::vec4(point.position, 1.0f), glm::vec4(point.shading_normal, 0.0f),
+                          glm::vec4(point.geometric_normal, 0.0f)});
     return points;
 }
 
@@ -232,16 +236,25 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     report.lightmap_resolution = geometry.lightmap_resolution;
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "gusuku-bake: warning: %s\n", warning.c_str());
 
+    // Each texel's samples spread over its footprint: K slots of samples / K each (the same rays), folded back
+    // into one sum per texel before the outputs.
+    const LightmapFootprint footprint = lightmapTexelFootprints(
+        geometry.building, geometry.lightmap_resolution, geometry.texels,
+        footprintGridSide(samples, geometry.texels.size(),
+                          storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange) /
+                              sizeof(QueryPointGpu)),
+        site.bake.seed);
+    const uint32_t samples_per_slot = samples / uint32_t(footprint.pointsPerTexel());
     const std::vector<PointSet> sets = {
-        {"building", buildingQueryPoints(geometry), 0u},
+        {"building", buildingQueryPoints(footprint), 0u, samples_per_slot},
         {"ground_with", groundQueryPoints(geometry), 0u},
         {"ground_without", groundQueryPoints(geometry), kTriangleFlagBuilding},
     };
-    report.building_texels = sets[0].points.size();
+    report.building_texels = geometry.texels.size();
     report.ground_cells = sets[1].points.size();
 
     double total_work = 0.0;
-    for (const PointSet& set : sets) total_work += double(set.points.size()) * samples * double(traced_slots.size());
+    for (const PointSet& set : sets) total_work += double(set.points.size()) * set.samples(samples) * double(traced_slots.size());
     BakeProgress progress(total_work, options.show_progress);
     // The old manifest goes before the first file of this bake replaces one of its files: a bake set with a
     // manifest is then always the complete, matching one, even if this bake is interrupted or fails.
@@ -263,7 +276,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         std::vector<std::vector<glm::vec4>> sums;
         for (const PointSet& set : sets) {
             pass.skip_flags = set.skip_flags;
-            auto set_sums = set_tracer.trace(lighting.slot.name, set, pass, samples);
+            auto set_sums = set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
             if (!set_sums) {
                 progress.finish();
                 report.rays_traced = progress.raysTraced();
@@ -274,7 +287,8 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
             }
             sums.push_back(std::move(*set_sums));
         }
-        writer.writeSlot(lighting, sums[0], sums[1], sums[2]);
+        writer.writeSlot(lighting, texelSumsFromFootprint(footprint, sums[0], samples_per_slot, kMaxBackfaceFraction),
+                         sums[1], sums[2]);
     }
     progress.finish();
     report.rays_traced = progress.raysTraced();

@@ -148,8 +148,9 @@ struct LightmapFootprint {
 
 /// The sub-point grid for a per-texel sample budget, so every slot gets the same whole number of samples and
 /// the total number of rays stays samples_per_texel per texel: 4 (16 sub-points) when 16 divides the budget, 2
-/// (4 sub-points) when 4 does, else 1 (the texel centre alone, the texel point of rasterizeLightmapTexels).
-int footprintGridSide(uint32_t samples_per_texel);
+/// (4 sub-points) when 4 does, else 1 (the texel centre alone, the texel point of rasterizeLightmapTexels);
+/// smaller while texel_count * side^2 would exceed max_points (a device's storage buffer limit).
+int footprintGridSide(uint32_t samples_per_texel, size_t texel_count = 0, size_t max_points = SIZE_MAX);
 
 /// Spreads each texel over its footprint: K = grid_side^2 sub-points inside the texel square at an n-rooks
 /// pattern (the K sub-points have K distinct u and K distinct v, each at (k + 0.5) / K of the texel, and one
@@ -169,10 +170,13 @@ LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh_with_uv1, int
 /// Combines the running sums traced at a footprint's slots (vec4 per slot: irradiance sum xyz and an
 /// invalid-sample count w, both over samples_per_slot samples) into one sum per texel over K *
 /// samples_per_slot samples, so what reads per-texel sums divides by the texel's full sample count as before.
-/// A slot is invalid when its w / samples_per_slot exceeds max_invalid_fraction; a texel is invalid when the
-/// invalid slots hold more than half its weight. A valid texel's sum is the weighted mean of its valid slots
-/// (geometry inside walls does not darken it), an invalid texel's the mean of its invalid slots (so it stays
-/// invalid under the same threshold). Throws InputError when the sums do not match the footprint.
+/// With at least 2 / max_invalid_fraction samples per slot, each slot is judged: invalid when its
+/// w / samples_per_slot exceeds max_invalid_fraction; a texel is invalid when the invalid slots hold more than
+/// half its weight; a valid texel's sum is the weighted mean of its valid slots (geometry inside walls does not
+/// darken it), an invalid texel's the mean of its invalid slots (so it stays invalid under the same threshold).
+/// With fewer (one stray back-face hit would condemn a slot), the texel is judged on its slots' pooled rays
+/// (invalid when their weighted w fraction exceeds max_invalid_fraction, as a centre texel was) and its sum is
+/// the weighted mean of all its slots. Throws InputError when the sums do not match the footprint.
 std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint,
                                               const std::vector<glm::vec4>& slot_sums, uint32_t samples_per_slot,
                                               float max_invalid_fraction);
