@@ -152,7 +152,7 @@ class BakeTexelFootprintTest : public GpuTest {};
 TEST_F(BakeTexelFootprintTest, GroovedPlaneTexelsMatchTheAreaMeanOfTheExactIrradiance) {
     constexpr uint32_t kSamplesPerTexel = 1024;
     constexpr uint32_t kSeed = 7;
-    ASSERT_EQ(footprintGridSide(kSamplesPerTexel), 4);
+    ASSERT_EQ(footprintGridSide(kSamplesPerTexel), 4);  // 64 samples per slot
     const BakedTexels footprint = bakeGroovedPlane(context(), 4, kSamplesPerTexel, kSeed);
     const BakedTexels centre = bakeGroovedPlane(context(), 1, kSamplesPerTexel, kSeed);
     ASSERT_EQ(footprint.texels.size(), size_t(kResolution * kResolution));
@@ -203,12 +203,15 @@ TEST_F(BakeTexelFootprintTest, SameSeedSameBytes) {
 
 // CPU-only contracts of the footprint and the fold.
 TEST(LightmapFootprint, GridSideFollowsTheSampleBudget) {
+    // At least 20 samples per slot (2 / the back-face threshold), all slots the same share.
     EXPECT_EQ(footprintGridSide(1), 1);
-    EXPECT_EQ(footprintGridSide(2), 1);
-    EXPECT_EQ(footprintGridSide(4), 2);
-    EXPECT_EQ(footprintGridSide(24), 2);
-    EXPECT_EQ(footprintGridSide(64), 4);
+    EXPECT_EQ(footprintGridSide(16), 1);
+    EXPECT_EQ(footprintGridSide(64), 1);
+    EXPECT_EQ(footprintGridSide(80), 2);
+    EXPECT_EQ(footprintGridSide(128), 2);
+    EXPECT_EQ(footprintGridSide(320), 4);
     EXPECT_EQ(footprintGridSide(512), 4);
+    EXPECT_EQ(footprintGridSide(64, 0, SIZE_MAX, 1), 4);
     EXPECT_EQ(footprintGridSide(512, 1000, 16000), 4);
     EXPECT_EQ(footprintGridSide(512, 1000, 15999), 2) << "16 slots per texel would pass the point limit";
     EXPECT_EQ(footprintGridSide(512, 1000, 3999), 1);
@@ -302,25 +305,6 @@ TEST(LightmapFootprint, FoldKeepsValidSlotsAndCallsATexelInvalidOnlyWhenMostOfIt
     EXPECT_GT(texels[1].w / 80.0f, 0.1f);
     EXPECT_NEAR(texels[1].r / 80.0f, 0.2f / 3.0f, 1e-5f);
     EXPECT_THROW(texelSumsFromFootprint(footprint, std::vector<glm::vec4>(7), 20, 0.1f), InputError);
-}
-
-TEST(LightmapFootprint, FewRaysPerSlotJudgeTheTexelOnItsPooledRays) {
-    LightmapFootprint footprint;
-    footprint.grid_side = 2;
-    LightmapFootprintPoint quarter;
-    quarter.weight = 0.25f;
-    footprint.points.assign(8, quarter);
-    // One sample per slot. Texel 0: a wall's underground part, half its rays on the ground's back: two of its
-    // four single rays hit it (a per-slot vote would be a coin toss). Texel 1: one stray back hit in four.
-    const std::vector<glm::vec4> sums = {
-        {0, 0, 0, 1}, {1, 1, 1, 0}, {0, 0, 0, 1}, {2, 2, 2, 0},
-        {1, 1, 1, 0}, {2, 2, 2, 0}, {3, 3, 3, 0}, {2, 2, 2, 1},
-    };
-    const std::vector<glm::vec4> texels = texelSumsFromFootprint(footprint, sums, 1, 0.1f);
-    EXPECT_NEAR(texels[0].w / 4.0f, 0.5f, 1e-6f);  // invalid: pooled share 0.5 > 0.1
-    EXPECT_NEAR(texels[0].r / 4.0f, 0.75f, 1e-6f);  // the mean of all four slots
-    EXPECT_NEAR(texels[1].w / 4.0f, 0.25f, 1e-6f);  // pooled: 1 of 4 rays
-    EXPECT_NEAR(texels[1].r / 4.0f, 2.0f, 1e-6f);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // texel whose centre falls in the crease stores the crease's darkness, and bilinear filtering spreads it
 // onto surfaces twice as bright.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -54,10 +55,11 @@ bool hasWorldArea(const TriangleMesh& mesh, size_t triangle) {
 
 }  // namespace
 
-int footprintGridSide(uint32_t samples_per_texel, size_t texel_count, size_t max_points) {
+int footprintGridSide(uint32_t samples_per_texel, size_t texel_count, size_t max_points,
+                      uint32_t min_samples_per_slot) {
     for (const int side : {4, 2}) {
         const uint32_t slots = uint32_t(side * side);
-        if (samples_per_texel >= slots && samples_per_texel % slots == 0 &&
+        if (samples_per_texel % slots == 0 && samples_per_texel / slots >= std::max(min_samples_per_slot, 1u) &&
             texel_count <= max_points / size_t(slots))
             return side;
     }
@@ -181,24 +183,17 @@ std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint
     if (samples_per_slot == 0) return texel_sums;
     const double inverse_samples = 1.0 / double(samples_per_slot);
     const double texel_samples = double(samples_per_slot) * double(slots_per_texel);
-    // A slot is judged on its own only when it has the rays for it: at least 2 / max_invalid_fraction (20 at the
-    // bake's 0.1), so one stray back-face hit never condemns it and a wall's underground half (half its rays on
-    // the ground's back) is always caught. With fewer, the texel is judged on its footprint's pooled rays, as
-    // a centre texel was on its own, and every slot counts.
-    const bool judge_slots = double(samples_per_slot) * double(max_invalid_fraction) >= 2.0;
     for (size_t i = 0; i < texel_count; ++i) {
         const size_t first = i * slots_per_texel;
         auto slotValid = [&](size_t slot) { return slot_sums[slot].w * inverse_samples <= max_invalid_fraction; };
-        double invalid_weight = 0.0, pooled_invalid_fraction = 0.0;
-        for (size_t slot = first; slot < first + slots_per_texel; ++slot) {
+        double invalid_weight = 0.0;
+        for (size_t slot = first; slot < first + slots_per_texel; ++slot)
             if (!slotValid(slot)) invalid_weight += footprint.points[slot].weight;
-            pooled_invalid_fraction += footprint.points[slot].weight * slot_sums[slot].w * inverse_samples;
-        }
-        const bool texel_valid = judge_slots ? invalid_weight <= 0.5 : pooled_invalid_fraction <= max_invalid_fraction;
+        const bool texel_valid = invalid_weight <= 0.5;
         glm::dvec4 mean(0.0);
         double weight_sum = 0.0;
         for (size_t slot = first; slot < first + slots_per_texel; ++slot) {
-            if (judge_slots && slotValid(slot) != texel_valid) continue;
+            if (slotValid(slot) != texel_valid) continue;
             const double weight = footprint.points[slot].weight;
             mean += glm::dvec4(slot_sums[slot]) * (weight * inverse_samples);
             weight_sum += weight;

@@ -146,11 +146,16 @@ struct LightmapFootprint {
     size_t pointsPerTexel() const { return size_t(grid_side) * size_t(grid_side); }
 };
 
-/// The sub-point grid for a per-texel sample budget, so every slot gets the same whole number of samples and
-/// the total number of rays stays samples_per_texel per texel: 4 (16 sub-points) when 16 divides the budget, 2
-/// (4 sub-points) when 4 does, else 1 (the texel centre alone, the texel point of rasterizeLightmapTexels);
-/// smaller while texel_count * side^2 would exceed max_points (a device's storage buffer limit).
-int footprintGridSide(uint32_t samples_per_texel, size_t texel_count = 0, size_t max_points = SIZE_MAX);
+/// The sub-point grid for a per-texel sample budget: the largest side in {4, 2} whose side^2 slots each get the
+/// same whole number of samples, at least min_samples_per_slot of them (so the total number of rays stays
+/// samples_per_texel per texel and each slot has the rays to be judged valid or not), and whose
+/// texel_count * side^2 points stay within max_points (a device's storage buffer limit); else 1 (the texel
+/// centre alone, the texel point of rasterizeLightmapTexels). The default of 20 is 2 / the bake's back-face
+/// threshold of 0.1: a valid slot then needs 3 stray back-face hits to be called invalid, and a slot half inside
+/// a wall (half its rays on a back face) shows at least 3 but for a chance under 1e-4. 512 samples: 16 slots of
+/// 32; 128: 4 of 32; 64 and fewer: the centre.
+int footprintGridSide(uint32_t samples_per_texel, size_t texel_count = 0, size_t max_points = SIZE_MAX,
+                      uint32_t min_samples_per_slot = 20);
 
 /// Spreads each texel over its footprint: K = grid_side^2 sub-points inside the texel square at an n-rooks
 /// pattern (the K sub-points have K distinct u and K distinct v, each at (k + 0.5) / K of the texel, and one
@@ -170,13 +175,12 @@ LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh_with_uv1, int
 /// Combines the running sums traced at a footprint's slots (vec4 per slot: irradiance sum xyz and an
 /// invalid-sample count w, both over samples_per_slot samples) into one sum per texel over K *
 /// samples_per_slot samples, so what reads per-texel sums divides by the texel's full sample count as before.
-/// With at least 2 / max_invalid_fraction samples per slot, each slot is judged: invalid when its
-/// w / samples_per_slot exceeds max_invalid_fraction; a texel is invalid when the invalid slots hold more than
-/// half its weight; a valid texel's sum is the weighted mean of its valid slots (geometry inside walls does not
-/// darken it), an invalid texel's the mean of its invalid slots (so it stays invalid under the same threshold).
-/// With fewer (one stray back-face hit would condemn a slot), the texel is judged on its slots' pooled rays
-/// (invalid when their weighted w fraction exceeds max_invalid_fraction, as a centre texel was) and its sum is
-/// the weighted mean of all its slots. Throws InputError when the sums do not match the footprint.
+/// A slot is invalid when its w / samples_per_slot exceeds max_invalid_fraction (the bake's back-face rule, so
+/// a double-sided part's inside and a one-sided one's count alike); a texel is invalid when the invalid slots
+/// hold more than half its weight (most of its footprint is inside). A valid texel's sum is the weighted mean of
+/// its valid slots (geometry inside walls does not darken it), an invalid texel's the mean of its invalid slots
+/// (so it stays invalid under the same threshold). The verdicts need footprintGridSide's samples per slot.
+/// Throws InputError when the sums do not match the footprint.
 std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint,
                                               const std::vector<glm::vec4>& slot_sums, uint32_t samples_per_slot,
                                               float max_invalid_fraction);
