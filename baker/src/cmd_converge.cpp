@@ -10,6 +10,7 @@
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
 #include "gusuku_bake/convergence.h"
+#include "gusuku_bake/cycles_lighting_export.h"
 
 namespace gusuku::bake_cli {
 
@@ -18,6 +19,7 @@ namespace {
 constexpr const char* kConvergeUsage =
     "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
     "                            [--target-rms R] [--sky-sampling auto|cosine|mis]\n"
+    "       gusuku-bake converge SITE.json --slot NAME --export-lighting DIR\n"
     "\n"
     "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
     "texel and prints the relative RMS error of each against a reference of --reference-samples (default\n"
@@ -25,6 +27,8 @@ constexpr const char* kConvergeUsage =
     "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
     "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
     "default, is what a bake does), to compare the two on a site's own sky.\n"
+    "--export-lighting writes the slot's sky without its sun (DIR/sky_NAME.hdr, laid out for Blender's world)\n"
+    "and its sun (DIR/sun_NAME.json) as the bake traces them, for bench/cycles, and runs no study.\n"
     "Exit status: 0 ok, 1 bad input or a bad option value, 2 bad usage.\n";
 
 // The sample counts --reference-samples and --max-samples accept: 1 up to, not including, 1e7.
@@ -34,12 +38,14 @@ struct ConvergeRequest {
     std::string site_path;
     bake::ConvergenceOptions options;
     double target_rms = 0.05;
+    std::string export_lighting_folder;  ///< non-empty: write the slot's lighting for bench/cycles, no study
 };
 
 ConvergeRequest parseArguments(CommandLine& line) {
     ConvergeRequest request;
     bake::ConvergenceOptions& options = request.options;
     options.slot_name = line.text("--slot").value_or("");
+    request.export_lighting_folder = line.text("--export-lighting").value_or("");
     if (const std::optional<int64_t> samples = line.integer("--reference-samples", 1, kMaxSampleCount))
         options.reference_samples = uint32_t(*samples);
     if (const std::optional<int64_t> samples = line.integer("--max-samples", 1, kMaxSampleCount))
@@ -61,6 +67,8 @@ ConvergeRequest parseArguments(CommandLine& line) {
     line.finish();
     if (sites.size() > 1) line.fail("one site.json only ('" + sites[1] + "' is extra)");
     if (sites.empty()) line.fail("needs SITE.json (see --help)");
+    if (!request.export_lighting_folder.empty() && options.slot_name.empty())
+        line.fail("--export-lighting needs --slot NAME");
     // The error is measured against the reference: an estimate with more samples than the reference would
     // measure the reference's own noise.
     if (options.max_samples > options.reference_samples)
@@ -79,6 +87,10 @@ int runConvergeCommand(const std::vector<std::string>& args) {
                                                              [&](CommandLine& line) { request = parseArguments(line); }))
         return *exit_code;
     const SiteConfig site = loadSiteConfig(request.site_path);
+    if (!request.export_lighting_folder.empty()) {
+        bake::exportSlotLightingForCycles(site, request.options.slot_name, request.export_lighting_folder);
+        return 0;
+    }
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
     const bake::ConvergenceStudy study = bake::runConvergenceStudy(context, site, request.options);

@@ -85,21 +85,42 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     BakeProgress progress(double(points.size()) * (options.reference_samples + options.max_samples),
                           options.show_progress);
 
-    // Reference: an independent seed, so its noise does not correlate with the study's.
-    TracePass reference_pass = pass;
-    reference_pass.seed = site.bake.seed ^ 0x5eed5eedu;
-    PointAccumulator reference = tracer.createAccumulator(points);
+    // Reference: two halves with seeds independent of the study's and of each other. Their mean is the
+    // reference; their difference measures its own noise (independent estimates: the mean square of the
+    // difference of two halves is 4 times that of their mean), which the study then takes out of its errors.
+    const uint32_t half_samples[2] = {options.reference_samples - options.reference_samples / 2,
+                                      options.reference_samples / 2};
+    std::vector<glm::vec4> reference_sums(points.size(), glm::vec4(0.0f));
+    std::vector<glm::vec4> half_texels[2];
     const auto reference_start = Clock::now();
-    while (reference.samples_done < options.reference_samples) {
-        const uint32_t chunk = std::min(8u, options.reference_samples - reference.samples_done);
-        const auto chunk_start = Clock::now();
-        const uint64_t rays = tracer.addSamples(reference, chunk, reference_pass);
-        progress.advance("reference", reference.samples_done, options.reference_samples, double(chunk) * points.size(),
-                         rays, std::chrono::duration<double>(Clock::now() - chunk_start).count());
+    uint32_t reference_done = 0;
+    for (int half = 0; half < 2; ++half) {
+        if (half_samples[half] == 0) continue;
+        TracePass reference_pass = pass;
+        reference_pass.seed = site.bake.seed ^ (half == 0 ? 0x5eed5eedu : 0x7a11c0deu);
+        PointAccumulator reference = tracer.createAccumulator(points);
+        while (reference.samples_done < half_samples[half]) {
+            const uint32_t chunk = std::min(8u, half_samples[half] - reference.samples_done);
+            const auto chunk_start = Clock::now();
+            const uint64_t rays = tracer.addSamples(reference, chunk, reference_pass);
+            reference_done += chunk;
+            progress.advance("reference", reference_done, options.reference_samples, double(chunk) * points.size(),
+                             rays, std::chrono::duration<double>(Clock::now() - chunk_start).count());
+        }
+        const std::vector<glm::vec4> sums = tracer.readSums(reference);
+        for (size_t i = 0; i < sums.size(); ++i) reference_sums[i] += sums[i];
+        half_texels[half] = processBuildingLightmap(geometry, sums, half_samples[half], false).per_texel;
     }
     study.reference_seconds = std::chrono::duration<double>(Clock::now() - reference_start).count();
     const std::vector<glm::vec4> reference_texels =
-        processBuildingLightmap(geometry, tracer.readSums(reference), options.reference_samples, false).per_texel;
+        processBuildingLightmap(geometry, reference_sums, options.reference_samples, false).per_texel;
+    if (half_samples[1] > 0) {
+        // Halves of unequal size (an odd count) are near enough: the estimate is a measurement of noise anyway.
+        study.reference_own_rms = relativeRms(half_texels[0], half_texels[1]) / 2.0;
+    }
+    const auto correctedRms = [&](double measured) {
+        return std::sqrt(std::max(measured * measured - study.reference_own_rms * study.reference_own_rms, 0.0));
+    };
 
     PointAccumulator estimate = tracer.createAccumulator(points);
     double seconds = 0.0;
@@ -123,6 +144,8 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true);
         point.denoise_seconds = std::chrono::duration<double>(Clock::now() - denoise_start).count();
         point.relative_rms_denoised = relativeRms(denoised.per_texel, reference_texels);
+        point.relative_rms_corrected = correctedRms(point.relative_rms);
+        point.relative_rms_denoised_corrected = correctedRms(point.relative_rms_denoised);
         study.points.push_back(point);
     }
     progress.finish();
@@ -164,11 +187,19 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
                   study.slot_name.c_str(), study.texel_count, study.reference_samples, study.reference_seconds,
                   study.setup_seconds, study.sky_sampling.c_str());
     text += line;
-    text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  denoise_s  rms*sqrt(spp)\n";
+    std::snprintf(line, sizeof line,
+                  "reference's own noise (half against half / 2): %.4f relative RMS; *_corrected columns take it out "
+                  "(sqrt(rms^2 - reference^2))\n",
+                  study.reference_own_rms);
+    text += line;
+    text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  denoise_s  rms*sqrt(spp)  rel_rms_corrected"
+            "  rel_rms_denoised_corrected\n";
     for (const ConvergencePoint& point : study.points) {
-        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %9.3f  %13.4f\n", point.samples,
-                      double(point.rays), point.seconds, point.relative_rms, point.relative_rms_denoised,
-                      point.denoise_seconds, point.relative_rms * std::sqrt(double(point.samples)));
+        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %9.3f  %13.4f  %17.4f  %26.4f\n",
+                      point.samples, double(point.rays), point.seconds, point.relative_rms,
+                      point.relative_rms_denoised, point.denoise_seconds,
+                      point.relative_rms * std::sqrt(double(point.samples)), point.relative_rms_corrected,
+                      point.relative_rms_denoised_corrected);
         text += line;
     }
     std::snprintf(line, sizeof line,

@@ -1,17 +1,26 @@
-# Blender (Cycles, CPU) bake of the same lightmap gusuku bakes, for the speed comparison of issue 3.
+# Blender (Cycles, CPU) bake of the same lightmap gusuku bakes, for the speed comparison of issues 3 and 11.
 #
 # Run by bench/cycles/compare_with_cycles.sh, inside Blender:
-#   blender -b --factory-startup --python cycles_lightmap_bake.py -- BAKESET SITE_GLB SKY_HDR REFERENCE SAMPLES...
+#   blender -b --factory-startup --python cycles_lightmap_bake.py -- BAKESET SITE_GLB LIGHTING_DIR SLOT REFERENCE SAMPLES...
 #
-# It imports the bake set's building.glb (whose TEXCOORD_1 holds gusuku's lightmap charts) and the site mesh,
-# lights them with the overcast sky only (an overcast slot has no sun, so gusuku's E_ind is the whole
-# irradiance and Cycles' DIFFUSE bake of direct + indirect light measures the same quantity, times 1/pi), and
-# bakes the building's lightmap at each sample count, timing each bake, twice: with every texel taking all its
-# samples ("fixed", as gusuku does) and with Cycles' adaptive sampling (Blender's default since 3.0: texels stop
-# once their noise estimate is under a threshold, so the error stalls near it). It prints one line per bake
-# with the relative RMS error of luminance against Cycles' own fixed bake at REFERENCE samples, over the texels
-# gusuku marks valid, and the agreement of that converged bake with gusuku's overcast lightmap.
+# It imports the bake set's building.glb (whose TEXCOORD_1 holds gusuku's lightmap charts) and the site mesh, and
+# lights them as gusuku's bake of SLOT does (LIGHTING_DIR from `gusuku-bake converge --export-lighting`): the sky
+# map the tracer samples (the sun disc taken out, laid out for Blender's world) and, for a sunny slot, a sun lamp
+# of the tracer's direction, irradiance and angular radius. gusuku's texels hold E_ind, everything but the direct
+# sun at the texel (docs/bakeset.md), so the sun lamp's strength is gated to 0 on rays of depth 0 (the light
+# sampled from the baked surface itself) and to its irradiance at every later vertex (light bounced off the
+# building and the site): Cycles' DIFFUSE bake of direct + indirect light then measures E_ind / pi, as it does
+# for an overcast slot with no sun at all. It bakes the building's lightmap at each sample count, timing each
+# bake, with every texel taking all its samples ("fixed", as gusuku does) and, unless CYCLES_MODES says
+# otherwise, with Cycles' adaptive sampling (Blender's default since 3.0). Each line gives the relative RMS
+# error of luminance against Cycles' own fixed bake at REFERENCE samples, over the texels gusuku marks valid, and
+# the same error with the reference's own noise taken out: the reference is the mean of two bakes of
+# REFERENCE / 2 samples with different seeds, whose difference measures its noise (its mean square is 4 times
+# the reference's own), and the noise of independent estimates adds in squares. Last, the agreement of that
+# converged bake with gusuku's lightmap of the slot.
+import json
 import math
+import os
 import sys
 import time
 
@@ -23,9 +32,13 @@ if not hasattr(numpy, "bool"):
     numpy.bool = bool
 
 args = sys.argv[sys.argv.index("--") + 1:]
-bakeset, site_glb, sky_hdr = args[0], args[1], args[2]
-reference_samples = int(args[3])
-sample_counts = [int(a) for a in args[4:]]
+bakeset, site_glb, lighting_dir, slot = args[0], args[1], args[2], args[3]
+reference_samples = int(args[4])
+sample_counts = [int(a) for a in args[5:]]
+modes = os.environ.get("CYCLES_MODES", "fixed,adaptive").split(",")
+sky_hdr = f"{lighting_dir}/sky_{slot}.hdr"
+with open(f"{lighting_dir}/sun_{slot}.json") as stream:
+    sun = json.load(stream)
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
@@ -50,12 +63,37 @@ environment = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
 environment.image = bpy.data.images.load(sky_hdr)
 world.node_tree.links.new(environment.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
 
+if sun["present"]:
+    # The tracer's sun: a disc of its angular radius (Blender's angle is the diameter), E_sun per channel at
+    # normal incidence (a Cycles sun's strength is irradiance), shining along -direction_enu (Blender's world
+    # axes are ENU here, as building.glb imports). Gated off at ray depth 0: E_ind has no direct sun.
+    import mathutils
+    irradiance = sun["irradiance_rgb"]
+    strength = max(irradiance)
+    lamp_data = bpy.data.lights.new("sun", type="SUN")
+    lamp_data.energy = strength
+    lamp_data.color = [c / strength for c in irradiance]
+    lamp_data.angle = math.radians(2.0 * sun["angular_radius_deg"])
+    lamp_data.use_nodes = True
+    nodes = lamp_data.node_tree.nodes
+    emission = next(n for n in nodes if n.type == "EMISSION")
+    light_path = nodes.new("ShaderNodeLightPath")
+    after_first_bounce = nodes.new("ShaderNodeMath")
+    after_first_bounce.operation = "GREATER_THAN"
+    after_first_bounce.inputs[1].default_value = 0.5
+    lamp_data.node_tree.links.new(light_path.outputs["Ray Depth"], after_first_bounce.inputs[0])
+    lamp_data.node_tree.links.new(after_first_bounce.outputs["Value"], emission.inputs["Strength"])
+    lamp = bpy.data.objects.new("sun", lamp_data)
+    lamp.rotation_mode = "QUATERNION"
+    lamp.rotation_quaternion = mathutils.Vector(sun["direction_enu"]).to_track_quat("Z", "Y")
+    scene.collection.objects.link(lamp)
+
 bpy.ops.import_scene.gltf(filepath=site_glb)
 site_objects = set(bpy.context.selected_objects)
 bpy.ops.import_scene.gltf(filepath=bakeset + "/building.glb")
 building = [o for o in bpy.context.selected_objects if o.type == "MESH"]
 
-reference_image = bpy.data.images.load(bakeset + "/building_overcast.exr")
+reference_image = bpy.data.images.load(f"{bakeset}/building_{slot}.exr")
 resolution = reference_image.size[0]
 target = bpy.data.images.new("lightmap", resolution, resolution, float_buffer=True, alpha=False)
 
@@ -117,9 +155,10 @@ def relative_rms(estimate, reference, scale=1.0):
     return math.sqrt(squared / count) / (total / count)
 
 
-def bake(samples, adaptive):
+def bake(samples, adaptive, seed=0):
     """One timed Cycles bake of the lightmap; returns (seconds, luminance per texel)."""
     scene.cycles.samples = samples
+    scene.cycles.seed = seed
     scene.cycles.use_adaptive_sampling = adaptive
     start = time.perf_counter()
     bpy.ops.object.bake(type="DIFFUSE", pass_filter={"DIRECT", "INDIRECT"}, margin=2, use_clear=True)
@@ -131,7 +170,7 @@ def bake(samples, adaptive):
 def timing_repeat():
     """REFERENCE 0: times the same bakes again and prints only seconds (the errors do not change between runs:
     Cycles' seed is fixed), so the comparison can interleave its timings with gusuku's."""
-    for adaptive in (False, True):
+    for adaptive in [mode == "adaptive" for mode in modes]:
         for samples in sample_counts:
             seconds, _ = bake(samples, adaptive)
             print(f"CYCLES_TIMING mode={'adaptive' if adaptive else 'fixed'} samples={samples} seconds={seconds:.2f}",
@@ -140,13 +179,20 @@ def timing_repeat():
 
 def measured_run():
     # The reference: every texel gets all its samples (adaptive sampling would stop near its noise threshold).
-    _, cycles_reference = bake(reference_samples, adaptive=False)
-    for adaptive in (False, True):
-        mode = "adaptive" if adaptive else "fixed"
+    # Two halves with other seeds than the study's (0): their mean is the reference, their difference its noise.
+    _, half_a = bake(reference_samples // 2, adaptive=False, seed=1)
+    _, half_b = bake(reference_samples // 2, adaptive=False, seed=2)
+    cycles_reference = [(a + b) / 2 for a, b in zip(half_a, half_b)]
+    reference_rms = relative_rms(half_a, half_b) / 2
+    print(f"CYCLES_REFERENCE samples={reference_samples} own_relative_rms={reference_rms:.4f}", flush=True)
+    for mode in modes:
+        adaptive = mode == "adaptive"
         for samples in sample_counts:
             seconds, estimate = bake(samples, adaptive)
+            measured = relative_rms(estimate, cycles_reference)
             print(f"CYCLES_RESULT mode={mode} samples={samples} seconds={seconds:.2f} "
-                  f"relative_rms={relative_rms(estimate, cycles_reference):.4f}", flush=True)
+                  f"relative_rms={measured:.4f} "
+                  f"relative_rms_corrected={math.sqrt(max(measured ** 2 - reference_rms ** 2, 0.0)):.4f}", flush=True)
     # Cycles' diffuse light pass is irradiance / pi; the fitted scale should come out near pi.
     fit = (sum(g for g, ok in zip(gusuku_luminance, valid) if ok) /
            sum(c for c, ok in zip(cycles_reference, valid) if ok))

@@ -29,6 +29,10 @@ struct ConvergencePoint {
     double denoise_seconds = 0.0; ///< time the edge-keeping filter took on this point's lightmap
     double relative_rms = 0.0;    ///< RMS(E - E_ref) / mean(E_ref), luminance, over valid texels
     double relative_rms_denoised = 0.0;
+    /// The same with the reference's own noise taken out: sqrt(max(rms^2 - reference_own_rms^2, 0)) (the two are
+    /// independent, so their mean squares add). What the error against the exact answer is estimated to be.
+    double relative_rms_corrected = 0.0;
+    double relative_rms_denoised_corrected = 0.0;
 };
 
 struct ConvergenceStudy {
@@ -43,6 +47,9 @@ struct ConvergenceStudy {
     /// The reference's own expected error: the study's fitted power law (log_log_slope) extended from its last
     /// point to the reference's sample count. Errors near this floor are the reference's noise, not the bake's.
     double reference_noise_floor = 0.0;
+    /// The reference's own relative RMS error, measured: it is traced as two halves with independent seeds, and
+    /// this is the relative RMS of their difference / 2. 0 when the reference has one sample.
+    double reference_own_rms = 0.0;
     std::vector<ConvergencePoint> points;
     double rays_per_second = 0.0;
     double log_log_slope = 0.0;           ///< least-squares slope of log(rms) on log(samples), raw
