@@ -127,6 +127,8 @@ uint64_t slotIndependentFilesHash(const std::string& folder, const BakeSetManife
     ContentHash hash;
     hash.addString(manifest.building.mesh).addFile(folder + "/" + manifest.building.mesh);
     hash.addString(manifest.ground_grid.geometry).addFile(folder + "/" + manifest.ground_grid.geometry);
+    if (!manifest.ground_grid.albedo.empty())
+        hash.addString(manifest.ground_grid.albedo).addFile(folder + "/" + manifest.ground_grid.albedo);
     if (manifest.occluder) hash.addString(manifest.occluder->mesh).addFile(folder + "/" + manifest.occluder->mesh);
     return hash.value();
 }
@@ -168,6 +170,9 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
         {requiredFile(first, "/ground_grid/geometry", shared.ground_grid.geometry), shared.ground_grid.geometry});
     if (shared.occluder)
         copies.push_back({requiredFile(first, "/occluder/mesh", shared.occluder->mesh), shared.occluder->mesh});
+    if (!shared.ground_grid.albedo.empty())
+        copies.push_back(
+            {requiredFile(first, "/ground_grid/albedo", shared.ground_grid.albedo), shared.ground_grid.albedo});
     for (const std::string& name : shared.partial->site_slots) {
         const PartialSet& set = sets[set_of_slot.at(name)];
         const BakeSetSlot& slot = set.manifest.slots.front();

@@ -7,6 +7,7 @@
 #include <glm/matrix.hpp>
 
 #include "bake_statistics.h"
+#include "ground_albedo.h"
 #include "gusuku_bake/content_hash.h"
 #include "lightmap_denoise.h"
 #include "gusuku/atomic_file.h"
@@ -83,6 +84,9 @@ void BakeOutputWriter::writeGeometry() {
         texels[i] = glm::vec4(cell.normal, cell.height_m);
     }
     writeExr(output_dir_ + "/ground_geometry.exr", imageFromTexels(texels, region.columns, region.rows), true);
+    // The ground's base colour per cell, for the runtime's ground colour match (ground_albedo.h).
+    writeExr(output_dir_ + "/" + kGroundAlbedoFile,
+             imageFromTexels(sampleGroundAlbedo(geometry_), region.columns, region.rows), true);
     writeOccluder();
 }
 
@@ -158,6 +162,7 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
 uint64_t BakeOutputWriter::slotIndependentHash() const {
     BakeSetManifest names;
     if (occluder_) names.occluder = occluder_;
+    names.ground_grid.albedo = kGroundAlbedoFile;
     return slotIndependentFilesHash(output_dir_, names);
 }
 
@@ -183,6 +188,7 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
     manifest.building.texels = geometry_.texels.size();
     manifest.ground_grid.grid = geometry_.ground_region;
     manifest.ground_grid.ground_source = geometry_.site_mesh_is_stand_in ? "flat plane at z = 0" : "sfm_mesh";
+    manifest.ground_grid.albedo = kGroundAlbedoFile;
     manifest.occluder = occluder_;
     manifest.slots = slots_;
     manifest.statistics = {report.rays_traced, report.trace_seconds,

@@ -728,8 +728,10 @@ Json runWeatherUnder(Bench& bench, const SkySet& skies) {
     bench.say("");
     bench.say("**Weather and camera responses, " + skies.label + " (" + std::to_string(width) + "x" +
               std::to_string(height) + ", " + bench.localTime(utc) + ", mean dE00 over the building and shadow)**");
-    bench.say("| cloud cover | camera response | proposed, match | proposed, no match | direct-only |");
-    bench.say("| --- | --- | --- | --- | --- |");
+    // "proposed, match" is the ground match (n/a for a bake set without ground albedo); the preserve match beside.
+    bench.say("| cloud cover | camera response | proposed, match | proposed, preserve match | proposed, no match | "
+              "direct-only |");
+    bench.say("| --- | --- | --- | --- | --- | --- |");
     Json rows = Json::array();
     for (float cover : {0.0f, 0.5f, 1.0f}) {
         const ConditionFrames frames = traceCondition(*skies.renderer, bench.view, width, height, {utc, cover},
@@ -743,13 +745,20 @@ Json runWeatherUnder(Bench& bench, const SkySet& skies) {
                                                        cover, frames.exposure * response.exposure_scale);
                 return summariseError(steadyComposite(runtime, input), truth, mask);
             };
+            std::optional<ErrorSummary> ground;
+            if (groundMatchAvailable()) try {
+                    ground = errorOf("proposed_ground_match");
+                } catch (const RuntimeError&) {  // this sky set's bake set has no ground albedo
+                }
             const ErrorSummary matched = errorOf("proposed_preserve_match"), unmatched = errorOf("proposed"),
                                direct = errorOf("direct_only");
             rows.push_back({{"cloud_cover", cover}, {"camera_response", response.name},
+                            {"proposed_ground_match", ground ? errorJson(*ground) : Json()},
                             {"proposed_preserve_match", errorJson(matched)}, {"proposed", errorJson(unmatched)},
                             {"direct_only", errorJson(direct)}});
-            bench.say("| " + fixed(cover, 1) + " | " + response.name + " | " + fixed(matched.mean_de00) + " | " +
-                      fixed(unmatched.mean_de00) + " | " + fixed(direct.mean_de00) + " |");
+            bench.say("| " + fixed(cover, 1) + " | " + response.name + " | " +
+                      (ground ? fixed(ground->mean_de00) : std::string("n/a")) + " | " + fixed(matched.mean_de00) +
+                      " | " + fixed(unmatched.mean_de00) + " | " + fixed(direct.mean_de00) + " |");
         }
     }
     return {{"skies", skies.label}, {"size", std::to_string(width) + "x" + std::to_string(height)},
@@ -941,6 +950,7 @@ int run(const Settings& settings) {
     Bench bench;
     bench.settings = settings;
     bench.bake_set = loadBakeSet(settings.bake_set);
+    setGroundMatchAvailable(!bench.bake_set.manifest.ground_grid.albedo.empty());
     bench.bake_midnight_utc = bench_common::bakeDateMidnightUtc(settings.bake_set, bench.bake_set.manifest, "--time");
     bench.utc_offset_minutes = bench.bake_set.manifest.site.utc_offset_minutes;
     const std::string site_json = bench_common::siteJsonOf(settings.bake_set, bench.bake_set.manifest, settings.site_json);

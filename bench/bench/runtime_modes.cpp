@@ -6,6 +6,13 @@
 
 namespace gusuku::bench {
 
+namespace {
+bool ground_match_available = false;
+}  // namespace
+
+void setGroundMatchAvailable(bool available) { ground_match_available = available; }
+bool groundMatchAvailable() { return ground_match_available; }
+
 std::vector<RuntimeMode> benchRuntimeModes() {
     std::vector<RuntimeMode> modes;
 modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
@@ -14,6 +21,9 @@ modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, fals
     modes.push_back({"proposed_no_slot_blend", RenderMode::kProposed, ColourMatch::kOff, false, true});
     modes.push_back({"proposed_no_ground_ratio", RenderMode::kProposed, ColourMatch::kOff, true, false});
     modes.push_back({"proposed_preserve_match", RenderMode::kProposed, ColourMatch::kPreserve, true, true});
+    // The ground match: the camera's ground against the bake set's prediction (needs ground albedo).
+    if (ground_match_available)
+        modes.push_back({"proposed_ground_match", RenderMode::kProposed, ColourMatch::kGround, true, true});
     modes.push_back({"proposed_paper_match", RenderMode::kProposed, ColourMatch::kPaper, true, true});
     return modes;
 }

@@ -22,12 +22,13 @@ const float kColourMatchMaxLinear = 65504.0;
 const float kColourMatchGamutTolerance = 1e-5;
 
 bool colourMatchActive(ColourMatchState state) {
+    if (state.mode == COLOUR_MATCH_MODE_GROUND) return state.ground_valid != 0u;
     return state.mode != COLOUR_MATCH_MODE_OFF && state.camera_valid != 0u;
 }
 
 // The per-channel Lab transfer of the state's mode, before clamping and gamut mapping (identity when inactive).
 vec3 colourMatchTransferLab(vec3 lab, ColourMatchState state) {
-    if (!colourMatchActive(state)) return lab;
+    if (!colourMatchActive(state) || state.mode == COLOUR_MATCH_MODE_GROUND) return lab;  // ground: not Lab
     vec3 source_mean = state.source_lab_mean.xyz;
     vec3 target_mean = state.camera_lab_mean.xyz;
     vec3 target_sigma = sqrt(max(state.camera_lab_variance.xyz, vec3(0.0)));
@@ -60,11 +61,13 @@ vec3 colourMatchChromaIntoGamut(vec3 lab) {
     return vec3(lightness, lab.yz * inside);
 }
 
-// The whole transfer of one linear Rec.709 colour: displayable linear RGB in [0, 1], never NaN.
+// The whole transfer of one linear Rec.709 colour: displayable linear RGB in [0, 1], never NaN. Mode GROUND
+// takes the exposed radiance and multiplies it by the smoothed von Kries gain; the Lab modes take radiance.
 vec3 applyColourMatch(vec3 linear_rgb, ColourMatchState state) {
     vec3 rgb = linear_rgb;
     for (int c = 0; c < 3; ++c) rgb[c] = isnan(rgb[c]) ? 0.0 : clamp(rgb[c], 0.0, kColourMatchMaxLinear);
     if (!colourMatchActive(state)) return clamp(rgb, vec3(0.0), vec3(1.0));
+    if (state.mode == COLOUR_MATCH_MODE_GROUND) return clamp(rgb * state.ground_gain.xyz, vec3(0.0), vec3(1.0));
     vec3 lab = colourMatchTransferLab(labFromLinearRec709(rgb), state);
     lab.x = clamp(lab.x, 0.0, 100.0);
     if (state.mode == COLOUR_MATCH_MODE_PRESERVE) lab = colourMatchChromaIntoGamut(lab);

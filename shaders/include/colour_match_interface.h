@@ -17,6 +17,7 @@
 #define COLOUR_MATCH_MODE_OFF 0u
 #define COLOUR_MATCH_MODE_PAPER 1u
 #define COLOUR_MATCH_MODE_PRESERVE 2u
+#define COLOUR_MATCH_MODE_GROUND 3u
 
 #ifdef __cplusplus
 namespace gusuku::shader_interface {
@@ -43,6 +44,52 @@ struct ColourMatchState {
     uint frame_accepted;         // 1 when this frame had enough valid samples to update the smoothed statistics
     uint gpu_reserved0;
     uint gpu_reserved1;
+    // ---- written by colour_statistics_ground_reduce.comp (bytes 144..239), mode GROUND ----
+    vec4 ground_gain;             // xyz: smoothed von Kries gain (observed / predicted), valid when ground_valid
+    vec4 frame_ground_gain;       // xyz: this frame's clamped gain (1 when not accepted), w: median bin (-1 none)
+    vec4 frame_ground_observed;   // xyz: sum of observed linear RGB over the kept samples
+    vec4 frame_ground_predicted;  // xyz: sum of predicted linear RGB over the same
+    uint ground_valid;            // 1 once a frame was accepted since construction or reset
+    uint ground_frames_accepted;
+    uint frame_ground_samples;    // this frame: samples on the ground in the bins
+    uint frame_ground_kept;       // this frame: samples in the window about the median
+    uint frame_ground_clipped;    // this frame: samples on the ground left out as clipped
+    uint frame_ground_accepted;   // 1 when this frame updated the smoothed gain
+    uint ground_reserved0;
+    uint ground_reserved1;
+};
+
+// One workgroup's share of one log-ratio bin, written by colour_statistics_ground.comp (partial w * BINS + bin)
+// and read by colour_statistics_ground_reduce.comp.
+struct GroundMatchPartial {
+    vec4 observed_count;     // xyz: sum of observed linear RGB, w: samples
+    vec4 predicted_clipped;  // xyz: sum of predicted linear RGB, w: clipped ground samples (bin 0's entry only)
+};
+
+// One ground-grid cell (texel order), uploaded once.
+struct GroundMatchCellGpu {
+    vec4 albedo_ground;  // rgb: linear albedo, w: 1 ground with albedo, 0 none
+    vec4 normal_height;  // xyz: unit normal (ENU), w: height (ENU z, m)
+};
+
+// The frame's camera and light for the ground kernel, written by the host before each submission.
+struct GroundMatchFrame {
+    vec4 ray_x;            // ENU direction of the ray through pixel point (u, v): u ray_x + v ray_y + ray_z
+    vec4 ray_y;
+    vec4 ray_z;
+    vec4 camera_position;  // xyz ENU, w: the first plane's height (mean ground height)
+    vec4 sun_direction;    // xyz unit towards the sun, w: 1 when the sun shines
+    vec4 sun_irradiance;   // rgb: E_sun after cloud cover (bake set units), w: exposure
+    vec4 slot_weights;     // xyz: blend weights (0 for a missing slot)
+    vec4 ground_grid;      // x, y: south-west corner (ENU m), z: cell size (m), w unused
+    uint slot_index0;      // slot per blend term (0 when its weight is 0)
+    uint slot_index1;
+    uint slot_index2;
+    uint cell_count;       // columns x rows
+    uint columns;
+    uint rows;
+    uint slot_count;       // slots with irradiance in GROUND_MATCH_IRRADIANCE_BINDING
+    uint frame_reserved0;
 };
 
 // One subgroup's share of a frame, written by colour_statistics.comp and read by colour_statistics_reduce.comp:
@@ -67,7 +114,7 @@ struct ColourStatisticsPartial {
 
 // A GLSL stage may declare one push-constant block: each kernel defines its COLOUR_*_KERNEL before including
 // this header and gets its own block; other GLSL (the building's shader) gets none. C++ gets both.
-#if defined(__cplusplus) || defined(COLOUR_STATISTICS_KERNEL)
+#if defined(__cplusplus) || defined(COLOUR_STATISTICS_KERNEL) || defined(GROUND_MATCH_KERNEL)
 GUSUKU_PUSH_CONSTANTS_BEGIN(ColourStatisticsPushConstants)
     uint frame_width;            // pixels
     uint frame_height;
@@ -81,13 +128,34 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(ColourStatisticsPushConstants)
 GUSUKU_PUSH_CONSTANTS_END(ColourStatisticsPushConstants, pc)
 #endif
 
+// colour_statistics_ground.comp, set 0 (push constants: ColourStatisticsPushConstants; workgroups: the tile)
+#define GROUND_MATCH_CAMERA_BINDING 0      // as COLOUR_STATISTICS_CAMERA_BINDING
+#define GROUND_MATCH_PARTIAL_BINDING 1     // GroundMatchPartial[workgroups * GROUND_MATCH_BINS]
+#define GROUND_MATCH_CELL_BINDING 2        // GroundMatchCellGpu[cells]
+#define GROUND_MATCH_IRRADIANCE_BINDING 3  // vec4[slots * cells]: rgb E_without of slot s, cell c at s * cells + c
+#define GROUND_MATCH_FRAME_BINDING 4       // GroundMatchFrame
+#define GROUND_MATCH_BINDING_COUNT 5
+// One invocation per bin: the tile's sample count (colour_match.h: kGroundMatchBins).
+#define GROUND_MATCH_BINS 64
+#define GROUND_MATCH_BINS_PER_STOP 8.0
+#define GROUND_MATCH_LOWEST_LOG2_RATIO -4.0
+#define GROUND_MATCH_WINDOW_BINS 4
+#define GROUND_MATCH_HEIGHT_ITERATIONS 4
+#define GROUND_MATCH_MIN_PREDICTED 1e-6
+
+// colour_statistics_ground_reduce.comp, set 0 (one workgroup of GROUND_MATCH_BINS; push constants:
+// ColourReducePushConstants with partial_count = the first kernel's workgroups)
+#define GROUND_REDUCE_PARTIAL_BINDING 0
+#define GROUND_REDUCE_STATE_BINDING 1
+#define GROUND_REDUCE_BINDING_COUNT 2
+
 // colour_statistics_reduce.comp, set 0 (one workgroup)
 #define COLOUR_REDUCE_PARTIAL_BINDING 0  // ColourStatisticsPartial[partial_count]
 #define COLOUR_REDUCE_STATE_BINDING 1    // ColourMatchState
 #define COLOUR_REDUCE_BINDING_COUNT 2
 #define COLOUR_REDUCE_WORKGROUP_SIZE 64
 
-#if defined(__cplusplus) || defined(COLOUR_REDUCE_KERNEL)
+#if defined(__cplusplus) || defined(COLOUR_REDUCE_KERNEL) || defined(GROUND_REDUCE_KERNEL)
 GUSUKU_PUSH_CONSTANTS_BEGIN(ColourReducePushConstants)
     uint partial_count;
     uint min_valid_samples;  // fewer valid samples than this: the frame is not accepted (state kept)

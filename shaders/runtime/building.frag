@@ -67,10 +67,13 @@ void main() {
     if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
 
     // Without a colour match (off, direct-only, or no camera statistics yet) the camera's exposure maps radiance
-    // to display values; the match maps the baked appearance's Lab statistics onto the camera's instead.
+    // to display values; the Lab matches map the baked appearance's Lab statistics onto the camera's instead, and
+    // the ground match multiplies the exposed radiance by the gain that takes the predicted ground to the camera's.
     vec3 display_linear;
     if (direct_only || !colourMatchActive(colour_state))
         display_linear = clamp(radiance * frame.sun_irradiance.w, vec3(0.0), vec3(1.0));
+    else if (colour_state.mode == COLOUR_MATCH_MODE_GROUND)
+        display_linear = applyColourMatch(radiance * frame.sun_irradiance.w, colour_state);
     else
         display_linear = applyColourMatch(radiance, colour_state);
     out_colour = vec4(display_linear, 1.0);

@@ -84,6 +84,8 @@ void main() {
         state.frames_accepted = 0u;
         state.camera_lab_mean = vec4(0.0);
         state.camera_lab_variance = vec4(0.0);
+        state.ground_valid = 0u;  // one reset for the whole match (the ground mode's gain too)
+        state.ground_frames_accepted = 0u;
     }
     bool accepted = valid_samples > 0u && valid_samples >= pc.min_valid_samples;
     state.frame_accepted = accepted ? 1u : 0u;

@@ -68,6 +68,9 @@ struct BakeSetData {
     BakeSetMesh building;
     BakeSetOccluder occluder;               ///< may be empty (no SfM mesh)
     BakeSetImage ground_geometry;           ///< columns x rows: RGB unit normal (ENU), A height (ENU z, metres)
+    /// columns x rows: RGB linear albedo of the ground, A 1 where there is ground; empty (0 x 0) when the manifest
+    /// names no ground_grid.albedo (an older bake set).
+    BakeSetImage ground_albedo;
     std::vector<BakeSetSlotImages> slots;   ///< one per manifest.slots entry, same order
 };
 

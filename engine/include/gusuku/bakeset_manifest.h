@@ -69,6 +69,10 @@ struct BakeSetGroundGrid {
     std::string geometry = "ground_geometry.exr";  ///< RGB: unit normal (ENU), A: height (ENU z, metres)
     GroundGrid grid;
     std::string ground_source;  ///< "sfm_mesh" or "flat plane at z = 0" (no SfM mesh in site.json)
+    /// RGB: the ground's base colour (linear albedo, texture times factor) at each cell's ground point, A: 1 where
+    /// the cell has ground. Empty in bake sets made before it existed: they load, and the runtime's ground colour
+    /// match (ColourMatch::kGround) then refuses to run (docs/bakeset.md "Ground albedo").
+    std::string albedo;
     bool operator==(const BakeSetGroundGrid&) const = default;
 };
 

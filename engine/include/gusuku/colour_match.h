@@ -43,19 +43,62 @@
 //   L after the transfer is clamped to [0, 100] (the displayable range), and the linear RGB result is clamped
 //   to [0, 1]: displayable, never NaN. Mode kOff, or no accepted camera frame yet: only that sanitising and
 //   clamping.
+//
+// Mode kGround compares like with like (the Lab modes above move the building's own statistics onto those of
+// the whole frame, sky and grass included, which is a statistic of other content and can never be right). The
+// bake set models the real site's ground (the ground grid: height, normal, E_without per slot, and the
+// ground's albedo, ground_grid.albedo), so the runtime can predict what the camera should see there:
+//   predicted_c = exposure albedo_c / pi (sum_k w_k E_without_k,c + E_sun_c max(0, n . s) V)
+// and the camera gives observed_c (sRGB-decoded). The von Kries gain gain_c = sum observed_c / sum predicted_c
+// over the same pixels undoes exposure and white balance exactly, and a tone curve to first order about the
+// ground's brightness; the building's exposed linear colour is multiplied by it. Choices:
+// - Pixels: the sample grid above; each sample's ray (through the pixel's centre) is intersected with the
+//   ground grid as a height field: a plane at the mean height of the cells with ground, then
+//   kGroundMatchHeightIterations steps of "the height of the cell the ray reaches at the current height"; the
+//   sample counts only if the last step stays in the same cell, the cell has ground and albedo, the ray goes
+//   down (d.z < -1e-6) and t > 0. Nearest cell, no interpolation (the gain is a ratio of sums over hundreds of
+//   cells: per-cell detail averages out).
+// - V = 1: the real site's shadows are not looked up (the statistics run before the shadow maps, and on
+//   storage buffers only); ground the real scene shades is predicted too bright and falls out in the trim
+//   below, as do pixels of real objects standing in front of the ground (walls, people) and of clipped sensor.
+// - Robust estimate: per sample r = log2(Y_observed / Y_predicted) (Rec.709 luminance); samples go into
+//   kGroundMatchBins bins of 1 / kGroundMatchBinsPerStop stop from kGroundMatchLowestLog2Ratio (outside:
+//   the end bins). The median bin m is the smallest with 2 cumulative count >= the total; the gain sums only
+//   the bins m - kGroundMatchWindowBins .. m + kGroundMatchWindowBins (+- 0.56 stop about the median). A shadow
+//   (-1.5 stops and more) or a wall does not move it; the median cannot be pulled by under half the samples.
+// - Clipped samples (isClippedCameraPixel) whose ray hits the ground are counted and left out; samples whose
+//   predicted luminance is below kGroundMatchMinPredicted (no light, black albedo) are left out.
+// - A frame is accepted when at least kGroundMatchMinSamples samples are kept and every channel's predicted
+//   sum is positive; otherwise the smoothed gain stays (a frame of sky keeps the last estimate, or the
+//   identity before any). The gain is clamped per channel to [1 / gain_limit, gain_limit], then smoothed like
+//   the Lab statistics (new = old + alpha (frame - old), the first accepted frame taken as it is).
+// - Transfer: y = clamp(gain x, 0, 1), x the building's linear radiance times the frame's exposure (sanitised
+//   as above). Without an accepted frame it is clamp(x, 0, 1): exactly the unmatched building.
+// - A bake set without ground albedo (older bakes) cannot run kGround: the runtime throws RuntimeError
+//   kInvalidFrame naming ground_grid.albedo (the C API returns that code), and the other modes still run.
+// - GPU: shaders/runtime/colour_statistics_ground.comp (one 8 x 8 workgroup of samples = one invocation per
+//   bin: the workgroup's samples meet in shared memory and each invocation sums its bin, in sample order) and
+//   colour_statistics_ground_reduce.comp (one invocation per bin sums it over the workgroups in order, then
+//   invocation 0 finds the median and the window and updates the state). No atomics: the same sums every run.
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "gusuku/colour.h"
+#include "gusuku/ground_grid.h"
 
 namespace gusuku {
 
 /// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h); the
 /// runtime's API names it ColourMatch.
-enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2 };
+enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3 };
+
+struct BakeSetData;
 
 /// Longest shift of the a, b means in kPreserve, Lab units (about the cast of a strong white-balance error;
 /// the transfer of a frame of sky, b about -30, would otherwise turn the building blue).
@@ -139,12 +182,95 @@ LabStatistics blendLabStatistics(std::span<const LabStatistics> slots, std::span
 // Transfer
 // ------------------------------------------------------------------------------------------------------------
 
+// ------------------------------------------------------------------------------------------------------------
+// Ground match (kGround; see the choices above)
+// ------------------------------------------------------------------------------------------------------------
+
+inline constexpr uint32_t kGroundMatchBins = 64;
+inline constexpr double kGroundMatchBinsPerStop = 8.0;
+inline constexpr double kGroundMatchLowestLog2Ratio = -4.0;
+inline constexpr uint32_t kGroundMatchWindowBins = 4;
+inline constexpr uint32_t kGroundMatchMinSamples = 64;
+inline constexpr int kGroundMatchHeightIterations = 4;
+inline constexpr double kGroundMatchMinPredicted = 1e-6;
+
+/// One ground-grid cell as the match reads it (float: what the GPU holds).
+struct GroundMatchCell {
+    glm::vec3 albedo{0.0f};  ///< linear base colour
+    bool ground = false;     ///< the cell has ground and albedo
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    float height_m = 0.0f;
+};
+
+/// The bake set's ground as the match needs it.
+struct GroundMatchScene {
+    GroundGrid grid;
+    std::vector<GroundMatchCell> cells;                       ///< texel order (gusuku/ground_grid.h)
+    std::vector<std::vector<glm::vec3>> irradiance_without;  ///< per slot, per cell: E_without, bake set units
+    float start_height_m = 0.0f;  ///< mean height of the cells with ground: the ray's first plane
+};
+
+/// The scene of a bake set, or nothing when it has no ground albedo (or no cell with ground).
+std::optional<GroundMatchScene> groundMatchSceneFrom(const BakeSetData& bake_set);
+
+/// Per frame: the camera (pinhole, the runtime's conventions: x right, y down, z forward; pixel centres at +0.5)
+/// and the light the runtime uses for the building.
+struct GroundMatchView {
+    double fx = 1.0, fy = 1.0, cx = 0.0, cy = 0.0;
+    glm::dvec3 camera_position_enu{0.0};
+    glm::dmat3 camera_to_enu{1.0};
+    glm::dvec3 sun_direction_enu{0.0, 0.0, 1.0};
+    bool sun_shines = false;
+    glm::dvec3 sun_irradiance_rgb{0.0};  ///< E_sun after cloud cover, bake set units
+    double exposure = 1.0;
+    int slots[3] = {-1, -1, -1};     ///< manifest slot per blend term (-1: none)
+    float weights[3] = {0.0f, 0.0f, 0.0f};
+};
+
+/// The cell (texel index) the ray through pixel centre (x + 0.5, y + 0.5) reaches on the ground, or nothing.
+std::optional<size_t> groundMatchCellOfPixel(const GroundMatchScene& scene, const GroundMatchView& view,
+                                             uint32_t x, uint32_t y);
+
+/// What the camera should record at that cell, linear display values (exposure included).
+glm::dvec3 groundMatchPredictedRadiance(const GroundMatchScene& scene, const GroundMatchView& view, size_t cell);
+
+/// One frame's ground estimate (the reference of colour_statistics_ground.comp and its reduce).
+struct GroundColourEstimate {
+    glm::dvec3 gain{1.0};             ///< observed / predicted over the kept samples, clamped
+    glm::dvec3 observed_sum{0.0};     ///< over the kept samples
+    glm::dvec3 predicted_sum{0.0};
+    uint64_t ground_samples = 0;      ///< samples on the ground, neither clipped nor unlit (in the bins)
+    uint64_t kept_samples = 0;        ///< in the window about the median
+    uint64_t clipped_samples = 0;     ///< samples on the ground left out as clipped
+    int median_bin = -1;              ///< -1 when no sample
+    bool accepted = false;
+};
+
+/// The log-ratio bin of a sample (see "Robust estimate").
+uint32_t groundMatchBin(const glm::dvec3& observed, const glm::dvec3& predicted);
+
+GroundColourEstimate measureGroundColourGain(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+                                             uint32_t stride, const GroundMatchScene& scene,
+                                             const GroundMatchView& view, float gain_limit);
+
+/// The smoothed gain (what ColourMatchState holds for kGround).
+struct SmoothedGroundGain {
+    bool valid = false;
+    uint32_t frames_accepted = 0;
+    glm::dvec3 gain{1.0};
+};
+
+/// One frame's update; reset: start over.
+SmoothedGroundGain smoothGroundGain(const SmoothedGroundGain& previous, const GroundColourEstimate& frame,
+                                    double smoothing_weight, bool reset = false);
+
 /// Everything the transfer reads (on the GPU: ColourMatchState).
 struct ColourMatchParameters {
     ColourMatchMode mode = ColourMatchMode::kPreserve;
     LabStatistics source;              ///< the baked appearance's (float, as the GPU state holds it)
     SmoothedColourStatistics target;   ///< the camera's; invalid: identity
     float gain_limit = 2.0f;           ///< RuntimeOptions::colour_gain_limit
+    SmoothedGroundGain ground;         ///< kGround's gain; invalid: identity
 };
 
 /// The per-channel Lab transfer of the mode, before any clamping or gamut mapping (kOff or an invalid target:
@@ -156,7 +282,8 @@ glm::dvec3 colourMatchTransferLab(const glm::dvec3& lab, const ColourMatchParame
 glm::dvec3 colourMatchChromaIntoGamut(const glm::dvec3& lab);
 
 /// The whole transfer of one linear Rec.709 colour, as colour_match.glsl's applyColourMatch: sanitise, Lab,
-/// transfer, L clamp, gamut mapping (kPreserve), back to linear, clamp to [0, 1]. Always finite.
+/// transfer, L clamp, gamut mapping (kPreserve), back to linear, clamp to [0, 1]. Always finite. kGround:
+/// linear_rgb is the exposed radiance, the result clamp(gain linear_rgb, 0, 1) (no Lab).
 glm::dvec3 applyColourMatch(const glm::dvec3& linear_rgb, const ColourMatchParameters& parameters);
 
 }  // namespace gusuku

@@ -202,7 +202,10 @@ typedef enum gusuku_render_mode {
 typedef enum gusuku_colour_match {
     GUSUKU_COLOUR_MATCH_OFF = 0,
     GUSUKU_COLOUR_MATCH_PAPER = 1,     /* Reinhard per-channel Lab transfer */
-    GUSUKU_COLOUR_MATCH_PRESERVE = 2   /* lightness and white balance towards the camera, chroma spread kept */
+    GUSUKU_COLOUR_MATCH_PRESERVE = 2,  /* lightness and white balance towards the camera, chroma spread kept */
+    GUSUKU_COLOUR_MATCH_GROUND = 3     /* per-channel gain that takes the bake set's predicted ground to the
+                                          camera's (needs a bake set with ground albedo: else the frame fails
+                                          with GUSUKU_ERROR_INVALID_FRAME) */
 } gusuku_colour_match;
 
 /* gusuku_frame_input.flags */

@@ -97,7 +97,12 @@ struct Weather {
 ///   kPaper     Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
 ///              target the camera frame (the seed paper's method);
 ///   kPreserve  moves lightness and white balance towards the camera but keeps the building's chroma spread (the
-///              saturation the paper reports losing).
+///              saturation the paper reports losing);
+///   kGround    compares like with like: the camera's pixels of the real ground against what the bake set
+///              predicts there (ground albedo x baked and sun irradiance x exposure); the per-channel gain
+///              observed / predicted multiplies the building's exposed colour (undoes exposure and white balance,
+///              a tone curve to first order). Needs a bake set with ground_grid.albedo: with an older one a
+///              frame asking for it throws RuntimeError kInvalidFrame.
 using ColourMatch = ColourMatchMode;
 
 enum class RenderMode {

@@ -176,6 +176,9 @@ BakeSetData loadBakeSet(const std::string& folder) {
     if (manifest.occluder) occluder_path = bakeSetFile(folder, manifest_path, {"/occluder/mesh", manifest.occluder->mesh});
     const std::string geometry_path =
         bakeSetFile(folder, manifest_path, {"/ground_grid/geometry", manifest.ground_grid.geometry});
+    std::string albedo_path;
+    if (!manifest.ground_grid.albedo.empty())
+        albedo_path = bakeSetFile(folder, manifest_path, {"/ground_grid/albedo", manifest.ground_grid.albedo});
     std::vector<std::array<std::string, 3>> slot_paths;
     for (size_t s = 0; s < manifest.slots.size(); ++s) {
         const BakeSetSlot& slot = manifest.slots[s];
@@ -193,6 +196,8 @@ BakeSetData loadBakeSet(const std::string& folder) {
     const GroundGrid& grid = manifest.ground_grid.grid;
     const std::string grid_size = "the manifest's /ground_grid/columns x rows";
     data.ground_geometry = loadExr(geometry_path, grid.columns, grid.rows, grid_size, false);
+    // Albedo is non-negative like irradiance: the same check.
+    if (!albedo_path.empty()) data.ground_albedo = loadExr(albedo_path, grid.columns, grid.rows, grid_size, true);
     const int resolution = manifest.building.lightmap_resolution;
     for (const auto& paths : slot_paths) {
         BakeSetSlotImages slot;

@@ -35,6 +35,7 @@ constexpr const char* kIrradianceUnits = "the sky maps' linear radiance units ti
 constexpr const char* kGeometryChannels = "RGB: unit normal (ENU), A: height (ENU z, metres)";
 constexpr const char* kRow0 = "north edge";
 constexpr const char* kIrradianceAlpha = "1 where the ground exists under the cell";
+constexpr const char* kGroundAlbedoChannels = "RGB: linear base colour of the ground at the cell, A: 1 where ground";
 constexpr const char* kColourSpace = "CIE Lab (D65) of linear radiance rho/pi*(E_ind + V E_sun cos)";
 // Present since input paths are written relative to the bake set (so a set moves with its inputs); a manifest
 // without it is older, and its relative paths were relative to where its bake ran.
@@ -320,7 +321,7 @@ BakeSetManifest readManifest(const ObjectReader& root) {
 
     const ObjectReader ground =
         root.object("ground_grid", {"geometry", "geometry_channels", "origin_enu_m", "cell_m", "columns", "rows",
-                                    "row_0", "ground_source", "irradiance_alpha"});
+                                    "row_0", "ground_source", "irradiance_alpha", "albedo", "albedo_channels"});
     manifest.ground_grid.geometry = readNonEmptyString(ground, "geometry");
     readFixedText(ground, "geometry_channels", kGeometryChannels);
     const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, kAnyFinite);
@@ -331,6 +332,10 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     readFixedText(ground, "row_0", kRow0);
     manifest.ground_grid.ground_source = readNonEmptyString(ground, "ground_source");
     readFixedText(ground, "irradiance_alpha", kIrradianceAlpha);
+    if (ground.has("albedo")) {
+        manifest.ground_grid.albedo = readNonEmptyString(ground, "albedo");
+        readFixedText(ground, "albedo_channels", kGroundAlbedoChannels);
+    }
 
     if (const auto occluder = root.optionalObject("occluder", {"mesh", "mesh_frame", "triangles", "source_triangles",
                                                                "target_error_m", "simplification_error_m"})) {
@@ -438,6 +443,10 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
                                 {"source_triangles", manifest.occluder->source_triangles},
                                 {"target_error_m", manifest.occluder->target_error_m},
                                 {"simplification_error_m", manifest.occluder->simplification_error_m}};
+    if (!ground.albedo.empty()) {
+        document["ground_grid"]["albedo"] = ground.albedo;
+        document["ground_grid"]["albedo_channels"] = kGroundAlbedoChannels;
+    }
     requireFiniteNumbers(document, "");
     return document.dump(2) + "\n";
 }

@@ -168,6 +168,14 @@ std::optional<std::string> findBakeSetProblem(const BakeSetData& bake_set) {
                                   std::to_string(grid.rows);
     if (Problem p = checkImage(bake_set.ground_geometry, "ground_geometry", grid.columns, grid.rows, grid_size, false))
         return p;
+    // The ground albedo is optional (older bake sets): absent, both it and the manifest's name are empty.
+    if (manifest.ground_grid.albedo.empty() != bake_set.ground_albedo.rgba.empty())
+        return std::string("ground_albedo: ") +
+               (bake_set.ground_albedo.rgba.empty() ? "missing, but the manifest names ground_grid.albedo"
+                                                    : "present, but the manifest names no ground_grid.albedo");
+    if (!bake_set.ground_albedo.rgba.empty())
+        if (Problem p = checkImage(bake_set.ground_albedo, "ground_albedo", grid.columns, grid.rows, grid_size, true))
+            return p;
 
     if (bake_set.slots.size() != manifest.slots.size())
         return "slots: " + std::to_string(bake_set.slots.size()) + " entries, but manifest.slots has " +

@@ -114,6 +114,7 @@ LabStatistics blendLabStatistics(std::span<const LabStatistics> slots, std::span
 namespace {
 
 bool transferActive(const ColourMatchParameters& parameters) {
+    if (parameters.mode == ColourMatchMode::kGround) return parameters.ground.valid;
     return parameters.mode != ColourMatchMode::kOff && parameters.target.valid;
 }
 
@@ -129,7 +130,7 @@ constexpr double kGamutTolerance = 1e-5;
 }  // namespace
 
 glm::dvec3 colourMatchTransferLab(const glm::dvec3& lab, const ColourMatchParameters& parameters) {
-    if (!transferActive(parameters)) return lab;
+    if (!transferActive(parameters) || parameters.mode == ColourMatchMode::kGround) return lab;  // kGround: not Lab
     LabStatistics target;
     target.mean = glm::vec3(parameters.target.lab_mean);
     const glm::dvec3 variance = glm::max(parameters.target.lab_variance, glm::dvec3(0.0));
@@ -170,6 +171,9 @@ glm::dvec3 applyColourMatch(const glm::dvec3& linear_rgb, const ColourMatchParam
     for (int c = 0; c < 3; ++c)
         rgb[c] = std::isnan(linear_rgb[c]) ? 0.0 : std::clamp(linear_rgb[c], 0.0, kColourMatchMaxLinear);
     if (!transferActive(parameters)) return glm::clamp(rgb, glm::dvec3(0.0), glm::dvec3(1.0));
+    // kGround: a von Kries gain on the exposed linear colour, as the GPU does it (float gain, double product).
+    if (parameters.mode == ColourMatchMode::kGround)
+        return glm::clamp(rgb * glm::dvec3(glm::vec3(parameters.ground.gain)), glm::dvec3(0.0), glm::dvec3(1.0));
     glm::dvec3 lab = colourMatchTransferLab(labFromLinearRec709(rgb), parameters);
     lab.x = std::clamp(lab.x, 0.0, 100.0);
     if (parameters.mode == ColourMatchMode::kPreserve) lab = colourMatchChromaIntoGamut(lab);

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "colour_statistics_comp_spv.h"
+#include "colour_statistics_ground_comp_spv.h"
+#include "colour_statistics_ground_reduce_comp_spv.h"
 #include "colour_statistics_reduce_comp_spv.h"
 
 namespace gusuku {
@@ -17,6 +19,10 @@ using shader_interface::ColourMatchState;
 using shader_interface::ColourReducePushConstants;
 using shader_interface::ColourStatisticsPartial;
 using shader_interface::ColourStatisticsPushConstants;
+using shader_interface::GroundMatchCellGpu;
+using shader_interface::GroundMatchFrame;
+using shader_interface::GroundMatchPartial;
+using shader_interface::vec4;
 
 // std430 and C++ must agree on every offset (interface_types.h's rules).
 static_assert(offsetof(ColourMatchState, source_lab_mean) == 0);
@@ -29,7 +35,22 @@ static_assert(offsetof(ColourMatchState, frame_lab_mean) == 80);
 static_assert(offsetof(ColourMatchState, frame_lab_sigma) == 96);
 static_assert(offsetof(ColourMatchState, camera_valid) == 112);
 static_assert(offsetof(ColourMatchState, frame_accepted) == 132);
-static_assert(sizeof(ColourMatchState) == 144);
+static_assert(offsetof(ColourMatchState, ground_gain) == 144);
+static_assert(offsetof(ColourMatchState, frame_ground_gain) == 160);
+static_assert(offsetof(ColourMatchState, frame_ground_observed) == 176);
+static_assert(offsetof(ColourMatchState, frame_ground_predicted) == 192);
+static_assert(offsetof(ColourMatchState, ground_valid) == 208);
+static_assert(offsetof(ColourMatchState, frame_ground_accepted) == 228);
+static_assert(sizeof(ColourMatchState) == 240);
+static_assert(sizeof(GroundMatchPartial) == 32);
+static_assert(sizeof(GroundMatchCellGpu) == 32);
+static_assert(offsetof(GroundMatchFrame, ground_grid) == 112);
+static_assert(offsetof(GroundMatchFrame, slot_index0) == 128);
+static_assert(sizeof(GroundMatchFrame) == 160);
+static_assert(uint32_t(ColourMatchMode::kGround) == COLOUR_MATCH_MODE_GROUND);
+static_assert(GROUND_MATCH_BINS == kGroundMatchBins && GROUND_MATCH_BINS == COLOUR_STATISTICS_TILE * COLOUR_STATISTICS_TILE);
+static_assert(GROUND_MATCH_WINDOW_BINS == kGroundMatchWindowBins);
+static_assert(GROUND_MATCH_HEIGHT_ITERATIONS == kGroundMatchHeightIterations);
 static_assert(sizeof(ColourStatisticsPartial) == 32);
 static_assert(uint32_t(ColourMatchMode::kOff) == COLOUR_MATCH_MODE_OFF);
 static_assert(uint32_t(ColourMatchMode::kPaper) == COLOUR_MATCH_MODE_PAPER);
@@ -82,10 +103,31 @@ void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+vec4 toVec4(const glm::dvec3& v, double w) { return {{float(v.x), float(v.y), float(v.z), float(w)}}; }
+
+std::vector<GroundMatchCellGpu> groundCellsFor(const GroundMatchScene& scene) {
+    std::vector<GroundMatchCellGpu> cells(scene.cells.size());
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const GroundMatchCell& cell = scene.cells[i];
+        cells[i].albedo_ground = toVec4(glm::dvec3(cell.albedo), cell.ground ? 1.0 : 0.0);
+        cells[i].normal_height = toVec4(glm::dvec3(cell.normal), cell.height_m);
+    }
+    return cells;
+}
+
+std::vector<vec4> groundIrradianceFor(const GroundMatchScene& scene) {
+    std::vector<vec4> irradiance;
+    irradiance.reserve(scene.irradiance_without.size() * scene.cells.size() + 1);
+    for (const std::vector<glm::vec3>& slot : scene.irradiance_without)
+        for (const glm::vec3& value : slot) irradiance.push_back(toVec4(glm::dvec3(value), 0.0));
+    if (irradiance.empty()) irradiance.push_back({});  // a binding needs bytes
+    return irradiance;
+}
+
 }  // namespace
 
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
-                                           uint32_t stride, float smoothing_frames)
+                                           uint32_t stride, float smoothing_frames, const GroundMatchScene* ground)
     : gpu_(gpu),
       frame_width_(frame_width),
       frame_height_(frame_height),
@@ -110,6 +152,100 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
     const ColourMatchState initial{};
     state_buffer_.upload(&initial, sizeof initial);
     reduce_pipeline_.bindBuffers({&partial_buffer_, &state_buffer_});
+    if (ground == nullptr) return;
+    ground_start_height_m_ = ground->start_height_m;
+    ground_grid_ = ground->grid;
+    ground_slot_count_ = uint32_t(ground->irradiance_without.size());
+    const std::vector<GroundMatchCellGpu> cells = groundCellsFor(*ground);
+    const std::vector<vec4> irradiance = groundIrradianceFor(*ground);
+    ground_cell_buffer_ = GpuBuffer(gpu, cells.size() * sizeof(GroundMatchCellGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    GpuMemory::kDeviceLocal);
+    ground_cell_buffer_.upload(cells.data(), cells.size() * sizeof(GroundMatchCellGpu));
+    ground_irradiance_buffer_ = GpuBuffer(gpu, irradiance.size() * sizeof(vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                          GpuMemory::kDeviceLocal);
+    ground_irradiance_buffer_.upload(irradiance.data(), irradiance.size() * sizeof(vec4));
+    ground_frame_buffer_ = GpuBuffer(gpu, sizeof(GroundMatchFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     GpuMemory::kHostVisible);
+    const GroundMatchFrame no_view{};
+    ground_frame_buffer_.upload(&no_view, sizeof no_view);
+    ground_partial_buffer_ = GpuBuffer(gpu, size_t(workgroups_x_) * workgroups_y_ * GROUND_MATCH_BINS *
+                                                sizeof(GroundMatchPartial),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kDeviceLocal);
+    ground_statistics_pipeline_ = std::make_unique<ComputePipeline>(
+        gpu, kColourStatisticsGroundCompSpirv, sizeof kColourStatisticsGroundCompSpirv, GROUND_MATCH_BINDING_COUNT,
+        sizeof(ColourStatisticsPushConstants));
+    ground_reduce_pipeline_ = std::make_unique<ComputePipeline>(
+        gpu, kColourStatisticsGroundReduceCompSpirv, sizeof kColourStatisticsGroundReduceCompSpirv,
+        GROUND_REDUCE_BINDING_COUNT, sizeof(ColourReducePushConstants));
+    ground_reduce_pipeline_->bindBuffers({&ground_partial_buffer_, &state_buffer_});
+}
+
+void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer,
+                                        const GroundMatchView& view) {
+    if (!hasGround())
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "colour match ground: the bake set has no ground_grid.albedo (bake it again)");
+    if (camera_buffer.size() < size_t(frame_width_) * frame_height_ * 4)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "colour statistics: camera buffer: " + std::to_string(camera_buffer.size()) +
+                               " bytes, the frame needs " + std::to_string(size_t(frame_width_) * frame_height_ * 4));
+    if (camera_buffer.handle() != ground_bound_camera_buffer_) {
+        ground_statistics_pipeline_->bindBuffers({&camera_buffer, &ground_partial_buffer_, &ground_cell_buffer_,
+                                                  &ground_irradiance_buffer_, &ground_frame_buffer_});
+        ground_bound_camera_buffer_ = camera_buffer.handle();
+    }
+    // The ray through pixel point (u, v): R ((u - cx) / fx, (v - cy) / fy, 1) = u ray_x + v ray_y + ray_z.
+    GroundMatchFrame frame{};
+    const glm::dvec3 axis_x = view.camera_to_enu[0] / view.fx, axis_y = view.camera_to_enu[1] / view.fy;
+    frame.ray_x = toVec4(axis_x, 0.0);
+    frame.ray_y = toVec4(axis_y, 0.0);
+    frame.ray_z = toVec4(view.camera_to_enu[2] - view.cx * axis_x - view.cy * axis_y, 0.0);
+    frame.camera_position = toVec4(view.camera_position_enu, ground_start_height_m_);
+    frame.sun_direction = toVec4(view.sun_direction_enu, view.sun_shines ? 1.0 : 0.0);
+    frame.sun_irradiance = toVec4(view.sun_irradiance_rgb, view.exposure);
+    uint32_t* const slot_indices[3] = {&frame.slot_index0, &frame.slot_index1, &frame.slot_index2};
+    for (int k = 0; k < 3; ++k) {
+        const bool used = view.slots[k] >= 0 && uint32_t(view.slots[k]) < ground_slot_count_ && view.weights[k] > 0.0f;
+        frame.slot_weights[k] = used ? view.weights[k] : 0.0f;
+        *slot_indices[k] = used ? uint32_t(view.slots[k]) : 0u;
+    }
+    frame.ground_grid = {{float(ground_grid_.origin_enu_m.x), float(ground_grid_.origin_enu_m.y),
+                          float(ground_grid_.cell_m), 0.0f}};
+    frame.cell_count = uint32_t(ground_grid_.cellCount());
+    frame.columns = uint32_t(ground_grid_.columns);
+    frame.rows = uint32_t(ground_grid_.rows);
+    frame.slot_count = ground_slot_count_;
+    ground_frame_buffer_.upload(&frame, sizeof frame);  // host-visible: a memcpy, read after the submission
+
+    const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
+    recordMemoryBarrier(cmd,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT | fragment,
+                        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    ColourStatisticsPushConstants statistics{};
+    statistics.frame_width = frame_width_;
+    statistics.frame_height = frame_height_;
+    statistics.stride = grid_.stride;
+    statistics.first_sample_offset = grid_.offset;
+    statistics.samples_x = grid_.samples_x;
+    statistics.samples_y = grid_.samples_y;
+    statistics.workgroups_x = workgroups_x_;
+    statistics.partials_per_workgroup = GROUND_MATCH_BINS;
+    ground_statistics_pipeline_->recordDispatch(cmd, &statistics, workgroups_x_, workgroups_y_);
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    ColourReducePushConstants reduce{};
+    reduce.partial_count = workgroups_x_ * workgroups_y_;
+    reduce.min_valid_samples = kGroundMatchMinSamples;
+    reduce.smoothing_weight = smoothing_weight_;
+    reduce.reset = reset_pending_ ? 1u : 0u;
+    ground_reduce_pipeline_->recordDispatch(cmd, &reduce, 1);
+    reset_pending_ = false;
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | fragment | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
 }
 
 void ColourStatisticsPass::recordSourceUpdate(VkCommandBuffer cmd, const LabStatistics& source, ColourMatchMode mode,

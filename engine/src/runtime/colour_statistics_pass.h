@@ -8,6 +8,7 @@
 // allocates nothing. Not thread-safe; one frame in flight at a time (the runtime waits on its fence).
 
 #include <cstdint>
+#include <memory>
 
 #include <vulkan/vulkan.h>
 
@@ -26,8 +27,10 @@ public:
     /// smoothing with the time constant smoothing_frames (RuntimeOptions). Throws RuntimeError kInvalidFrame for
     /// a stride of 0 or larger than a side, kDevice when the device lacks subgroup arithmetic in compute
     /// shaders (Vulkan 1.1's VkPhysicalDeviceSubgroupProperties) or a Vulkan call fails. gpu must outlive this.
+    /// ground: the bake set's ground for mode kGround (groundMatchSceneFrom), or null when it has no albedo
+    /// (recordGround then may not be called); its buffers are uploaded here.
     ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height, uint32_t stride,
-                         float smoothing_frames);
+                         float smoothing_frames, const GroundMatchScene* ground = nullptr);
     ColourStatisticsPass(const ColourStatisticsPass&) = delete;
     ColourStatisticsPass& operator=(const ColourStatisticsPass&) = delete;
 
@@ -47,7 +50,14 @@ public:
     /// the next record() starts the smoothing over.
     void record(VkCommandBuffer cmd, const GpuBuffer& camera_buffer);
 
-    /// The next record() forgets the smoothed statistics (a cut in the camera feed).
+    /// Mode kGround's statistics (colour_statistics_ground.comp and its reduce) of camera_buffer for this view,
+    /// with the barriers and camera-buffer rules of record(). Writes the view into a host-visible buffer first:
+    /// no earlier submission of this pass may still be running (the runtime waits on its fence each frame).
+    /// Only when hasGround().
+    void recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer, const GroundMatchView& view);
+    bool hasGround() const { return ground_statistics_pipeline_ != nullptr; }
+
+    /// The next record() or recordGround() forgets the smoothed statistics and gain (a cut in the camera feed).
     void reset() { reset_pending_ = true; }
 
     /// The state buffer (one ColourMatchState), for the building pass's descriptor set.
@@ -74,6 +84,17 @@ private:
     GpuBuffer partial_buffer_;
     ComputePipeline statistics_pipeline_;
     ComputePipeline reduce_pipeline_;
+    // Mode kGround (all null / empty without a ground albedo).
+    float ground_start_height_m_ = 0.0f;
+    GroundGrid ground_grid_;
+    uint32_t ground_slot_count_ = 0;
+    VkBuffer ground_bound_camera_buffer_ = VK_NULL_HANDLE;
+    GpuBuffer ground_cell_buffer_;
+    GpuBuffer ground_irradiance_buffer_;
+    GpuBuffer ground_frame_buffer_;  // host-visible GroundMatchFrame
+    GpuBuffer ground_partial_buffer_;
+    std::unique_ptr<ComputePipeline> ground_statistics_pipeline_;
+    std::unique_ptr<ComputePipeline> ground_reduce_pipeline_;
 };
 
 }  // namespace gusuku

@@ -312,6 +312,7 @@ std::string convertFrame(const gusuku_frame_input& frame, gusuku::FrameInput& co
     case GUSUKU_COLOUR_MATCH_OFF: converted.colour_match = gusuku::ColourMatch::kOff; break;
     case GUSUKU_COLOUR_MATCH_PAPER: converted.colour_match = gusuku::ColourMatch::kPaper; break;
     case GUSUKU_COLOUR_MATCH_PRESERVE: converted.colour_match = gusuku::ColourMatch::kPreserve; break;
+    case GUSUKU_COLOUR_MATCH_GROUND: converted.colour_match = gusuku::ColourMatch::kGround; break;
     default: return "colour_match: " + std::to_string(int(frame.colour_match)) + " is not a gusuku_colour_match";
     }
     const uint32_t known = GUSUKU_FRAME_BLEND_SLOTS | GUSUKU_FRAME_GROUND_RATIO;

@@ -176,6 +176,7 @@ private:
     bool site_shadows_ = false;
     LabStatistics frame_source_statistics_{};
     ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;
+    GroundMatchView frame_ground_view_;  // mode kGround: this frame's camera and light
 };
 
 RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options)
@@ -205,9 +206,12 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
                                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
         ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
         createTargets();
+        // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
+        const std::optional<GroundMatchScene> ground = groundMatchSceneFrom(bake_set);
         statistics_ = std::make_unique<ColourStatisticsPass>(gpu, options.frame_width, options.frame_height,
                                                              options.statistics_stride,
-                                                             options.statistics_smoothing_frames);
+                                                             options.statistics_smoothing_frames,
+                                                             ground ? &*ground : nullptr);
         createDescriptors();
         createPipelines();
         VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -631,7 +635,28 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
 
     // The colour match's source: the baked appearance's statistics, blended like the lightmaps.
+    if (frame.colour_match == ColourMatchMode::kGround && !statistics_->hasGround())
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "frame: colour_match: ground needs the bake set's ground_grid.albedo, which this bake set "
+                           "lacks (bake it again)");
     frame_colour_mode_ = direct_only ? ColourMatchMode::kOff : frame.colour_match;
+    if (frame_colour_mode_ == ColourMatchMode::kGround) {
+        GroundMatchView& view = frame_ground_view_;
+        view.fx = frame.intrinsics.fx;
+        view.fy = frame.intrinsics.fy;
+        view.cx = frame.intrinsics.cx;
+        view.cy = frame.intrinsics.cy;
+        view.camera_position_enu = frame.pose.position_enu;
+        view.camera_to_enu = frame.pose.camera_to_enu;
+        view.sun_direction_enu = lighting.sun.direction_enu;
+        view.sun_shines = sun_shines_;
+        view.sun_irradiance_rgb = lighting.sun_irradiance_rgb;
+        view.exposure = frame.exposure;
+        for (int index = 0; index < 3; ++index) {
+            view.slots[index] = blend_slots[index];
+            view.weights[index] = blend_weights[index];
+        }
+    }
     LabStatistics slot_statistics[3];
     for (int index = 0; index < 3; ++index)
         if (blend_slots[index] >= 0) slot_statistics[index] = slot_colour_statistics_[size_t(blend_slots[index])];
@@ -689,7 +714,10 @@ void RuntimeImpl::recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame) {
 
 void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
     statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
-    if (frame_colour_mode_ != ColourMatchMode::kOff) statistics_->record(cmd, camera_buffer_);
+    if (frame_colour_mode_ == ColourMatchMode::kGround)
+        statistics_->recordGround(cmd, camera_buffer_, frame_ground_view_);
+    else if (frame_colour_mode_ != ColourMatchMode::kOff)
+        statistics_->record(cmd, camera_buffer_);
 }
 
 void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {

@@ -1,0 +1,22 @@
+#pragma once
+// The ground's albedo per ground-grid cell (docs/bakeset.md "Ground albedo"): what the runtime's ground colour
+// match (gusuku/colour_match.h, ColourMatch::kGround) needs to predict the camera's pixels of the real ground.
+
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "bake_geometry.h"
+
+namespace gusuku::bake {
+
+/// The bake set's file of the ground albedo (manifest ground_grid.albedo).
+inline constexpr const char* kGroundAlbedoFile = "ground_albedo.exr";
+
+/// Per cell (texel order, gusuku/ground_grid.h): RGB the linear base colour (material factor times its texture,
+/// the texel nearest the hit's uv) of the site triangle under the cell centre, A 1; cells without ground (0, 0, 0,
+/// 0). The triangle is found as sampleGround finds it (a ray straight down from above the scene, the building's
+/// triangles skipped), so the albedo belongs to the same point as the cell's height and normal.
+std::vector<glm::vec4> sampleGroundAlbedo(const BakeGeometry& geometry);
+
+}  // namespace gusuku::bake
