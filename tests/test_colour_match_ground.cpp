@@ -23,6 +23,8 @@
 #include "colour_statistics_pass.h"
 #include "gpu_test_support.h"
 #include "gusuku/colour.h"
+#include "gusuku/bakeset_manifest_json.h"
+#include "gusuku/bakeset_validate.h"
 #include "gusuku/colour_match.h"
 #include "gusuku/gpu_compute.h"
 #include "gusuku/runtime.h"
@@ -408,6 +410,27 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
                 unmatched[centre + 2], matched[centre], matched[centre + 1], matched[centre + 2],
                 camera.rgba[centre], camera.rgba[centre + 1], camera.rgba[centre + 2]);
     EXPECT_GT(compared, 300u);
+}
+
+TEST(GroundMatchBakeSet, ManifestFieldRoundTripsAndIsOptional) {
+    BakeSetData bake_set = bakeSetWithGroundAlbedo();
+    EXPECT_EQ(findBakeSetProblem(bake_set), std::nullopt);
+    const std::string text = bakeSetManifestJson(bake_set.manifest);
+    EXPECT_NE(text.find("\"albedo\": \"ground_albedo.exr\""), std::string::npos);
+    EXPECT_EQ(parseBakeSetManifest("manifest.json", text).ground_grid.albedo, "ground_albedo.exr");
+    // An older manifest: no field, loads with an empty name.
+    const BakeSetData old_set = testing::makeSyntheticBakeSet();
+    const std::string old_text = bakeSetManifestJson(old_set.manifest);
+    EXPECT_EQ(old_text.find("albedo"), std::string::npos);
+    EXPECT_TRUE(parseBakeSetManifest("manifest.json", old_text).ground_grid.albedo.empty());
+    // The manifest and the data must agree; a negative albedo is refused naming the texel.
+    BakeSetData no_image = bake_set;
+    no_image.ground_albedo = {};
+    EXPECT_NE(findBakeSetProblem(no_image).value_or("").find("ground_albedo: missing"), std::string::npos);
+    bake_set.ground_albedo.rgba[5] = -0.5f;
+    EXPECT_NE(findBakeSetProblem(bake_set).value_or("").find("ground_albedo: texel (1, 0) channel G"),
+              std::string::npos)
+        << findBakeSetProblem(bake_set).value_or("");
 }
 
 TEST(GroundMatchBakeSet, WithoutAlbedoTheModeIsRefusedAndOthersRun) {
