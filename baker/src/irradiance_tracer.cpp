@@ -20,7 +20,7 @@ namespace {
 // Bindings and push constants are written once, in shaders/include/bake_{irradiance,accumulate}_interface.h.
 using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
 using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
-static_assert(sizeof(BakePushConstants) == 68 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
+static_assert(sizeof(BakePushConstants) == 72 && offsetof(BakePushConstants, bounces_before_roulette) == 68 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
                   offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
                   offsetof(BakePushConstants, sky_next_event) == 64,
               "std430 offsets of bake_irradiance_interface.h's push constants");
@@ -114,6 +114,7 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     packSunLight(pass.sun, pass.ray_offset_m, push.sun_direction_cos_max.components,
                  push.sun_irradiance_ray_offset.components);
     push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
+    push.bounces_before_roulette = pass.bounces_before_roulette;
 
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
     const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));

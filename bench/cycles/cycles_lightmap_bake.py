@@ -7,8 +7,8 @@
 # lights them as gusuku's bake of SLOT does (LIGHTING_DIR from `gusuku-bake converge --export-lighting`): the sky
 # map the tracer samples (the sun disc taken out, laid out for Blender's world) and, for a sunny slot, a sun lamp
 # of the tracer's direction, irradiance and angular radius. gusuku's texels hold E_ind, everything but the direct
-# sun at the texel (docs/bakeset.md), so the sun lamp's strength is gated to 0 on rays of depth 0 (the light
-# sampled from the baked surface itself) and to its irradiance at every later vertex (light bounced off the
+# sun at the texel (docs/bakeset.md), so the sun lamp's strength is gated to 0 when it is sampled
+# from the baked surface itself (where a bake's Light Path ray depth reads 1, measured) and to its irradiance at every later vertex (light bounced off the
 # building and the site): Cycles' DIFFUSE bake of direct + indirect light then measures E_ind / pi, as it does
 # for an overcast slot with no sun at all. It bakes the building's lightmap at each sample count, timing each
 # bake, with every texel taking all its samples ("fixed", as gusuku does) and, unless CYCLES_MODES says
@@ -80,7 +80,10 @@ if sun["present"]:
     light_path = nodes.new("ShaderNodeLightPath")
     after_first_bounce = nodes.new("ShaderNodeMath")
     after_first_bounce.operation = "GREATER_THAN"
-    after_first_bounce.inputs[1].default_value = 0.5
+    # Cycles' Light Path "Ray Depth" reads 1, not 0, when a light is sampled from the baked surface itself
+    # (measured on the sample's sunny_1200: a threshold of 0.5 leaves the direct sun in, fitted scale 0.918
+    # against gusuku's E_ind; 1.5 gives 3.1409, pi; no sun at all gives 3.989).
+    after_first_bounce.inputs[1].default_value = 1.5
     lamp_data.node_tree.links.new(light_path.outputs["Ray Depth"], after_first_bounce.inputs[0])
     lamp_data.node_tree.links.new(after_first_bounce.outputs["Value"], emission.inputs["Strength"])
     lamp = bpy.data.objects.new("sun", lamp_data)

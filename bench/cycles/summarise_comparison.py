@@ -12,6 +12,10 @@ that setup added. The denoised curve includes the filter's own time where the st
 
 Python's standard library only, so it runs wherever the comparison runs.
 Usage: summarise_comparison.py OUT_DIR
+       summarise_comparison.py --table OUT_DIR "SITE..." "SLOT..."   (one line per slot: seconds to 2 %, ratios)
+
+Errors are the columns with each reference's own noise taken out where the inputs have them
+(rel_rms_corrected, relative_rms_corrected).
 """
 import math
 import os
@@ -40,14 +44,16 @@ def read_gusuku(path):
 
 
 def read_cycles(path):
-    """{mode: [(samples, seconds, relative_rms), ...]} from the CYCLES_RESULT lines, mode "fixed" or "adaptive"."""
+    """{mode: [(samples, seconds, relative_rms), ...]} from the CYCLES_RESULT lines, mode "fixed" or "adaptive";
+    the error with the reference's own noise taken out where the line has it."""
     curves = {}
     with open(path) as stream:
         for line in stream:
-            match = re.match(r"CYCLES_RESULT mode=(\w+) samples=(\d+) seconds=([0-9.]+) relative_rms=([0-9.]+)", line)
+            match = re.match(r"CYCLES_RESULT mode=(\w+) samples=(\d+) seconds=([0-9.]+) relative_rms=([0-9.]+)"
+                             r"(?: relative_rms_corrected=([0-9.]+))?", line)
             if match:
-                curves.setdefault(match.group(1), []).append(
-                    (int(match.group(2)), float(match.group(3)), float(match.group(4))))
+                rms = float(match.group(5) if match.group(5) is not None else match.group(4))
+                curves.setdefault(match.group(1), []).append((int(match.group(2)), float(match.group(3)), rms))
     if not curves:
         sys.exit(f"summarise_comparison: {path}: no CYCLES_RESULT lines found")
     return curves
@@ -82,6 +88,72 @@ def faster_of_two_runs(gusuku_rows, setup_seconds, gusuku_repeat_path, cycles_cu
                      for samples, seconds, rms in points]
               for mode, points in cycles_curves.items()}
     return gusuku_rows, setup_seconds, curves, bool(repeat)
+
+
+def gusuku_curves(rows):
+    """(raw, denoised) curves of (trace seconds, relative RMS), the reference's noise taken out where the table
+    has those columns; the denoised one includes the filter's time."""
+    raw_key = "rel_rms_corrected" if "rel_rms_corrected" in rows[0] else "rel_rms"
+    denoised_key = "rel_rms_denoised_corrected" if "rel_rms_denoised_corrected" in rows[0] else "rel_rms_denoised"
+    raw = [(row["trace_s"], row[raw_key]) for row in rows]
+    denoised = [(row["trace_s"] + row.get("denoise_s", 0.0), row[denoised_key]) for row in rows]
+    return raw, denoised
+
+
+def seconds_to_reach_or_extrapolated(curve, target):
+    """(seconds, extrapolated): measured as seconds_to_reach, else extended from the last two points with the
+    curve's last log-log slope (marked, so a table shows which figures were not measured)."""
+    seconds = seconds_to_reach(curve, target)
+    if seconds is not None:
+        return seconds, False
+    points = [(s, r) for s, r in curve if s > 0 and r > 0]
+    if len(points) < 2:
+        return None, False
+    (s0, r0), (s1, r1) = points[-2], points[-1]
+    if r1 >= r0:
+        return None, False
+    slope = (math.log(r1) - math.log(r0)) / (math.log(s1) - math.log(s0))
+    return s1 * math.exp((math.log(target) - math.log(r1)) / slope), True
+
+
+def table(out, sites, slots, target=0.02):
+    """One line per (site, slot): wall seconds to `target` for gusuku (denoised and raw, setup included) and
+    Cycles (its faster mode), and the ratio Cycles / gusuku. '*' marks a time extrapolated past the last point."""
+    print(f"{'site':8s} {'slot':11s} {'gusuku den.':>12s} {'gusuku raw':>12s} {'Cycles':>10s} "
+          f"{'Cycles/den.':>12s} {'Cycles/raw':>11s}")
+    for site in sites:
+        for slot in slots:
+            folder = os.path.join(out, site, slot)
+            if not (os.path.exists(folder + "/gusuku.txt") and os.path.exists(folder + "/cycles.txt")):
+                print(f"{site:8s} {slot:11s} (not run)")
+                continue
+            rows, setup = read_gusuku(folder + "/gusuku.txt")
+            rows, setup, cycles_curves, _ = faster_of_two_runs(rows, setup, folder + "/gusuku_repeat.txt",
+                                                               read_cycles(folder + "/cycles.txt"),
+                                                               folder + "/cycles_repeat.txt")
+            raw, denoised = gusuku_curves(rows)
+            found = [seconds_to_reach_or_extrapolated(c, target) for c in cycles_curves.values()]
+            found = [f for f in found if f[0] is not None]
+            cycles = min(found) if found else (None, False)
+            cells = []
+            for seconds, extrapolated in (seconds_to_reach_or_extrapolated(denoised, target),
+                                          seconds_to_reach_or_extrapolated(raw, target)):
+                cells.append((seconds + setup if seconds is not None else None, extrapolated))
+
+            def show(value, width):
+                seconds, extrapolated = value
+                return f"{'-' if seconds is None else f'{seconds:.1f}' + ('*' if extrapolated else ''):>{width}s}"
+
+            def ratio(gusuku, width):
+                if gusuku[0] is None or cycles[0] is None:
+                    return f"{'-':>{width}s}"
+                mark = "*" if gusuku[1] or cycles[1] else ""
+                return f"{f'{cycles[0] / gusuku[0]:.2f}{mark}':>{width}s}"
+
+            print(f"{site:8s} {slot:11s} {show(cells[0], 12)} {show(cells[1], 12)} {show(cycles, 10)} "
+                  f"{ratio(cells[0], 12)} {ratio(cells[1], 11)}")
+    print("seconds of wall time to 2 % relative RMS, each against its own converged bake with that bake's own noise "
+          "taken out; gusuku's setup included; * extrapolated past the last measured point by its last slope")
 
 
 def seconds_to_reach(curve, target):
@@ -142,15 +214,17 @@ def write_svg(path, curves):
 
 
 def main():
+    if len(sys.argv) == 5 and sys.argv[1] == "--table":
+        table(sys.argv[2], sys.argv[3].split(), sys.argv[4].split())
+        return
     if len(sys.argv) != 2:
-        sys.exit("usage: summarise_comparison.py OUT_DIR")
+        sys.exit("usage: summarise_comparison.py OUT_DIR | --table OUT_DIR 'SITES' 'SLOTS'")
     out = sys.argv[1]
     gusuku_rows, setup_seconds = read_gusuku(out + "/gusuku.txt")
     gusuku_rows, setup_seconds, cycles_curves, repeated = faster_of_two_runs(
         gusuku_rows, setup_seconds, out + "/gusuku_repeat.txt", read_cycles(out + "/cycles.txt"),
         out + "/cycles_repeat.txt")
-    raw = [(row["trace_s"], row["rel_rms"]) for row in gusuku_rows]
-    denoised = [(row["trace_s"] + row.get("denoise_s", 0.0), row["rel_rms_denoised"]) for row in gusuku_rows]
+    raw, denoised = gusuku_curves(gusuku_rows)
     methods = [
         ("gusuku raw", raw, 0.0),
         ("gusuku denoised", denoised, 0.0),

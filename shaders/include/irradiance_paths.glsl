@@ -41,6 +41,9 @@ uint g_rays_traced = 0u;
 // of -0.54 (no roulette at all measured the same: 3.9 % at 1.66x the rays). Past three reflections the weight
 // is rho^3 (under 0.03 for stone and plaster), where roulette's extra noise is small and it saves long paths.
 const uint kBouncesBeforeRoulette = 3u;
+// What the paths use; a kernel may override it before tracing (bake_irradiance.comp takes it from its push
+// constants so that tests can run the earlier estimator, 1, side by side with this one).
+uint g_bounces_before_roulette = kBouncesBeforeRoulette;
 
 bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
     g_rays_traced++;
@@ -127,7 +130,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         if (depth >= settings.max_bounces) break;
 
         path_weight *= surface.albedo;
-        if (depth + 1u >= kBouncesBeforeRoulette) {
+        if (depth + 1u >= g_bounces_before_roulette) {
             // Russian roulette on the path weight: unbiased, and ends dark paths early; only past the first
             // kBouncesBeforeRoulette reflections (see there).
             float survival = clamp(max(path_weight.r, max(path_weight.g, path_weight.b)), 0.05, 0.95);

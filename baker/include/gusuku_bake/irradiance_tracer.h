@@ -55,6 +55,9 @@ enum class SkySampling : uint32_t {
     CosineAndMap = 2,  ///< plus a shadow ray to a direction drawn from the map, MIS (power heuristic)
 };
 
+/// The tracer's default for TracePass::bounces_before_roulette (the GLSL's kBouncesBeforeRoulette).
+inline constexpr uint32_t kBouncesBeforeRoulette = 3;
+
 struct TracePass {
     TraceMode mode = TraceMode::IndirectIrradiance;
     uint32_t skip_flags = 0;   ///< e.g. kTriangleFlagBuilding for E_without
@@ -63,6 +66,9 @@ struct TracePass {
     SunLight sun;
     float ray_offset_m = 1e-3f;  ///< how far rays start off their surface
     SkySampling sky_sampling = SkySampling::Automatic;
+    /// Russian roulette ends paths only from this many reflections on (shaders/include/irradiance_paths.glsl's
+    /// kBouncesBeforeRoulette, 3, says why); 1 is the estimator before issue 11.1, for tests that compare the two.
+    uint32_t bounces_before_roulette = kBouncesBeforeRoulette;
 };
 
 /// Running sums for one set of query points, resident on the GPU.
