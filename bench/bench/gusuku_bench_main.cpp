@@ -631,16 +631,26 @@ void runDay(Bench& bench) {
                   " | " + fixed(without_blend.mean_de00) + " | " + fixed(matched.mean_de00) + " | " +
                   fixed(direct_only.mean_de00) + " |");
     }
-    // Where the blend's error passes 2 and 5.
+    // Where the blend's error passes 2 and 5: the steps above, as runs of consecutive steps in site clock time.
     Json findings;
     for (double threshold : {2.0, 5.0}) {
         std::vector<std::string> hours;
-        for (const auto& [hour, error] : blend_errors)
-            if (error > threshold) hours.push_back(fixed(hour, 2));
+        std::string runs;
+        size_t above = 0;
+        for (size_t step = 0; step < blend_errors.size(); ++step) {
+            if (blend_errors[step].second <= threshold) continue;
+            hours.push_back(fixed(blend_errors[step].first, 2));
+            ++above;
+            const bool starts_run = step == 0 || blend_errors[step - 1].second <= threshold;
+            const bool ends_run = step + 1 == blend_errors.size() || blend_errors[step + 1].second <= threshold;
+            const std::string clock = bench.localTime(bench.bake_midnight_utc + blend_errors[step].first * 3600.0);
+            if (starts_run) runs += (runs.empty() ? "" : ", ") + clock;
+            if (ends_run && !starts_run) runs += " to " + clock;
+        }
         findings["blend_above_" + fixed(threshold, 0) + "_de00_hours"] = hours;
         bench.say("day: blend error above " + fixed(threshold, 0) + " dE00 at " +
-                  (hours.empty() ? std::string("no step") : std::to_string(hours.size()) + " steps, hours " +
-                                                               [&] { std::string all; for (auto& h : hours) all += (all.empty() ? "" : ", ") + h; return all; }()));
+                  (above == 0 ? std::string("no step")
+                              : std::to_string(above) + " of " + std::to_string(blend_errors.size()) + " steps: " + runs));
     }
     // Why: the error at the slots' own times (where neither the blend nor the nearest slot interpolates anything,
     // so what is left is the method's error at a baked instant), against the steps between slots; and the truth's
