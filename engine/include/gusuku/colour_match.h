@@ -68,8 +68,8 @@
 //   (-1.5 stops and more) or a wall does not move it; the median cannot be pulled by under half the samples.
 // - Clipped samples (isClippedCameraPixel) whose ray hits the ground are counted and left out; samples whose
 //   predicted luminance is below kGroundMatchMinPredicted (no light, black albedo) are left out.
-// - A frame is accepted when at least kGroundMatchMinSamples samples are kept and every channel's predicted
-//   sum is positive; otherwise the smoothed gain stays (a frame of sky keeps the last estimate, or the
+// - A frame is accepted when at least colourStatisticsMinValidSamples(samples of the grid) samples are kept
+//   (max(16, 5 % of the grid), as the Lab statistics) and every channel's predicted sum is positive; otherwise the smoothed gain stays (a frame of sky keeps the last estimate, or the
 //   identity before any). The gain is clamped per channel to [1 / gain_limit, gain_limit], then smoothed like
 //   the Lab statistics (new = old + alpha (frame - old), the first accepted frame taken as it is).
 // - Transfer: y = clamp(gain x, 0, 1), x the building's linear radiance times the frame's exposure (sanitised
@@ -190,7 +190,6 @@ inline constexpr uint32_t kGroundMatchBins = 64;
 inline constexpr double kGroundMatchBinsPerStop = 8.0;
 inline constexpr double kGroundMatchLowestLog2Ratio = -4.0;
 inline constexpr uint32_t kGroundMatchWindowBins = 4;
-inline constexpr uint32_t kGroundMatchMinSamples = 64;
 inline constexpr int kGroundMatchHeightIterations = 4;
 inline constexpr double kGroundMatchMinPredicted = 1e-6;
 

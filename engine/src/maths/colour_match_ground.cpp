@@ -162,7 +162,7 @@ GroundColourEstimate measureGroundColourGain(std::span<const uint8_t> rgba8, uin
         estimate.predicted_sum += bins[b].predicted;
     }
     const double limit = std::max(1.0, double(gain_limit));
-    estimate.accepted = estimate.kept_samples >= kGroundMatchMinSamples;
+    estimate.accepted = estimate.kept_samples >= colourStatisticsMinValidSamples(grid.sampleCount());
     for (int c = 0; c < 3; ++c) {
         if (!(estimate.predicted_sum[c] > 0.0)) {
             estimate.accepted = false;

@@ -237,7 +237,7 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ColourReducePushConstants reduce{};
     reduce.partial_count = workgroups_x_ * workgroups_y_;
-    reduce.min_valid_samples = kGroundMatchMinSamples;
+    reduce.min_valid_samples = min_valid_samples_;
     reduce.smoothing_weight = smoothing_weight_;
     reduce.reset = reset_pending_ ? 1u : 0u;
     ground_reduce_pipeline_->recordDispatch(cmd, &reduce, 1);
