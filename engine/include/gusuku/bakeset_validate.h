@@ -22,6 +22,8 @@ namespace gusuku {
 ///   - the occluder: indices a multiple of 3 and in range, positions finite; its triangle count the manifest's
 ///     occluder.triangles when the manifest names one;
 ///   - ground_geometry: columns x rows texels, every value finite;
+///   - ground_albedo (optional: older bake sets have none): present exactly when the manifest names
+///     ground_grid.albedo; then columns x rows texels, finite, RGB >= 0;
 ///   - slots: one per manifest slot; building lightmap_resolution^2, ground_with and ground_without columns x
 ///     rows; every texel finite and RGB >= 0 (irradiance), naming the first bad texel as "texel (x, y) channel C"
 ///     (x the column, y the row from the top).
