@@ -12,6 +12,9 @@ namespace gusuku::bake {
 
 namespace {
 
+// Points per cell side whose base colours are averaged (16 rays per cell on the CPU).
+constexpr int kGroundAlbedoSubsamples = 4;
+
 glm::vec3 baseColourAt(const TriangleMesh& mesh, uint32_t triangle, float u, float v) {
     const uint32_t material_index = triangle < mesh.triangle_material.size() ? mesh.triangle_material[triangle] : 0u;
     const Material fallback;
@@ -49,12 +52,25 @@ std::vector<glm::vec4> sampleGroundAlbedo(const BakeGeometry& geometry) {
             const size_t index = groundCellIndex(region, {column, row});
             if (index >= geometry.ground_cells.size() || !geometry.ground_cells[index].valid) continue;
             const glm::dvec2 centre = groundCellCentre(region, column, row);
-            const auto hit = traceClosestCpu(geometry.cpu_bvh, glm::vec3(float(centre.x), float(centre.y), top_z),
-                                             down, 1e30f, kTriangleFlagBuilding);
-            if (!hit) continue;
-            const glm::vec3 colour = baseColourAt(mesh, hit->triangle_index, hit->barycentric_u, hit->barycentric_v);
-            if (!(std::isfinite(colour.r) && std::isfinite(colour.g) && std::isfinite(colour.b))) continue;
-            albedo[index] = glm::vec4(glm::max(colour, glm::vec3(0.0f)), 1.0f);
+            // The mean over kGroundAlbedoSubsamples^2 points spread over the cell: a camera pixel sees an area of
+            // ground, and the match compares it with its cell's value (a point would carry the texture's detail).
+            glm::dvec3 sum(0.0);
+            int hits = 0;
+            for (int j = 0; j < kGroundAlbedoSubsamples; ++j)
+                for (int i = 0; i < kGroundAlbedoSubsamples; ++i) {
+                    const double dx = ((i + 0.5) / kGroundAlbedoSubsamples - 0.5) * region.cell_m;
+                    const double dy = ((j + 0.5) / kGroundAlbedoSubsamples - 0.5) * region.cell_m;
+                    const auto hit = traceClosestCpu(geometry.cpu_bvh,
+                                                     glm::vec3(float(centre.x + dx), float(centre.y + dy), top_z),
+                                                     down, 1e30f, kTriangleFlagBuilding);
+                    if (!hit) continue;
+                    const glm::vec3 colour =
+                        baseColourAt(mesh, hit->triangle_index, hit->barycentric_u, hit->barycentric_v);
+                    if (!(std::isfinite(colour.r) && std::isfinite(colour.g) && std::isfinite(colour.b))) continue;
+                    sum += glm::dvec3(glm::max(colour, glm::vec3(0.0f)));
+                    ++hits;
+                }
+            if (hits > 0) albedo[index] = glm::vec4(glm::vec3(sum / double(hits)), 1.0f);
         }
     return albedo;
 }

@@ -14,9 +14,10 @@ namespace gusuku::bake {
 inline constexpr const char* kGroundAlbedoFile = "ground_albedo.exr";
 
 /// Per cell (texel order, gusuku/ground_grid.h): RGB the linear base colour (material factor times its texture,
-/// the texel nearest the hit's uv) of the site triangle under the cell centre, A 1; cells without ground (0, 0, 0,
-/// 0). The triangle is found as sampleGround finds it (a ray straight down from above the scene, the building's
-/// triangles skipped), so the albedo belongs to the same point as the cell's height and normal.
+/// the texel nearest the hit's uv) of the site's triangles, averaged over 4 x 4 points spread evenly over the cell,
+/// A 1; cells without ground (no SfM mesh under the centre, as ground_cells says) (0, 0, 0, 0). Each point's
+/// triangle is found as sampleGround finds the centre's (a ray straight down from above the scene, the building's
+/// triangles skipped).
 std::vector<glm::vec4> sampleGroundAlbedo(const BakeGeometry& geometry);
 
 }  // namespace gusuku::bake
