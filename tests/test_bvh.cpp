@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -228,12 +229,9 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, const std::vector<uint32_
 
 // ---- structure ------------------------------------------------------------------------------------------
 
-bool inside(const BvhNodeGpu& child, const BvhNodeGpu& parent) {
-    for (int a = 0; a < 3; ++a)
-        if (child.bounds_min[a] < parent.bounds_min[a] || child.bounds_max[a] > parent.bounds_max[a]) return false;
-    return true;
-}
-
+// Every inner node reached once, every triangle in exactly one leaf of <= kBvhMaxLeafTriangles, its corners
+// inside every decoded box on the way down (a child's box may overhang its parent's by a quantisation step:
+// only the triangles must be inside, or a ray could miss them).
 void expectWellFormed(const Bvh& bvh, size_t usable_triangle_count) {
     ASSERT_FALSE(bvh.nodes.empty());
     ASSERT_EQ(bvh.triangles.size(), usable_triangle_count);
@@ -243,8 +241,10 @@ void expectWellFormed(const Bvh& bvh, size_t usable_triangle_count) {
     struct Visit {
         uint32_t node;
         uint32_t depth;
+        BvhBox box;  // the intersection of the boxes on the way down (the root: everything)
     };
-    std::vector<Visit> todo{{0, 1}};
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<Visit> todo{{0, 1, BvhBox{vec3(-inf), vec3(inf)}}};
     uint32_t deepest = 0;
     while (!todo.empty()) {
         const Visit visit = todo.back();
@@ -253,26 +253,29 @@ void expectWellFormed(const Bvh& bvh, size_t usable_triangle_count) {
         ++node_seen[visit.node];
         deepest = std::max(deepest, visit.depth);
         const BvhNodeGpu& node = bvh.nodes[visit.node];
-        if (node.triangle_count == 0) {
-            ASSERT_LT(node.left_or_first + 1, bvh.nodes.size());
-            EXPECT_TRUE(inside(bvh.nodes[node.left_or_first], node)) << "left child of " << visit.node;
-            EXPECT_TRUE(inside(bvh.nodes[node.left_or_first + 1], node)) << "right child of " << visit.node;
-            todo.push_back({node.left_or_first, visit.depth + 1});
-            todo.push_back({node.left_or_first + 1, visit.depth + 1});
-            continue;
-        }
-        EXPECT_LE(node.triangle_count, kBvhMaxLeafTriangles);
-        ASSERT_LE(node.left_or_first + node.triangle_count, bvh.triangles.size());
-        for (uint32_t i = node.left_or_first; i < node.left_or_first + node.triangle_count; ++i) {
-            ++triangle_seen[i];
-            source_indices.insert(bvh.triangles[i].triangle_index);
-            const BvhTriangleGpu& t = bvh.triangles[i];
-            for (int corner = 0; corner < 3; ++corner)
-                for (int a = 0; a < 3; ++a) {
-                    const float p = t.v0[a] + (corner == 1 ? t.edge1[a] : 0.0f) + (corner == 2 ? t.edge2[a] : 0.0f);
-                    EXPECT_GE(p, node.bounds_min[a]);
-                    EXPECT_LE(p, node.bounds_max[a]);
-                }
+        for (int c = 0; c < 2; ++c) {
+            const BvhBox decoded = decodeBvhChildBox(node, c);
+            const BvhBox box{glm::max(decoded.min, visit.box.min), glm::min(decoded.max, visit.box.max)};
+            const uint32_t ref = node.child[c];
+            if ((ref & kBvhChildLeaf) == 0) {
+                todo.push_back({ref, visit.depth + 1, box});
+                continue;
+            }
+            deepest = std::max(deepest, visit.depth + 1);
+            EXPECT_LE(bvhLeafCount(ref), kBvhMaxLeafTriangles);
+            ASSERT_LE(bvhLeafFirst(ref) + bvhLeafCount(ref), bvh.triangles.size());
+            for (uint32_t i = bvhLeafFirst(ref); i < bvhLeafFirst(ref) + bvhLeafCount(ref); ++i) {
+                ++triangle_seen[i];
+                source_indices.insert(bvh.triangles[i].triangle_index);
+                const BvhTriangleGpu& t = bvh.triangles[i];
+                for (int corner = 0; corner < 3; ++corner)
+                    for (int a = 0; a < 3; ++a) {
+                        const float p =
+                            t.v0[a] + (corner == 1 ? t.edge1[a] : 0.0f) + (corner == 2 ? t.edge2[a] : 0.0f);
+                        EXPECT_GE(p, box.min[a]);
+                        EXPECT_LE(p, box.max[a]);
+                    }
+            }
         }
     }
     for (size_t i = 0; i < triangle_seen.size(); ++i) ASSERT_EQ(triangle_seen[i], 1) << "triangle slot " << i;
@@ -440,6 +443,67 @@ TEST(BvhCpu, Builds100kTrianglesQuickly) {
     EXPECT_LT(bvh.nodes.size(), mesh.triangleCount());
 }
 
+// ---- exact reference: the closest hit by a scan of the BVH's triangles in leaf order -------------------------
+
+uint32_t bitsOf(float value) {
+    uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+// The smallest t over every triangle, ties to the first in leaf order (the contract of bvh.h), with the very
+// triangle test both traversals use: any correct traversal must return exactly this.
+std::optional<BvhHit> exactClosest(const Bvh& bvh, const Ray& ray) {
+    std::optional<BvhHit> best;
+    float t_limit = ray.t_max;
+    for (const BvhTriangleGpu& triangle : bvh.triangles) {
+        if ((triangle.flags & ray.skip_flags) != 0) continue;
+        float t, u, v;
+        if (!intersectTriangleCpu(triangle, ray.origin, ray.direction, t_limit, t, u, v)) continue;
+        t_limit = t;  // strictly closer only: an equal t later in leaf order loses
+        const vec3 edge1(triangle.edge1[0], triangle.edge1[1], triangle.edge1[2]);
+        const vec3 edge2(triangle.edge2[0], triangle.edge2[1], triangle.edge2[2]);
+        best = BvhHit{t, triangle.triangle_index, u, v, glm::dot(glm::cross(edge1, edge2), ray.direction) < 0.0f};
+    }
+    return best;
+}
+
+// A structured scene plus exact duplicates of every third triangle (coincident faces: every hit on them is a
+// tie at exactly equal t), on a heightfield whose shared edges rays graze.
+TriangleMesh sceneWithDuplicates(size_t& original) {
+    TriangleMesh mesh = structuredScene(30, 40, 13);
+    original = mesh.triangleCount();
+    for (size_t triangle = 0; triangle < original; triangle += 3)
+        mesh.indices.insert(mesh.indices.end(), {mesh.indices[3 * triangle], mesh.indices[3 * triangle + 1],
+                                                 mesh.indices[3 * triangle + 2]});
+    return mesh;
+}
+
+TEST(BvhCpu, TraversalEqualsLeafOrderScanBitForBitTiesIncluded) {
+    size_t original = 0;
+    const TriangleMesh mesh = sceneWithDuplicates(original);
+    const Bvh bvh = buildBvh(mesh, {});
+    expectWellFormed(bvh, mesh.triangleCount());
+    std::vector<Ray> rays = randomRays(3000, vec3(-20.0f, -20.0f, 0.5f), vec3(20.0f, 20.0f, 8.0f), 17);
+    size_t hits = 0, duplicate_hits = 0;
+    for (const Ray& ray : rays) {
+        const auto expected = exactClosest(bvh, ray);
+        const auto got = traceClosestCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags);
+        ASSERT_EQ(got.has_value(), expected.has_value());
+        ASSERT_EQ(occludedCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags), expected.has_value());
+        if (!expected) continue;
+        ++hits;
+        duplicate_hits += expected->triangle_index >= original || expected->triangle_index % 3 == 0;
+        EXPECT_EQ(got->triangle_index, expected->triangle_index);
+        EXPECT_EQ(bitsOf(got->t), bitsOf(expected->t));
+        EXPECT_EQ(bitsOf(got->barycentric_u), bitsOf(expected->barycentric_u));
+        EXPECT_EQ(bitsOf(got->barycentric_v), bitsOf(expected->barycentric_v));
+        EXPECT_EQ(got->front_face, expected->front_face);
+    }
+    EXPECT_GT(hits, rays.size() / 3);
+    EXPECT_GT(duplicate_hits, hits / 10) << "the ties should be exercised";
+}
+
 // ---- GPU: the GLSL traversal against the CPU traversal ---------------------------------------------------
 
 // Mirrors shaders/bvh_probe.comp.
@@ -499,36 +563,34 @@ protected:
         return result_buffer.downloadVector<ProbeResult>(rays.size());
     }
 
+    // Hit for hit and bit for bit: the GLSL traversal, the CPU traversal and the leaf-order linear scan
+    // (exactClosest) agree on every ray, ties included, so the answer depends on neither the tree nor the
+    // order its nodes are visited in.
     void expectMatchesCpu(const Bvh& bvh, const std::vector<Ray>& rays) {
         const std::vector<ProbeResult> results = probe(bvh, rays, kQueryClosest | kQueryOccluded);
-        size_t hits = 0, ties = 0, edge_disagreements = 0;
+        size_t hits = 0;
         for (size_t i = 0; i < rays.size(); ++i) {
             const Ray& ray = rays[i];
-            const auto expected = traceClosestCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags);
-            const bool expected_occluded = occludedCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags);
+            const std::optional<BvhHit> expected = exactClosest(bvh, ray);
+            const auto cpu = traceClosestCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags);
+            const bool cpu_occluded = occludedCpu(bvh, ray.origin, ray.direction, ray.t_max, ray.skip_flags);
             const ProbeResult& got = results[i];
-            const bool got_hit = got.triangle_index != 0xffffffffu;
-            EXPECT_EQ(got.occluded != 0, got_hit) << "ray " << i << ": any-hit disagrees with closest hit";
-            if (got_hit != expected.has_value() || (got.occluded != 0) != expected_occluded) {
-                // A float rounding difference may flip a ray that grazes a silhouette edge; count, allow a few.
-                ++edge_disagreements;
-                continue;
-            }
+            ASSERT_EQ(cpu.has_value(), expected.has_value()) << "ray " << i;
+            EXPECT_EQ(cpu_occluded, expected.has_value()) << "ray " << i;
+            EXPECT_EQ(got.occluded != 0, expected.has_value()) << "ray " << i;
+            ASSERT_EQ(got.triangle_index != 0xffffffffu, expected.has_value()) << "ray " << i;
             if (!expected) continue;
             ++hits;
-            EXPECT_NEAR(got.t, expected->t, 1e-4f * expected->t) << "ray " << i;
-            if (got.triangle_index != expected->triangle_index) {
-                ++ties;  // same t (asserted above) on another triangle: a shared edge or coincident faces
-                continue;
+            for (const BvhHit& traversed : {*cpu, BvhHit{got.t, got.triangle_index, got.barycentric_u,
+                                                         got.barycentric_v, got.front_face != 0}}) {
+                EXPECT_EQ(traversed.triangle_index, expected->triangle_index) << "ray " << i;
+                EXPECT_EQ(bitsOf(traversed.t), bitsOf(expected->t)) << "ray " << i;
+                EXPECT_EQ(bitsOf(traversed.barycentric_u), bitsOf(expected->barycentric_u)) << "ray " << i;
+                EXPECT_EQ(bitsOf(traversed.barycentric_v), bitsOf(expected->barycentric_v)) << "ray " << i;
+                EXPECT_EQ(traversed.front_face, expected->front_face) << "ray " << i;
             }
-            EXPECT_NEAR(got.barycentric_u, expected->barycentric_u, 1e-3f) << "ray " << i;
-            EXPECT_NEAR(got.barycentric_v, expected->barycentric_v, 1e-3f) << "ray " << i;
-            EXPECT_EQ(got.front_face != 0, expected->front_face) << "ray " << i;
         }
-        std::printf("GPU vs CPU: %zu rays, %zu hits, %zu edge ties, %zu hit/miss disagreements\n", rays.size(),
-                    hits, ties, edge_disagreements);
-        EXPECT_LE(edge_disagreements, rays.size() / 500 + 1);
-        EXPECT_LE(ties, rays.size() / 200 + 1);
+        std::printf("GPU, CPU traversal and leaf-order scan compared on %zu rays, %zu hits\n", rays.size(), hits);
         EXPECT_GT(hits, rays.size() / 10);
     }
 };
@@ -548,6 +610,10 @@ TEST_F(BvhGpuTest, ProbeMatchesCpuOnSoupAndScene) {
     const TriangleMesh scene = structuredScene(40, 60, 3);
     expectMatchesCpu(buildBvh(scene, {}),
                      randomRays(2000, vec3(-20.0f, -20.0f, 0.5f), vec3(20.0f, 20.0f, 8.0f), 5));
+
+    size_t original = 0;
+    expectMatchesCpu(buildBvh(sceneWithDuplicates(original), {}),
+                     randomRays(2000, vec3(-20.0f, -20.0f, 0.5f), vec3(20.0f, 20.0f, 8.0f), 6));
 }
 
 TEST_F(BvhGpuTest, EmptyBvhMissesOnGpu) {

@@ -1,12 +1,15 @@
 // Binned-SAH BVH construction (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"):
 // per node, triangle centroids are sorted into 16 bins along each axis and the plane between bins with the
-// lowest surface-area cost is chosen. The tree is written straight into the GPU layout of bvh.h.
+// lowest surface-area cost is chosen. The tree is built with float boxes, then written in the GPU layout of
+// bvh.h: each inner node holding its two children's boxes quantised to 16 bits on its own grid.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -115,15 +118,130 @@ SplitChoice findSahSplit(const std::vector<PrimitiveInfo>& primitives, const std
 // Node bounds grow by ~1e-6 relative: Moller-Trumbore works on v0 + edges rounded to float, and its t is
 // rounded too, so a hit can land a few ulps outside the exact box. Padding by a quantity that grows with
 // the coordinates keeps parents enclosing children (a parent's largest coordinate is at least its child's).
-void writePaddedBounds(BvhNodeGpu& node, const Box& box) {
+Box paddedBox(const Box& box) {
     float largest = 0.0f;
     for (int axis = 0; axis < 3; ++axis)
         largest = std::max({largest, std::fabs(box.min[axis]), std::fabs(box.max[axis])});
     const float pad = largest * (1.0f / 1048576.0f) + 1e-30f;
-    for (int axis = 0; axis < 3; ++axis) {
-        node.bounds_min[axis] = box.min[axis] - pad;
-        node.bounds_max[axis] = box.max[axis] + pad;
+    Box padded;
+    padded.min = box.min - glm::vec3(pad);
+    padded.max = box.max + glm::vec3(pad);
+    return padded;
+}
+
+// The tree as built, before quantisation: a leaf has triangle_count > 0 (or is the empty placeholder child).
+struct FloatNode {
+    Box bounds;  // padded
+    uint32_t left_or_first = 0;
+    uint32_t triangle_count = 0;
+    bool leaf = false;
+};
+
+float gridValue(float origin, uint32_t step, float scale) { return origin + static_cast<float>(step) * scale; }
+
+float scaleOfExponent(uint32_t biased_exponent) {
+    const uint32_t bits = biased_exponent << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return scale;
+}
+
+constexpr uint32_t kGridSteps = 65535;  // 16-bit grid
+
+// Quantises both children's boxes on one axis: the grid starts at origin (the parent's min) with the smallest
+// power-of-two step whose kGridSteps steps reach past both maxima; each min rounds down and each max up, then
+// moves a step further while float rounding of origin + q * scale would still cut into the box.
+void quantiseAxis(float origin, const Box (&children)[2], int axis, uint32_t& exponent_byte, uint32_t& min_word,
+                  uint32_t& max_word) {
+    float extent = std::max(children[0].max[axis], children[1].max[axis]) - origin;
+    extent = std::max(extent, 0.0f);
+    int exponent = 0;
+    std::frexp(extent / static_cast<float>(kGridSteps), &exponent);  // extent / steps < 2^exponent
+    uint32_t biased = static_cast<uint32_t>(std::clamp(exponent + 126, 1, 254));
+    for (;; ++biased) {
+        if (biased > 254) throw std::logic_error("bvh: a box too large to quantise");
+        const float scale = scaleOfExponent(biased);
+        uint32_t quantised[4] = {};
+        bool fits = true;
+        for (int c = 0; c < 2 && fits; ++c) {
+            const float lo = children[c].min[axis], hi = children[c].max[axis];
+            const double q_lo = std::floor((static_cast<double>(lo) - origin) / scale);
+            const double q_hi = std::ceil((static_cast<double>(hi) - origin) / scale);
+            uint32_t step_lo = static_cast<uint32_t>(std::clamp(q_lo, 0.0, double(kGridSteps)));
+            uint32_t step_hi = static_cast<uint32_t>(std::clamp(q_hi, 0.0, double(kGridSteps)));
+            while (step_lo > 0 && gridValue(origin, step_lo, scale) > lo) --step_lo;
+            while (step_hi < kGridSteps && gridValue(origin, step_hi, scale) < hi) ++step_hi;
+            if (gridValue(origin, step_lo, scale) > lo || gridValue(origin, step_hi, scale) < hi) fits = false;
+            quantised[c] = step_lo;
+            quantised[2 + c] = step_hi;
+        }
+        if (!fits) continue;
+        exponent_byte = biased;
+        min_word = quantised[0] | quantised[1] << 16;
+        max_word = quantised[2] | quantised[3] << 16;
+        return;
     }
+}
+
+// Writes the float tree in the GPU layout, inner nodes in depth-first order (a node's first child right
+// after it, so a descent reads neighbouring memory). Returns the levels of the tree, leaves included.
+uint32_t writeQuantisedTree(const std::vector<FloatNode>& tree, std::vector<BvhNodeGpu>& nodes) {
+    constexpr uint32_t kNoParent = 0xffffffffu;
+    struct Pending {
+        uint32_t tree_node;
+        uint32_t parent_gpu_node;  // kNoParent for the root
+        uint32_t child_slot;
+        uint32_t depth;
+    };
+    // A lone leaf at the root becomes the first child of a root whose second child is an empty leaf.
+    FloatNode lone_root_children[2];
+    if (tree[0].leaf) {
+        lone_root_children[0] = tree[0];
+        lone_root_children[1].leaf = true;
+        lone_root_children[1].bounds = tree[0].bounds;
+    }
+    uint32_t deepest = 0;
+    nodes.clear();
+    std::vector<Pending> todo{{0, kNoParent, 0, 1}};
+    while (!todo.empty()) {
+        const Pending pending = todo.back();
+        todo.pop_back();
+        const uint32_t gpu_index = static_cast<uint32_t>(nodes.size());
+        nodes.emplace_back();
+        if (pending.parent_gpu_node != kNoParent) nodes[pending.parent_gpu_node].child[pending.child_slot] = gpu_index;
+        deepest = std::max(deepest, pending.depth);
+
+        const FloatNode& parent = tree[pending.tree_node];
+        const FloatNode* children[2] = {&lone_root_children[0], &lone_root_children[1]};
+        if (!parent.leaf) {
+            children[0] = &tree[parent.left_or_first];
+            children[1] = &tree[parent.left_or_first + 1];
+        }
+        const Box child_boxes[2] = {children[0]->bounds, children[1]->bounds};
+        Box grid_box = child_boxes[0];
+        grid_box.extend(child_boxes[1]);
+        BvhNodeGpu gpu{};
+        for (int axis = 0; axis < 3; ++axis) {
+            gpu.origin[axis] = grid_box.min[axis];
+            uint32_t exponent_byte = 0;
+            quantiseAxis(grid_box.min[axis], child_boxes, axis, exponent_byte, gpu.quantised[2 * axis],
+                         gpu.quantised[2 * axis + 1]);
+            gpu.exponents |= exponent_byte << (8 * axis);
+        }
+        // The second child is pushed first, so the first child's subtree is numbered right after this node.
+        for (int c = 1; c >= 0; --c) {
+            const FloatNode& child = *children[c];
+            if (child.leaf) {
+                gpu.child[c] = kBvhChildLeaf | child.triangle_count << kBvhLeafCountShift | child.left_or_first;
+                deepest = std::max(deepest, pending.depth + 1);
+            } else {
+                todo.push_back({parent.left_or_first + static_cast<uint32_t>(c), gpu_index,
+                                static_cast<uint32_t>(c), pending.depth + 1});
+            }
+        }
+        nodes[gpu_index] = gpu;  // inner children's indices are filled in as they are numbered, after this
+    }
+    return deepest;
 }
 
 }  // namespace
@@ -183,37 +301,43 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         BvhTriangleGpu placeholder{};
         placeholder.triangle_index = kBvhNoTriangle;
         bvh.triangles.push_back(placeholder);
-        BvhNodeGpu root{};
-        root.left_or_first = 0;
-        root.triangle_count = 1;
-        bvh.nodes.push_back(root);
-        bvh.depth = 1;
+        FloatNode leaf;
+        leaf.bounds.extend(glm::vec3(0.0f));
+        leaf.bounds = paddedBox(leaf.bounds);
+        leaf.triangle_count = 1;
+        leaf.leaf = true;
+        bvh.depth = writeQuantisedTree({leaf}, bvh.nodes);
         return bvh;
     }
 
+    if (primitives.size() > kBvhMaxTriangles)
+        throw InputError("mesh", "triangles",
+                         std::to_string(primitives.size()) + " triangles, above the BVH's limit of " +
+                             std::to_string(kBvhMaxTriangles));
     const uint32_t primitive_count = static_cast<uint32_t>(primitives.size());
     std::vector<uint32_t> order(primitive_count);
     for (uint32_t i = 0; i < primitive_count; ++i) order[i] = i;
 
-    bvh.nodes.reserve(2 * primitive_count);
-    bvh.nodes.emplace_back();
+    std::vector<FloatNode> tree;
+    tree.reserve(2 * primitive_count);
+    tree.emplace_back();
     std::vector<BuildTask> tasks{{0, 0, primitive_count, 1}};
     while (!tasks.empty()) {
         const BuildTask task = tasks.back();
         tasks.pop_back();
-        bvh.depth = std::max(bvh.depth, task.depth);
 
         Box bounds, centroid_bounds;
         for (uint32_t i = task.begin; i < task.end; ++i) {
             bounds.extend(primitives[order[i]].bounds);
             centroid_bounds.extend(primitives[order[i]].centroid);
         }
-        writePaddedBounds(bvh.nodes[task.node], bounds);
+        tree[task.node].bounds = paddedBox(bounds);
         const uint32_t count = task.end - task.begin;
 
         auto makeLeaf = [&] {
-            bvh.nodes[task.node].left_or_first = task.begin;
-            bvh.nodes[task.node].triangle_count = count;
+            tree[task.node].left_or_first = task.begin;
+            tree[task.node].triangle_count = count;
+            tree[task.node].leaf = true;
         };
         if (count == 1) {
             makeLeaf();
@@ -253,15 +377,16 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
                              });
         }
 
-        const uint32_t left_child = static_cast<uint32_t>(bvh.nodes.size());
-        bvh.nodes.emplace_back();
-        bvh.nodes.emplace_back();
-        bvh.nodes[task.node].left_or_first = left_child;
-        bvh.nodes[task.node].triangle_count = 0;
+        const uint32_t left_child = static_cast<uint32_t>(tree.size());
+        tree.emplace_back();
+        tree.emplace_back();
+        tree[task.node].left_or_first = left_child;
+        tree[task.node].triangle_count = 0;
         tasks.push_back({left_child + 1, middle, task.end, task.depth + 1});
         tasks.push_back({left_child, task.begin, middle, task.depth + 1});
     }
 
+    bvh.depth = writeQuantisedTree(tree, bvh.nodes);
     bvh.triangles.resize(primitive_count);
     for (uint32_t i = 0; i < primitive_count; ++i) bvh.triangles[i] = usable_triangles[order[i]];
     if (bvh.dropped_triangle_count > 0)

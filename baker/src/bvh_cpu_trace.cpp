@@ -1,8 +1,10 @@
 // CPU traversal of the GPU-layout BVH, written to mirror shaders/include/bvh_traverse.glsl (same slab test,
-// same Moller-Trumbore, same nearest-child-first visiting order), so tests can hold the shader to it.
+// same Moller-Trumbore, same nearest-child-first visiting order, same tie rule), so tests can hold the shader
+// to it bit for bit.
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -32,11 +34,10 @@ glm::vec3 safeInverse(const glm::vec3& direction) {
     return inverse;
 }
 
-// Entry distance of the ray into the node's box, or +inf when it misses or enters beyond t_limit.
-float slabEntry(const BvhNodeGpu& node, const glm::vec3& origin, const glm::vec3& inverse_direction,
-                float t_limit) {
-    const glm::vec3 t0 = (load(node.bounds_min) - origin) * inverse_direction;
-    const glm::vec3 t1 = (load(node.bounds_max) - origin) * inverse_direction;
+// Entry distance of the ray into the box, or +inf when it misses or enters beyond t_limit.
+float slabEntry(const BvhBox& box, const glm::vec3& origin, const glm::vec3& inverse_direction, float t_limit) {
+    const glm::vec3 t0 = (box.min - origin) * inverse_direction;
+    const glm::vec3 t1 = (box.max - origin) * inverse_direction;
     const glm::vec3 t_small = glm::min(t0, t1);
     const glm::vec3 t_large = glm::max(t0, t1);
     const float t_enter = std::max(std::max(t_small.x, t_small.y), std::max(t_small.z, 0.0f));
@@ -44,65 +45,9 @@ float slabEntry(const BvhNodeGpu& node, const glm::vec3& origin, const glm::vec3
     return t_enter <= t_exit ? t_enter : std::numeric_limits<float>::infinity();
 }
 
-template <bool kAnyHit>
-bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& direction, float t_max,
-              uint32_t skip_flags, BvhHit& hit) {
-    if (bvh.nodes.empty() || !(t_max > 0.0f)) return false;
-    const glm::vec3 inverse_direction = safeInverse(direction);
-    float t_closest = t_max;
-    bool found = false;
-    uint32_t stack[kBvhMaxDepth];
-    uint32_t stack_size = 0;
-    if (slabEntry(bvh.nodes[0], origin, inverse_direction, t_closest) == std::numeric_limits<float>::infinity())
-        return false;
-    uint32_t node_index = 0;
-    for (;;) {
-        const BvhNodeGpu& node = bvh.nodes[node_index];
-        if (node.triangle_count > 0) {
-            for (uint32_t i = node.left_or_first; i < node.left_or_first + node.triangle_count; ++i) {
-                const BvhTriangleGpu& triangle = bvh.triangles[i];
-                if ((triangle.flags & skip_flags) != 0) continue;
-                float t, u, v;
-                if (!intersectTriangleCpu(triangle, origin, direction, t_closest, t, u, v)) continue;
-                found = true;
-                t_closest = t;
-                hit.t = t;
-                hit.triangle_index = triangle.triangle_index;
-                hit.barycentric_u = u;
-                hit.barycentric_v = v;
-                hit.front_face =
-                    glm::dot(glm::cross(load(triangle.edge1), load(triangle.edge2)), direction) < 0.0f;
-                if (kAnyHit) return true;
-            }
-        } else {
-            const uint32_t left = node.left_or_first;
-            const float t_left = slabEntry(bvh.nodes[left], origin, inverse_direction, t_closest);
-            const float t_right = slabEntry(bvh.nodes[left + 1], origin, inverse_direction, t_closest);
-            const bool hit_left = t_left != std::numeric_limits<float>::infinity();
-            const bool hit_right = t_right != std::numeric_limits<float>::infinity();
-            if (hit_left && hit_right) {
-                const bool left_first = t_left <= t_right;
-                // kBvhMaxDepth bounds the tree depth, so the stack never overflows; the guard only keeps a
-                // corrupt buffer from writing out of bounds.
-                if (stack_size < kBvhMaxDepth) stack[stack_size++] = left_first ? left + 1 : left;
-                node_index = left_first ? left : left + 1;
-                continue;
-            }
-            if (hit_left || hit_right) {
-                node_index = hit_left ? left : left + 1;
-                continue;
-            }
-        }
-        if (stack_size == 0) break;
-        node_index = stack[--stack_size];
-    }
-    return found;
-}
-
-}  // namespace
-
-bool intersectTriangleCpu(const BvhTriangleGpu& triangle, const glm::vec3& origin, const glm::vec3& direction,
-                          float t_max, float& t, float& u, float& v) {
+// Moller-Trumbore without the t_max test: true with t, u, v when the ray meets the triangle at t > 0.
+bool intersectTriangleAhead(const BvhTriangleGpu& triangle, const glm::vec3& origin, const glm::vec3& direction,
+                            float& t, float& u, float& v) {
     const glm::vec3 edge1 = load(triangle.edge1);
     const glm::vec3 edge2 = load(triangle.edge2);
     const glm::vec3 p = glm::cross(direction, edge2);
@@ -117,7 +62,99 @@ bool intersectTriangleCpu(const BvhTriangleGpu& triangle, const glm::vec3& origi
     v = glm::dot(direction, q) * inverse_determinant;
     if (!(v >= -kBarycentricSlack && u + v <= 1.0f + kBarycentricSlack)) return false;
     t = glm::dot(edge2, q) * inverse_determinant;
-    return t > 0.0f && t < t_max;
+    return t > 0.0f;
+}
+
+constexpr uint32_t kNoReference = 0xffffffffu;  // a leaf reference of 7 triangles, never built
+
+template <bool kAnyHit>
+bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& direction, float t_max,
+              uint32_t skip_flags, BvhHit& hit) {
+    if (bvh.nodes.empty() || !(t_max > 0.0f)) return false;
+    const glm::vec3 inverse_direction = safeInverse(direction);
+    constexpr float kMiss = std::numeric_limits<float>::infinity();
+    float t_closest = t_max;
+    uint32_t closest_slot = 0;  // with t_closest = t_max no slot is below it: a hit at t_max is refused
+    bool found = false;
+    uint32_t stack_reference[kBvhMaxDepth];
+    float stack_entry[kBvhMaxDepth];
+    uint32_t stack_size = 0;
+    uint32_t reference = 0;  // the root, an inner node
+    while (reference != kNoReference) {
+        while ((reference & kBvhChildLeaf) == 0) {
+            const BvhNodeGpu& node = bvh.nodes[reference];
+            const float t0 = slabEntry(decodeBvhChildBox(node, 0), origin, inverse_direction, t_closest);
+            const float t1 = slabEntry(decodeBvhChildBox(node, 1), origin, inverse_direction, t_closest);
+            const bool hit0 = t0 != kMiss, hit1 = t1 != kMiss;
+            if (hit0 && hit1) {
+                const bool first0 = t0 <= t1;
+                // kBvhMaxDepth bounds the tree depth, so the stack never overflows; the guard only keeps a
+                // corrupt buffer from writing out of bounds.
+                if (stack_size < kBvhMaxDepth) {
+                    stack_reference[stack_size] = first0 ? node.child[1] : node.child[0];
+                    stack_entry[stack_size] = first0 ? t1 : t0;
+                    ++stack_size;
+                }
+                reference = first0 ? node.child[0] : node.child[1];
+            } else if (hit0 || hit1) {
+                reference = hit0 ? node.child[0] : node.child[1];
+            } else {
+                reference = kNoReference;
+            }
+        }
+        if (reference != kNoReference) {
+            const uint32_t first = bvhLeafFirst(reference), last = first + bvhLeafCount(reference);
+            for (uint32_t i = first; i < last; ++i) {
+                const BvhTriangleGpu& triangle = bvh.triangles[i];
+                if (skip_flags != 0 && (triangle.flags & skip_flags) != 0) continue;
+                float t, u, v;
+                if (!intersectTriangleAhead(triangle, origin, direction, t, u, v)) continue;
+                // Equal t: the first triangle in leaf order wins, whatever order the nodes were visited in.
+                if (!(t < t_closest || (t == t_closest && i < closest_slot))) continue;
+                found = true;
+                t_closest = t;
+                closest_slot = i;
+                hit.t = t;
+                hit.barycentric_u = u;
+                hit.barycentric_v = v;
+                hit.front_face =
+                    glm::dot(glm::cross(load(triangle.edge1), load(triangle.edge2)), direction) < 0.0f;
+                if (kAnyHit) return true;
+            }
+        }
+        // The nearest stacked child the ray may still reach before the closest hit.
+        reference = kNoReference;
+        while (stack_size > 0) {
+            --stack_size;
+            if (stack_entry[stack_size] <= t_closest * kSlabFarScale) {
+                reference = stack_reference[stack_size];
+                break;
+            }
+        }
+    }
+    if (found) hit.triangle_index = bvh.triangles[closest_slot].triangle_index;
+    return found;
+}
+
+}  // namespace
+
+BvhBox decodeBvhChildBox(const BvhNodeGpu& node, int child) {
+    BvhBox box;
+    for (int axis = 0; axis < 3; ++axis) {
+        const uint32_t exponent_bits = ((node.exponents >> (8 * axis)) & 0xffu) << 23;
+        float scale;
+        std::memcpy(&scale, &exponent_bits, sizeof scale);
+        const uint32_t shift = 16 * static_cast<uint32_t>(child);
+        box.min[axis] = node.origin[axis] + static_cast<float>((node.quantised[2 * axis] >> shift) & 0xffffu) * scale;
+        box.max[axis] =
+            node.origin[axis] + static_cast<float>((node.quantised[2 * axis + 1] >> shift) & 0xffffu) * scale;
+    }
+    return box;
+}
+
+bool intersectTriangleCpu(const BvhTriangleGpu& triangle, const glm::vec3& origin, const glm::vec3& direction,
+                          float t_max, float& t, float& u, float& v) {
+    return intersectTriangleAhead(triangle, origin, direction, t, u, v) && t < t_max;
 }
 
 std::optional<BvhHit> traceClosestCpu(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& direction,

@@ -1,10 +1,12 @@
 // Software ray tracing against the baker's BVH (lavapipe has no ray queries, DESIGN.md 5). Same tests and
-// same node visiting order as baker/src/bvh_cpu_trace.cpp; tests/test_bvh.cpp holds the two together.
+// same node visiting order as baker/src/bvh_cpu_trace.cpp; tests/test_bvh.cpp holds the two together, hit for
+// hit and bit for bit.
 //
 // Usage: #define BVH_NODE_BINDING and BVH_TRIANGLE_BINDING (set 0 storage buffers), then include.
 //   bool bvhTraceClosest(origin, direction, t_max, skip_flags, out BvhHit hit): closest hit, 0 < t < t_max.
 //   bool bvhOccluded(origin, direction, t_max, skip_flags): any hit, 0 < t < t_max.
-// Triangles with (flags & skip_flags) != 0 are ignored. Both faces are hit (no culling). t is in units of
+// Triangles with (flags & skip_flags) != 0 are ignored. Both faces are hit (no culling). Among hits at exactly
+// the same t, the triangle first in the BVH's triangle buffer is the closest. t is in units of
 // |direction|. hit.front_face = dot(cross(edge1, edge2), direction) < 0. Barycentrics: position =
 // v0 + u*edge1 + v*edge2, attributes interpolate as (1-u-v)*a0 + u*a1 + v*a2 in the source vertex order.
 // Rays must have finite components; the ray's origin should already be offset off the surface it leaves.
@@ -14,7 +16,7 @@
 #include "bvh_layout.glsl"
 
 // The builder bounds the tree depth by kBvhMaxDepth (bvh.h), and nearest-first traversal pushes at most one
-// node per level, so this stack cannot overflow on a BVH from buildBvh.
+// child per inner level, so this stack cannot overflow on a BVH from buildBvh.
 #define BVH_STACK_SIZE 64
 
 struct BvhHit {
@@ -39,10 +41,10 @@ vec3 bvhSafeInverse(vec3 direction) {
     return 1.0 / signed_magnitude;
 }
 
-// Entry distance into a node's box, or kBvhMiss when the ray misses it or enters beyond t_limit.
-float bvhSlabEntry(uint node_index, vec3 origin, vec3 inverse_direction, float t_limit) {
-    vec3 t0 = (bvh_nodes[node_index].bounds_min - origin) * inverse_direction;
-    vec3 t1 = (bvh_nodes[node_index].bounds_max - origin) * inverse_direction;
+// Entry distance into the box [box_min, box_max], or kBvhMiss when the ray misses it or enters beyond t_limit.
+float bvhSlabEntry(vec3 box_min, vec3 box_max, vec3 origin, vec3 inverse_direction, float t_limit) {
+    vec3 t0 = (box_min - origin) * inverse_direction;
+    vec3 t1 = (box_max - origin) * inverse_direction;
     vec3 t_small = min(t0, t1);
     vec3 t_large = max(t0, t1);
     float t_enter = max(max(t_small.x, t_small.y), max(t_small.z, 0.0));
@@ -50,30 +52,36 @@ float bvhSlabEntry(uint node_index, vec3 origin, vec3 inverse_direction, float t
     return t_enter <= t_exit ? t_enter : kBvhMiss;
 }
 
-// Moller-Trumbore on (v0, edge1, edge2). Returns true with t, u, v when 0 < t < t_max.
-bool bvhIntersectTriangle(BvhTriangle triangle, vec3 origin, vec3 direction, float t_max,
+// Moller-Trumbore on (v0, edge1, edge2). Returns true with t, u, v when the ray meets the triangle at t > 0
+// (the caller compares t with its closest hit).
+bool bvhIntersectTriangle(vec3 v0, vec3 edge1, vec3 edge2, vec3 origin, vec3 direction,
                           out float t, out float u, out float v) {
     t = 0.0;
     u = 0.0;
     v = 0.0;
-    vec3 p = cross(direction, triangle.edge2);
-    float determinant = dot(triangle.edge1, p);
+    vec3 p = cross(direction, edge2);
+    float determinant = dot(edge1, p);
     if (determinant == 0.0) return false;
     float inverse_determinant = 1.0 / determinant;
-    vec3 to_origin = origin - triangle.v0;
+    vec3 to_origin = origin - v0;
     u = dot(to_origin, p) * inverse_determinant;
     if (!(u >= -kBvhBarycentricSlack && u <= 1.0 + kBvhBarycentricSlack)) return false;
-    vec3 q = cross(to_origin, triangle.edge1);
+    vec3 q = cross(to_origin, edge1);
     v = dot(direction, q) * inverse_determinant;
     if (!(v >= -kBvhBarycentricSlack && u + v <= 1.0 + kBvhBarycentricSlack)) return false;
-    t = dot(triangle.edge2, q) * inverse_determinant;
-    return t > 0.0 && t < t_max;
+    t = dot(edge2, q) * inverse_determinant;
+    return t > 0.0;
 }
 
+const uint kBvhNoReference = 0xffffffffu;  // a leaf reference of 7 triangles, which the builder never makes
+
 // One traversal for both queries: any_hit stops at the first accepted triangle. Nearest child first, the
-// farther one on the stack. Loop shape "while-while" (Aila and Laine 2009, "Understanding the Efficiency of
-// Ray Traversal on GPUs"): descend to a leaf, then test its triangles; on lavapipe, whose SIMD lanes run in
-// step, this measured 0-20 % faster than one loop with an if (leaf) branch.
+// farther one on the stack with its entry distance (skipped when popped beyond the closest hit). Loop shape
+// "while-while" (Aila and Laine 2009, "Understanding the Efficiency of Ray Traversal on GPUs"): descend to a
+// leaf, then test its triangles; on lavapipe, whose SIMD lanes run in step, this measured 0-20 % faster than
+// one loop with an if (leaf) branch. lavapipe runs each storage-buffer load as a loop over the lanes, so
+// load instructions are what costs: three per node (both children), three per triangle (bvh_layout.glsl).
+// Ties: among hits at exactly equal t the one first in the triangle buffer wins, whatever the visiting order.
 bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool any_hit, out BvhHit hit) {
     hit.t = t_max;
     hit.triangle_index = 0xffffffffu;
@@ -83,59 +91,70 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
     if (!(t_max > 0.0)) return false;
 
     vec3 inverse_direction = bvhSafeInverse(direction);
-    if (bvhSlabEntry(0u, origin, inverse_direction, t_max) == kBvhMiss) return false;
-
     float t_closest = t_max;
+    uint closest_slot = 0u;  // with t_closest = t_max, no slot is below it: a hit at t_max is refused
     bool found = false;
-    uint stack[BVH_STACK_SIZE];
+    uint stack_reference[BVH_STACK_SIZE];
+    float stack_entry[BVH_STACK_SIZE];
     uint stack_size = 0u;
-    uint node_index = 0u;
-    const uint kNoNode = 0xffffffffu;
-    while (node_index != kNoNode) {
+    uint reference = 0u;  // the root, an inner node
+    while (reference != kBvhNoReference) {
         // Descend through inner nodes until a leaf (while-while: lanes of a SIMD group stay in step).
-        while (bvh_nodes[node_index].triangle_count == 0u) {
-            uint left = bvh_nodes[node_index].left_or_first;
-            float t_left = bvhSlabEntry(left, origin, inverse_direction, t_closest);
-            float t_right = bvhSlabEntry(left + 1u, origin, inverse_direction, t_closest);
-            bool hit_left = t_left != kBvhMiss;
-            bool hit_right = t_right != kBvhMiss;
-            if (hit_left && hit_right) {
-                bool left_first = t_left <= t_right;
+        while ((reference & BVH_CHILD_LEAF) == 0u) {
+            uvec4 children_x = bvh_nodes[reference].children_x;
+            vec3 min0, max0, min1, max1;
+            bvhChildBoxes(bvh_nodes[reference].origin_exponents, children_x, bvh_nodes[reference].quantised_yz,
+                          min0, max0, min1, max1);
+            uint child0 = children_x.x;
+            uint child1 = children_x.y;
+            float t0 = bvhSlabEntry(min0, max0, origin, inverse_direction, t_closest);
+            float t1 = bvhSlabEntry(min1, max1, origin, inverse_direction, t_closest);
+            bool hit0 = t0 != kBvhMiss;
+            bool hit1 = t1 != kBvhMiss;
+            if (hit0 && hit1) {
+                bool first0 = t0 <= t1;
                 if (stack_size < uint(BVH_STACK_SIZE)) {
-                    stack[stack_size] = left_first ? left + 1u : left;
+                    stack_reference[stack_size] = first0 ? child1 : child0;
+                    stack_entry[stack_size] = first0 ? t1 : t0;
                     ++stack_size;
                 }
-                node_index = left_first ? left : left + 1u;
-            } else if (hit_left || hit_right) {
-                node_index = hit_left ? left : left + 1u;
-            } else if (stack_size == 0u) {
-                node_index = kNoNode;
-                break;
+                reference = first0 ? child0 : child1;
+            } else if (hit0 || hit1) {
+                reference = hit0 ? child0 : child1;
             } else {
-                --stack_size;
-                node_index = stack[stack_size];
+                reference = kBvhNoReference;  // a dead end: pop below
             }
         }
-        if (node_index == kNoNode) break;
-        uint first = bvh_nodes[node_index].left_or_first;
-        uint last = first + bvh_nodes[node_index].triangle_count;
+        uint first = reference & BVH_LEAF_FIRST_MASK;
+        uint last = reference == kBvhNoReference ? first : first + ((reference >> BVH_LEAF_COUNT_SHIFT) & 7u);
         for (uint i = first; i < last; ++i) {
-            BvhTriangle triangle = bvh_triangles[i];
-            if ((triangle.flags & skip_flags) != 0u) continue;
+            vec4 edge1_flags = bvh_triangles[i].edge1_flags;
+            if ((floatBitsToUint(edge1_flags.w) & skip_flags) != 0u) continue;
+            vec4 v0_index = bvh_triangles[i].v0_index;
+            vec3 edge1 = edge1_flags.xyz;
+            vec3 edge2 = bvh_triangles[i].edge2_pad.xyz;
             float t, u, v;
-            if (!bvhIntersectTriangle(triangle, origin, direction, t_closest, t, u, v)) continue;
+            if (!bvhIntersectTriangle(v0_index.xyz, edge1, edge2, origin, direction, t, u, v)) continue;
+            if (!(t < t_closest || (t == t_closest && i < closest_slot))) continue;
             found = true;
             t_closest = t;
+            closest_slot = i;
+            hit.triangle_index = floatBitsToUint(v0_index.w);
             hit.t = t;
-            hit.triangle_index = triangle.triangle_index;
             hit.barycentric_u = u;
             hit.barycentric_v = v;
-            hit.front_face = dot(cross(triangle.edge1, triangle.edge2), direction) < 0.0;
+            hit.front_face = dot(cross(edge1, edge2), direction) < 0.0;
             if (any_hit) return true;
         }
-        if (stack_size == 0u) break;
-        --stack_size;
-        node_index = stack[stack_size];
+        // Pop the nearest stacked child the ray may still reach before the closest hit.
+        reference = kBvhNoReference;
+        while (stack_size > 0u) {
+            --stack_size;
+            if (stack_entry[stack_size] <= t_closest * kBvhSlabFarScale) {
+                reference = stack_reference[stack_size];
+                break;
+            }
+        }
     }
     return found;
 }

@@ -4,15 +4,24 @@
 // or acceleration structures (DESIGN.md 5). The CPU traversal here mirrors the GLSL one operation for
 // operation, so tests can compare the two and tools can trace a few rays without a GPU.
 //
-// Layout contract (std430, shared with bvh_traverse.glsl):
-// - nodes[0] is the root. An inner node has triangle_count == 0 and left_or_first = index of its left
-//   child; its right child is ALWAYS left_or_first + 1 (children are allocated in pairs).
-//   A leaf has 1..kBvhMaxLeafTriangles triangles: triangles[left_or_first .. left_or_first+triangle_count).
-// - An empty BVH (no usable triangle) is one leaf holding one placeholder triangle that no ray can hit
-//   (zero edges, triangle_index kBvhNoTriangle), so both buffers are never empty and need no special case.
-// - Node bounds are padded by ~1e-6 relative so that rounding in the triangle test never puts a hit just
-//   outside its leaf's box. The tree depth is at most kBvhMaxDepth, so the GLSL stack cannot overflow.
-// - Ray/triangle: Moller-Trumbore on (v0, edge1, edge2), both faces, hits with 0 < t < t_max.
+// Layout contract (std430, shared with bvh_layout.glsl). Why this shape: lavapipe runs each SIMD lane's
+// storage-buffer load of a divergent address as its own scalar load, so the traversal's cost is mostly the
+// number of load instructions (one 8-iteration loop each, whatever their width up to 16 bytes) per node and
+// per triangle. Both children's boxes, quantised to 16 bits on the parent's grid, and the child references
+// fit in three 16-byte loads per node visit (the float layout of one box per node took six loads); a triangle
+// is three 16-byte loads.
+// - nodes[0] is the root. Every node is an inner node with two children, each given by a child reference
+//   (kBvhChildLeaf set: a leaf of bvhLeafCount(ref) triangles from bvhLeafFirst(ref), 0..kBvhMaxLeafTriangles;
+//   else: the index of an inner node) and a box quantised to 16 bits per face on the node's grid
+//   (decodeBvhChildBox). A tree of one leaf is a root whose second child is an empty leaf.
+// - An empty BVH (no usable triangle) is a root with one leaf holding one placeholder triangle that no ray can
+//   hit (zero edges, triangle_index kBvhNoTriangle), so both buffers are never empty and need no special case.
+// - Child boxes enclose the child's triangles padded by ~1e-6 relative so that rounding in the triangle test
+//   never puts a hit just outside its leaf's box; the decoded (quantised) box always encloses the padded one.
+//   The tree depth is at most kBvhMaxDepth, so the GLSL stack cannot overflow.
+// - Ray/triangle: Moller-Trumbore on (v0, edge1, edge2), both faces, hits with 0 < t < t_max. The closest hit
+//   is the triangle with the smallest t; among exactly equal t, the one first in `triangles` (leaf order), so
+//   the answer does not depend on the order the traversal visits nodes in.
 
 #include <cstddef>
 #include <cstdint>
@@ -29,17 +38,40 @@ namespace gusuku::bake {
 inline constexpr uint32_t kBvhMaxLeafTriangles = 4;
 /// triangle_index of the placeholder in an empty BVH (never reported as a hit).
 inline constexpr uint32_t kBvhNoTriangle = 0xffffffffu;
+/// Most usable triangles in one BVH: the median splits below depth 40 then stay within kBvhMaxDepth.
+inline constexpr uint32_t kBvhMaxTriangles = 1u << 24;
 /// Deepest node level (root = 1). Equals the GLSL traversal stack size (BVH_STACK_SIZE).
 inline constexpr uint32_t kBvhMaxDepth = 64;
 
-/// One BVH node as the GPU reads it (std430: vec3 + uint, vec3 + uint = 32 bytes).
+/// Child reference flag: the child is a leaf (else an inner node index).
+inline constexpr uint32_t kBvhChildLeaf = 0x80000000u;
+inline constexpr uint32_t kBvhLeafCountShift = 28;  ///< leaf reference: bits 28..30 hold the triangle count
+inline constexpr uint32_t kBvhLeafFirstMask = (1u << kBvhLeafCountShift) - 1u;  ///< bits 0..27: first triangle
+inline uint32_t bvhLeafCount(uint32_t ref) { return (ref >> kBvhLeafCountShift) & 7u; }
+inline uint32_t bvhLeafFirst(uint32_t ref) { return ref & kBvhLeafFirstMask; }
+
+/// One inner BVH node as the GPU reads it (std430, three 16-byte words). Child c's box on axis a is
+///   min = origin[a] + float(half(quantised[2a], c))     * scale[a]
+///   max = origin[a] + float(half(quantised[2a + 1], c)) * scale[a]
+/// (half(w, c): bits 16c..16c+15 of w) with scale[a] = 2^(byte(exponents, a) - 127), the float whose exponent
+/// bits are that byte. The product is exact (16-bit integer times a power of two), so only the sum rounds, the
+/// same on the CPU and in GLSL.
 struct BvhNodeGpu {
-    float bounds_min[3];
-    uint32_t left_or_first;   ///< inner: left child index (right = left + 1); leaf: first triangle index
-    float bounds_max[3];
-    uint32_t triangle_count;  ///< 0 for an inner node
+    float origin[3];
+    uint32_t exponents;     ///< bytes 0..2: biased float exponents of the x, y, z grid steps
+    uint32_t child[2];      ///< child references (kBvhChildLeaf | count << 28 | first, or an inner node index)
+    uint32_t quantised[6];  ///< per axis: mins of children 0 and 1 (low, high 16 bits), then their maxima
 };
-static_assert(sizeof(BvhNodeGpu) == 32, "BvhNodeGpu must match the std430 layout in bvh_traverse.glsl");
+static_assert(sizeof(BvhNodeGpu) == 48, "BvhNodeGpu must match the std430 layout in bvh_layout.glsl");
+
+/// An axis-aligned box in float.
+struct BvhBox {
+    glm::vec3 min;
+    glm::vec3 max;
+};
+
+/// Child `child` (0 or 1) of `node`'s box as the traversal decodes it (GLSL bvhChildBoxes does the same).
+BvhBox decodeBvhChildBox(const BvhNodeGpu& node, int child);
 
 /// One triangle in leaf order, pre-transformed for Moller-Trumbore (48 bytes, std430).
 /// edge1 = p1 - p0 and edge2 = p2 - p0 in the ORIGINAL vertex order, so a hit's barycentrics (u, v)
@@ -58,10 +90,11 @@ struct Bvh {
     std::vector<BvhNodeGpu> nodes;          ///< upload as-is to the node storage buffer
     std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle storage buffer (never empty)
     size_t dropped_triangle_count = 0;      ///< zero-area or non-finite triangles left out
-    uint32_t depth = 0;                     ///< levels in the tree (root only = 1)
+    uint32_t depth = 0;                     ///< levels in the tree, leaves included (one leaf under the root = 2)
 };
 
-/// Builds a binned-SAH BVH (16 bins, leaves of <= 4 triangles) over every triangle of `mesh`.
+/// Builds a binned-SAH BVH (16 bins, leaves of <= 4 triangles) over every triangle of `mesh`. Up to
+/// kBvhMaxTriangles usable triangles (more throws InputError; storage buffers cap far lower).
 /// triangle_flags: one per triangle, or empty for all zero. Triangles with a zero-area cross product or a
 /// non-finite vertex are dropped (counted in dropped_triangle_count). Cost: O(n log n), ~0.1 s per 100k
 /// triangles on one core. Throws InputError("mesh", ...) for a vertex index out of range or a flag count
@@ -78,6 +111,7 @@ struct BvhHit {
 };
 
 /// Closest hit with 0 < t < t_max, ignoring triangles with (flags & skip_flags) != 0. No back-face culling.
+/// Ties (equal t) go to the triangle first in bvh.triangles.
 std::optional<BvhHit> traceClosestCpu(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& direction,
                                       float t_max, uint32_t skip_flags = 0);
 
