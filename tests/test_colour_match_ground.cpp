@@ -36,7 +36,9 @@ namespace {
 using glm::dvec3;
 using shader_interface::ColourMatchState;
 
-constexpr uint32_t kWidth = 320, kHeight = 180, kStride = 4;
+constexpr uint32_t kWidth = 640, kHeight = 360, kStatisticsStride = 8;
+// The ground kernel's stride for this frame (3: groundMatchStride, pinned below).
+const uint32_t kStride = groundMatchStride(kWidth, kHeight, kStatisticsStride);
 const dvec3 kSkyLinear(0.35, 0.45, 0.8);
 
 dvec3 toDvec3(const shader_interface::vec4& v) { return dvec3(v[0], v[1], v[2]); }
@@ -143,11 +145,19 @@ protected:
 
 // ---- CPU reference ------------------------------------------------------------------------------------------
 
+TEST(GroundMatchReference, StrideGivesEnoughSamples) {
+    EXPECT_EQ(groundMatchStride(1280, 720, 8), 7u);  // sqrt(921600 / 16384) = 7.5
+    EXPECT_EQ(groundMatchStride(640, 360, 8), 3u);   // 3.75
+    EXPECT_EQ(groundMatchStride(96, 54, 8), 1u);     // every pixel of a small frame
+    EXPECT_EQ(groundMatchStride(3840, 2160, 8), 8u);  // never coarser than the statistics stride
+    EXPECT_EQ(groundMatchStride(3840, 2160, 4), 4u);
+}
+
 TEST_F(GroundMatchTest, RayFindsTheGroundCellUnderThePixel) {
     const GroundMatchView view = viewFor(groundPose());
     // The image centre looks at (0, 2, 0) (lookingAt's target): pixel (160, 90)'s centre is (160.5, 90.5), a
     // hair off the axis; its cell must be the one holding a point within a cell of the target.
-    const std::optional<size_t> cell = groundMatchCellOfPixel(scene_, view, kWidth / 2, kHeight / 2);
+    const std::optional<size_t> cell = groundMatchCellOfPixel(scene_, view, kWidth / 2 - 1, kHeight / 2 - 1);
     ASSERT_TRUE(cell);
     const glm::dvec2 centre = groundCellCentreEnu(scene_.grid, groundCellFromIndex(scene_.grid, *cell));
     EXPECT_LE(glm::length(centre - glm::dvec2(0.0, 2.0)), 0.5);
@@ -290,7 +300,8 @@ TEST_F(GroundMatchGpu, EstimateMatchesTheCpuReferenceOnANoisyFrameWithShadowAndC
     ASSERT_GT(expected.clipped_samples, 0u);
     ASSERT_LT(expected.kept_samples, expected.ground_samples);  // the shadowed third is trimmed away
 
-    ColourStatisticsPass pass(context(), kWidth, kHeight, kStride, 8.0f, &scene_);
+    ColourStatisticsPass pass(context(), kWidth, kHeight, kStatisticsStride, 8.0f, &scene_);
+    EXPECT_EQ(pass.groundGrid().stride, kStride);
     GpuBuffer camera(context(), frame.rgba.size());
     const ColourMatchState state = runFrame(pass, camera, frame.rgba, view);
     std::printf("GPU gain %.5f %.5f %.5f, CPU %.5f %.5f %.5f; samples %u/%llu kept %u/%llu clipped %u/%llu\n",
@@ -315,7 +326,7 @@ TEST_F(GroundMatchGpu, AnalyticGainsSkyFramesAndTheBuildingsColour) {
     const GroundMatchView view = viewFor(groundPose());
     const dvec3 gains = 0.8 * dvec3(1.15, 1.0, 0.8);  // warm white balance, exposure 20 % low
     const SynthesisedFrame frame = synthesise(scene_, view, gains);
-    ColourStatisticsPass pass(context(), kWidth, kHeight, kStride, 8.0f, &scene_);
+    ColourStatisticsPass pass(context(), kWidth, kHeight, kStatisticsStride, 8.0f, &scene_);
     GpuBuffer camera(context(), frame.rgba.size());
     const ColourMatchState state = runFrame(pass, camera, frame.rgba, view);
     ASSERT_EQ(state.ground_valid, 1u);

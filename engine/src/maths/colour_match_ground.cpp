@@ -106,6 +106,12 @@ glm::dvec3 groundMatchPredictedRadiance(const GroundMatchScene& scene, const Gro
     return view.exposure * glm::dvec3(ground.albedo) / std::numbers::pi * irradiance;
 }
 
+uint32_t groundMatchStride(uint32_t width, uint32_t height, uint32_t statistics_stride) {
+    const double pixels = double(width) * double(height);
+    const double stride = std::floor(std::sqrt(pixels / double(kGroundMatchTargetSamples)));
+    return uint32_t(std::clamp(stride, 1.0, double(std::max(statistics_stride, 1u))));
+}
+
 uint32_t groundMatchBin(const glm::dvec3& observed, const glm::dvec3& predicted) {
     const double ratio = std::log2(luminance(observed) / luminance(predicted));
     const double bin = std::floor((ratio - kGroundMatchLowestLog2Ratio) * kGroundMatchBinsPerStop);

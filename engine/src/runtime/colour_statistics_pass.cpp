@@ -153,6 +153,11 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
     state_buffer_.upload(&initial, sizeof initial);
     reduce_pipeline_.bindBuffers({&partial_buffer_, &state_buffer_});
     if (ground == nullptr) return;
+    sample_grid_ground_ = colourStatisticsGrid(frame_width, frame_height,
+                                               groundMatchStride(frame_width, frame_height, grid_.stride));
+    ground_workgroups_x_ = divideRoundingUp(sample_grid_ground_.samples_x, COLOUR_STATISTICS_TILE);
+    ground_workgroups_y_ = divideRoundingUp(sample_grid_ground_.samples_y, COLOUR_STATISTICS_TILE);
+    ground_min_samples_ = colourStatisticsMinValidSamples(sample_grid_ground_.sampleCount());
     ground_start_height_m_ = ground->start_height_m;
     ground_grid_ = ground->grid;
     ground_slot_count_ = uint32_t(ground->irradiance_without.size());
@@ -168,7 +173,7 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
                                      GpuMemory::kHostVisible);
     const GroundMatchFrame no_view{};
     ground_frame_buffer_.upload(&no_view, sizeof no_view);
-    ground_partial_buffer_ = GpuBuffer(gpu, size_t(workgroups_x_) * workgroups_y_ * GROUND_MATCH_BINS *
+    ground_partial_buffer_ = GpuBuffer(gpu, size_t(ground_workgroups_x_) * ground_workgroups_y_ * GROUND_MATCH_BINS *
                                                 sizeof(GroundMatchPartial),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kDeviceLocal);
     ground_statistics_pipeline_ = std::make_unique<ComputePipeline>(
@@ -226,18 +231,18 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     ColourStatisticsPushConstants statistics{};
     statistics.frame_width = frame_width_;
     statistics.frame_height = frame_height_;
-    statistics.stride = grid_.stride;
-    statistics.first_sample_offset = grid_.offset;
-    statistics.samples_x = grid_.samples_x;
-    statistics.samples_y = grid_.samples_y;
-    statistics.workgroups_x = workgroups_x_;
+    statistics.stride = sample_grid_ground_.stride;
+    statistics.first_sample_offset = sample_grid_ground_.offset;
+    statistics.samples_x = sample_grid_ground_.samples_x;
+    statistics.samples_y = sample_grid_ground_.samples_y;
+    statistics.workgroups_x = ground_workgroups_x_;
     statistics.partials_per_workgroup = GROUND_MATCH_BINS;
-    ground_statistics_pipeline_->recordDispatch(cmd, &statistics, workgroups_x_, workgroups_y_);
+    ground_statistics_pipeline_->recordDispatch(cmd, &statistics, ground_workgroups_x_, ground_workgroups_y_);
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ColourReducePushConstants reduce{};
-    reduce.partial_count = workgroups_x_ * workgroups_y_;
-    reduce.min_valid_samples = min_valid_samples_;
+    reduce.partial_count = ground_workgroups_x_ * ground_workgroups_y_;
+    reduce.min_valid_samples = ground_min_samples_;
     reduce.smoothing_weight = smoothing_weight_;
     reduce.reset = reset_pending_ ? 1u : 0u;
     ground_reduce_pipeline_->recordDispatch(cmd, &reduce, 1);

@@ -56,6 +56,8 @@ public:
     /// Only when hasGround().
     void recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer, const GroundMatchView& view);
     bool hasGround() const { return ground_statistics_pipeline_ != nullptr; }
+    /// The ground kernel's sample grid (groundMatchStride of the frame and the statistics stride).
+    const ColourStatisticsGrid& groundGrid() const { return sample_grid_ground_; }
 
     /// The next record() or recordGround() forgets the smoothed statistics and gain (a cut in the camera feed).
     void reset() { reset_pending_ = true; }
@@ -85,6 +87,9 @@ private:
     ComputePipeline statistics_pipeline_;
     ComputePipeline reduce_pipeline_;
     // Mode kGround (all null / empty without a ground albedo).
+    ColourStatisticsGrid sample_grid_ground_;  // the ground kernel's samples (groundMatchStride)
+    uint32_t ground_workgroups_x_ = 0, ground_workgroups_y_ = 0;
+    uint32_t ground_min_samples_ = 0;
     float ground_start_height_m_ = 0.0f;
     GroundGrid ground_grid_;
     uint32_t ground_slot_count_ = 0;
