@@ -59,11 +59,11 @@ struct ColourMatchState {
     uint ground_reserved1;
 };
 
-// One workgroup's share of one log-ratio bin, written by colour_statistics_ground.comp (partial w * BINS + bin)
-// and read by colour_statistics_ground_reduce.comp.
-struct GroundMatchPartial {
-    vec4 observed_count;     // xyz: sum of observed linear RGB, w: samples
-    vec4 predicted_clipped;  // xyz: sum of predicted linear RGB, w: clipped ground samples (bin 0's entry only)
+// One sample of the ground kernel's grid, written by colour_statistics_ground.comp (sample j samples_x + i) and
+// read by colour_statistics_ground_reduce.comp.
+struct GroundMatchSample {
+    vec4 observed_bin;       // xyz: observed linear RGB, w: log-ratio bin, -1 when the sample is not counted
+    vec4 predicted_clipped;  // xyz: predicted linear RGB, w: 1 when a ground sample was left out as clipped
 };
 
 // One ground-grid cell (texel order), uploaded once.
@@ -130,12 +130,12 @@ GUSUKU_PUSH_CONSTANTS_END(ColourStatisticsPushConstants, pc)
 
 // colour_statistics_ground.comp, set 0 (push constants: ColourStatisticsPushConstants; workgroups: the tile)
 #define GROUND_MATCH_CAMERA_BINDING 0      // as COLOUR_STATISTICS_CAMERA_BINDING
-#define GROUND_MATCH_PARTIAL_BINDING 1     // GroundMatchPartial[workgroups * GROUND_MATCH_BINS]
+#define GROUND_MATCH_PARTIAL_BINDING 1     // GroundMatchSample[samples_x * samples_y]
 #define GROUND_MATCH_CELL_BINDING 2        // GroundMatchCellGpu[cells]
 #define GROUND_MATCH_IRRADIANCE_BINDING 3  // vec4[slots * cells]: rgb E_without of slot s, cell c at s * cells + c
 #define GROUND_MATCH_FRAME_BINDING 4       // GroundMatchFrame
 #define GROUND_MATCH_BINDING_COUNT 5
-// One invocation per bin: the tile's sample count (colour_match.h: kGroundMatchBins).
+// Log-ratio bins (colour_match.h: kGroundMatchBins); also the reduce's workgroup size.
 #define GROUND_MATCH_BINS 64
 #define GROUND_MATCH_BINS_PER_STOP 8.0
 #define GROUND_MATCH_LOWEST_LOG2_RATIO -4.0
@@ -144,7 +144,7 @@ GUSUKU_PUSH_CONSTANTS_END(ColourStatisticsPushConstants, pc)
 #define GROUND_MATCH_MIN_PREDICTED 1e-6
 
 // colour_statistics_ground_reduce.comp, set 0 (one workgroup of GROUND_MATCH_BINS; push constants:
-// ColourReducePushConstants with partial_count = the first kernel's workgroups)
+// ColourReducePushConstants with partial_count = the first kernel's samples)
 #define GROUND_REDUCE_PARTIAL_BINDING 0
 #define GROUND_REDUCE_STATE_BINDING 1
 #define GROUND_REDUCE_BINDING_COUNT 2

@@ -2,9 +2,10 @@
 // The ground colour match's first pass (mode GROUND; choices and the CPU reference in
 // engine/include/gusuku/colour_match.h). One invocation per sampled pixel: its ray is followed onto the ground
 // grid's height field, the cell's predicted radiance (exposure albedo / pi (E_without blended + E_sun cos)) is set
-// against the camera's sRGB-decoded pixel, and the sample goes into its log2 luminance-ratio bin. The 64 samples
-// of the workgroup meet in shared memory; invocation b then sums bin b over them in sample order (no atomics:
-// the same sums every run) and writes the workgroup's partial of that bin.
+// against the camera's sRGB-decoded pixel, and the sample is written with its log2 luminance-ratio bin (-1 when
+// it does not count). No shared memory, no barrier, no subgroup operation: llvmpipe runs a barrier as a switch
+// between invocations, and a per-workgroup histogram cost 40 times the Lab statistics (measured: 24 ms at
+// 1280 x 720); colour_statistics_ground_reduce.comp bins the samples in one pass.
 #extension GL_GOOGLE_include_directive : require
 
 #define GROUND_MATCH_KERNEL
@@ -14,17 +15,12 @@
 layout(local_size_x = COLOUR_STATISTICS_TILE, local_size_y = COLOUR_STATISTICS_TILE) in;
 
 layout(std430, set = 0, binding = GROUND_MATCH_CAMERA_BINDING) readonly buffer CameraPixels { uint camera_rgba8[]; };
-layout(std430, set = 0, binding = GROUND_MATCH_PARTIAL_BINDING) writeonly buffer Partials {
-    GroundMatchPartial partials[];
+layout(std430, set = 0, binding = GROUND_MATCH_PARTIAL_BINDING) writeonly buffer Samples {
+    GroundMatchSample samples[];
 };
 layout(std430, set = 0, binding = GROUND_MATCH_CELL_BINDING) readonly buffer Cells { GroundMatchCellGpu cells[]; };
 layout(std430, set = 0, binding = GROUND_MATCH_IRRADIANCE_BINDING) readonly buffer Irradiance { vec4 without[]; };
 layout(std430, set = 0, binding = GROUND_MATCH_FRAME_BINDING) readonly buffer Frame { GroundMatchFrame view; };
-
-shared int sample_bin[GROUND_MATCH_BINS];
-shared vec3 sample_observed[GROUND_MATCH_BINS];
-shared vec3 sample_predicted[GROUND_MATCH_BINS];
-shared uint sample_clipped[GROUND_MATCH_BINS];
 
 float luminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -72,50 +68,31 @@ vec3 predictedRadiance(int cell) {
 }
 
 void main() {
-    uint lane = gl_LocalInvocationIndex;
     uvec2 sample_index = gl_GlobalInvocationID.xy;
-    int bin = -1;
+    if (sample_index.x >= pc.samples_x || sample_index.y >= pc.samples_y) return;
+    float bin = -1.0;
     vec3 observed = vec3(0.0);
     vec3 predicted = vec3(0.0);
-    uint clipped = 0u;
-    if (sample_index.x < pc.samples_x && sample_index.y < pc.samples_y) {
-        uvec2 pixel = uvec2(pc.first_sample_offset) + sample_index * pc.stride;
-        int cell = groundCellOfPixel(pixel);
-        if (cell >= 0) {
-            uint word = camera_rgba8[pixel.y * pc.frame_width + pixel.x];
-            uvec3 bytes = uvec3(word & 0xFFu, (word >> 8u) & 0xFFu, (word >> 16u) & 0xFFu);
-            if (any(equal(bytes, uvec3(255u))) || all(equal(bytes, uvec3(0u)))) {
-                clipped = 1u;
-            } else {
-                predicted = predictedRadiance(cell);
-                if (luminance(predicted) >= GROUND_MATCH_MIN_PREDICTED) {
-                    observed = srgbDecode(vec3(bytes) / 255.0);
-                    float ratio = log2(luminance(observed) / luminance(predicted));
-                    float index = floor((ratio - GROUND_MATCH_LOWEST_LOG2_RATIO) * GROUND_MATCH_BINS_PER_STOP);
-                    bin = int(clamp(index, 0.0, float(GROUND_MATCH_BINS - 1)));
-                }
+    float clipped = 0.0;
+    uvec2 pixel = uvec2(pc.first_sample_offset) + sample_index * pc.stride;
+    int cell = groundCellOfPixel(pixel);
+    if (cell >= 0) {
+        uint word = camera_rgba8[pixel.y * pc.frame_width + pixel.x];
+        uvec3 bytes = uvec3(word & 0xFFu, (word >> 8u) & 0xFFu, (word >> 16u) & 0xFFu);
+        if (any(equal(bytes, uvec3(255u))) || all(equal(bytes, uvec3(0u)))) {
+            clipped = 1.0;
+        } else {
+            predicted = predictedRadiance(cell);
+            if (luminance(predicted) >= GROUND_MATCH_MIN_PREDICTED) {
+                observed = srgbDecode(vec3(bytes) / 255.0);
+                float ratio = log2(luminance(observed) / luminance(predicted));
+                float index = floor((ratio - GROUND_MATCH_LOWEST_LOG2_RATIO) * GROUND_MATCH_BINS_PER_STOP);
+                bin = clamp(index, 0.0, float(GROUND_MATCH_BINS - 1));
             }
         }
     }
-    sample_bin[lane] = bin;
-    sample_observed[lane] = observed;
-    sample_predicted[lane] = predicted;
-    sample_clipped[lane] = clipped;
-    barrier();
-
-    vec3 observed_sum = vec3(0.0);
-    vec3 predicted_sum = vec3(0.0);
-    float count = 0.0;
-    float clipped_count = 0.0;
-    for (uint s = 0u; s < GROUND_MATCH_BINS; ++s) {
-        if (sample_bin[s] == int(lane)) {
-            observed_sum += sample_observed[s];
-            predicted_sum += sample_predicted[s];
-            count += 1.0;
-        }
-        clipped_count += float(sample_clipped[s]);
-    }
-    uint partial = (gl_WorkGroupID.y * pc.workgroups_x + gl_WorkGroupID.x) * GROUND_MATCH_BINS + lane;
-    partials[partial].observed_count = vec4(observed_sum, count);
-    partials[partial].predicted_clipped = vec4(predicted_sum, lane == 0u ? clipped_count : 0.0);
+    uint index = sample_index.y * pc.samples_x + sample_index.x;
+    // Member by member (see colour_statistics.comp: synchronization validation follows single access chains).
+    samples[index].observed_bin = vec4(observed, bin);
+    samples[index].predicted_clipped = vec4(predicted, clipped);
 }

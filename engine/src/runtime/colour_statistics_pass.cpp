@@ -21,7 +21,7 @@ using shader_interface::ColourStatisticsPartial;
 using shader_interface::ColourStatisticsPushConstants;
 using shader_interface::GroundMatchCellGpu;
 using shader_interface::GroundMatchFrame;
-using shader_interface::GroundMatchPartial;
+using shader_interface::GroundMatchSample;
 using shader_interface::vec4;
 
 // std430 and C++ must agree on every offset (interface_types.h's rules).
@@ -42,13 +42,13 @@ static_assert(offsetof(ColourMatchState, frame_ground_predicted) == 192);
 static_assert(offsetof(ColourMatchState, ground_valid) == 208);
 static_assert(offsetof(ColourMatchState, frame_ground_accepted) == 228);
 static_assert(sizeof(ColourMatchState) == 240);
-static_assert(sizeof(GroundMatchPartial) == 32);
+static_assert(sizeof(GroundMatchSample) == 32);
 static_assert(sizeof(GroundMatchCellGpu) == 32);
 static_assert(offsetof(GroundMatchFrame, ground_grid) == 112);
 static_assert(offsetof(GroundMatchFrame, slot_index0) == 128);
 static_assert(sizeof(GroundMatchFrame) == 160);
 static_assert(uint32_t(ColourMatchMode::kGround) == COLOUR_MATCH_MODE_GROUND);
-static_assert(GROUND_MATCH_BINS == kGroundMatchBins && GROUND_MATCH_BINS == COLOUR_STATISTICS_TILE * COLOUR_STATISTICS_TILE);
+static_assert(GROUND_MATCH_BINS == kGroundMatchBins);
 static_assert(GROUND_MATCH_WINDOW_BINS == kGroundMatchWindowBins);
 static_assert(GROUND_MATCH_HEIGHT_ITERATIONS == kGroundMatchHeightIterations);
 static_assert(sizeof(ColourStatisticsPartial) == 32);
@@ -173,8 +173,7 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
                                      GpuMemory::kHostVisible);
     const GroundMatchFrame no_view{};
     ground_frame_buffer_.upload(&no_view, sizeof no_view);
-    ground_partial_buffer_ = GpuBuffer(gpu, size_t(ground_workgroups_x_) * ground_workgroups_y_ * GROUND_MATCH_BINS *
-                                                sizeof(GroundMatchPartial),
+    ground_partial_buffer_ = GpuBuffer(gpu, size_t(sample_grid_ground_.sampleCount()) * sizeof(GroundMatchSample),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kDeviceLocal);
     ground_statistics_pipeline_ = std::make_unique<ComputePipeline>(
         gpu, kColourStatisticsGroundCompSpirv, sizeof kColourStatisticsGroundCompSpirv, GROUND_MATCH_BINDING_COUNT,
@@ -241,7 +240,7 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ColourReducePushConstants reduce{};
-    reduce.partial_count = ground_workgroups_x_ * ground_workgroups_y_;
+    reduce.partial_count = uint32_t(sample_grid_ground_.sampleCount());
     reduce.min_valid_samples = ground_min_samples_;
     reduce.smoothing_weight = smoothing_weight_;
     reduce.reset = reset_pending_ ? 1u : 0u;
