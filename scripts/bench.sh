@@ -14,6 +14,8 @@ if [[ "${1:-}" == "--quick" ]]; then quick="--quick"; shift; fi
 bakeset="${1:-out/bakeset}"
 bench="${GUSUKU_BENCH:-./build/bench/gusuku-bench}"  # GUSUKU_BENCH: another build's gusuku-bench
 bake="${GUSUKU_BAKE:-./build/baker/gusuku-bake}"
+# The code the figures come from (the working tree as the run starts), for the summary's last line.
+code="$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')"
 # The photographed skies (issue 10, part 5): the same site baked under ../shared/data/env's clear sky and
 # overcast sky, when those files are there (they are never copied into the repository). Not in the quick run.
 photographed=()
@@ -64,7 +66,7 @@ fi
 rm -rf bench/results
 "$bench" "$bakeset" -o bench/results --cache out/bench-cache $quick "${photographed[@]}"
 # The code the figures come from, as the summary's last line.
-printf '\ncode: %s\n' "$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')" >> bench/results/summary.md
+printf '\ncode: %s\n' "$code" >> bench/results/summary.md
 python3 - <<'PY'
 import re
 readme = open("README.md").read()
