@@ -54,7 +54,7 @@ for site in $sites; do
       2>/dev/null > "$dir/gusuku.txt"
     blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \
       "$out/$site/bakeset" "$out/sample/site.glb" "$dir/lighting" "$slot" "$reference" $counts 2>&1 |
-      grep -E "^CYCLES_(RESULT|AGREEMENT|REFERENCE)" > "$dir/cycles.txt"
+      grep -E "^CYCLES_(RESULT|AGREEMENT|REFERENCE|COVERAGE)" > "$dir/cycles.txt"
     if [[ "$repeat" == 1 ]]; then
       # Errors do not change between runs (fixed seeds): only the timings are repeated, interleaved with the
       # first ones, and the summary keeps the faster of each, which damps the shared machine's drift.
