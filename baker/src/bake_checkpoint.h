@@ -5,7 +5,8 @@
 // input or settings starts that set afresh.
 //
 // File layout (little-endian): "GSKCKPT1", uint64 input hash, uint32 point count, uint32 samples done,
-// then point count x 4 float32 sums (the tracer's vec4: irradiance sum xyz, back-face count w).
+// then point count x 4 float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on
+// a one-sided back, 1/9 per first hit on a double-sided face seen from behind).
 
 #include <cstdint>
 #include <optional>
