@@ -593,7 +593,10 @@ void runDay(Bench& bench) {
               std::to_string(settings.sweep_samples) + " spp, sunrise " + bench.localTime(sunrise) + ", sunset " +
               bench.localTime(sunset) + ", every " + std::to_string(settings.day_step_minutes) + " min)**");
     bench.say("mean dE00 over the building and shadow; the proposed method without its colour match unless named");
-    bench.say("| site clock | sun elevation | blend of two | nearest slot | blend, colour match on | direct-only |");
+    // The match column: the ground match where the bake set has ground albedo, else the seed paper's Lab match.
+    const std::string match_mode = groundMatchAvailable() ? "proposed_ground_match" : "proposed_preserve_match";
+    bench.say("| site clock | sun elevation | blend of two | nearest slot | blend, " +
+              std::string(groundMatchAvailable() ? "ground match" : "preserve match") + " | direct-only |");
     bench.say("| --- | --- | --- | --- | --- | --- |");
     Json steps = Json::array();
     ChartSeries blend{"blend of two slots (match off)", "#1f77b4", {}, true};
@@ -616,13 +619,14 @@ void runDay(Bench& bench) {
         nearest_mode.blend_slots = false;
         const ErrorSummary with_blend = errorOf(runtimeModeNamed("proposed")),
                            without_blend = errorOf(nearest_mode),
-                           matched = errorOf(runtimeModeNamed("proposed_preserve_match")),
+                           matched = errorOf(runtimeModeNamed(match_mode)),
                            direct_only = errorOf(runtimeModeNamed("direct_only"));
         const double hour = (utc - bench.bake_midnight_utc) / 3600.0;
         const double elevation = sunElevationAt(bench, utc);
         steps.push_back({{"local_time", bench.localTime(utc)}, {"sun_elevation_deg", elevation},
                          {"blend", errorJson(with_blend)}, {"nearest_slot", errorJson(without_blend)},
-                         {"blend_colour_match", errorJson(matched)}, {"direct_only", errorJson(direct_only)}});
+                         {"blend_colour_match", errorJson(matched)}, {"colour_match_mode", match_mode},
+                         {"direct_only", errorJson(direct_only)}});
         blend.points.push_back({hour, with_blend.mean_de00, ""});
         nearest.points.push_back({hour, without_blend.mean_de00, ""});
         direct.points.push_back({hour, direct_only.mean_de00, ""});
