@@ -101,6 +101,39 @@ void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages
     vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+// Before a statistics kernel (the Lab one or the ground one): the camera pixels' writers, and the earlier users
+// of the state and the partials, against the kernel and its reduce.
+void recordBeforeStatistics(VkCommandBuffer cmd, VkPipelineStageFlags fragment) {
+    recordMemoryBarrier(cmd,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT | fragment,
+                        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+// After a reduce: the state it wrote, to the building's fragment shader, later kernels, copies and the host.
+void recordAfterReduce(VkCommandBuffer cmd, VkPipelineStageFlags fragment) {
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | fragment | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+}
+
+ColourStatisticsPushConstants statisticsPush(uint32_t frame_width, uint32_t frame_height,
+                                             const ColourStatisticsGrid& grid, uint32_t workgroups_x,
+                                             uint32_t partials_per_workgroup) {
+    ColourStatisticsPushConstants statistics{};
+    statistics.frame_width = frame_width;
+    statistics.frame_height = frame_height;
+    statistics.stride = grid.stride;
+    statistics.first_sample_offset = grid.offset;
+    statistics.samples_x = grid.samples_x;
+    statistics.samples_y = grid.samples_y;
+    statistics.workgroups_x = workgroups_x;
+    statistics.partials_per_workgroup = partials_per_workgroup;
+    return statistics;
+}
+
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 vec4 toVec4(const glm::dvec3& v, double w) { return {{float(v.x), float(v.y), float(v.z), float(w)}}; }
@@ -222,20 +255,9 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     ground_frame_buffer_.upload(&frame, sizeof frame);  // host-visible: a memcpy, read after the submission
 
     const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
-    recordMemoryBarrier(cmd,
-                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
-                            VK_PIPELINE_STAGE_HOST_BIT | fragment,
-                        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    ColourStatisticsPushConstants statistics{};
-    statistics.frame_width = frame_width_;
-    statistics.frame_height = frame_height_;
-    statistics.stride = sample_grid_ground_.stride;
-    statistics.first_sample_offset = sample_grid_ground_.offset;
-    statistics.samples_x = sample_grid_ground_.samples_x;
-    statistics.samples_y = sample_grid_ground_.samples_y;
-    statistics.workgroups_x = ground_workgroups_x_;
-    statistics.partials_per_workgroup = GROUND_MATCH_BINS;
+    recordBeforeStatistics(cmd, fragment);
+    const ColourStatisticsPushConstants statistics = statisticsPush(
+        frame_width_, frame_height_, sample_grid_ground_, ground_workgroups_x_, GROUND_MATCH_BINS);
     ground_statistics_pipeline_->recordDispatch(cmd, &statistics, ground_workgroups_x_, ground_workgroups_y_);
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
@@ -246,10 +268,7 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     reduce.reset = reset_pending_ ? 1u : 0u;
     ground_reduce_pipeline_->recordDispatch(cmd, &reduce, 1);
     reset_pending_ = false;
-    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | fragment | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                            VK_PIPELINE_STAGE_HOST_BIT,
-                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+    recordAfterReduce(cmd, fragment);
 }
 
 void ColourStatisticsPass::recordSourceUpdate(VkCommandBuffer cmd, const LabStatistics& source, ColourMatchMode mode,
@@ -286,21 +305,10 @@ void ColourStatisticsPass::record(VkCommandBuffer cmd, const GpuBuffer& camera_b
     const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
 
     // The camera pixels' writers and the state's and partials' earlier users, against both dispatches.
-    recordMemoryBarrier(cmd,
-                        VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
-                            VK_PIPELINE_STAGE_HOST_BIT | fragment,
-                        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    recordBeforeStatistics(cmd, fragment);
 
-    ColourStatisticsPushConstants statistics{};
-    statistics.frame_width = frame_width_;
-    statistics.frame_height = frame_height_;
-    statistics.stride = grid_.stride;
-    statistics.first_sample_offset = grid_.offset;
-    statistics.samples_x = grid_.samples_x;
-    statistics.samples_y = grid_.samples_y;
-    statistics.workgroups_x = workgroups_x_;
-    statistics.partials_per_workgroup = partials_per_workgroup_;
+    const ColourStatisticsPushConstants statistics =
+        statisticsPush(frame_width_, frame_height_, grid_, workgroups_x_, partials_per_workgroup_);
     statistics_pipeline_.recordDispatch(cmd, &statistics, workgroups_x_, workgroups_y_);
 
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -314,10 +322,7 @@ void ColourStatisticsPass::record(VkCommandBuffer cmd, const GpuBuffer& camera_b
     reduce_pipeline_.recordDispatch(cmd, &reduce, 1);
     reset_pending_ = false;
 
-    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | fragment | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                            VK_PIPELINE_STAGE_HOST_BIT,
-                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+    recordAfterReduce(cmd, fragment);
 }
 
 ColourMatchState ColourStatisticsPass::readState() const {
