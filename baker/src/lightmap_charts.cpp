@@ -598,35 +598,47 @@ LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Char
     return result;
 }
 
+// The charts of a mesh, grown and fitted, before packing: what both entry points below share.
+struct FittedCharts {
+    std::vector<Chart> charts;
+    std::vector<glm::dvec2> extents;
+};
+
+FittedCharts growAndFitCharts(const TriangleMesh& mesh, double texels_per_metre) {
+    const MeshAnalysis analysis = analyseMesh(mesh, texels_per_metre);
+    std::vector<int64_t> chart_of;
+    FittedCharts fitted;
+    fitted.charts = growCharts(mesh, analysis, chart_of);
+    attachDegenerateTriangles(analysis.triangles, chart_of, fitted.charts);
+    fitted.extents = fitChartRectangles(mesh, fitted.charts);
+    return fitted;
+}
+
+// Packs the charts into a resolution^2 lightmap (the largest density up to texels_per_metre that fits) and writes
+// the charted mesh.
+LightmapCharts packAndWrite(const TriangleMesh& mesh, const FittedCharts& fitted, double texels_per_metre,
+                            int resolution, int padding_texels) {
+    const auto shapes_at = [&](double density) { return chartShapes(mesh, fitted.charts, fitted.extents, density); };
+    const detail::ChartPacking packing =
+        detail::packChartShapes(shapes_at, texels_per_metre, resolution, padding_texels);
+    return writeChartedMesh(mesh, fitted.charts, fitted.extents, packing, resolution);
+}
+
 }  // namespace
 
 LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
                                       int padding_texels) {
     validateChartInputs(mesh, texels_per_metre, resolution, padding_texels);
-    const MeshAnalysis analysis = analyseMesh(mesh, texels_per_metre);
-    std::vector<int64_t> chart_of;
-    std::vector<Chart> charts = growCharts(mesh, analysis, chart_of);
-    attachDegenerateTriangles(analysis.triangles, chart_of, charts);
-    const std::vector<glm::dvec2> extents = fitChartRectangles(mesh, charts);
-    const auto shapes_at = [&](double density) { return chartShapes(mesh, charts, extents, density); };
-    const detail::ChartPacking packing =
-        detail::packChartShapes(shapes_at, texels_per_metre, resolution, padding_texels);
-    return writeChartedMesh(mesh, charts, extents, packing, resolution);
+    return packAndWrite(mesh, growAndFitCharts(mesh, texels_per_metre), texels_per_metre, resolution, padding_texels);
 }
 
 LightmapCharts generateLightmapChartsInSmallestLightmap(const TriangleMesh& mesh, double texels_per_metre,
                                                         int max_resolution, int padding_texels) {
     validateChartInputs(mesh, texels_per_metre, max_resolution, padding_texels);
-    const MeshAnalysis analysis = analyseMesh(mesh, texels_per_metre);
-    std::vector<int64_t> chart_of;
-    std::vector<Chart> charts = growCharts(mesh, analysis, chart_of);
-    attachDegenerateTriangles(analysis.triangles, chart_of, charts);
-    const std::vector<glm::dvec2> extents = fitChartRectangles(mesh, charts);
-    const auto shapes_at = [&](double density) { return chartShapes(mesh, charts, extents, density); };
-    const int resolution = detail::smallestFittingResolution(shapes_at(texels_per_metre), max_resolution, padding_texels);
-    const detail::ChartPacking packing =
-        detail::packChartShapes(shapes_at, texels_per_metre, resolution, padding_texels);
-    return writeChartedMesh(mesh, charts, extents, packing, resolution);
+    const FittedCharts fitted = growAndFitCharts(mesh, texels_per_metre);
+    const int resolution = detail::smallestFittingResolution(
+        chartShapes(mesh, fitted.charts, fitted.extents, texels_per_metre), max_resolution, padding_texels);
+    return packAndWrite(mesh, fitted, texels_per_metre, resolution, padding_texels);
 }
 
 }  // namespace gusuku::bake

@@ -70,13 +70,7 @@ LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh, int resoluti
                                           const std::vector<LightmapTexel>& texels, int grid_side, uint32_t seed) {
     if (grid_side < 1 || grid_side > 8)
         throw InputError("lightmap", "footprint grid", "must be in [1, 8], got " + std::to_string(grid_side));
-    if (resolution < 1 || resolution > 16384)
-        throw InputError("lightmap", "resolution", "must be in [1, 16384], got " + std::to_string(resolution));
-    if (!mesh.has_uv1 || mesh.uv1.size() != mesh.positions.size())
-        throw InputError("lightmap", "TEXCOORD_1", "the mesh has no lightmap UVs (one per vertex)");
-    for (uint32_t index : mesh.indices)
-        if (index >= mesh.positions.size())
-            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
+    detail::validateLightmapMesh(mesh, resolution);
 
     LightmapFootprint footprint;
     footprint.grid_side = grid_side;

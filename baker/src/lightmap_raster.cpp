@@ -3,9 +3,12 @@
 #include "lightmap_raster.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
+
+#include "gusuku/input_error.h"
 
 namespace gusuku::bake::detail {
 namespace {
@@ -124,6 +127,16 @@ SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm
                                ? glm::vec3(shading_normal / shading_length)
                                : point.geometric_normal;
     return point;
+}
+
+void validateLightmapMesh(const TriangleMesh& mesh, int resolution) {
+    if (resolution < 1 || resolution > 16384)
+        throw InputError("lightmap", "resolution", "must be in [1, 16384], got " + std::to_string(resolution));
+    if (!mesh.has_uv1 || mesh.uv1.size() != mesh.positions.size())
+        throw InputError("lightmap", "TEXCOORD_1", "the mesh has no lightmap UVs (one per vertex)");
+    for (uint32_t index : mesh.indices)
+        if (index >= mesh.positions.size())
+            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
 }
 
 }  // namespace gusuku::bake::detail

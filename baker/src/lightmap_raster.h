@@ -14,6 +14,10 @@ namespace gusuku::bake::detail {
 
 using UvTriangle = std::array<glm::dvec2, 3>;
 
+/// InputError naming the field when the resolution is outside [1, 16384], the mesh has no lightmap UVs (one per
+/// vertex) or an index is out of range: what every lightmap rasteriser needs of its input.
+void validateLightmapMesh(const TriangleMesh& mesh, int resolution);
+
 /// Twice the signed area: cross(b - a, c - a), positive when the corners turn from +u towards +v.
 double signedDoubleArea(const UvTriangle& triangle);
 

@@ -29,13 +29,7 @@ detail::UvTriangle uvTriangleInTexels(const TriangleMesh& mesh, size_t triangle,
 }  // namespace
 
 std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int resolution) {
-    if (resolution < 1 || resolution > 16384)
-        throw InputError("lightmap", "resolution", "must be in [1, 16384], got " + std::to_string(resolution));
-    if (!mesh.has_uv1 || mesh.uv1.size() != mesh.positions.size())
-        throw InputError("lightmap", "TEXCOORD_1", "the mesh has no lightmap UVs (one per vertex)");
-    for (uint32_t index : mesh.indices)
-        if (index >= mesh.positions.size())
-            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
+    detail::validateLightmapMesh(mesh, resolution);
 
     const size_t texel_count = size_t(resolution) * size_t(resolution);
     std::vector<TexelClaim> claims(texel_count);
