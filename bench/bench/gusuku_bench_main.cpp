@@ -197,6 +197,7 @@ struct SkySet {
     std::string label;
     TruthRenderer* renderer = nullptr;
     Runtime* runtime = nullptr;
+    bool has_ground_albedo = false;  ///< its bake set can run the ground match
 };
 
 // The same site baked under the photographed skies of ../shared/data/env (--photographed-skies).
@@ -219,14 +220,18 @@ struct Bench {
     Json results;
     std::vector<std::string> summary;  // markdown lines
     std::map<std::string, std::unique_ptr<Runtime>> runtimes;  // by "WxH"
+    bool ground_match_available = false;  // the bake set has ground albedo (manifest ground_grid.albedo)
     std::unique_ptr<PhotographedSkies> photographed;           // null: not given (photographed_skipped says why)
     std::string photographed_skipped;
 
     SkySet analyticSkies() {
-        return {"the sample's analytic skies", renderer.get(),
-                &runtimeFor(settings.sweep_width, settings.sweep_height)};
+        return {"the sample's analytic skies", renderer.get(), &runtimeFor(settings.sweep_width, settings.sweep_height),
+                ground_match_available};
     }
-    SkySet photographedSkies() { return {photographed->label, photographed->renderer.get(), photographed->runtime.get()}; }
+    SkySet photographedSkies() {
+        return {photographed->label, photographed->renderer.get(), photographed->runtime.get(),
+                !photographed->bake_set.manifest.ground_grid.albedo.empty()};
+    }
 
     void say(const std::string& line) {
         std::printf("%s\n", line.c_str());
@@ -319,7 +324,7 @@ void runMain(Bench& bench) {
     // Accuracy of the runtime's modes.
     std::vector<ModePoint> points;
     Runtime& runtime = bench.runtimeFor(width, height);
-    for (const RuntimeMode& mode : benchRuntimeModes()) {
+    for (const RuntimeMode& mode : benchRuntimeModes(bench.ground_match_available)) {
         const FrameInput input = frameInputFor(mode, camera, intrinsics, pose, condition.utc_seconds,
                                                condition.cloud_cover, frames.exposure * response.exposure_scale);
         const std::vector<uint8_t> composite = steadyComposite(runtime, input);
@@ -356,7 +361,7 @@ void runMain(Bench& bench) {
         const CameraIntrinsics big = CameraIntrinsics::fromFieldOfView(timing_width, timing_height, bench.view.horizontal_fov_deg);
         Runtime& timed = bench.runtimeFor(timing_width, timing_height);
         std::vector<FrameInput> inputs;
-        std::vector<RuntimeMode> modes = benchRuntimeModes();
+        std::vector<RuntimeMode> modes = benchRuntimeModes(bench.ground_match_available);
         for (const RuntimeMode& mode : modes)
             inputs.push_back(frameInputFor(mode, big_camera, big, pose, condition.utc_seconds, condition.cloud_cover,
                                            frames.exposure * response.exposure_scale));
@@ -594,9 +599,9 @@ void runDay(Bench& bench) {
               bench.localTime(sunset) + ", every " + std::to_string(settings.day_step_minutes) + " min)**");
     bench.say("mean dE00 over the building and shadow; the proposed method without its colour match unless named");
     // The match column: the ground match where the bake set has ground albedo, else the seed paper's Lab match.
-    const std::string match_mode = groundMatchAvailable() ? "proposed_ground_match" : "proposed_preserve_match";
+    const std::string match_mode = bench.ground_match_available ? "proposed_ground_match" : "proposed_preserve_match";
     bench.say("| site clock | sun elevation | blend of two | nearest slot | blend, " +
-              std::string(groundMatchAvailable() ? "ground match" : "preserve match") + " | direct-only |");
+              std::string(bench.ground_match_available ? "ground match" : "preserve match") + " | direct-only |");
     bench.say("| --- | --- | --- | --- | --- | --- |");
     Json steps = Json::array();
     ChartSeries blend{"blend of two slots (match off)", "#1f77b4", {}, true};
@@ -760,10 +765,7 @@ Json runWeatherUnder(Bench& bench, const SkySet& skies) {
                 return summariseError(steadyComposite(runtime, input), truth, mask);
             };
             std::optional<ErrorSummary> ground;
-            if (groundMatchAvailable()) try {
-                    ground = errorOf("proposed_ground_match");
-                } catch (const RuntimeError&) {  // this sky set's bake set has no ground albedo
-                }
+            if (skies.has_ground_albedo) ground = errorOf("proposed_ground_match");
             const ErrorSummary matched = errorOf("proposed_preserve_match"), unmatched = errorOf("proposed"),
                                direct = errorOf("direct_only");
             rows.push_back({{"cloud_cover", cover}, {"camera_response", response.name},
@@ -964,7 +966,7 @@ int run(const Settings& settings) {
     Bench bench;
     bench.settings = settings;
     bench.bake_set = loadBakeSet(settings.bake_set);
-    setGroundMatchAvailable(!bench.bake_set.manifest.ground_grid.albedo.empty());
+    bench.ground_match_available = !bench.bake_set.manifest.ground_grid.albedo.empty();
     bench.bake_midnight_utc = bench_common::bakeDateMidnightUtc(settings.bake_set, bench.bake_set.manifest, "--time");
     bench.utc_offset_minutes = bench.bake_set.manifest.site.utc_offset_minutes;
     const std::string site_json = bench_common::siteJsonOf(settings.bake_set, bench.bake_set.manifest, settings.site_json);

@@ -6,30 +6,23 @@
 
 namespace gusuku::bench {
 
-namespace {
-bool ground_match_available = false;
-}  // namespace
-
-void setGroundMatchAvailable(bool available) { ground_match_available = available; }
-bool groundMatchAvailable() { return ground_match_available; }
-
-std::vector<RuntimeMode> benchRuntimeModes() {
+std::vector<RuntimeMode> benchRuntimeModes(bool with_ground_match) {
     std::vector<RuntimeMode> modes;
-modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
+    modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
     // The proposed method as the runtime ships it: the camera's exposure given, no colour match.
     modes.push_back({"proposed", RenderMode::kProposed, ColourMatch::kOff, true, true});
     modes.push_back({"proposed_no_slot_blend", RenderMode::kProposed, ColourMatch::kOff, false, true});
     modes.push_back({"proposed_no_ground_ratio", RenderMode::kProposed, ColourMatch::kOff, true, false});
     modes.push_back({"proposed_preserve_match", RenderMode::kProposed, ColourMatch::kPreserve, true, true});
     // The ground match: the camera's ground against the bake set's prediction (needs ground albedo).
-    if (ground_match_available)
+    if (with_ground_match)
         modes.push_back({"proposed_ground_match", RenderMode::kProposed, ColourMatch::kGround, true, true});
     modes.push_back({"proposed_paper_match", RenderMode::kProposed, ColourMatch::kPaper, true, true});
     return modes;
 }
 
 RuntimeMode runtimeModeNamed(const std::string& name) {
-    for (const RuntimeMode& mode : benchRuntimeModes())
+    for (const RuntimeMode& mode : benchRuntimeModes(true))
         if (mode.name == name) return mode;
     throw std::invalid_argument("no runtime mode named " + name);
 }

@@ -20,13 +20,10 @@ struct RuntimeMode {
 
 /// direct_only, proposed (as shipped: exposure given, no colour match), proposed_no_slot_blend,
 /// proposed_no_ground_ratio, proposed_preserve_match (the chroma-keeping match on), proposed_ground_match (the
-/// ground match on; only while groundMatchAvailable()), proposed_paper_match (the paper's Reinhard transfer on).
-std::vector<RuntimeMode> benchRuntimeModes();
-/// Whether the bench's bake set has the ground albedo the ground match needs (the bench sets it once after
-/// loading the set; false until then, so a bench of an older set runs without that mode).
-void setGroundMatchAvailable(bool available);
-bool groundMatchAvailable();
-/// The mode of that name from benchRuntimeModes (std::invalid_argument when none).
+/// ground match on; only with_ground_match: the bake set has the ground albedo it needs, so a bench of an older
+/// set runs without that mode), proposed_paper_match (the paper's Reinhard transfer on).
+std::vector<RuntimeMode> benchRuntimeModes(bool with_ground_match);
+/// The mode of that name among every mode benchRuntimeModes knows (std::invalid_argument when none).
 RuntimeMode runtimeModeNamed(const std::string& name);
 
 /// The frame input for a mode: the camera bytes (kept by the caller), view, instant, weather and exposure.
