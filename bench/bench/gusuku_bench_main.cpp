@@ -781,12 +781,14 @@ Json runWeatherUnder(Bench& bench, const SkySet& skies) {
             {"local_time", bench.localTime(utc)}, {"rows", rows}};
 }
 
-void runWeather(Bench& bench) {
-    bench.results["weather"] = runWeatherUnder(bench, bench.analyticSkies());
+// A section under the analytic skies (results[key]), then under the photographed ones
+// (results[key + "_photographed_skies"], or why they were not run).
+void runUnderEachSkySet(Bench& bench, const std::string& key, Json (*section)(Bench&, const SkySet&)) {
+    bench.results[key] = section(bench, bench.analyticSkies());
     if (bench.photographed) {
-        bench.results["weather_photographed_skies"] = runWeatherUnder(bench, bench.photographedSkies());
+        bench.results[key + "_photographed_skies"] = section(bench, bench.photographedSkies());
     } else {
-        bench.results["weather_photographed_skies"] = bench.photographed_skipped;
+        bench.results[key + "_photographed_skies"] = bench.photographed_skipped;
         bench.say("photographed skies: " + bench.photographed_skipped);
     }
 }
@@ -951,14 +953,23 @@ Json runCloudsUnder(Bench& bench, const SkySet& skies) {
             {"cases", total}, {"mean_abs_cover_error", cover_error}};
 }
 
-void runClouds(Bench& bench) {
-    bench.results["clouds"] = runCloudsUnder(bench, bench.analyticSkies());
-    if (bench.photographed) {
-        bench.results["clouds_photographed_skies"] = runCloudsUnder(bench, bench.photographedSkies());
-    } else {
-        bench.results["clouds_photographed_skies"] = bench.photographed_skipped;
-        bench.say("photographed skies: " + bench.photographed_skipped);
-    }
+// The site a bake set was baked from (or explicit_site) and the path tracer of it, whose cache keys cover the bake
+// set's manifest and the site.json (a rebake or an edited site traces afresh).
+struct SiteTruth {
+    std::string site_json;
+    SiteConfig site;
+    std::unique_ptr<TruthRenderer> renderer;
+};
+SiteTruth siteTruthFor(const VulkanContext& context, const std::string& bake_set_folder,
+                       const BakeSetManifest& manifest, const std::optional<std::string>& explicit_site,
+                       const std::string& cache) {
+    SiteTruth truth;
+    truth.site_json = bench_common::siteJsonOf(bake_set_folder, manifest, explicit_site);
+    truth.site = loadSiteConfig(truth.site_json);
+    const std::string context_hash =
+        bake::ContentHash().addFile(bake_set_folder + "/manifest.json").addFile(truth.site_json).hex();
+    truth.renderer = std::make_unique<TruthRenderer>(context, truth.site, cache, context_hash);
+    return truth;
 }
 
 int run(const Settings& settings) {
@@ -969,14 +980,13 @@ int run(const Settings& settings) {
     bench.ground_match_available = !bench.bake_set.manifest.ground_grid.albedo.empty();
     bench.bake_midnight_utc = bench_common::bakeDateMidnightUtc(settings.bake_set, bench.bake_set.manifest, "--time");
     bench.utc_offset_minutes = bench.bake_set.manifest.site.utc_offset_minutes;
-    const std::string site_json = bench_common::siteJsonOf(settings.bake_set, bench.bake_set.manifest, settings.site_json);
-    const SiteConfig site = loadSiteConfig(site_json);
     bench.context = std::make_unique<VulkanContext>(vulkanOptionsFromEnvironment());
     const HostInfo host = describeHost(bench.context->deviceDescription());
-    const std::string context_hash =
-        bake::ContentHash().addFile(settings.bake_set + "/manifest.json").addFile(site_json).hex();
+    SiteTruth truth = siteTruthFor(*bench.context, settings.bake_set, bench.bake_set.manifest, settings.site_json,
+                                   settings.cache);
+    const std::string& site_json = truth.site_json;
     std::filesystem::create_directories(settings.output + "/frames");
-    bench.renderer = std::make_unique<TruthRenderer>(*bench.context, site, settings.cache, context_hash);
+    bench.renderer = std::move(truth.renderer);
 
     std::time_t now = std::time(nullptr);
     char started[32];
@@ -998,15 +1008,10 @@ int run(const Settings& settings) {
         auto photographed = std::make_unique<PhotographedSkies>();
         photographed->bake_set_folder = *settings.photographed_bake_set;
         photographed->bake_set = loadBakeSet(photographed->bake_set_folder);
-        const std::string photographed_site_json =
-            bench_common::siteJsonOf(photographed->bake_set_folder, photographed->bake_set.manifest, std::nullopt);
-        const SiteConfig photographed_site = loadSiteConfig(photographed_site_json);
-        const std::string photographed_hash = bake::ContentHash()
-                                                  .addFile(photographed->bake_set_folder + "/manifest.json")
-                                                  .addFile(photographed_site_json)
-                                                  .hex();
-        photographed->renderer = std::make_unique<TruthRenderer>(*bench.context, photographed_site, settings.cache,
-                                                                 photographed_hash);
+        SiteTruth photographed_truth = siteTruthFor(*bench.context, photographed->bake_set_folder,
+                                                    photographed->bake_set.manifest, std::nullopt, settings.cache);
+        const SiteConfig& photographed_site = photographed_truth.site;
+        photographed->renderer = std::move(photographed_truth.renderer);
         RuntimeOptions options;
         options.frame_width = settings.sweep_width;
         options.frame_height = settings.sweep_height;
@@ -1027,9 +1032,9 @@ int run(const Settings& settings) {
 
     runMain(bench);
     if (settings.wants("day")) runDay(bench);
-    if (settings.wants("weather")) runWeather(bench);
+    if (settings.wants("weather")) runUnderEachSkySet(bench, "weather", runWeatherUnder);
     if (settings.wants("cost")) runCost(bench);
-    if (settings.wants("clouds")) runClouds(bench);
+    if (settings.wants("clouds")) runUnderEachSkySet(bench, "clouds", runCloudsUnder);
 
     const double seconds = millisecondsSince(start) / 1000.0;
     bench.results["run"]["seconds"] = seconds;
