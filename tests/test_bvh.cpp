@@ -546,14 +546,17 @@ protected:
             probe_rays[i].t_max = rays[i].t_max;
             probe_rays[i].skip_flags = rays[i].skip_flags;
         }
-        GpuBuffer nodes(context(), bvh.nodes.size() * sizeof(BvhNodeGpu));
-        GpuBuffer triangles(context(), bvh.triangles.size() * sizeof(BvhTriangleGpu));
+        GpuBuffer nodes(context(), bvh.nodes.size() * sizeof(BvhNodeGpu), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        GpuBuffer triangles(context(), bvh.triangles.size() * sizeof(BvhTriangleGpu),
+                            VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
         GpuBuffer ray_buffer(context(), probe_rays.size() * sizeof(ProbeRay));
         GpuBuffer result_buffer(context(), rays.size() * sizeof(ProbeResult));
         nodes.uploadVector(bvh.nodes);
         triangles.uploadVector(bvh.triangles);
         ray_buffer.uploadVector(probe_rays);
-        ComputePipeline pipeline(context(), kBvhProbeCompSpirv, sizeof(kBvhProbeCompSpirv), 4, sizeof(ProbeParams));
+        // bvh_layout.glsl reads nodes and triangles as RGBA32UI texel buffers at bindings 0 and 1.
+        ComputePipeline pipeline(context(), kBvhProbeCompSpirv, sizeof(kBvhProbeCompSpirv), 4, sizeof(ProbeParams),
+                                 {{0, VK_FORMAT_R32G32B32A32_UINT}, {1, VK_FORMAT_R32G32B32A32_UINT}});
         pipeline.bindBuffers({&nodes, &triangles, &ray_buffer, &result_buffer});
         const ProbeParams params{static_cast<uint32_t>(rays.size()), queries};
         const uint32_t groups = (params.ray_count + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;

@@ -36,8 +36,10 @@ constexpr uint32_t kWorkgroupSize = CAMERA_TRACE_WORKGROUP_SIZE;
 // One chunk's per-sample scratch (pixels x samples vec4) is kept under this, well inside lavapipe's 128 MiB cap.
 constexpr size_t kMaxScratchBytes = size_t(64) << 20;
 
-template <typename T> GpuBuffer uploadedBuffer(const GpuDevice& gpu, const std::vector<T>& values) {
-    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), 16));
+template <typename T>
+GpuBuffer uploadedBuffer(const GpuDevice& gpu, const std::vector<T>& values,
+                         VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), 16), usage);
     if (!values.empty()) buffer.uploadVector(values);
     return buffer;
 }
@@ -80,14 +82,17 @@ CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int ma
     const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
     triangle_count_ = scene.mesh.triangleCount();
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
-    bvh_nodes_ = uploadedBuffer(gpu, bvh.nodes);
-    bvh_triangles_ = uploadedBuffer(gpu, bvh.triangles);
+    bvh_nodes_ = uploadedBuffer(gpu, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    bvh_triangles_ = uploadedBuffer(gpu, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     shading_ = uploadedBuffer(gpu, shading.triangles);
     materials_ = uploadedBuffer(gpu, shading.materials);
     textures_ = uploadedBuffer(gpu, shading.texture_words);
     ray_counter_ = GpuBuffer(gpu, 16);
     trace_pipeline_ = std::make_unique<ComputePipeline>(gpu, kCameraTraceCompSpirv, sizeof(kCameraTraceCompSpirv),
-                                                        CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)));
+                                                        CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)),
+                                                        std::vector<TexelBufferBinding>{
+                                                            {CAMERA_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                            {CAMERA_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,

@@ -33,8 +33,10 @@ static_assert(BAKE_ACCUMULATE_WORKGROUP_SIZE == BAKE_WORKGROUP_SIZE, "one point_
 // inside lavapipe's 128 MiB storage-buffer cap).
 constexpr size_t kMaxScratchBytes = size_t(64) << 20;
 
-template <typename T> GpuBuffer uploadedBuffer(VulkanContext& context, const std::vector<T>& values) {
-    GpuBuffer buffer(context, std::max<size_t>(values.size() * sizeof(T), 16));
+template <typename T>
+GpuBuffer uploadedBuffer(VulkanContext& context, const std::vector<T>& values,
+                         VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+    GpuBuffer buffer(context, std::max<size_t>(values.size() * sizeof(T), 16), usage);
     if (!values.empty()) buffer.uploadVector(values);
     return buffer;
 }
@@ -62,15 +64,18 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     triangle_count_ = scene.mesh.triangleCount();
     dropped_triangle_count_ = bvh.dropped_triangle_count;
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
-    bvh_nodes_ = uploadedBuffer(context, bvh.nodes);
-    bvh_triangles_ = uploadedBuffer(context, bvh.triangles);
+    bvh_nodes_ = uploadedBuffer(context, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    bvh_triangles_ = uploadedBuffer(context, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     shading_ = uploadedBuffer(context, shading.triangles);
     materials_ = uploadedBuffer(context, shading.materials);
     textures_ = uploadedBuffer(context, shading.texture_words);
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
-                                                  BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)));
+                                                  BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)),
+                                                  std::vector<TexelBufferBinding>{
+                                                      {BAKE_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                      {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));

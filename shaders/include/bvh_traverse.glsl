@@ -2,7 +2,8 @@
 // same node visiting order as baker/src/bvh_cpu_trace.cpp; tests/test_bvh.cpp holds the two together, hit for
 // hit and bit for bit.
 //
-// Usage: #define BVH_NODE_BINDING and BVH_TRIANGLE_BINDING (set 0 storage buffers), then include.
+// Usage: #define BVH_NODE_BINDING and BVH_TRIANGLE_BINDING (set 0 uniform texel buffers, bvh_layout.glsl),
+// then include.
 //   bool bvhTraceClosest(origin, direction, t_max, skip_flags, out BvhHit hit): closest hit, 0 < t < t_max.
 //   bool bvhOccluded(origin, direction, t_max, skip_flags): any hit, 0 < t < t_max.
 // Triangles with (flags & skip_flags) != 0 are ignored. Both faces are hit (no culling). Among hits at exactly
@@ -80,7 +81,8 @@ const uint kBvhNoReference = 0xffffffffu;  // a leaf reference of 7 triangles, w
 // "while-while" (Aila and Laine 2009, "Understanding the Efficiency of Ray Traversal on GPUs"): descend to a
 // leaf, then test its triangles; on lavapipe, whose SIMD lanes run in step, this measured 0-20 % faster than
 // one loop with an if (leaf) branch. lavapipe runs each storage-buffer load as a loop over the lanes, so
-// load instructions are what costs: three per node (both children), three per triangle (bvh_layout.glsl).
+// the nodes and triangles are fetched from texel buffers: three per node (both children), three per triangle
+// (bvh_layout.glsl).
 // Ties: among hits at exactly equal t the one first in the triangle buffer wins, whatever the visiting order.
 bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool any_hit, out BvhHit hit) {
     hit.t = t_max;
@@ -101,10 +103,10 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
     while (reference != kBvhNoReference) {
         // Descend through inner nodes until a leaf (while-while: lanes of a SIMD group stay in step).
         while ((reference & BVH_CHILD_LEAF) == 0u) {
-            uvec4 children_x = bvh_nodes[reference].children_x;
+            uvec4 children_x = bvhNodeTexel(reference, 1u);
             vec3 min0, max0, min1, max1;
-            bvhChildBoxes(bvh_nodes[reference].origin_exponents, children_x, bvh_nodes[reference].quantised_yz,
-                          min0, max0, min1, max1);
+            bvhChildBoxes(bvhNodeTexel(reference, 0u), children_x, bvhNodeTexel(reference, 2u), min0, max0, min1,
+                          max1);
             uint child0 = children_x.x;
             uint child1 = children_x.y;
             float t0 = bvhSlabEntry(min0, max0, origin, inverse_direction, t_closest);
@@ -128,18 +130,19 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
         uint first = reference & BVH_LEAF_FIRST_MASK;
         uint last = reference == kBvhNoReference ? first : first + ((reference >> BVH_LEAF_COUNT_SHIFT) & 7u);
         for (uint i = first; i < last; ++i) {
-            vec4 edge1_flags = bvh_triangles[i].edge1_flags;
-            if ((floatBitsToUint(edge1_flags.w) & skip_flags) != 0u) continue;
-            vec4 v0_index = bvh_triangles[i].v0_index;
-            vec3 edge1 = edge1_flags.xyz;
-            vec3 edge2 = bvh_triangles[i].edge2_pad.xyz;
+            uvec4 edge1_flags = bvhTriangleTexel(i, 1u);
+            if ((edge1_flags.w & skip_flags) != 0u) continue;
+            uvec4 v0_index = bvhTriangleTexel(i, 0u);
+            vec3 edge1 = uintBitsToFloat(edge1_flags.xyz);
+            vec3 edge2 = uintBitsToFloat(bvhTriangleTexel(i, 2u).xyz);
             float t, u, v;
-            if (!bvhIntersectTriangle(v0_index.xyz, edge1, edge2, origin, direction, t, u, v)) continue;
+            if (!bvhIntersectTriangle(uintBitsToFloat(v0_index.xyz), edge1, edge2, origin, direction, t, u, v))
+                continue;
             if (!(t < t_closest || (t == t_closest && i < closest_slot))) continue;
             found = true;
             t_closest = t;
             closest_slot = i;
-            hit.triangle_index = floatBitsToUint(v0_index.w);
+            hit.triangle_index = v0_index.w;
             hit.t = t;
             hit.barycentric_u = u;
             hit.barycentric_v = v;

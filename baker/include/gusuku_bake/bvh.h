@@ -1,15 +1,15 @@
 #pragma once
 // The baker's ray-tracing structure: a binary BVH built on the CPU with binned SAH and traversed in GLSL
-// compute (shaders/include/bvh_traverse.glsl) from two storage buffers, because lavapipe has no ray queries
+// compute (shaders/include/bvh_traverse.glsl) from two uniform texel buffers, because lavapipe has no ray queries
 // or acceleration structures (DESIGN.md 5). The CPU traversal here mirrors the GLSL one operation for
 // operation, so tests can compare the two and tools can trace a few rays without a GPU.
 //
-// Layout contract (std430, shared with bvh_layout.glsl). Why this shape: lavapipe runs each SIMD lane's
-// storage-buffer load of a divergent address as its own scalar load, so the traversal's cost is mostly the
-// number of load instructions (one 8-iteration loop each, whatever their width up to 16 bytes) per node and
-// per triangle. Both children's boxes, quantised to 16 bits on the parent's grid, and the child references
-// fit in three 16-byte loads per node visit (the float layout of one box per node took six loads); a triangle
-// is three 16-byte loads.
+// Layout contract (std430, shared with bvh_layout.glsl, which reads both arrays as RGBA32UI texels). Why this
+// shape: the traversal's cost on lavapipe is mostly the number of load instructions per node and per triangle
+// (a storage-buffer load of a divergent address ran as an 8-iteration loop of scalar loads, whatever its width
+// up to 16 bytes; a texel fetch gathers the lanes in vector code, 1.4x faster per CPU second on the sample
+// bake). Both children's boxes, quantised to 16 bits on the parent's grid, and the child references fit in
+// three 16-byte texels per node visit (the float layout of one box per node took six); a triangle is three.
 // - nodes[0] is the root. Every node is an inner node with two children, each given by a child reference
 //   (kBvhChildLeaf set: a leaf of bvhLeafCount(ref) triangles from bvhLeafFirst(ref), 0..kBvhMaxLeafTriangles;
 //   else: the index of an inner node) and a box quantised to 16 bits per face on the node's grid
@@ -87,14 +87,14 @@ struct BvhTriangleGpu {
 static_assert(sizeof(BvhTriangleGpu) == 48, "BvhTriangleGpu must match the std430 layout in bvh_traverse.glsl");
 
 struct Bvh {
-    std::vector<BvhNodeGpu> nodes;          ///< upload as-is to the node storage buffer
-    std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle storage buffer (never empty)
+    std::vector<BvhNodeGpu> nodes;          ///< upload as-is to the node texel buffer
+    std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle texel buffer (never empty)
     size_t dropped_triangle_count = 0;      ///< zero-area or non-finite triangles left out
     uint32_t depth = 0;                     ///< levels in the tree, leaves included (one leaf under the root = 2)
 };
 
 /// Builds a binned-SAH BVH (16 bins, leaves of <= 4 triangles) over every triangle of `mesh`. Up to
-/// kBvhMaxTriangles usable triangles (more throws InputError; storage buffers cap far lower).
+/// kBvhMaxTriangles usable triangles (more throws InputError; a device's maxTexelBufferElements may cap lower).
 /// triangle_flags: one per triangle, or empty for all zero. Triangles with a zero-area cross product or a
 /// non-finite vertex are dropped (counted in dropped_triangle_count). Cost: O(n log n), ~0.1 s per 100k
 /// triangles on one core. Throws InputError("mesh", ...) for a vertex index out of range or a flag count

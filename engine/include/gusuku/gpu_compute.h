@@ -1,8 +1,8 @@
 #pragma once
 // Minimal compute helpers on a GpuDevice (the app's device or a VulkanContext's, gpu_device.h): buffers and
-// compute pipelines whose descriptor set 0 holds only storage buffers at bindings 0..N-1 plus one push-constant
-// block. That is all the baker needs: textures, sky maps and the BVH travel as storage buffers (lavapipe lacks
-// descriptor indexing, DESIGN.md 5). A VulkanContext converts to `const GpuDevice&`, so it can be passed as is.
+// compute pipelines whose descriptor set 0 holds buffers at bindings 0..N-1 (storage buffers, or uniform texel
+// buffers where the pipeline says so) plus one push-constant block. That is all the baker needs: textures, sky
+// maps and the BVH travel as buffers (lavapipe lacks descriptor indexing, DESIGN.md 5). A VulkanContext converts to `const GpuDevice&`, so it can be passed as is.
 //
 // Lifetime: the GpuDevice object passed in (not only its handles) must outlive the buffers and pipelines made
 // on it; they keep a pointer to it.
@@ -76,19 +76,32 @@ private:
     size_t byte_count_ = 0;
 };
 
-/// A compute pipeline from embedded SPIR-V with `storage_buffer_count` storage buffers at set 0, bindings
-/// 0..count-1, and a push-constant block of push_constant_bytes (<= 128).
+/// A binding of set 0 that the shader reads as a uniform texel buffer (GLSL usamplerBuffer / samplerBuffer
+/// with texelFetch) through a view of the whole buffer in `format`, rather than as a storage buffer. Why: on
+/// lavapipe a storage-buffer load at a per-lane address runs as a loop over the SIMD lanes, one scalar load
+/// each, while a texel fetch gathers all lanes in straight-line vector code. The buffer must have been made
+/// with VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT.
+struct TexelBufferBinding {
+    uint32_t binding;
+    VkFormat format;
+};
+
+/// A compute pipeline from embedded SPIR-V with `buffer_count` buffers at set 0, bindings 0..count-1 (storage
+/// buffers, except those listed in texel_buffers), and a push-constant block of push_constant_bytes (<= 128).
 class ComputePipeline {
 public:
-    ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes, uint32_t storage_buffer_count,
-                    uint32_t push_constant_bytes);
+    ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes, uint32_t buffer_count,
+                    uint32_t push_constant_bytes, const std::vector<TexelBufferBinding>& texel_buffers = {});
     ~ComputePipeline();
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
 
-    /// Points the descriptor set at these buffers (size must equal storage_buffer_count). There is one set per
+    /// Points the descriptor set at these buffers (size must equal buffer_count). There is one set per
     /// pipeline: rebinding while a recorded command buffer that uses it is still to be submitted changes what
     /// that command buffer reads, so record one dispatch per binding (dispatchAndWait) or use several pipelines.
+    /// A texel-buffer binding gets a view of the whole buffer (kept until the pipeline is destroyed, reused
+    /// while the same buffer is bound); throws std::runtime_error when the buffer holds more texels than the
+    /// device's maxTexelBufferElements (128 Mi on lavapipe).
     void bindBuffers(const std::vector<const GpuBuffer*>& buffers);
 
     /// Records bind + push constants + dispatch into cmd (no barrier: add recordComputeBarrier between dependent
@@ -103,10 +116,19 @@ public:
 
 private:
     void destroy() noexcept;
+    VkDescriptorType descriptorType(uint32_t binding) const;
+    const VkBufferView& texelView(uint32_t binding, const GpuBuffer& buffer);
     const GpuDevice& gpu_;
     std::unique_ptr<GpuSubmitter> submitter_;  // for dispatchAndWait
-    uint32_t storage_buffer_count_;
+    uint32_t storage_buffer_count_;  // all bindings, texel buffers included
     uint32_t push_constant_bytes_;
+    std::vector<VkFormat> binding_formats_;  // per binding: VK_FORMAT_UNDEFINED for a storage buffer
+    struct BoundView {
+        VkBuffer buffer = VK_NULL_HANDLE;
+        VkBufferView view = VK_NULL_HANDLE;
+    };
+    std::vector<BoundView> bound_views_;         // per binding, the view now in the set
+    std::vector<VkBufferView> retired_views_;    // views replaced by a rebind: a pending dispatch may use them
     VkShaderModule module_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;

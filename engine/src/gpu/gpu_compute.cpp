@@ -1,4 +1,4 @@
-// Storage buffers and storage-buffer-only compute pipelines (see gpu_compute.h for the contract).
+// Buffers and compute pipelines over storage and uniform texel buffers (see gpu_compute.h for the contract).
 
 #include "gusuku/gpu_compute.h"
 
@@ -10,6 +10,22 @@
 
 namespace gusuku {
 namespace {
+
+// Bytes per texel of the formats a texel-buffer binding may use (32-bit channels: what a shader reads exactly).
+size_t textureFormatBytes(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R8G8B8A8_UINT:
+    case VK_FORMAT_R8G8B8A8_UNORM: return 4;
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R32G32_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw std::invalid_argument("ComputePipeline: texel buffer format " + std::to_string(int(format)) +
+                                         " is not one of the supported 32-bit-channel formats");
+    }
+}
 
 std::string mebibytes(VkDeviceSize bytes) {
     return std::to_string(static_cast<double>(bytes) / (1024.0 * 1024.0)) + " MiB (" + std::to_string(bytes) + " bytes)";
@@ -152,8 +168,21 @@ void GpuBuffer::copyThroughStaging(void* host_bytes, size_t byte_count, size_t o
 // ComputePipeline
 
 ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes,
-                                 uint32_t storage_buffer_count, uint32_t push_constant_bytes)
-    : gpu_(gpu), storage_buffer_count_(storage_buffer_count), push_constant_bytes_(push_constant_bytes) {
+                                 uint32_t buffer_count, uint32_t push_constant_bytes,
+                                 const std::vector<TexelBufferBinding>& texel_buffers)
+    : gpu_(gpu), storage_buffer_count_(buffer_count), push_constant_bytes_(push_constant_bytes),
+      binding_formats_(buffer_count, VK_FORMAT_UNDEFINED), bound_views_(buffer_count) {
+    for (const TexelBufferBinding& texel : texel_buffers) {
+        if (texel.binding >= buffer_count || texel.format == VK_FORMAT_UNDEFINED)
+            throw std::invalid_argument("ComputePipeline: texel buffer binding " + std::to_string(texel.binding) +
+                                        " is not one of the " + std::to_string(buffer_count) +
+                                        " bindings or has no format");
+        textureFormatBytes(texel.format);  // throws for a format bindBuffers could not size
+        binding_formats_[texel.binding] = texel.format;
+    }
+    const uint32_t texel_buffer_count = uint32_t(
+        std::count_if(binding_formats_.begin(), binding_formats_.end(), [](VkFormat f) { return f != VK_FORMAT_UNDEFINED; }));
+    const uint32_t storage_buffer_count = buffer_count - texel_buffer_count;
     if (spirv == nullptr || spirv_bytes == 0 || spirv_bytes % 4 != 0)
         throw std::invalid_argument("ComputePipeline: SPIR-V must be a non-empty array of 32-bit words");
     const uint32_t push_constant_limit = std::min<uint32_t>(128, gpu.limits().maxPushConstantsSize);
@@ -165,6 +194,10 @@ ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, si
         throw std::invalid_argument("ComputePipeline: " + std::to_string(storage_buffer_count) +
                                     " storage buffers exceed the device's per-stage limit of " +
                                     std::to_string(gpu.limits().maxPerStageDescriptorStorageBuffers));
+    if (texel_buffer_count > gpu.limits().maxPerStageDescriptorSampledImages)
+        throw std::invalid_argument("ComputePipeline: " + std::to_string(texel_buffer_count) +
+                                    " texel buffers exceed the device's per-stage limit of " +
+                                    std::to_string(gpu.limits().maxPerStageDescriptorSampledImages));
 
     VkDevice device = gpu.device;
     try {
@@ -173,15 +206,15 @@ ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, si
         module_info.pCode = spirv;
         checkVk(vkCreateShaderModule(device, &module_info, nullptr, &module_), "vkCreateShaderModule");
 
-        std::vector<VkDescriptorSetLayoutBinding> bindings(storage_buffer_count);
-        for (uint32_t binding = 0; binding < storage_buffer_count; ++binding) {
+        std::vector<VkDescriptorSetLayoutBinding> bindings(buffer_count);
+        for (uint32_t binding = 0; binding < buffer_count; ++binding) {
             bindings[binding].binding = binding;
-            bindings[binding].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            bindings[binding].descriptorType = descriptorType(binding);
             bindings[binding].descriptorCount = 1;
             bindings[binding].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
         }
         VkDescriptorSetLayoutCreateInfo set_layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        set_layout_info.bindingCount = storage_buffer_count;
+        set_layout_info.bindingCount = buffer_count;
         set_layout_info.pBindings = bindings.data();
         checkVk(vkCreateDescriptorSetLayout(device, &set_layout_info, nullptr, &set_layout_),
                 "vkCreateDescriptorSetLayout");
@@ -205,12 +238,15 @@ ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, si
                 "vkCreateComputePipelines");
 
         // A pool of exactly one set; with no buffers the (empty) set layout still needs no pool.
-        if (storage_buffer_count > 0) {
-            VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_buffer_count};
+        if (buffer_count > 0) {
+            std::vector<VkDescriptorPoolSize> pool_sizes;
+            if (storage_buffer_count > 0) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_buffer_count});
+            if (texel_buffer_count > 0)
+                pool_sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texel_buffer_count});
             VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
             pool_info.maxSets = 1;
-            pool_info.poolSizeCount = 1;
-            pool_info.pPoolSizes = &pool_size;
+            pool_info.poolSizeCount = uint32_t(pool_sizes.size());
+            pool_info.pPoolSizes = pool_sizes.data();
             checkVk(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
             VkDescriptorSetAllocateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
             set_info.descriptorPool = descriptor_pool_;
@@ -234,6 +270,12 @@ void ComputePipeline::destroy() noexcept {
     if (pipeline_layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
     if (module_ != VK_NULL_HANDLE) vkDestroyShaderModule(device, module_, nullptr);
+    for (BoundView& bound : bound_views_) {
+        if (bound.view != VK_NULL_HANDLE) vkDestroyBufferView(device, bound.view, nullptr);
+        bound = {};
+    }
+    for (VkBufferView view : retired_views_) vkDestroyBufferView(device, view, nullptr);
+    retired_views_.clear();
     descriptor_pool_ = VK_NULL_HANDLE;
     descriptor_set_ = VK_NULL_HANDLE;
     pipeline_ = VK_NULL_HANDLE;
@@ -252,16 +294,49 @@ void ComputePipeline::bindBuffers(const std::vector<const GpuBuffer*>& buffers) 
         if (buffers[binding] == nullptr || buffers[binding]->handle() == VK_NULL_HANDLE)
             throw std::invalid_argument("ComputePipeline::bindBuffers: binding " + std::to_string(binding) +
                                         " has no buffer");
-        buffer_infos[binding] = {buffers[binding]->handle(), 0, VK_WHOLE_SIZE};
         writes[binding] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[binding].dstSet = descriptor_set_;
         writes[binding].dstBinding = static_cast<uint32_t>(binding);
         writes[binding].descriptorCount = 1;
-        writes[binding].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[binding].pBufferInfo = &buffer_infos[binding];
+        writes[binding].descriptorType = descriptorType(uint32_t(binding));
+        if (binding_formats_[binding] == VK_FORMAT_UNDEFINED) {
+            buffer_infos[binding] = {buffers[binding]->handle(), 0, VK_WHOLE_SIZE};
+            writes[binding].pBufferInfo = &buffer_infos[binding];
+        } else {
+            writes[binding].pTexelBufferView = &texelView(uint32_t(binding), *buffers[binding]);
+        }
     }
     if (!writes.empty())
         vkUpdateDescriptorSets(gpu_.device, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+VkDescriptorType ComputePipeline::descriptorType(uint32_t binding) const {
+    return binding_formats_[binding] == VK_FORMAT_UNDEFINED ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                            : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+}
+
+const VkBufferView& ComputePipeline::texelView(uint32_t binding, const GpuBuffer& buffer) {
+    BoundView& bound = bound_views_[binding];
+    if (bound.view != VK_NULL_HANDLE && bound.buffer == buffer.handle()) return bound.view;
+    const VkFormat format = binding_formats_[binding];
+    const size_t texel_bytes = textureFormatBytes(format);
+    // A view covers whole texels only; the buffer's last partial texel (if any) is never read.
+    const uint64_t texel_count = std::max<uint64_t>(1, buffer.size() / texel_bytes);
+    if (texel_count > gpu_.limits().maxTexelBufferElements)
+        throw std::runtime_error("ComputePipeline: a texel buffer of " + std::to_string(texel_count) +
+                                 " texels exceeds this device's maxTexelBufferElements of " +
+                                 std::to_string(gpu_.limits().maxTexelBufferElements) + " (" +
+                                 gpu_.properties.deviceName + ")");
+    VkBufferViewCreateInfo view_info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    view_info.buffer = buffer.handle();
+    view_info.format = format;
+    view_info.offset = 0;
+    view_info.range = texel_count * texel_bytes;
+    VkBufferView view = VK_NULL_HANDLE;
+    checkVk(vkCreateBufferView(gpu_.device, &view_info, nullptr, &view), "vkCreateBufferView");
+    if (bound.view != VK_NULL_HANDLE) retired_views_.push_back(bound.view);
+    bound = {buffer.handle(), view};
+    return bound.view;
 }
 
 void ComputePipeline::recordDispatch(VkCommandBuffer cmd, const void* push_constants, uint32_t groups_x,
