@@ -285,6 +285,66 @@ TEST(SkySampling, SampledPdfAgreesWithPdfLookupAndTexelConvention) {
         }
 }
 
+// The guide tables (sky_light.h) narrow each CDF search without changing its answer: on a map of dark runs and
+// one bright texel (long stretches of nearly equal CDF entries, then one jump), every guide entry is the largest
+// interval whose CDF start is <= k / cells, and every sample lands in the texel a search of the whole CDF picks,
+// at random xi and at xi exactly on each CDF entry and one float below it.
+TEST(SkySampling, GuidedSearchFindsTheWholeSearchsInterval) {
+    constexpr int kWidth = 48, kHeight = 20;  // not powers of two: the guides have spare cells
+    ImageRGBA sky = patchSky(kWidth, kHeight);
+    for (int x = 5; x < 40; ++x) std::fill(sky.texel(x, 3), sky.texel(x, 3) + 3, 0.0f);  // a dark run
+    std::fill(sky.texel(17, 6), sky.texel(17, 6) + 3, 5e4f);                              // one bright texel
+    const SkySamplingTables tables = buildSkySamplingTables(sky, 30.0);
+    const int row_cells = skyGuideCells(kHeight), column_cells = skyGuideCells(kWidth);
+    ASSERT_EQ(row_cells, 32);
+    ASSERT_EQ(column_cells, 64);
+    const float* marginal = tables.table.data() + kSkyTableHeaderFloats;
+    auto conditional = [&](int y) { return marginal + (kHeight + 1) + size_t(y) * (kWidth + 1); };
+    const float* marginal_guide = conditional(kHeight);
+    auto conditional_guide = [&](int y) { return marginal_guide + (row_cells + 1) + size_t(y) * (column_cells + 1); };
+    // The whole search: the largest i in [0, n-1] with cdf[i] <= xi.
+    auto wholeSearch = [](const float* cdf, int n, float xi) {
+        int found = 0;
+        for (int i = 0; i < n; ++i)
+            if (cdf[i] <= xi) found = i;
+        return found;
+    };
+    for (int k = 0; k <= row_cells; ++k)
+        EXPECT_EQ(marginal_guide[k], float(wholeSearch(marginal, kHeight, float(k) / float(row_cells)))) << k;
+    for (int y = 0; y < kHeight; ++y)
+        for (int k = 0; k <= column_cells; ++k)
+            EXPECT_EQ(conditional_guide(y)[k], float(wholeSearch(conditional(y), kWidth, float(k) / column_cells)));
+
+    std::vector<float> xis;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (int k = 0; k < 4000; ++k) xis.push_back(uniform(rng));
+    for (int y = 0; y <= kHeight; ++y) {
+        xis.push_back(marginal[y]);
+        xis.push_back(std::nextafter(marginal[y], 0.0f));
+    }
+    for (size_t a = 0; a < xis.size(); ++a) {
+        const float xi1 = std::min(xis[a], 0x1.fffffep-1f);
+        const int y = wholeSearch(marginal, kHeight, xi1);
+        // Second coordinate: random, and every entry of the chosen row's CDF.
+        std::vector<float> xi2s = {uniform(rng)};
+        for (int x = 0; x <= kWidth; x += 3) xi2s.push_back(std::min(conditional(y)[x], 0x1.fffffep-1f));
+        for (float xi2 : xi2s) {
+            const int x = wholeSearch(conditional(y), kWidth, xi2);
+            const glm::dvec2 uv = gusuku::equirectCoordinates(sampleSkyCpu(tables, xi1, xi2).direction_enu, 30.0);
+            SCOPED_TRACE(::testing::Message() << "xi (" << xi1 << ", " << xi2 << ") texel " << x << ", " << y);
+            EXPECT_GE(uv.y * kHeight, y - 1e-6);
+            EXPECT_LE(uv.y * kHeight, y + 1 + 1e-6);
+            // The column, unless the sample sits at a pole, where the azimuth means nothing.
+            if (uv.y > 1e-6 && uv.y < 1.0 - 1e-6) {
+                const double column = uv.x * kWidth;
+                const double distance = std::min(std::abs(column - (x + 0.5)), kWidth - std::abs(column - (x + 0.5)));
+                EXPECT_LE(distance, 0.5 + 1e-4);
+            }
+        }
+    }
+}
+
 TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
     const SkySamplingTables black = buildSkySamplingTables(uniformMap(64, 32, 0.0f), 0.0);
     EXPECT_EQ(black.table[3], 0.0f);
@@ -309,7 +369,8 @@ TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
     EXPECT_EQ(tables.table[0], 64.0f);
     EXPECT_EQ(tables.table[1], 32.0f);
     EXPECT_EQ(tables.table[kSkyTableHeaderFloats + 32], 1.0f);
-    EXPECT_EQ(tables.table.size(), kSkyTableHeaderFloats + 33 + 32 * 65);
+    // then the guides: the marginal's (32 cells + 1) and each row's (64 cells + 1).
+    EXPECT_EQ(tables.table.size(), kSkyTableHeaderFloats + 33 + 32 * 65 + 33 + 32 * 65);
     EXPECT_NEAR(tables.table[3], 2.0 * pi, 0.01);  // luminance 1 over the lower hemisphere
 }
 
@@ -354,6 +415,9 @@ TEST_F(SkySamplingGpu, ProbeMatchesCpuTwins) {
         const glm::dvec3 radiance_at_sample = skyRadianceCpu(tables, cpu.direction_enu);
         for (int c = 0; c < 3; ++c) EXPECT_EQ(gpu[i].radiance_at_sample[c], float(radiance_at_sample[c]));
         EXPECT_NEAR(gpu[i].pdf_at_sample, skyPdfCpu(tables, cpu.direction_enu), 1e-4 * cpu.pdf_solid_angle);
+        // The one-load lookup is the pair of lookups, bit for bit (the texel's density is stored as computed).
+        EXPECT_EQ(gpu[i].combined_radiance, gpu[i].radiance_at_direction);
+        EXPECT_EQ(gpu[i].combined_pdf, gpu[i].pdf_at_direction);
     }
 }
 

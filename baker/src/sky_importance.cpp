@@ -36,11 +36,21 @@ size_t marginalOffset() { return kSkyTableHeaderFloats; }
 size_t conditionalOffset(const SkySamplingTables& tables, int row) {
     return kSkyTableHeaderFloats + size_t(tables.height) + 1 + size_t(row) * (size_t(tables.width) + 1);
 }
+// The guide tables follow the last row's conditional CDF (layout in sky_light.h).
+size_t marginalGuideOffset(const SkySamplingTables& tables) { return conditionalOffset(tables, tables.height); }
+size_t conditionalGuideOffset(const SkySamplingTables& tables, int row) {
+    return marginalGuideOffset(tables) + size_t(skyGuideCells(tables.height)) + 1 +
+           size_t(row) * (size_t(skyGuideCells(tables.width)) + 1);
+}
+size_t tableFloats(const SkySamplingTables& tables) { return conditionalGuideOffset(tables, tables.height); }
 
-/// Largest i in [0, n-1] with cdf[i] <= xi (cdf has n + 1 entries). Same loop as skyFindInterval() in GLSL.
-int findInterval(const float* cdf, int n, float xi) {
-    int lo = 0;
-    int hi = n - 1;
+/// Largest i in [0, n-1] with cdf[i] <= xi (cdf has n + 1 entries), searched in [guide[k], guide[k + 1]] for
+/// k = floor(xi * cells): the guide's entries are that same answer at k / cells and (k + 1) / cells, and the
+/// answer grows with xi, so it lies between them. Same loop as skyFindInterval() in GLSL.
+int findInterval(const float* cdf, const float* guide, int cells, float xi) {
+    const int cell = std::min(int(xi * float(cells)), cells - 1);
+    int lo = int(guide[cell]);
+    int hi = int(guide[cell + 1]);
     while (lo < hi) {
         const int mid = (lo + hi + 1) / 2;
         if (cdf[mid] <= xi)
@@ -53,7 +63,7 @@ int findInterval(const float* cdf, int n, float xi) {
 
 void checkTables(const SkySamplingTables& tables) {
     if (tables.width <= 0 || tables.height <= 0 ||
-        tables.table.size() != conditionalOffset(tables, tables.height) ||
+        tables.table.size() != tableFloats(tables) ||
         tables.radiance_rgba.size() != size_t(tables.width) * size_t(tables.height) * 4)
         throw std::invalid_argument("SkySamplingTables: sizes do not match width and height");
 }
@@ -112,7 +122,24 @@ void writeCdf(const std::vector<double>& weights, float* cdf) {
     cdf[n] = 1.0f;
 }
 
+/// Writes the guide of a CDF of n intervals: cells + 1 entries, entry k the largest i in [0, n-1] with
+/// cdf[i] <= k / cells (compared in float: k / cells is exact for a power-of-two cells below 2^24).
+void writeGuide(const float* cdf, int n, int cells, float* guide) {
+    int interval = 0;
+    for (int k = 0; k <= cells; ++k) {
+        const float xi = float(k) / float(cells);
+        while (interval + 1 <= n - 1 && cdf[interval + 1] <= xi) ++interval;
+        guide[k] = float(interval);
+    }
+}
+
 }  // namespace
+
+int skyGuideCells(int intervals) {
+    int cells = 1;
+    while (cells < intervals) cells *= 2;
+    return cells;
+}
 
 SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, double north_azimuth_in_image_deg) {
     const int width = sky_without_sun.width;
@@ -151,7 +178,7 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
     const bool uniform_fallback = !(any_luminance > 0.0) || !std::isfinite(any_luminance);
     if (uniform_fallback) std::fill(luminance.begin(), luminance.end(), 1.0);
 
-    tables.table.assign(kSkyTableHeaderFloats + size_t(height) + 1 + size_t(height) * (size_t(width) + 1), 0.0f);
+    tables.table.assign(tableFloats(tables), 0.0f);
     tables.table[0] = float(width);
     tables.table[1] = float(height);
     tables.table[2] = float(north_azimuth_in_image_deg);
@@ -170,6 +197,22 @@ SkySamplingTables buildSkySamplingTables(const ImageRGBA& sky_without_sun, doubl
         writeCdf(column_weights, tables.table.data() + conditionalOffset(tables, y));
     }
     writeCdf(row_weights, tables.table.data() + marginalOffset());
+
+    const int row_cells = skyGuideCells(height);
+    const int column_cells = skyGuideCells(width);
+    const float* marginal = tables.table.data() + marginalOffset();
+    writeGuide(marginal, height, row_cells, tables.table.data() + marginalGuideOffset(tables));
+    for (int y = 0; y < height; ++y) {
+        const float* conditional = tables.table.data() + conditionalOffset(tables, y);
+        writeGuide(conditional, width, column_cells, tables.table.data() + conditionalGuideOffset(tables, y));
+        // The texel's density in its fourth float, in float and in the GPU's order of operations (sky_light.h).
+        const float row_probability = marginal[y + 1] - marginal[y];
+        for (int x = 0; x < width; ++x) {
+            const float column_probability = conditional[x + 1] - conditional[x];
+            tables.radiance_rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + 3] =
+                row_probability * float(height) * column_probability * float(width);
+        }
+    }
     tables.cosine_relative_variance = skyCosineRelativeVariance(sky_without_sun, north_azimuth_in_image_deg);
     return tables;
 }
@@ -216,9 +259,11 @@ SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2) {
     xi1 = std::clamp(xi1, 0.0f, kOneMinusEpsilon);
     xi2 = std::clamp(xi2, 0.0f, kOneMinusEpsilon);
     const float* marginal = tables.table.data() + marginalOffset();
-    const int y = findInterval(marginal, tables.height, xi1);
+    const int y = findInterval(marginal, tables.table.data() + marginalGuideOffset(tables),
+                               skyGuideCells(tables.height), xi1);
     const float* conditional = tables.table.data() + conditionalOffset(tables, y);
-    const int x = findInterval(conditional, tables.width, xi2);
+    const int x = findInterval(conditional, tables.table.data() + conditionalGuideOffset(tables, y),
+                               skyGuideCells(tables.width), xi2);
 
     const double row_fraction = (double(xi1) - double(marginal[y])) / (double(marginal[y + 1]) - double(marginal[y]));
     const double column_fraction =

@@ -115,8 +115,10 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         BvhHit hit;
         g_rays_traced++;
         if (!bvhTraceClosest(origin, direction, 1e30, settings.skip_flags, hit)) {
-            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, skyPdf(direction)) : 1.0;
-            irradiance += path_weight * kPi * skyRadiance(direction) * mis;
+            float sky_pdf;
+            vec3 sky_radiance = skyRadianceAndPdf(direction, sky_pdf);
+            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, sky_pdf) : 1.0;
+            irradiance += path_weight * kPi * sky_radiance * mis;
             break;
         }
         SurfacePoint surface = evaluateSurface(hit.triangle_index, hit.barycentric_u, hit.barycentric_v, direction);

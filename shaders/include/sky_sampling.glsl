@@ -9,6 +9,7 @@
 //   vec3  skyRadiance(vec3 direction_enu)                       texel containing the direction, unfiltered
 //   vec3  sampleSkyDirection(vec2 xi, out float pdf_solid_angle) xi in [0, 1)^2; pdf per steradian
 //   float skyPdf(vec3 direction_enu)                            density of sampleSkyDirection per steradian
+//   vec3  skyRadianceAndPdf(vec3 direction_enu, out float pdf)   both of the above from one texel load
 // Equirect convention (gusuku/equirect.h): azimuth = 360 u - north_azimuth_in_image_deg, v = theta / pi.
 #ifndef GUSUKU_SKY_SAMPLING_GLSL
 #define GUSUKU_SKY_SAMPLING_GLSL
@@ -38,10 +39,21 @@ float skyNorthAzimuthDeg() { return sky_table[2]; }
 int skyMarginalOffset() { return SKY_TABLE_HEADER_FLOATS; }
 int skyConditionalOffset(int row) { return SKY_TABLE_HEADER_FLOATS + skyHeight() + 1 + row * (skyWidth() + 1); }
 
-// Largest i in [0, n-1] with cdf[offset + i] <= xi (the CDF has n + 1 entries).
-int skyFindInterval(int offset, int n, float xi) {
-    int lo = 0;
-    int hi = n - 1;
+// Guide tables (sky_light.h): the smallest power of two >= intervals, and where each guide starts.
+int skyGuideCells(int intervals) { return intervals <= 1 ? 1 : 1 << (findMSB(intervals - 1) + 1); }
+int skyMarginalGuideOffset() { return skyConditionalOffset(skyHeight()); }
+int skyConditionalGuideOffset(int row) {
+    return skyMarginalGuideOffset() + skyGuideCells(skyHeight()) + 1 + row * (skyGuideCells(skyWidth()) + 1);
+}
+
+// Largest i in [0, n-1] with cdf[offset + i] <= xi (the CDF has n + 1 entries), searched only between the
+// guide's entries for xi's cell: the answer at the cell's two ends, between which it lies (it grows with xi).
+// Why: a binary search over a 1024-texel row is ten dependent loads, each a loop over the SIMD lanes on
+// lavapipe; the guided one is two loads and, on most of the map, no iteration at all.
+int skyFindInterval(int offset, int guide_offset, int cells, float xi) {
+    int cell = min(int(xi * float(cells)), cells - 1);
+    int lo = int(sky_table[guide_offset + cell]);
+    int hi = int(sky_table[guide_offset + cell + 1]);
     while (lo < hi) {
         int mid = (lo + hi + 1) / 2;
         if (sky_table[offset + mid] <= xi)
@@ -87,6 +99,16 @@ vec3 skyRadiance(vec3 direction_enu) {
     return sky_radiance_rgba[texel.y * skyWidth() + texel.x].rgb;
 }
 
+// The texel's fourth float is its unit-square density, stored as skyUnitSquareDensity computes it (sky_light.h),
+// so this equals (skyRadiance, skyPdf) bit for bit.
+vec3 skyRadianceAndPdf(vec3 direction_enu, out float pdf_solid_angle) {
+    float sin_theta;
+    ivec2 texel = skyTexelOf(direction_enu, sin_theta);
+    vec4 radiance_density = sky_radiance_rgba[texel.y * skyWidth() + texel.x];
+    pdf_solid_angle = skySolidAnglePdf(radiance_density.w, sin_theta);
+    return radiance_density.rgb;
+}
+
 float skyPdf(vec3 direction_enu) {
     float sin_theta;
     ivec2 texel = skyTexelOf(direction_enu, sin_theta);
@@ -98,9 +120,9 @@ vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
     int width = skyWidth();
     int height = skyHeight();
     int marginal = skyMarginalOffset();
-    int y = skyFindInterval(marginal, height, xi.x);
+    int y = skyFindInterval(marginal, skyMarginalGuideOffset(), skyGuideCells(height), xi.x);
     int conditional = skyConditionalOffset(y);
-    int x = skyFindInterval(conditional, width, xi.y);
+    int x = skyFindInterval(conditional, skyConditionalGuideOffset(y), skyGuideCells(width), xi.y);
 
     float row_low = sky_table[marginal + y];
     float row_high = sky_table[marginal + y + 1];

@@ -16,6 +16,7 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
         throw std::invalid_argument("runSkyProbeGpu: xi and directions_enu differ in size");
     if (xi.empty()) return {};
     constexpr uint32_t kLocalSize = 64;  // local_size_x in sky_probe.comp
+    constexpr size_t kFloatsPerProbe = 16;  // four vec4 outputs per probe
 
     std::vector<float> inputs;
     inputs.reserve(xi.size() * 8);
@@ -26,7 +27,7 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
     GpuBuffer radiance_buffer(context, tables.radiance_rgba.size() * sizeof(float));
     GpuBuffer table_buffer(context, tables.table.size() * sizeof(float));
     GpuBuffer input_buffer(context, inputs.size() * sizeof(float));
-    GpuBuffer output_buffer(context, xi.size() * 12 * sizeof(float));
+    GpuBuffer output_buffer(context, xi.size() * kFloatsPerProbe * sizeof(float));
     radiance_buffer.uploadVector(tables.radiance_rgba);
     table_buffer.uploadVector(tables.table);
     input_buffer.uploadVector(inputs);
@@ -36,16 +37,18 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
     const uint32_t probe_count = uint32_t(xi.size());
     pipeline.dispatchAndWait(&probe_count, (probe_count + kLocalSize - 1) / kLocalSize);
 
-    const std::vector<float> outputs = output_buffer.downloadVector<float>(xi.size() * 12);
+    const std::vector<float> outputs = output_buffer.downloadVector<float>(xi.size() * kFloatsPerProbe);
     std::vector<SkyProbeResult> results(xi.size());
     for (size_t i = 0; i < xi.size(); ++i) {
-        const float* o = outputs.data() + i * 12;
+        const float* o = outputs.data() + i * kFloatsPerProbe;
         results[i].sampled_direction_enu = {o[0], o[1], o[2]};
         results[i].sampled_pdf = o[3];
         results[i].radiance_at_direction = {o[4], o[5], o[6]};
         results[i].pdf_at_direction = o[7];
         results[i].radiance_at_sample = {o[8], o[9], o[10]};
         results[i].pdf_at_sample = o[11];
+        results[i].combined_radiance = {o[12], o[13], o[14]};
+        results[i].combined_pdf = o[15];
     }
     return results;
 }

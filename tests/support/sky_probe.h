@@ -24,6 +24,8 @@ struct SkyProbeResult {
     float pdf_at_direction = 0.0f;          ///< skyPdf(direction)
     glm::vec3 radiance_at_sample{0.0f};     ///< skyRadiance(sampled direction)
     float pdf_at_sample = 0.0f;             ///< skyPdf(sampled direction)
+    glm::vec3 combined_radiance{0.0f};      ///< skyRadianceAndPdf(direction): its radiance
+    float combined_pdf = 0.0f;              ///< and its pdf out-parameter
 };
 
 /// Runs shaders/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).

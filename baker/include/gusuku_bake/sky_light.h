@@ -84,11 +84,18 @@ SunDiscEstimate extractSunDisc(ImageRGBA& sky_in_out, double north_azimuth_in_im
 /// Floats before the CDFs in SkySamplingTables::table.
 inline constexpr size_t kSkyTableHeaderFloats = 4;
 
+/// Cells of a guide table for a CDF of `intervals` intervals: the smallest power of two >= intervals (1 for 1).
+/// Twin of skyGuideCells() in sky_sampling.glsl.
+int skyGuideCells(int intervals);
+
 /// Everything the GPU needs to evaluate and importance-sample the sky; upload radiance_rgba and table as two
 /// storage buffers (std430, bindings SKY_RADIANCE_BINDING and SKY_TABLE_BINDING of set 0).
 ///
 /// radiance_rgba: width * height * 4 floats, the sky map (sun removed), row 0 the zenith; a non-finite or
-///   negative channel is stored as 0.
+///   negative channel is stored as 0. The fourth float of each texel is not the map's alpha but the texel's
+///   sampling density over the unit square, p(u, v) below, in float exactly as the GPU would compute it from the
+///   CDFs: ((M[y+1] - M[y]) * height * (C_y[x+1] - C_y[x])) * width. So one load gives a direction's radiance and
+///   density (the cosine-sampled miss in the tracer needs both).
 /// table (all float32):
 ///   [0] width  [1] height  [2] north_azimuth_in_image_deg
 ///   [3] integral = sum over texels of luminance * texel solid angle (the sky's luminance integrated over the
@@ -96,6 +103,12 @@ inline constexpr size_t kSkyTableHeaderFloats = 4;
 ///   [4 .. 4 + height]                    marginal CDF over rows, height + 1 entries, first 0, last exactly 1
 ///   [4 + (height + 1) + y (width + 1) + x], x = 0..width: row y's conditional CDF over columns, first 0,
 ///                                        last exactly 1
+///   then the guide tables (Chen and Asau's cut points), which make each CDF search a short one without
+///   changing its answer: with G = skyGuideCells(n) (a power of two) for a CDF of n intervals, G + 1 entries
+///   g[k] = the largest i in [0, n-1] with cdf[i] <= k / G (stored as float, exact below 2^24). A search for
+///   xi in [0, 1) then looks only in [g[k], g[k+1]], k = floor(xi G) (exact: G is a power of two), and finds
+///   the same interval as a search of the whole CDF. First the marginal's guide (skyGuideCells(height) + 1
+///   floats), then each row's (skyGuideCells(width) + 1 floats per row, row 0 first).
 /// The sampled density over the unit square (u, v) is piecewise constant: f(x, y) = luminance(x, y) sin(theta_y)
 /// (theta_y the polar angle of row y's centre), normalised. Its value is read back from the CDFs alone:
 ///   p(u, v) = (M[y+1] - M[y]) * height * (C_y[x+1] - C_y[x]) * width
@@ -141,7 +154,8 @@ struct SkySample {
 };
 
 /// CPU twin of sampleSkyDirection(): xi in [0, 1)^2; xi.x picks the row (marginal), xi.y the column in it,
-/// each by binary search for the last CDF entry <= xi (compared in float, exactly as on the GPU), then the
+/// each by a search for the last CDF entry <= xi (compared in float, exactly as on the GPU; the guide table
+/// narrows the range, the answer is that of a search of the whole CDF), then the
 /// remainder places the point continuously inside the texel. direction = equirectDirection(u, v, north).
 /// pdf as documented on SkySamplingTables with sin theta = sin(pi v) (v measured from the nearer pole's side
 /// of the row, for precision), floored at 1e-7.
