@@ -92,7 +92,7 @@ bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& directio
                 // corrupt buffer from writing out of bounds.
                 if (stack_size < kBvhMaxDepth) {
                     stack_reference[stack_size] = first0 ? node.child[1] : node.child[0];
-                    stack_entry[stack_size] = first0 ? t1 : t0;
+                    if (!kAnyHit) stack_entry[stack_size] = first0 ? t1 : t0;
                     ++stack_size;
                 }
                 reference = first0 ? node.child[0] : node.child[1];
@@ -122,11 +122,12 @@ bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& directio
                 if (kAnyHit) return true;
             }
         }
-        // The nearest stacked child the ray may still reach before the closest hit.
+        // The nearest stacked child the ray may still reach before the closest hit. Any-hit: t_closest is still
+        // t_max, which every stacked entry passes, so entries are neither stored nor read (as in the GLSL).
         reference = kNoReference;
         while (stack_size > 0) {
             --stack_size;
-            if (stack_entry[stack_size] <= t_closest * kSlabFarScale) {
+            if (kAnyHit || stack_entry[stack_size] <= t_closest * kSlabFarScale) {
                 reference = stack_reference[stack_size];
                 break;
             }

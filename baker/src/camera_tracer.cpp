@@ -84,15 +84,18 @@ CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int ma
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
     bvh_nodes_ = uploadedBuffer(gpu, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     bvh_triangles_ = uploadedBuffer(gpu, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    shading_ = uploadedBuffer(gpu, shading.triangles);
-    materials_ = uploadedBuffer(gpu, shading.materials);
-    textures_ = uploadedBuffer(gpu, shading.texture_words);
+    shading_ = uploadedBuffer(gpu, shading.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    materials_ = uploadedBuffer(gpu, shading.materials, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    textures_ = uploadedBuffer(gpu, shading.texture_words, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     ray_counter_ = GpuBuffer(gpu, 16);
     trace_pipeline_ = std::make_unique<ComputePipeline>(gpu, kCameraTraceCompSpirv, sizeof(kCameraTraceCompSpirv),
                                                         CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)),
                                                         std::vector<TexelBufferBinding>{
                                                             {CAMERA_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT}});
+                                                            {CAMERA_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                            {CAMERA_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                            {CAMERA_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                            {CAMERA_TEXTURE_BINDING, VK_FORMAT_R32_UINT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,

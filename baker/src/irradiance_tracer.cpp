@@ -66,16 +66,19 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
     bvh_nodes_ = uploadedBuffer(context, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     bvh_triangles_ = uploadedBuffer(context, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    shading_ = uploadedBuffer(context, shading.triangles);
-    materials_ = uploadedBuffer(context, shading.materials);
-    textures_ = uploadedBuffer(context, shading.texture_words);
+    shading_ = uploadedBuffer(context, shading.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    materials_ = uploadedBuffer(context, shading.materials, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    textures_ = uploadedBuffer(context, shading.texture_words, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
                                                   BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)),
                                                   std::vector<TexelBufferBinding>{
                                                       {BAKE_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT}});
+                                                      {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                      {BAKE_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                      {BAKE_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+                                                      {BAKE_TEXTURE_BINDING, VK_FORMAT_R32_UINT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));

@@ -1,7 +1,8 @@
-// shaders/bake/bake_irradiance.comp as both sides see it: its set-0 storage-buffer bindings and its
-// push-constant block, written once for the GLSL and for baker/src/irradiance_tracer.cpp (which binds the
-// buffers in this order). See interface_types.h for the rules. (One header per kernel: a GLSL stage may
-// declare only one push-constant block.)
+// shaders/bake/bake_irradiance.comp as both sides see it: its set-0 bindings (uniform texel buffers for the BVH
+// and the scene's shading, bindings 0..4, storage buffers for the rest) and its push-constant block, written
+// once for the GLSL and for baker/src/irradiance_tracer.cpp (which binds the buffers in this order). See
+// interface_types.h for the rules. (One header per kernel: a GLSL stage may declare only one push-constant
+// block.)
 #ifndef GUSUKU_BAKE_IRRADIANCE_INTERFACE_H
 #define GUSUKU_BAKE_IRRADIANCE_INTERFACE_H
 

@@ -117,7 +117,7 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
                 bool first0 = t0 <= t1;
                 if (stack_size < uint(BVH_STACK_SIZE)) {
                     stack_reference[stack_size] = first0 ? child1 : child0;
-                    stack_entry[stack_size] = first0 ? t1 : t0;
+                    if (!any_hit) stack_entry[stack_size] = first0 ? t1 : t0;
                     ++stack_size;
                 }
                 reference = first0 ? child0 : child1;
@@ -149,11 +149,14 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
             hit.front_face = dot(cross(edge1, edge2), direction) < 0.0;
             if (any_hit) return true;
         }
-        // Pop the nearest stacked child the ray may still reach before the closest hit.
+        // Pop the nearest stacked child the ray may still reach before the closest hit. An any-hit query stops at
+        // its first hit, so t_closest is still t_max and every stacked entry (at most t_max * kBvhSlabFarScale)
+        // passes: its entries are neither stored nor read (any_hit is a constant where bvhOccluded inlines this,
+        // so the compiler drops that array and the loop's test: fewer stores and gathers per node).
         reference = kBvhNoReference;
         while (stack_size > 0u) {
             --stack_size;
-            if (stack_entry[stack_size] <= t_closest * kBvhSlabFarScale) {
+            if (any_hit || stack_entry[stack_size] <= t_closest * kBvhSlabFarScale) {
                 reference = stack_reference[stack_size];
                 break;
             }

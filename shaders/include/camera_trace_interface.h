@@ -1,6 +1,7 @@
-// shaders/bake/camera_trace.comp as both sides see it: its set-0 storage-buffer bindings and its push-constant
-// block, written once for the GLSL and for baker/src/camera_tracer.cpp (which binds the buffers in this
-// order). See interface_types.h for the rules. The block fills the 128 bytes every Vulkan device guarantees.
+// shaders/bake/camera_trace.comp as both sides see it: its set-0 bindings (uniform texel buffers for the BVH and
+// the scene's shading, bindings 0..4, storage buffers for the rest) and its push-constant block, written once
+// for the GLSL and for baker/src/camera_tracer.cpp (which binds the buffers in this order). See
+// interface_types.h for the rules. The block fills the 128 bytes every Vulkan device guarantees.
 #ifndef GUSUKU_CAMERA_TRACE_INTERFACE_H
 #define GUSUKU_CAMERA_TRACE_INTERFACE_H
 

@@ -1,7 +1,10 @@
 // Surface attributes at a ray hit: interpolated normal, base colour (factor times texture) and emission.
-// The includer #defines SHADING_TRIANGLE_BINDING, MATERIAL_BINDING and TEXTURE_BINDING first. Layouts match
-// baker/include/gusuku_bake/trace_scene.h (TriangleShadingGpu, MaterialGpu). Textures are packed RGBA8 sRGB
-// words in one storage buffer because lavapipe has no descriptor indexing (DESIGN.md 5).
+// The includer #defines SHADING_TRIANGLE_BINDING, MATERIAL_BINDING and TEXTURE_BINDING first, set 0 uniform
+// texel buffers: views of format VK_FORMAT_R32G32B32A32_UINT on the first two and VK_FORMAT_R32_UINT on the
+// textures. Layouts match baker/include/gusuku_bake/trace_scene.h (TriangleShadingGpu, MaterialGpu), one
+// 16-byte texel per vec4 member. Textures are packed RGBA8 sRGB words in one buffer because lavapipe has no
+// descriptor indexing (DESIGN.md 5). Why texel buffers: as for the BVH (bvh_layout.glsl), lavapipe gathers a
+// texel fetch's lanes in vector code where a storage-buffer load at per-lane addresses loops over the lanes.
 #ifndef GUSUKU_SCENE_SHADING_GLSL
 #define GUSUKU_SCENE_SHADING_GLSL
 
@@ -22,18 +25,35 @@ struct MaterialGpu {
                              // w: bit 0 double-sided
 };
 
-layout(std430, set = 0, binding = SHADING_TRIANGLE_BINDING) readonly buffer TriangleShadingBuffer {
-    TriangleShadingGpu triangle_shading[];
-};
-layout(std430, set = 0, binding = MATERIAL_BINDING) readonly buffer MaterialBuffer {
-    MaterialGpu materials[];
-};
-layout(std430, set = 0, binding = TEXTURE_BINDING) readonly buffer TextureBuffer {
-    uint texture_words[];
-};
+layout(set = 0, binding = SHADING_TRIANGLE_BINDING) uniform usamplerBuffer triangle_shading_texels;
+layout(set = 0, binding = MATERIAL_BINDING) uniform usamplerBuffer material_texels;
+layout(set = 0, binding = TEXTURE_BINDING) uniform usamplerBuffer texture_word_texels;
+
+const uint kTriangleShadingTexels = 5u;  // vec4s in TriangleShadingGpu
+const uint kMaterialTexels = 3u;         // vec4s in MaterialGpu
+
+TriangleShadingGpu loadTriangleShading(uint triangle_index) {
+    int first = int(triangle_index * kTriangleShadingTexels);
+    TriangleShadingGpu shading;
+    shading.normal0_u0 = uintBitsToFloat(texelFetch(triangle_shading_texels, first));
+    shading.normal1_v0 = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 1));
+    shading.normal2_material = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 2));
+    shading.uv0_vertex1_vertex2 = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 3));
+    shading.geometric_normal = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 4));
+    return shading;
+}
+
+MaterialGpu loadMaterial(uint material_index) {
+    int first = int(material_index * kMaterialTexels);
+    MaterialGpu material;
+    material.base_color_factor = uintBitsToFloat(texelFetch(material_texels, first));
+    material.emission = uintBitsToFloat(texelFetch(material_texels, first + 1));
+    material.texture_info = texelFetch(material_texels, first + 2);
+    return material;
+}
 
 vec3 fetchTexel(uvec4 info, int x, int y) {
-    uint word = texture_words[info.x + uint(y) * info.y + uint(x)];
+    uint word = texelFetch(texture_word_texels, int(info.x + uint(y) * info.y + uint(x))).x;
     vec3 encoded = vec3(float(word & 255u), float((word >> 8u) & 255u), float((word >> 16u) & 255u)) / 255.0;
     return srgbDecode(encoded);
 }
@@ -61,7 +81,7 @@ struct SurfacePoint {
 };
 
 SurfacePoint evaluateSurface(uint triangle_index, float barycentric_u, float barycentric_v, vec3 ray_direction) {
-    TriangleShadingGpu shading = triangle_shading[triangle_index];
+    TriangleShadingGpu shading = loadTriangleShading(triangle_index);
     float w0 = 1.0 - barycentric_u - barycentric_v;
     SurfacePoint surface;
     vec3 geometric = shading.geometric_normal.xyz;
@@ -76,7 +96,7 @@ SurfacePoint evaluateSurface(uint triangle_index, float barycentric_u, float bar
     // A shading normal bent below the surface would send light through it: fall back to the face normal.
     if (dot(surface.shading_normal, surface.geometric_normal) <= 0.0) surface.shading_normal = surface.geometric_normal;
 
-    MaterialGpu material = materials[floatBitsToUint(shading.normal2_material.w)];
+    MaterialGpu material = loadMaterial(floatBitsToUint(shading.normal2_material.w));
     vec3 albedo = material.base_color_factor.rgb;
     if (material.texture_info.z > 0u) {
         vec2 uv0 = vec2(shading.normal0_u0.w, shading.normal1_v0.w);
