@@ -4,9 +4,11 @@
 // samples. A checkpoint is used only when its input hash and point count match the current bake: a change of
 // input or settings starts that set afresh.
 //
-// File layout (little-endian): "GSKCKPT1", uint64 input hash, uint32 point count, uint32 samples done,
+// File layout (little-endian): "GSKCKPT2", uint64 input hash, uint32 point count, uint32 samples done,
 // then point count x 4 float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on
-// a one-sided back, 1/9 per first hit on a double-sided face seen from behind).
+// a one-sided back, 1/9 per first hit on a double-sided face seen from behind), then point count x float32 sums
+// of squared luminance (the lightmap filter's measure of each texel's noise). "GSKCKPT1" (before the squares)
+// is recognised and not resumed: its squares are unknown, so that set is traced afresh.
 
 #include <cstdint>
 #include <optional>
@@ -21,6 +23,7 @@ struct Checkpoint {
     uint64_t input_hash = 0;
     uint32_t samples_done = 0;
     std::vector<glm::vec4> sums;
+    std::vector<float> luminance_square_sums;  ///< as many as sums
 };
 
 /// Writes atomically (temporary file, then rename).
@@ -28,7 +31,9 @@ void writeCheckpoint(const std::string& path, const Checkpoint& checkpoint);
 
 /// Reads a checkpoint if the file exists, is intact, and matches input_hash and point_count; otherwise
 /// returns nothing (a stale or damaged checkpoint is ignored, never an error: the set is simply redone).
+/// When a file exists but is not used because an older gusuku-bake wrote it, `ignored_reason` (if given) gets
+/// one line saying so, for the bake to print.
 std::optional<Checkpoint> readMatchingCheckpoint(const std::string& path, uint64_t input_hash,
-                                                 uint32_t point_count);
+                                                 uint32_t point_count, std::string* ignored_reason = nullptr);
 
 }  // namespace gusuku::bake

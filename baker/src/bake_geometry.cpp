@@ -64,6 +64,8 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
     const TriangleMesh building = loadGltf(site.building.path, building_options, &geometry.warnings);
     chooseLightmapUvs(geometry, building, site.bake.texels_per_metre);
     geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
+    const std::vector<uint32_t> triangle_chart = lightmapUvCharts(geometry.building);
+    for (const LightmapTexel& texel : geometry.texels) geometry.texel_chart.push_back(triangle_chart[texel.triangle]);
 
     const Bounds3 building_bounds = meshBounds(geometry.building);
     const TriangleMesh site_mesh = loadSiteMeshOrStandIn(site, building_bounds, max_texture_size, geometry.warnings,

@@ -20,6 +20,7 @@ struct BakeGeometry {
     int lightmap_resolution = 0;
     double effective_texels_per_metre = 0.0;
     std::vector<LightmapTexel> texels;     ///< the building's lightmap texels
+    std::vector<uint32_t> texel_chart;     ///< per texel, its uv1 chart (lightmapUvCharts), for the filter
     bool site_mesh_is_stand_in = false;    ///< no sfm_mesh in site.json: a flat ground plane was used
     TraceScene scene;                      ///< building + site
     Bvh cpu_bvh;                           ///< over scene.mesh, for the ground grid and visibility on the CPU

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "bake_checkpoint.h"
+#include "gusuku_bake/lightmap_denoise.h"
 #include "bake_geometry.h"
 #include "bake_inputs.h"
 #include "bake_outputs.h"
@@ -96,23 +97,31 @@ public:
         : tracer_(tracer), progress_(progress), options_(options), input_hash_(input_hash),
           checkpoint_dir_(checkpoint_dir) {}
 
+    /// A set's running sums and sums of squared luminance (PointAccumulator's).
+    struct Sums {
+        std::vector<glm::vec4> sums;
+        std::vector<float> luminance_square_sums;
+    };
+
     /// Traces one set to `samples`; returns its sums, or nothing when stopped. A stop request is polled
     /// before the set and after every chunk, and is honoured even when that chunk finished the set (with
     /// --samples 1 every set is one chunk): the set's sums are checkpointed first, so nothing is lost.
-    std::optional<std::vector<glm::vec4>> trace(const std::string& slot_name, const PointSet& set,
+    std::optional<Sums> trace(const std::string& slot_name, const PointSet& set,
                                                 const TracePass& pass, uint32_t samples) {
         if (stopRequested()) return std::nullopt;
         // An empty set (no ground cell over the ground) is done at once: there is nothing to trace or save.
-        if (set.points.empty()) return std::vector<glm::vec4>{};
+        if (set.points.empty()) return Sums{};
         const std::string label = slot_name + " " + set.name;
         const std::string checkpoint_path = checkpoint_dir_ + "/" + slot_name + "." + set.name + ".bin";
         PointAccumulator accumulator = tracer_.createAccumulator(set.points);
         const uint32_t point_count = uint32_t(set.points.size());
-        if (auto checkpoint = readMatchingCheckpoint(checkpoint_path, input_hash_, point_count)) {
+        std::string ignored_checkpoint;
+        if (auto checkpoint = readMatchingCheckpoint(checkpoint_path, input_hash_, point_count, &ignored_checkpoint)) {
             const uint32_t resumed = std::min(checkpoint->samples_done, samples);
-            tracer_.restoreSums(accumulator, checkpoint->sums, resumed);
+            tracer_.restoreSums(accumulator, checkpoint->sums, checkpoint->luminance_square_sums, resumed);
             progress_.addResumedWork(double(resumed) * point_count);
         }
+        if (!ignored_checkpoint.empty()) std::fprintf(stderr, "gusuku-bake: %s\n", ignored_checkpoint.c_str());
         auto last_checkpoint = Clock::now();
         while (accumulator.samples_done < samples) {
             const uint32_t chunk = std::min(chunk_samples_, samples - accumulator.samples_done);
@@ -126,15 +135,17 @@ public:
             chunk_samples_ = uint32_t(std::clamp(wanted, 1.0, 64.0));
             const bool stop = stopRequested();
             if (stop || accumulator.samples_done >= samples || secondsSince(last_checkpoint) > 2.0) {
-                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator)});
+                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator),
+                                                   tracer_.readLuminanceSquareSums(accumulator)});
                 last_checkpoint = Clock::now();
             }
             if (stop) return std::nullopt;
         }
         if (!std::filesystem::exists(checkpoint_path))
-            writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator)});
+            writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator),
+                                                   tracer_.readLuminanceSquareSums(accumulator)});
         if (stopRequested()) return std::nullopt;
-        return tracer_.readSums(accumulator);
+        return Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
     }
 
     double traceSeconds() const { return trace_seconds_; }
@@ -273,7 +284,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         pass.max_bounces = uint32_t(site.bake.max_bounces);
         pass.seed = site.bake.seed;
         pass.sun = lighting.sun;
-        std::vector<std::vector<glm::vec4>> sums;
+        std::vector<SetTracer::Sums> sums;
         for (const PointSet& set : sets) {
             pass.skip_flags = set.skip_flags;
             auto set_sums = set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
@@ -287,8 +298,11 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
             }
             sums.push_back(std::move(*set_sums));
         }
-        writer.writeSlot(lighting, texelSumsFromFootprint(footprint, sums[0], samples_per_slot, kMaxBackfaceFraction),
-                         sums[1], sums[2]);
+        writer.writeSlot(lighting,
+                         texelSumsFromFootprint(footprint, sums[0].sums, samples_per_slot, kMaxBackfaceFraction),
+                         texelLuminanceVarianceFromFootprint(footprint, sums[0].sums, sums[0].luminance_square_sums,
+                                                             samples_per_slot, kMaxBackfaceFraction),
+                         sums[1].sums, sums[2].sums);
     }
     progress.finish();
     report.rays_traced = progress.raysTraced();

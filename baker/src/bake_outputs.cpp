@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
@@ -9,7 +10,7 @@
 #include "bake_statistics.h"
 #include "ground_albedo.h"
 #include "gusuku_bake/content_hash.h"
-#include "lightmap_denoise.h"
+#include "gusuku_bake/lightmap_denoise.h"
 #include "gusuku/atomic_file.h"
 #include "gusuku/bakeset_loader.h"
 #include "gusuku_bake/bake_merge.h"
@@ -41,11 +42,18 @@ ImageRGBA imageFromTexels(const std::vector<glm::vec4>& texels, int width, int h
 }  // namespace
 
 ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const std::vector<glm::vec4>& sums,
-                                          uint32_t samples, bool denoise) {
+                                          uint32_t samples, bool denoise,
+                                          const std::vector<float>& texel_luminance_variance) {
     const int resolution = geometry.lightmap_resolution;
     ProcessedLightmap result;
     result.image.assign(size_t(resolution) * size_t(resolution), glm::vec4(0.0f));
     std::vector<DenoiseGuide> guides(result.image.size());
+    if (sums.size() != geometry.texels.size() ||
+        (!texel_luminance_variance.empty() && texel_luminance_variance.size() != sums.size()))
+        throw std::invalid_argument("processBuildingLightmap: sums or variances do not match the texels");
+    // One sample measures no variance: the filter then stops on relative irradiance alone.
+    const bool with_variance = !texel_luminance_variance.empty() && samples >= 2;
+    std::vector<float> variance_image(with_variance ? result.image.size() : 0, 0.0f);
     const float inverse_samples = 1.0f / float(std::max(samples, 1u));
     for (size_t i = 0; i < geometry.texels.size(); ++i) {
         const LightmapTexel& texel = geometry.texels[i];
@@ -53,9 +61,12 @@ ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const st
         const bool valid = sums[i].w * inverse_samples <= kMaxBackfaceFraction;
         if (!valid) ++result.invalid_texels;
         result.image[index] = glm::vec4(glm::vec3(sums[i]) * inverse_samples, valid ? 1.0f : 0.0f);
-        guides[index] = {texel.position, texel.shading_normal};
+        guides[index] = {texel.position, texel.shading_normal, geometry.texel_chart[i]};
+        if (with_variance) variance_image[index] = texel_luminance_variance[i];
     }
-    if (denoise) denoiseLightmap(result.image, guides, resolution, denoiseOptionsForSamples(samples));
+    if (denoise)
+        denoiseLightmap(result.image, guides, resolution, denoiseOptionsForSamples(samples, with_variance),
+                        variance_image);
     result.per_texel.resize(geometry.texels.size());
     for (size_t i = 0; i < geometry.texels.size(); ++i) {
         const LightmapTexel& texel = geometry.texels[i];
@@ -118,10 +129,12 @@ void BakeOutputWriter::writeGroundImage(const std::string& file, const std::vect
 }
 
 void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector<glm::vec4>& building_sums,
+                                 const std::vector<float>& building_luminance_variance,
                                  const std::vector<glm::vec4>& ground_with_sums,
                                  const std::vector<glm::vec4>& ground_without_sums) {
     const std::string& name = lighting.slot.name;
-    const ProcessedLightmap lightmap = processBuildingLightmap(geometry_, building_sums, samples_, denoise_);
+    const ProcessedLightmap lightmap = processBuildingLightmap(geometry_, building_sums, samples_, denoise_,
+                                                               building_luminance_variance);
     const int resolution = geometry_.lightmap_resolution;
     const std::string building_file = "building_" + name + ".exr";
     writeExr(output_dir_ + "/" + building_file, imageFromTexels(lightmap.image, resolution, resolution), true);

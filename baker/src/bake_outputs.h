@@ -27,15 +27,20 @@ struct ProcessedLightmap {
     std::vector<glm::vec4> per_texel;
     size_t invalid_texels = 0;
 };
+/// texel_luminance_variance: per texel of geometry.texels, the variance of its mean luminance (the filter's
+/// measure of noise, lightmap_denoise.h); empty: the filter's stop without measured variance.
 ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const std::vector<glm::vec4>& sums,
-                                          uint32_t samples, bool denoise);
+                                          uint32_t samples, bool denoise,
+                                          const std::vector<float>& texel_luminance_variance = {});
 
 class BakeOutputWriter {
 public:
     BakeOutputWriter(std::string output_dir, const BakeGeometry& geometry, uint32_t samples, bool denoise);
 
     void writeGeometry();
+    /// building_luminance_variance: per texel, as processBuildingLightmap's.
     void writeSlot(const SlotLighting& lighting, const std::vector<glm::vec4>& building_sums,
+                   const std::vector<float>& building_luminance_variance,
                    const std::vector<glm::vec4>& ground_with_sums, const std::vector<glm::vec4>& ground_without_sums);
     /// Input paths are written relative to the output folder (gusuku/bakeset_loader.h's
     /// bakeSetRelativeInputPath), so the set moves with its inputs. `partial`: this is one slot's partial set.

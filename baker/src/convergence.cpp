@@ -135,13 +135,16 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(), chunk_rays,
                          chunk_seconds);
         const std::vector<glm::vec4> sums = tracer.readSums(estimate);
+        const std::vector<float> squares = tracer.readLuminanceSquareSums(estimate);
+        std::vector<float> variance(sums.size());
+        for (size_t i = 0; i < sums.size(); ++i) variance[i] = luminanceVarianceOfMean(sums[i], squares[i], target);
         ConvergencePoint point;
         point.samples = target;
         point.rays = rays;
         point.seconds = seconds;
         point.relative_rms = relativeRms(processBuildingLightmap(geometry, sums, target, false).per_texel, reference_texels);
         const auto denoise_start = Clock::now();
-        const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true);
+        const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true, variance);
         point.denoise_seconds = std::chrono::duration<double>(Clock::now() - denoise_start).count();
         point.relative_rms_denoised = relativeRms(denoised.per_texel, reference_texels);
         point.relative_rms_corrected = correctedRms(point.relative_rms);

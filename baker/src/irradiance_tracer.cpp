@@ -10,6 +10,7 @@
 #include "bake_accumulate_interface.h"
 #include "bake_irradiance_comp_spv.h"
 #include "bake_irradiance_interface.h"
+#include "gusuku/colour.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/bvh.h"
 
@@ -99,6 +100,9 @@ PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPoin
     accumulator.sums = GpuBuffer(context_, std::max<size_t>(points.size() * sizeof(glm::vec4), 16));
     const std::vector<glm::vec4> zeros(points.size(), glm::vec4(0.0f));
     if (!zeros.empty()) accumulator.sums.uploadVector(zeros);
+    accumulator.luminance_square_sums = GpuBuffer(context_, std::max<size_t>(points.size() * sizeof(float), 16));
+    const std::vector<float> square_zeros(points.size(), 0.0f);
+    if (!square_zeros.empty()) accumulator.luminance_square_sums.uploadVector(square_zeros);
     return accumulator;
 }
 
@@ -130,7 +134,7 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
         sample_estimates_ = GpuBuffer(context_, std::min<size_t>(sample_count, max_chunk) * point_bytes);
     pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
                             &sky_table_, &accumulator.points, &sample_estimates_, &ray_counter_});
-    accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums});
+    accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums, &accumulator.luminance_square_sums});
     uint64_t rays = 0;
     for (uint32_t done = 0; done < sample_count;) {
         const uint32_t chunk = std::min(max_chunk, sample_count - done);
@@ -159,11 +163,16 @@ std::vector<glm::vec4> IrradianceTracer::readSums(const PointAccumulator& accumu
     return accumulator.sums.downloadVector<glm::vec4>(accumulator.point_count);
 }
 
+std::vector<float> IrradianceTracer::readLuminanceSquareSums(const PointAccumulator& accumulator) const {
+    return accumulator.luminance_square_sums.downloadVector<float>(accumulator.point_count);
+}
+
 void IrradianceTracer::restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums,
-                                   uint32_t samples_done) {
-    if (sums.size() != accumulator.point_count)
+                                   const std::vector<float>& luminance_square_sums, uint32_t samples_done) {
+    if (sums.size() != accumulator.point_count || luminance_square_sums.size() != accumulator.point_count)
         throw std::invalid_argument("restoreSums: point count differs from the accumulator's");
     if (!sums.empty()) accumulator.sums.uploadVector(sums);
+    if (!luminance_square_sums.empty()) accumulator.luminance_square_sums.uploadVector(luminance_square_sums);
     accumulator.samples_done = samples_done;
 }
 
@@ -178,6 +187,15 @@ std::vector<glm::vec3> IrradianceTracer::traceIrradiance(const std::vector<Query
     std::vector<glm::vec3> irradiance(sums.size());
     for (size_t i = 0; i < sums.size(); ++i) irradiance[i] = glm::vec3(sums[i]) / float(std::max(samples, 1u));
     return irradiance;
+}
+
+float luminanceVarianceOfMean(const glm::vec4& sum, float luminance_square_sum, uint32_t samples) {
+    if (samples < 2) return 0.0f;
+    const double count = double(samples);
+    const double mean = luminanceRec709(glm::dvec3(sum)) / count;
+    const double sample_variance = std::max(double(luminance_square_sum) / count - mean * mean, 0.0) * count /
+                                   (count - 1.0);
+    return float(sample_variance / count);
 }
 
 SkySampling IrradianceTracer::resolvedSkySampling(SkySampling requested) const {

@@ -66,6 +66,23 @@ std::vector<size_t> findUvCharts(const TriangleMesh& mesh, const std::vector<boo
 
 }  // namespace
 
+std::vector<uint32_t> lightmapUvCharts(const TriangleMesh& mesh) {
+    if (!mesh.has_uv1 || mesh.uv1.size() != mesh.positions.size())
+        throw InputError("lightmap", "TEXCOORD_1", "absent or not one per vertex");
+    for (uint32_t index : mesh.indices)
+        if (index >= mesh.positions.size())
+            throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
+    std::vector<bool> finite_uv(mesh.triangleCount(), true);
+    for (size_t triangle = 0; triangle < finite_uv.size(); ++triangle)
+        for (int corner = 0; corner < 3; ++corner) {
+            const glm::vec2& uv = mesh.uv1[mesh.indices[triangle * 3 + corner]];
+            if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) finite_uv[triangle] = false;
+        }
+    size_t chart_count = 0;
+    const std::vector<size_t> chart = findUvCharts(mesh, finite_uv, &chart_count);
+    return std::vector<uint32_t>(chart.begin(), chart.end());
+}
+
 UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution) {
     if (resolution < 1 || resolution > 16384)
         throw InputError("lightmap", "resolution", "must be in [1, 16384], got " + std::to_string(resolution));

@@ -1,7 +1,9 @@
 #version 450
 // Adds a chunk's one-sample estimates (bake_irradiance.comp) onto each point's running sum, one sample at a
 // time in sample order, so the floating-point sum is the same however the samples were split into chunks,
-// dispatches or runs: a resumed bake matches an uninterrupted one bit for bit.
+// dispatches or runs: a resumed bake matches an uninterrupted one bit for bit. Alongside, the sum of each
+// estimate's squared luminance (Rec.709 weights, as gusuku/colour.h's luminanceRec709), from which the lightmap
+// filter knows how noisy each texel's mean is (lightmap_denoise.h).
 
 #extension GL_GOOGLE_include_directive : require
 
@@ -14,12 +16,22 @@ layout(std430, set = 0, binding = ACCUMULATE_SAMPLE_ESTIMATE_BINDING) readonly b
 };
 // xyz: sum of irradiance estimates; w: number of first rays that hit a back face (texel validity).
 layout(std430, set = 0, binding = ACCUMULATE_SUM_BINDING) buffer Accumulation { vec4 accumulated[]; };
+layout(std430, set = 0, binding = ACCUMULATE_LUMINANCE_SQUARE_BINDING) buffer LuminanceSquares {
+    float accumulated_luminance_squares[];
+};
 // The push-constant block `pc` (BakeAccumulatePushConstants) is declared in bake_accumulate_interface.h.
 
 void main() {
     uint point_index = gl_GlobalInvocationID.x;
     if (point_index >= pc.point_count) return;
     vec4 running_sum = accumulated[point_index];
-    for (uint s = 0u; s < pc.sample_count; ++s) running_sum += sample_estimates[s * pc.point_count + point_index];
+    float running_square_sum = accumulated_luminance_squares[point_index];
+    for (uint s = 0u; s < pc.sample_count; ++s) {
+        const vec4 estimate = sample_estimates[s * pc.point_count + point_index];
+        running_sum += estimate;
+        const float luminance = dot(estimate.rgb, vec3(0.2126, 0.7152, 0.0722));
+        running_square_sum += luminance * luminance;
+    }
     accumulated[point_index] = running_sum;
+    accumulated_luminance_squares[point_index] = running_square_sum;
 }

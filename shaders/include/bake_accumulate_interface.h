@@ -8,7 +8,8 @@
 // bake_accumulate.comp, set 0
 #define ACCUMULATE_SAMPLE_ESTIMATE_BINDING 0  // the irradiance kernel's scratch
 #define ACCUMULATE_SUM_BINDING 1              // vec4 running sums per point
-#define BAKE_ACCUMULATE_BINDING_COUNT 2
+#define ACCUMULATE_LUMINANCE_SQUARE_BINDING 2  // float running sums of squared luminance per point
+#define BAKE_ACCUMULATE_BINDING_COUNT 3
 
 GUSUKU_PUSH_CONSTANTS_BEGIN(BakeAccumulatePushConstants)
     uint point_count;

@@ -78,6 +78,8 @@ struct PointAccumulator {
                              ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided one
                              ///< from behind by its winding (irradiance_paths.glsl), so w / samples above
                              ///< kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over 90 % double-sided backs
+    GpuBuffer luminance_square_sums;  ///< float per point: sum of each sample's squared luminance (Rec.709), so
+                                      ///< luminanceVarianceOfMean can say how noisy the point's mean is
     uint32_t point_count = 0;
     uint32_t samples_done = 0;
 };
@@ -109,8 +111,11 @@ public:
 
     /// The running sums (vec4 per point, see PointAccumulator::sums).
     std::vector<glm::vec4> readSums(const PointAccumulator& accumulator) const;
+    /// The running sums of squared luminance (float per point, see PointAccumulator::luminance_square_sums).
+    std::vector<float> readLuminanceSquareSums(const PointAccumulator& accumulator) const;
     /// Restores sums saved from an earlier run (resume), with the number of samples they hold.
-    void restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums, uint32_t samples_done);
+    void restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums,
+                     const std::vector<float>& luminance_square_sums, uint32_t samples_done);
 
     /// Convenience: mean irradiance at each point after `samples` samples (tests, tools).
     std::vector<glm::vec3> traceIrradiance(const std::vector<QueryPointGpu>& points, uint32_t samples,
@@ -130,6 +135,11 @@ private:
     size_t dropped_triangle_count_ = 0;
     SkySampling automatic_sky_sampling_ = SkySampling::CosineOnly;  ///< what Automatic means for the current sky
 };
+
+/// The variance of a point's mean luminance after `samples` samples, from its sums (the sample variance with
+/// Bessel's correction, over samples; 0 for fewer than two samples). Independent samples are assumed: the
+/// scrambled Sobol draws do better than that, so this overstates the error of a well-stratified mean.
+float luminanceVarianceOfMean(const glm::vec4& sum, float luminance_square_sum, uint32_t samples);
 
 /// What `requested` means for a sky: Automatic resolved by its cosine relative variance.
 SkySampling resolveSkySampling(SkySampling requested, const SkySamplingTables& sky);

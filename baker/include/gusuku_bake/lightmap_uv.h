@@ -60,6 +60,11 @@ struct UvCheckReport {
 /// Throws InputError when resolution < 1 or > 16384, or an index is out of range.
 UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution);
 
+/// The chart of every triangle as checkLightmapUvs finds them (triangles joined through edges whose end points
+/// coincide in uv1), numbered from 0; a triangle with a non-finite uv1 is a chart of its own. The lightmap
+/// filter's chart stop (lightmap_denoise.h). O(triangles). Throws InputError without usable uv1.
+std::vector<uint32_t> lightmapUvCharts(const TriangleMesh& mesh);
+
 /// The gutter the bake uses: one empty texel on every side of a chart's touched texels. Enough for the
 /// runtime's bilinear lookups, which read at most one texel beyond the touched ones (the lightmap has no mip
 /// levels), and for dilation, whose first ring then fills each gutter texel from its own chart only (two
