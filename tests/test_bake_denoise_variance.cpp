@@ -7,9 +7,12 @@
 //   at 16 and at 256 samples, and below the filter without measured variance;
 // - two charts side by side in the lightmap and continuous in the world, one lit 1.1 times the other: a texel
 //   of one chart is bit for bit what it is when the other chart is absent (and, as a control, would change if
-//   the two were one chart).
+//   the two were one chart);
+// - a checkpoint of the format before the squares (GSKCKPT1) is reported and traced afresh, never resumed.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -18,10 +21,13 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/colour.h"
+#include "gusuku/site.h"
+#include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/lightmap_denoise.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"
+#include "mini_site.h"
 #include "test_meshes.h"
 
 namespace gusuku::bake {
@@ -168,6 +174,37 @@ TEST(LightmapDenoise, NothingCrossesAChartBoundary) {
             }
             EXPECT_GT(largest_change, 0.01) << "the control would not have seen a leak";
         }
+}
+
+TEST_F(BakeDenoiseVarianceTest, CheckpointWithoutSquaresIsReportedAndTracedAfresh) {
+    namespace fs = std::filesystem;
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-old-checkpoint");
+    gusuku::testing::MiniSiteOptions site_options;
+    site_options.samples_per_texel = 4;
+    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+    BakeOptions options;
+    options.show_progress = false;
+    options.target_chunk_seconds = 1e-6;  // one sample per chunk
+    options.output_dir = dir + "/out";
+    int polls = 0;
+    options.should_stop = [&polls] { return ++polls == 7; };  // stops inside the second point set
+    ASSERT_FALSE(runBake(context(), site, options).completed);
+    // Turn every checkpoint into the old format's magic, as an older gusuku-bake would have left it.
+    size_t rewritten = 0;
+    for (const auto& entry : fs::directory_iterator(options.output_dir + "/.checkpoint")) {
+        std::fstream file(entry.path(), std::ios::in | std::ios::out | std::ios::binary);
+        file.seekp(7);
+        file.put('1');
+        ++rewritten;
+    }
+    ASSERT_GT(rewritten, 0u);
+    options.should_stop = nullptr;
+    ::testing::internal::CaptureStderr();
+    const BakeReport resumed = runBake(context(), site, options);
+    const std::string said = ::testing::internal::GetCapturedStderr();
+    ASSERT_TRUE(resumed.completed);
+    EXPECT_NE(said.find("GSKCKPT1"), std::string::npos) << said;
+    EXPECT_EQ(resumed.resumed_fraction, 0.0) << "nothing of an old checkpoint is resumed";
 }
 
 }  // namespace
