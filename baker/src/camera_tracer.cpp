@@ -95,7 +95,9 @@ CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int ma
                                                             {CAMERA_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
                                                             {CAMERA_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
                                                             {CAMERA_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_TEXTURE_BINDING, VK_FORMAT_R32_UINT}});
+                                                            {CAMERA_TEXTURE_BINDING, VK_FORMAT_R32_UINT},
+                                                            {CAMERA_SKY_RADIANCE_BINDING, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                            {CAMERA_SKY_TABLE_BINDING, VK_FORMAT_R32_SFLOAT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,
@@ -108,8 +110,8 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
                                   const CameraPose& pose, const CameraRenderOptions& options) {
     checkView(gpu_, light, intrinsics, pose, options);
     const auto start = std::chrono::steady_clock::now();
-    sky_radiance_ = uploadedBuffer(gpu_, light.sky->radiance_rgba);
-    sky_table_ = uploadedBuffer(gpu_, light.sky->table);
+    sky_radiance_ = uploadedBuffer(gpu_, light.sky->radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    sky_table_ = uploadedBuffer(gpu_, light.sky->table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
 
     const uint32_t pixel_count = intrinsics.width * intrinsics.height;
     TracePushConstants push{};
@@ -146,7 +148,11 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
     sums.uploadVector(std::vector<glm::vec4>(pixel_count, glm::vec4(0.0f)));
     trace_pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
                                   &sky_table_, &sample_estimates_, &guides, &ray_counter_});
-    accumulate_pipeline_->bindBuffers({&sample_estimates_, &sums});
+    // The accumulate pass also sums squared luminance (the bake's variance); a frame has no use for it, but
+    // the pass needs the buffer (zeroed: a sum of non-finite garbage would be harmless but is not needed).
+    GpuBuffer luminance_square_sums(gpu_, std::max<size_t>(size_t(pixel_count) * sizeof(float), 16));
+    luminance_square_sums.uploadVector(std::vector<float>(pixel_count, 0.0f));
+    accumulate_pipeline_->bindBuffers({&sample_estimates_, &sums, &luminance_square_sums});
 
     CameraRender result;
     result.samples_per_pixel = options.samples_per_pixel;

@@ -79,7 +79,9 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
                                                       {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
                                                       {BAKE_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
                                                       {BAKE_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_TEXTURE_BINDING, VK_FORMAT_R32_UINT}});
+                                                      {BAKE_TEXTURE_BINDING, VK_FORMAT_R32_UINT},
+                                                      {BAKE_SKY_RADIANCE_BINDING, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                      {BAKE_SKY_TABLE_BINDING, VK_FORMAT_R32_SFLOAT}});
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));
@@ -88,8 +90,8 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
 IrradianceTracer::~IrradianceTracer() = default;
 
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
-    sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba);
-    sky_table_ = uploadedBuffer(context_, sky.table);
+    sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    sky_table_ = uploadedBuffer(context_, sky.table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     automatic_sky_sampling_ = resolveSkySampling(SkySampling::Automatic, sky);
 }
 

@@ -3,8 +3,10 @@
 // each other through shaders/sky_probe.comp).
 //
 // The includer defines, before including:
-//   SKY_RADIANCE_BINDING  set-0 binding of SkySamplingTables::radiance_rgba (width * height vec4, row 0 zenith)
-//   SKY_TABLE_BINDING     set-0 binding of SkySamplingTables::table (header, marginal CDF, conditional CDFs)
+//   SKY_RADIANCE_BINDING  set-0 binding of SkySamplingTables::radiance_rgba (width * height vec4, row 0 zenith),
+//                         a uniform texel buffer of VK_FORMAT_R32G32B32A32_SFLOAT
+//   SKY_TABLE_BINDING     set-0 binding of SkySamplingTables::table (header, marginal CDF, conditional CDFs),
+//                         a uniform texel buffer of VK_FORMAT_R32_SFLOAT
 // and gets, for unit ENU directions (east, north, up):
 //   vec3  skyRadiance(vec3 direction_enu)                       texel containing the direction, unfiltered
 //   vec3  sampleSkyDirection(vec2 xi, out float pdf_solid_angle) xi in [0, 1)^2; pdf per steradian
@@ -20,12 +22,15 @@
 
 #include "constants.glsl"
 
-layout(std430, set = 0, binding = SKY_RADIANCE_BINDING) readonly buffer SkyRadianceBuffer {
-    vec4 sky_radiance_rgba[];
-};
-layout(std430, set = 0, binding = SKY_TABLE_BINDING) readonly buffer SkyTableBuffer {
-    float sky_table[];
-};
+// Both read as uniform texel buffers (views of format RGBA32F and R32F): lavapipe gathers a texel fetch's lanes
+// in straight-line vector code, where a storage-buffer load at per-lane addresses (a texel per direction, a CDF
+// entry per search) runs as a loop over the SIMD lanes (bvh_layout.glsl). A float view returns the stored
+// floats unchanged, so every result equals the storage-buffer reads' bit for bit.
+layout(set = 0, binding = SKY_RADIANCE_BINDING) uniform samplerBuffer sky_radiance_texels;
+layout(set = 0, binding = SKY_TABLE_BINDING) uniform samplerBuffer sky_table_texels;
+
+vec4 skyRadianceTexel(int index) { return texelFetch(sky_radiance_texels, index); }
+float skyTable(int index) { return texelFetch(sky_table_texels, index).x; }
 
 const int SKY_TABLE_HEADER_FLOATS = 4;
 // Largest float below 1: xi == 1 would pick the last CDF entry even when it has no mass.
@@ -33,9 +38,9 @@ const float SKY_ONE_MINUS_EPSILON = 0.99999994;
 // sin theta floor: keeps the pdf finite at the poles.
 const float SKY_MIN_SIN_THETA = 1e-7;
 
-int skyWidth() { return int(sky_table[0]); }
-int skyHeight() { return int(sky_table[1]); }
-float skyNorthAzimuthDeg() { return sky_table[2]; }
+int skyWidth() { return int(skyTable(0)); }
+int skyHeight() { return int(skyTable(1)); }
+float skyNorthAzimuthDeg() { return skyTable(2); }
 int skyMarginalOffset() { return SKY_TABLE_HEADER_FLOATS; }
 int skyConditionalOffset(int row) { return SKY_TABLE_HEADER_FLOATS + skyHeight() + 1 + row * (skyWidth() + 1); }
 
@@ -52,11 +57,11 @@ int skyConditionalGuideOffset(int row) {
 // lavapipe; the guided one is two loads and, on most of the map, no iteration at all.
 int skyFindInterval(int offset, int guide_offset, int cells, float xi) {
     int cell = min(int(xi * float(cells)), cells - 1);
-    int lo = int(sky_table[guide_offset + cell]);
-    int hi = int(sky_table[guide_offset + cell + 1]);
+    int lo = int(skyTable(guide_offset + cell));
+    int hi = int(skyTable(guide_offset + cell + 1));
     while (lo < hi) {
         int mid = (lo + hi + 1) / 2;
-        if (sky_table[offset + mid] <= xi)
+        if (skyTable(offset + mid) <= xi)
             lo = mid;
         else
             hi = mid - 1;
@@ -68,8 +73,8 @@ int skyFindInterval(int offset, int guide_offset, int cells, float xi) {
 float skyUnitSquareDensity(int x, int y) {
     int marginal = skyMarginalOffset();
     int conditional = skyConditionalOffset(y);
-    float row_probability = sky_table[marginal + y + 1] - sky_table[marginal + y];
-    float column_probability = sky_table[conditional + x + 1] - sky_table[conditional + x];
+    float row_probability = skyTable(marginal + y + 1) - skyTable(marginal + y);
+    float column_probability = skyTable(conditional + x + 1) - skyTable(conditional + x);
     return row_probability * float(skyHeight()) * column_probability * float(skyWidth());
 }
 
@@ -96,7 +101,7 @@ ivec2 skyTexelOf(vec3 direction_enu, out float sin_theta) {
 vec3 skyRadiance(vec3 direction_enu) {
     float sin_theta;
     ivec2 texel = skyTexelOf(direction_enu, sin_theta);
-    return sky_radiance_rgba[texel.y * skyWidth() + texel.x].rgb;
+    return skyRadianceTexel(texel.y * skyWidth() + texel.x).rgb;
 }
 
 // The texel's fourth float is its unit-square density, stored as skyUnitSquareDensity computes it (sky_light.h),
@@ -104,7 +109,7 @@ vec3 skyRadiance(vec3 direction_enu) {
 vec3 skyRadianceAndPdf(vec3 direction_enu, out float pdf_solid_angle) {
     float sin_theta;
     ivec2 texel = skyTexelOf(direction_enu, sin_theta);
-    vec4 radiance_density = sky_radiance_rgba[texel.y * skyWidth() + texel.x];
+    vec4 radiance_density = skyRadianceTexel(texel.y * skyWidth() + texel.x);
     pdf_solid_angle = skySolidAnglePdf(radiance_density.w, sin_theta);
     return radiance_density.rgb;
 }
@@ -124,11 +129,11 @@ vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
     int conditional = skyConditionalOffset(y);
     int x = skyFindInterval(conditional, skyConditionalGuideOffset(y), skyGuideCells(width), xi.y);
 
-    float row_low = sky_table[marginal + y];
-    float row_high = sky_table[marginal + y + 1];
-    float column_low = sky_table[conditional + x];
+    float row_low = skyTable(marginal + y);
+    float row_high = skyTable(marginal + y + 1);
+    float column_low = skyTable(conditional + x);
     float row_fraction = (xi.x - row_low) / (row_high - row_low);
-    float column_fraction = (xi.y - column_low) / (sky_table[conditional + x + 1] - column_low);
+    float column_fraction = (xi.y - column_low) / (skyTable(conditional + x + 1) - column_low);
     float u = (float(x) + column_fraction) / float(width);
     float v = (float(y) + row_fraction) / float(height);
 

@@ -1,7 +1,7 @@
 #version 450
 // Test kernel for shaders/include/sky_sampling.glsl: evaluates sampleSkyDirection, skyRadiance and skyPdf for a
 // list of inputs, so tests can compare them with the CPU twins (gusuku_bake/sky_light.h, runSkyProbeGpu).
-// Bindings: 0 sky radiance, 1 sky table, 2 inputs (per probe: vec4(xi, 0, 0), vec4(direction, 0)),
+// Bindings: 0 sky radiance, 1 sky table (uniform texel buffers, RGBA32F and R32F), 2 inputs (per probe: vec4(xi, 0, 0), vec4(direction, 0)),
 // 3 outputs (per probe: vec4(sampled direction, pdf), vec4(radiance(direction), pdf(direction)),
 // vec4(radiance(sampled), pdf(sampled)), vec4(skyRadianceAndPdf(direction)).
 #extension GL_GOOGLE_include_directive : require

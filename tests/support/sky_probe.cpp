@@ -24,15 +24,18 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
         inputs.insert(inputs.end(), {xi[i].x, xi[i].y, 0.0f, 0.0f});
         inputs.insert(inputs.end(), {directions_enu[i].x, directions_enu[i].y, directions_enu[i].z, 0.0f});
     }
-    GpuBuffer radiance_buffer(context, tables.radiance_rgba.size() * sizeof(float));
-    GpuBuffer table_buffer(context, tables.table.size() * sizeof(float));
+    // The sky's two buffers as the tracers bind them: uniform texel buffers (sky_sampling.glsl).
+    GpuBuffer radiance_buffer(context, tables.radiance_rgba.size() * sizeof(float),
+                              VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    GpuBuffer table_buffer(context, tables.table.size() * sizeof(float), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     GpuBuffer input_buffer(context, inputs.size() * sizeof(float));
     GpuBuffer output_buffer(context, xi.size() * kFloatsPerProbe * sizeof(float));
     radiance_buffer.uploadVector(tables.radiance_rgba);
     table_buffer.uploadVector(tables.table);
     input_buffer.uploadVector(inputs);
 
-    ComputePipeline pipeline(context, kSkyProbeCompSpirv, sizeof(kSkyProbeCompSpirv), 4, sizeof(uint32_t));
+    ComputePipeline pipeline(context, kSkyProbeCompSpirv, sizeof(kSkyProbeCompSpirv), 4, sizeof(uint32_t),
+                             {{0, VK_FORMAT_R32G32B32A32_SFLOAT}, {1, VK_FORMAT_R32_SFLOAT}});
     pipeline.bindBuffers({&radiance_buffer, &table_buffer, &input_buffer, &output_buffer});
     const uint32_t probe_count = uint32_t(xi.size());
     pipeline.dispatchAndWait(&probe_count, (probe_count + kLocalSize - 1) / kLocalSize);

@@ -89,7 +89,10 @@ inline constexpr size_t kSkyTableHeaderFloats = 4;
 int skyGuideCells(int intervals);
 
 /// Everything the GPU needs to evaluate and importance-sample the sky; upload radiance_rgba and table as two
-/// storage buffers (std430, bindings SKY_RADIANCE_BINDING and SKY_TABLE_BINDING of set 0).
+/// uniform texel buffers (bindings SKY_RADIANCE_BINDING and SKY_TABLE_BINDING of set 0, views of format
+/// R32G32B32A32_SFLOAT and R32_SFLOAT: one texel per radiance vec4, one per table float). lavapipe's
+/// maxTexelBufferElements (128 Mi) is far above what its 128 MiB storage-buffer cap, which the preflight checks
+/// every buffer against, lets through (8 Mi radiance texels, 32 Mi table floats).
 ///
 /// radiance_rgba: width * height * 4 floats, the sky map (sun removed), row 0 the zenith; a non-finite or
 ///   negative channel is stored as 0. The fourth float of each texel is not the map's alpha but the texel's
