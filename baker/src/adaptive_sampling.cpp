@@ -3,8 +3,10 @@
 #include "gusuku_bake/adaptive_sampling.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <map>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -20,9 +22,10 @@ bool usableSigma(float sigma) { return std::isfinite(sigma) && sigma > 0.0f; }
 
 }  // namespace
 
-std::vector<AdaptiveClass> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,
-                                               uint32_t budget_samples, const AdaptivePlanOptions& options) {
-    if (budget_samples <= pilot_samples || texel_sample_sigma.empty()) return {};
+std::vector<uint32_t> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,
+                                          uint32_t budget_samples, const AdaptivePlanOptions& options) {
+    std::vector<uint32_t> extra_per_texel(texel_sample_sigma.size(), 0u);
+    if (budget_samples <= pilot_samples || texel_sample_sigma.empty()) return extra_per_texel;
     const double pilot = double(pilot_samples);
     const double cap = std::max(pilot, options.max_budget_multiple * double(budget_samples));
     const double extra_total = double(budget_samples - pilot_samples) * double(texel_sample_sigma.size());
@@ -32,7 +35,7 @@ std::vector<AdaptiveClass> planAdaptiveSamples(const std::vector<float>& texel_s
             smallest_sigma = smallest_sigma > 0.0 ? std::min(smallest_sigma, double(sigma)) : double(sigma);
             room += cap - pilot;
         }
-    if (smallest_sigma <= 0.0) return {};
+    if (smallest_sigma <= 0.0) return extra_per_texel;
 
     // Extra samples of a texel for a given lambda: n_t = clamp(lambda sigma_t, pilot, cap), less the pilot.
     const auto extraFor = [&](double lambda, float sigma) {
@@ -48,30 +51,45 @@ std::vector<AdaptiveClass> planAdaptiveSamples(const std::vector<float>& texel_s
     double lambda = cap / smallest_sigma;
     if (room > extra_total) {
         double low = 0.0;
-        for (int iteration = 0; iteration < 100; ++iteration) {
+        for (int iteration = 0; iteration < 60; ++iteration) {
             const double middle = 0.5 * (low + lambda);
             (extraSum(middle) < extra_total ? low : lambda) = middle;
         }
     }
-
     const double granularity = double(std::max(options.granularity, 1u));
-    std::map<uint32_t, std::vector<uint32_t>> classes;  // extra samples -> texels, in texel order
-    for (size_t texel = 0; texel < texel_sample_sigma.size(); ++texel) {
-        const double extra = extraFor(lambda, texel_sample_sigma[texel]);
-        if (extra < 0.5 * granularity) continue;
-        const double octave = std::max(0.0, std::round(std::log2(extra / granularity)));
-        const uint32_t rounded = uint32_t(granularity * std::exp2(octave));
-        classes[rounded].push_back(uint32_t(texel));
-    }
-    std::vector<AdaptiveClass> plan;
-    for (auto& [extra, texels] : classes) plan.push_back({extra, std::move(texels)});
-    return plan;
+    for (size_t texel = 0; texel < texel_sample_sigma.size(); ++texel)
+        extra_per_texel[texel] =
+            uint32_t(granularity * std::round(extraFor(lambda, texel_sample_sigma[texel]) / granularity));
+    return extra_per_texel;
 }
 
-uint64_t plannedExtraSamples(const std::vector<AdaptiveClass>& plan) {
-    uint64_t total = 0;
-    for (const AdaptiveClass& one_class : plan) total += uint64_t(one_class.extra_samples_per_texel) * one_class.texels.size();
-    return total;
+AdaptiveExtras adaptiveExtraPoints(const std::vector<QueryPointGpu>& points, const std::vector<uint32_t>& extra_per_texel,
+                                   size_t points_per_texel, uint32_t samples_per_copy, uint32_t pilot_samples_per_point) {
+    if (points_per_texel == 0 || samples_per_copy == 0 || points.size() != extra_per_texel.size() * points_per_texel)
+        throw std::invalid_argument("adaptiveExtraPoints: " + std::to_string(points.size()) + " points for " +
+                                    std::to_string(extra_per_texel.size()) + " texels of " +
+                                    std::to_string(points_per_texel));
+    const uint64_t per_copy = uint64_t(points_per_texel) * samples_per_copy;
+    AdaptiveExtras extras;
+    extras.samples_per_copy = samples_per_copy;
+    for (size_t texel = 0; texel < extra_per_texel.size(); ++texel) {
+        if (extra_per_texel[texel] % per_copy != 0)
+            throw std::invalid_argument("adaptiveExtraPoints: texel " + std::to_string(texel) + "'s " +
+                                        std::to_string(extra_per_texel[texel]) +
+                                        " extra samples are not a multiple of " + std::to_string(per_copy));
+        const uint64_t copies = extra_per_texel[texel] / per_copy;
+        for (uint64_t copy = 0; copy < copies; ++copy)
+            for (size_t slot = 0; slot < points_per_texel; ++slot) {
+                const size_t point = texel * points_per_texel + slot;
+                QueryPointGpu copied = points[point];
+                copied.normal.w = std::bit_cast<float>(uint32_t(point) + 1u);
+                copied.face_normal.w =
+                    std::bit_cast<float>(uint32_t(pilot_samples_per_point + copy * uint64_t(samples_per_copy)));
+                extras.points.push_back(copied);
+                extras.owners.push_back(uint32_t(point));
+            }
+    }
+    return extras;
 }
 
 PointSums normaliseToSampleCount(const PointSums& point, uint32_t nominal_samples) {
@@ -91,6 +109,31 @@ PointSums normaliseToSampleCount(const PointSums& point, uint32_t nominal_sample
     normalised.luminance_square_sum =
         float(nominal * mean_luminance * mean_luminance + variance_of_mean * nominal * (nominal - 1.0));
     return normalised;
+}
+
+void addAdaptiveExtraSums(SetSums& set, const AdaptiveExtras& extras, size_t first_copy,
+                          const std::vector<glm::vec4>& extra_sums, const std::vector<float>& extra_square_sums) {
+    if (extra_square_sums.size() != extra_sums.size() || first_copy + extra_sums.size() > extras.owners.size())
+        throw std::invalid_argument("addAdaptiveExtraSums: the copies' sums do not match the copies");
+    if (set.luminance_square_sums.size() != set.sums.size() || set.samples.size() != set.sums.size())
+        throw std::invalid_argument("addAdaptiveExtraSums: the set's sums, squares and counts differ in size");
+    for (size_t copy = 0; copy < extra_sums.size(); ++copy) {
+        const uint32_t owner = extras.owners[first_copy + copy];
+        if (owner >= set.sums.size()) throw std::invalid_argument("addAdaptiveExtraSums: a copy's owner is past the set");
+        set.sums[owner] += extra_sums[copy];
+        set.luminance_square_sums[owner] += extra_square_sums[copy];
+        set.samples[owner] += extras.samples_per_copy;
+    }
+}
+
+void normaliseSetSums(SetSums& set, uint32_t nominal_samples) {
+    for (size_t point = 0; point < set.sums.size(); ++point) {
+        const PointSums normalised = normaliseToSampleCount(
+            {set.sums[point], set.luminance_square_sums[point], set.samples[point]}, nominal_samples);
+        set.sums[point] = normalised.sum;
+        set.luminance_square_sums[point] = normalised.luminance_square_sum;
+        set.samples[point] = normalised.samples;
+    }
 }
 
 }  // namespace gusuku::bake

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "bake_checkpoint.h"
+#include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/lightmap_denoise.h"
 #include "bake_geometry.h"
 #include "bake_inputs.h"
@@ -47,6 +48,7 @@ uint64_t traceInputHash(const SiteConfig& site, const std::vector<std::string>& 
     // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
     // be resumed, or the result would differ from an uninterrupted bake.
     hash.addString("texel footprints 1");  // texels traced over their footprints (lightmap_uv.h), not at centres
+    hash.addString(options.adaptive_sampling ? "adaptive sampling 1" : "uniform sampling");
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
         .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
@@ -167,6 +169,50 @@ private:
     bool stop_requested_ = false;
 };
 
+/// The building's set traced adaptively (adaptive_sampling.h): a pilot of half the samples per point, every
+/// point alike (checkpointed as the set itself), then extra samples planned per texel from the pilot's noise,
+/// traced as copies of the texels' footprint points in sets of their own ("building_extra", checkpointed like
+/// any set; the plan follows from the pilot's sums, so a resumed bake plans the same copies), added to their
+/// points and normalised so that every point reads as `samples` samples. Nothing when stopped.
+std::optional<SetTracer::Sums> traceAdaptively(SetTracer& set_tracer, const std::string& slot_name, const PointSet& set,
+                                               const LightmapFootprint& footprint, const TracePass& pass,
+                                               uint32_t samples, size_t max_points) {
+    const uint32_t pilot = samples / 2;
+    std::optional<SetTracer::Sums> pilot_sums = set_tracer.trace(slot_name, set, pass, pilot);
+    if (!pilot_sums) return std::nullopt;
+    if (set.points.empty()) return pilot_sums;
+    const size_t points_per_texel = footprint.pointsPerTexel();
+    SetSums all{std::move(pilot_sums->sums), std::move(pilot_sums->luminance_square_sums),
+                std::vector<uint32_t>(set.points.size(), pilot)};
+    // Each texel's noise: the variance of its mean over its footprint, as one sample's (times its samples).
+    const std::vector<float> texel_variance = texelLuminanceVarianceFromFootprint(
+        footprint, all.sums, all.luminance_square_sums, pilot, kMaxBackfaceFraction);
+    const uint32_t pilot_per_texel = pilot * uint32_t(points_per_texel);
+    std::vector<float> sigma(texel_variance.size());
+    for (size_t texel = 0; texel < sigma.size(); ++texel)
+        sigma[texel] = std::sqrt(texel_variance[texel] * float(pilot_per_texel));
+    const std::vector<uint32_t> extra_per_texel = planAdaptiveSamples(
+        sigma, pilot_per_texel, samples * uint32_t(points_per_texel),
+        {uint32_t(points_per_texel) * kAdaptiveSamplesPerCopy});
+    const AdaptiveExtras extras =
+        adaptiveExtraPoints(set.points, extra_per_texel, points_per_texel, kAdaptiveSamplesPerCopy, pilot);
+    // Batches within the device's limit on one set's points.
+    const size_t batch_points = std::max<size_t>(points_per_texel, max_points / points_per_texel * points_per_texel);
+    for (size_t first = 0, batch = 0; first < extras.points.size(); first += batch_points, ++batch) {
+        const size_t last = std::min(extras.points.size(), first + batch_points);
+        PointSet extra_set{set.name + "_extra" + (batch > 0 ? std::to_string(batch) : std::string()),
+                           std::vector<QueryPointGpu>(extras.points.begin() + ptrdiff_t(first),
+                                                      extras.points.begin() + ptrdiff_t(last)),
+                           set.skip_flags, kAdaptiveSamplesPerCopy};
+        std::optional<SetTracer::Sums> extra_sums =
+            set_tracer.trace(slot_name, extra_set, pass, kAdaptiveSamplesPerCopy);
+        if (!extra_sums) return std::nullopt;
+        addAdaptiveExtraSums(all, extras, first, extra_sums->sums, extra_sums->luminance_square_sums);
+    }
+    normaliseSetSums(all, samples);
+    return SetTracer::Sums{std::move(all.sums), std::move(all.luminance_square_sums)};
+}
+
 /// True when manifest_path is a finished bake of these inputs, of the same kind: the whole site (slot empty), or
 /// the partial set of that one slot. Anything unreadable is not up to date.
 bool manifestIsUpToDate(const std::string& manifest_path, uint64_t input_hash, const std::string& slot) {
@@ -249,12 +295,11 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
 
     // Each texel's samples spread over its footprint: K slots of samples / K each (the same rays), folded back
     // into one sum per texel before the outputs.
+    const size_t max_trace_points =
+        storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange) / sizeof(QueryPointGpu);
     const LightmapFootprint footprint = lightmapTexelFootprints(
         geometry.building, geometry.lightmap_resolution, geometry.texels,
-        footprintGridSide(samples, geometry.texels.size(),
-                          storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange) /
-                              sizeof(QueryPointGpu)),
-        site.bake.seed);
+        footprintGridSide(samples, geometry.texels.size(), max_trace_points), site.bake.seed);
     const uint32_t samples_per_slot = samples / uint32_t(footprint.pointsPerTexel());
     const std::vector<PointSet> sets = {
         {"building", buildingQueryPoints(footprint), 0u, samples_per_slot},
@@ -287,7 +332,12 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         std::vector<SetTracer::Sums> sums;
         for (const PointSet& set : sets) {
             pass.skip_flags = set.skip_flags;
-            auto set_sums = set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
+            // The building adaptively once a texel has the samples for a pilot; the ground's cells alike.
+            const bool adaptive = options.adaptive_sampling && &set == &sets.front() && samples >= kMinAdaptiveSamples &&
+                                  set.samples(samples) >= 2;
+            auto set_sums = adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
+                                                       set.samples(samples), max_trace_points)
+                                     : set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
             if (!set_sums) {
                 progress.finish();
                 report.rays_traced = progress.raysTraced();

@@ -34,6 +34,8 @@ constexpr const char* kBakeUsage =
     "  --slot NAME        bake only this slot of SITE.json into a partial set, to be joined with the other\n"
     "                     slots' partial sets by `gusuku-bake merge` (one slot per machine)\n"
     "  --no-denoise       skip the edge-keeping lightmap filter\n"
+    "  --uniform-sampling every texel the same samples (default: half of them alike, the other half where\n"
+    "                     each texel's noise is)\n"
     "  --force            bake even if DIR/manifest.json already matches these inputs\n"
     "  --quiet            no progress bar\n"
     "\n"
@@ -54,6 +56,7 @@ BakeRequest parseArguments(CommandLine& line) {
     if (const std::optional<int64_t> samples = line.integer("--samples", 1, 1000000))
         options.samples_override = int(*samples);
     options.denoise = !line.flag("--no-denoise");
+    options.adaptive_sampling = !line.flag("--uniform-sampling");
     options.force = line.flag("--force");
     options.slot = line.text("--slot").value_or("");
     options.show_progress = !line.flag("--quiet");

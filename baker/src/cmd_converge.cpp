@@ -18,7 +18,7 @@ namespace {
 
 constexpr const char* kConvergeUsage =
     "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
-    "                            [--target-rms R] [--sky-sampling auto|cosine|mis]\n"
+    "                            [--target-rms R] [--sky-sampling auto|cosine|mis] [--sampling adaptive|uniform]\n"
     "       gusuku-bake converge SITE.json --slot NAME --export-lighting DIR\n"
     "\n"
     "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
@@ -27,6 +27,8 @@ constexpr const char* kConvergeUsage =
     "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
     "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
     "default, is what a bake does), to compare the two on a site's own sky.\n"
+    "--sampling: adaptive (the default, what a bake does: from 8 samples on, a pilot of half the samples and\n"
+    "the other half where each texel's noise is) or uniform (every texel alike).\n"
     "--export-lighting writes the slot's sky without its sun (DIR/sky_NAME.hdr, laid out for Blender's world)\n"
     "and its sun (DIR/sun_NAME.json) as the bake traces them, for bench/cycles, and runs no study.\n"
     "Exit status: 0 ok, 1 bad input or a bad option value, 2 bad usage.\n";
@@ -63,6 +65,8 @@ ConvergeRequest parseArguments(CommandLine& line) {
                                                    bake::SkySampling::CosineAndMap};
     if (const std::optional<size_t> method = line.choice("--sky-sampling", {"auto", "cosine", "mis"}))
         options.sky_sampling = kSkySamplings[*method];
+    if (const std::optional<size_t> sampling = line.choice("--sampling", {"adaptive", "uniform"}))
+        options.adaptive = *sampling == 0;
     const std::vector<std::string> sites = line.positionals();
     line.finish();
     if (sites.size() > 1) line.fail("one site.json only ('" + sites[1] + "' is extra)");

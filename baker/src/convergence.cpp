@@ -10,6 +10,7 @@
 #include "bake_geometry.h"
 #include "bake_outputs.h"
 #include "gusuku/colour.h"
+#include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/slot_lighting.h"
@@ -19,6 +20,10 @@ namespace gusuku::bake {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Copies of texel points traced in one accumulator: 48 MB of query points, well inside any device's storage
+// buffer range, however many extra samples a large lightmap plans.
+constexpr size_t kExtraCopiesPerBatch = size_t(1) << 20;
 
 // Relative RMS of luminance over texels valid in both, against the reference.
 double relativeRms(const std::vector<glm::vec4>& estimate, const std::vector<glm::vec4>& reference) {
@@ -123,25 +128,57 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     };
 
     PointAccumulator estimate = tracer.createAccumulator(points);
-    double seconds = 0.0;
+    double seconds = 0.0;  // the uniform samples' (cumulative: each point's pilot continues the last one's)
     uint64_t rays = 0;
+    double total_seconds = 0.0;
+    uint64_t total_rays = 0;
     for (uint32_t target = 1; target <= options.max_samples; target *= 2) {
-        const auto start = Clock::now();
-        const uint32_t chunk = target - estimate.samples_done;
-        const uint64_t chunk_rays = tracer.addSamples(estimate, chunk, pass);
-        const double chunk_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        seconds += chunk_seconds;
-        rays += chunk_rays;
-        progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(), chunk_rays,
-                         chunk_seconds);
-        const std::vector<glm::vec4> sums = tracer.readSums(estimate);
-        const std::vector<float> squares = tracer.readLuminanceSquareSums(estimate);
+        const bool adaptive = options.adaptive && target >= kMinAdaptiveSamples;
+        const uint32_t uniform_samples = adaptive ? target / 2 : target;
+        if (uniform_samples > estimate.samples_done) {
+            const auto start = Clock::now();
+            const uint32_t chunk = uniform_samples - estimate.samples_done;
+            const uint64_t chunk_rays = tracer.addSamples(estimate, chunk, pass);
+            const double chunk_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            seconds += chunk_seconds;
+            rays += chunk_rays;
+            progress.advance("study", estimate.samples_done, options.max_samples, double(chunk) * points.size(),
+                             chunk_rays, chunk_seconds);
+        }
+        SetSums set{tracer.readSums(estimate), tracer.readLuminanceSquareSums(estimate),
+                    std::vector<uint32_t>(points.size(), uniform_samples)};
+        double extra_seconds = 0.0;
+        uint64_t extra_rays = 0;
+        if (adaptive) {
+            const auto start = Clock::now();
+            std::vector<float> sigma(points.size());
+            for (size_t i = 0; i < points.size(); ++i)
+                sigma[i] = std::sqrt(luminanceVarianceOfMean(set.sums[i], set.luminance_square_sums[i], uniform_samples) *
+                                     float(uniform_samples));
+            const std::vector<uint32_t> extra_per_texel =
+                planAdaptiveSamples(sigma, uniform_samples, target, {kAdaptiveSamplesPerCopy});
+            const AdaptiveExtras extras =
+                adaptiveExtraPoints(points, extra_per_texel, 1, kAdaptiveSamplesPerCopy, uniform_samples);
+            for (size_t first = 0; first < extras.points.size(); first += kExtraCopiesPerBatch) {
+                const size_t last = std::min(extras.points.size(), first + kExtraCopiesPerBatch);
+                PointAccumulator extra = tracer.createAccumulator(
+                    std::vector<QueryPointGpu>(extras.points.begin() + ptrdiff_t(first), extras.points.begin() + ptrdiff_t(last)));
+                extra_rays += tracer.addSamples(extra, extras.samples_per_copy, pass);
+                addAdaptiveExtraSums(set, extras, first, tracer.readSums(extra), tracer.readLuminanceSquareSums(extra));
+            }
+            normaliseSetSums(set, target);
+            extra_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        }
+        total_seconds += extra_seconds;
+        total_rays += extra_rays;
+        const std::vector<glm::vec4>& sums = set.sums;
         std::vector<float> variance(sums.size());
-        for (size_t i = 0; i < sums.size(); ++i) variance[i] = luminanceVarianceOfMean(sums[i], squares[i], target);
+        for (size_t i = 0; i < sums.size(); ++i)
+            variance[i] = luminanceVarianceOfMean(sums[i], set.luminance_square_sums[i], target);
         ConvergencePoint point;
         point.samples = target;
-        point.rays = rays;
-        point.seconds = seconds;
+        point.rays = rays + extra_rays;
+        point.seconds = seconds + extra_seconds;
         point.relative_rms = relativeRms(processBuildingLightmap(geometry, sums, target, false).per_texel, reference_texels);
         const auto denoise_start = Clock::now();
         const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true, variance);
@@ -151,8 +188,10 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         point.relative_rms_denoised_corrected = correctedRms(point.relative_rms_denoised);
         study.points.push_back(point);
     }
+    total_seconds += seconds;
+    total_rays += rays;
     progress.finish();
-    study.rays_per_second = seconds > 0.0 ? double(rays) / seconds : 0.0;
+    study.rays_per_second = total_seconds > 0.0 ? double(total_rays) / total_seconds : 0.0;
     study.log_log_slope = logLogSlope(study.points, false);
     study.log_log_slope_denoised = logLogSlope(study.points, true);
     if (!study.points.empty()) {

@@ -31,8 +31,10 @@ layout(local_size_x = BAKE_WORKGROUP_SIZE) in;
 
 struct QueryPoint {
     vec4 position;     // xyz ENU metres
-    vec4 normal;       // xyz unit: the shading normal, about which the cosine lobe gathers
-    vec4 face_normal;  // xyz unit geometric normal (either winding); zero: the shading normal's own plane
+    vec4 normal;       // xyz unit: the shading normal, about which the cosine lobe gathers; w: uint bits, 0 or
+                       // 1 + the index of the random stream to draw from (adaptive sampling's copies of a point)
+    vec4 face_normal;  // xyz unit geometric normal (either winding); zero: the shading normal's own plane;
+                       // w: uint bits, the first sample index of the stream (with a stream in normal.w)
 };
 layout(std430, set = 0, binding = BAKE_QUERY_POINT_BINDING) readonly buffer QueryPoints { QueryPoint query_points[]; };
 // Per (sample in chunk, point): xyz the irradiance estimate, w the first ray's back-face score
@@ -64,7 +66,13 @@ void main() {
         if (dot(face_normal, face_normal) == 0.0) face_normal = point.normal.xyz;
         else if (dot(face_normal, point.normal.xyz) < 0.0) face_normal = -face_normal;
 
-        Rng rng = rngForSample(pc.seed, point_index, pc.first_sample + sample_in_chunk);
+        // A point's random numbers: its own stream, or (a copy for adaptive sampling's extra samples) the stream of
+        // the point it copies from the given sample on, so that a texel's samples are one scrambled Sobol
+        // sequence however they were split (independent short sequences stratify far worse).
+        uint stream_plus_one = floatBitsToUint(point.normal.w);
+        uint stream = stream_plus_one == 0u ? point_index : stream_plus_one - 1u;
+        uint first_sample = stream_plus_one == 0u ? 0u : floatBitsToUint(point.face_normal.w);
+        Rng rng = rngForSample(pc.seed, stream, first_sample + pc.first_sample + sample_in_chunk);
         vec4 estimate = vec4(0.0);
         if (pc.mode == BAKE_MODE_SUN_DIRECT) {
             estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, face_normal, rng, settings);

@@ -8,25 +8,30 @@
 // rays, about 2x there.
 //
 // The bake traces a pilot (half the samples, every texel alike), estimates each texel's sigma from its sums of
-// luminance and squared luminance, and plans the other half as a few classes of texels, each class given one
-// number of extra samples, so that each class is one more point set for the existing tracer and checkpoints
-// (a class's points and samples follow from the pilot's sums alone, so a resumed bake plans the same classes).
+// luminance and squared luminance, and plans the other half per texel; the extra samples are one more point set
+// (copies of the noisy texels' points) for the existing tracer and checkpoints. The plan follows from the
+// pilot's sums alone, so a resumed bake plans the same set.
 
 #include <cstdint>
 #include <vector>
 
 #include <glm/vec4.hpp>
 
+#include "gusuku_bake/irradiance_tracer.h"
+
 namespace gusuku::bake {
 
-/// The texels that get one number of extra samples.
-struct AdaptiveClass {
-    uint32_t extra_samples_per_texel = 0;  ///< a multiple of the planner's granularity, > 0
-    std::vector<uint32_t> texels;          ///< indices into the planner's texel list, ascending
-};
+/// Below this many samples per texel a bake (and a converge study point) samples every texel alike: a pilot of
+/// half of fewer than 8 samples says too little about a texel's noise.
+inline constexpr uint32_t kMinAdaptiveSamples = 8;
+
+/// Samples of one copy of a texel's point in the extra set: small, so the extras' granularity stays fine, but
+/// a stratified handful (the first points of a scrambled Sobol sequence) rather than one sample each.
+inline constexpr uint32_t kAdaptiveSamplesPerCopy = 4;
 
 struct AdaptivePlanOptions {
-    /// Extra samples come in multiples of this (the footprint's slots per texel: each slot gets the same).
+    /// Extra samples come in multiples of this: a footprint's slots per texel times the samples of one copy
+    /// (adaptiveExtraPoints), so each slot gets whole copies.
     uint32_t granularity = 1;
     /// No texel gets more than this many times the mean budget in all: a sigma estimated from a pilot that met
     /// one rare bright path is itself noisy, and must not draw the whole budget.
@@ -35,15 +40,29 @@ struct AdaptivePlanOptions {
 
 /// Plans the samples after a pilot: every texel already has `pilot_samples`; the texels together get about
 /// (budget_samples - pilot_samples) * texel_count more, texel t toward n_t = lambda * sigma_t (n_t >= pilot, at
-/// most max_budget_multiple * budget_samples), lambda set so the total is the budget. Each texel's extra
-/// count is rounded to a class: granularity times a power of two, nearest in log2, zero below half of
-/// the smallest class; classes come out sorted by extra samples, empty ones left out. Texels with sigma 0 (or
-/// not finite) get nothing. Deterministic. Returns no classes when budget <= pilot or no sigma is positive.
-std::vector<AdaptiveClass> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,
-                                               uint32_t budget_samples, const AdaptivePlanOptions& options = {});
+/// most max_budget_multiple * budget_samples), lambda set so the total is the budget. Returns each texel's
+/// extra samples, rounded to the nearest multiple of the granularity. Texels with sigma 0 (or not finite) get
+/// nothing. Deterministic. All zero when budget <= pilot or no sigma is positive.
+std::vector<uint32_t> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,
+                                          uint32_t budget_samples, const AdaptivePlanOptions& options = {});
 
-/// Total extra samples of a plan (the rays it adds, over the samples per ray).
-uint64_t plannedExtraSamples(const std::vector<AdaptiveClass>& plan);
+/// The extra samples as one more point set for the tracer: each texel's trace points (its footprint's slots)
+/// repeated, each copy traced with samples_per_copy samples that continue its point's own random stream
+/// (QueryPointGpu's stream and first sample), so a texel's samples stay one scrambled Sobol sequence (measured:
+/// copies with streams of their own stratify so much worse that adaptive sampling lost to uniform), while the
+/// copies fill the tracer's SIMD lanes however few texels are noisy. owners[c]: the set's point copy c adds to.
+struct AdaptiveExtras {
+    std::vector<QueryPointGpu> points;
+    std::vector<uint32_t> owners;
+    uint32_t samples_per_copy = 0;
+};
+
+/// Copies for extra_per_texel (planAdaptiveSamples with granularity points_per_texel * samples_per_copy): for
+/// texel t, extra_t / (points_per_texel * samples_per_copy) copies of each of its points_per_texel consecutive
+/// points of `points`; copy k of point p draws samples pilot_samples_per_point + k * samples_per_copy on of
+/// p's stream. Throws std::invalid_argument when sizes do not match or a count is not such a multiple.
+AdaptiveExtras adaptiveExtraPoints(const std::vector<QueryPointGpu>& points, const std::vector<uint32_t>& extra_per_texel,
+                                   size_t points_per_texel, uint32_t samples_per_copy, uint32_t pilot_samples_per_point);
 
 /// One trace point's running sums: sum of estimates (xyz irradiance, w back-face score), sum of squared
 /// luminance, and how many samples they hold.
@@ -58,5 +77,22 @@ struct PointSums {
 /// sample count for the whole set, reads each point's own mean and noise. Unchanged when samples equals
 /// nominal_samples; a point with no samples stays zero.
 PointSums normaliseToSampleCount(const PointSums& point, uint32_t nominal_samples);
+
+/// A point set's running sums as the tracer reads them back (PointAccumulator), and how many samples each point
+/// holds (all alike after a uniform trace).
+struct SetSums {
+    std::vector<glm::vec4> sums;
+    std::vector<float> luminance_square_sums;
+    std::vector<uint32_t> samples;
+};
+
+/// Adds traced sums of the copies [first_copy, first_copy + extra_sums.size()) (adaptiveExtraPoints' order,
+/// samples_per_copy samples each) onto their owners: the extras may be traced in batches (a device limits how
+/// many points one set may hold). Throws std::invalid_argument when the sizes do not match.
+void addAdaptiveExtraSums(SetSums& set, const AdaptiveExtras& extras, size_t first_copy,
+                          const std::vector<glm::vec4>& extra_sums, const std::vector<float>& extra_square_sums);
+
+/// normaliseToSampleCount on every point of the set: afterwards every point reads as nominal_samples samples.
+void normaliseSetSums(SetSums& set, uint32_t nominal_samples);
 
 }  // namespace gusuku::bake

@@ -22,9 +22,12 @@ namespace gusuku::bake {
 /// nothing, so a lightmap texel and a path vertex on the same surface gather the same light.
 struct QueryPointGpu {
     glm::vec4 position;                  ///< xyz ENU metres
-    glm::vec4 normal;                    ///< xyz unit: the shading normal, about which the cosine lobe gathers
+    glm::vec4 normal;                    ///< xyz unit: the shading normal, about which the cosine lobe gathers;
+                                         ///< w: 0, or (uint bits) 1 + the random stream to draw from
+                                         ///< (adaptive_sampling.h's copies; 0: the point's own index)
     glm::vec4 face_normal{0.0f};         ///< xyz unit geometric normal of the surface (either winding; the
-                                         ///< shader takes it on `normal`'s side); zero: `normal`'s own plane
+                                         ///< shader takes it on `normal`'s side); zero: `normal`'s own plane;
+                                         ///< w (uint bits, with a stream in normal.w): its first sample index
 };
 static_assert(sizeof(QueryPointGpu) == 48);
 
