@@ -6,7 +6,9 @@
 // not by its bounding rectangle, so a gable's triangle and the next one turned upside down lock into a
 // parallelogram. Two placement rules (PlacementRule) are tried and the first that fits wins: neither is best on
 // every model (measured on the sample, the shared shrine and the shared house, whose fills they swap by up to 6
-// points). Texels under an overhang stay empty.
+// points). The texels left under an overhang are kept as holes, per column runs of empty rows; a small chart
+// (kHoleFillMaxTexels) goes into the lowest hole that holds it before it is dropped on the skyline (the shrine's
+// beam ends and short pieces: 55.6 % fill at 512^2 without, 61.2 % at 488^2 with; the house 68.7 % and 73.0 %).
 
 #include <algorithm>
 #include <climits>
@@ -99,6 +101,81 @@ enum class PlacementRule {
 };
 constexpr PlacementRule kPlacementRules[] = {PlacementRule::LowestBottom, PlacementRule::LowestTopAndGap};
 
+// Charts whose padded footprint has at most this many texels look for a hole before resting on the skyline: the
+// small ones come last (largest perimeter first), when the big ones have left holes under their overhangs.
+constexpr int kHoleFillMaxTexels = 512;
+
+// Empty runs [start, end) of one column under the skyline, in rising order, and the longest run's length.
+struct ColumnHoles {
+    std::vector<glm::ivec2> runs;
+    int longest = 0;
+    void add(const glm::ivec2& run) {
+        runs.push_back(run);
+        longest = std::max(longest, run.y - run.x);
+    }
+};
+
+bool holeHolds(const ColumnHoles& column, int start, int end) {
+    if (end - start > column.longest) return false;
+    // The last run starting at or below `start` is the only one that can hold it (runs do not overlap).
+    auto after = std::upper_bound(column.runs.begin(), column.runs.end(), start,
+                                  [](int row, const glm::ivec2& run) { return row < run.x; });
+    return after != column.runs.begin() && end <= (after - 1)->y;
+}
+
+// Takes [start, end) out of the column's run that holds it.
+void fillHole(ColumnHoles& column, int start, int end) {
+    std::vector<glm::ivec2>& runs = column.runs;
+    for (size_t at = 0; at < runs.size(); ++at) {
+        const glm::ivec2 run = runs[at];
+        if (!(run.x <= start && end <= run.y)) continue;
+        runs.erase(runs.begin() + std::ptrdiff_t(at));
+        if (end < run.y) runs.insert(runs.begin() + std::ptrdiff_t(at), glm::ivec2(end, run.y));
+        if (run.x < start) runs.insert(runs.begin() + std::ptrdiff_t(at), glm::ivec2(run.x, start));
+        break;
+    }
+    column.longest = 0;
+    for (const glm::ivec2& run : runs) column.longest = std::max(column.longest, run.y - run.x);
+}
+
+struct HolePlace {
+    bool found = false;
+    int x = 0, y = 0, turns = 0;
+};
+
+// The lowest place (then leftmost) where a turn of the chart lies wholly in holes: each of its columns' spans
+// inside one empty run, its first column resting on a run's start.
+HolePlace lowestHole(const std::vector<ColumnHoles>& holes, const std::vector<TurnedFootprint>& turns, int resolution) {
+    HolePlace best;
+    int longest = 0;
+    for (const ColumnHoles& column : holes) longest = std::max(longest, column.longest);
+    for (int turn = 0; turn < int(turns.size()); ++turn) {
+        const TurnedFootprint& footprint = turns[size_t(turn)];
+        int first = 0, tallest = 0;
+        while (first < footprint.width && footprint.top[size_t(first)] == 0) ++first;
+        if (first == footprint.width) continue;
+        for (int column = first; column < footprint.width; ++column)
+            tallest = std::max(tallest, footprint.top[size_t(column)] - footprint.bottom[size_t(column)]);
+        if (tallest > longest) continue;  // no hole is that tall
+        const int first_span = footprint.top[size_t(first)] - footprint.bottom[size_t(first)];
+        for (int x = 0; x + footprint.width <= resolution; ++x) {
+            if (holes[size_t(x + first)].longest < first_span) continue;
+            for (const glm::ivec2& run : holes[size_t(x + first)].runs) {
+                const int y = run.x - footprint.bottom[size_t(first)];
+                if (best.found && y >= best.y) break;  // runs rise: no lower place in this column
+                if (run.y - run.x < first_span || y < 0) continue;
+                bool holds = true;
+                for (int column = first; column < footprint.width && holds; ++column)
+                    if (footprint.top[size_t(column)] > 0)
+                        holds = holeHolds(holes[size_t(x + column)], y + footprint.bottom[size_t(column)],
+                                          y + footprint.top[size_t(column)]);
+                if (holds) best = HolePlace{true, x, y, turn};
+            }
+        }
+    }
+    return best;
+}
+
 PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<std::vector<TurnedFootprint>>& footprints,
                        int resolution, int padding, PlacementRule rule) {
     PackResult result;
@@ -116,6 +193,7 @@ PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<
     });
     result.fits = true;
     std::vector<int> skyline(size_t(resolution), 0);
+    std::vector<ColumnHoles> holes{size_t(resolution)};  // per column: empty runs under the skyline
     std::vector<int> steps;
     std::vector<uint32_t> tried(size_t(resolution), 0);
     uint32_t stamp = 0;
@@ -170,7 +248,21 @@ PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<
         }
         if (best_top != INT_MAX) best_footprint = footprints[chart][size_t(best_turns)];
         ChartPlacement& placement = result.placements[chart];
-        if (best_top == INT_MAX) {  // wider than the lightmap every way
+        // A small chart goes into a hole left under an earlier chart's overhang when one holds it: the lowest.
+        HolePlace hole;
+        if (best_top != INT_MAX && footprints[chart][0].width * footprints[chart][0].height <= kHoleFillMaxTexels)
+            hole = lowestHole(holes, footprints[chart], resolution);
+        if (hole.found) {
+            best_turns = hole.turns;
+            best_footprint = footprints[chart][size_t(best_turns)];
+            best_x = hole.x;
+            best_y = hole.y;
+            best_top = 0;  // the skyline does not move
+            for (int column = 0; column < best_footprint.width; ++column)
+                if (best_footprint.top[size_t(column)] > 0)
+                    fillHole(holes[size_t(best_x + column)], best_y + best_footprint.bottom[size_t(column)],
+                             best_y + best_footprint.top[size_t(column)]);
+        } else if (best_top == INT_MAX) {  // wider than the lightmap every way
             result.fits = false;
             best_footprint = footprints[chart][0];
             best_x = 0;
@@ -178,8 +270,12 @@ PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<
             best_top = best_y + best_footprint.height;
         } else {
             for (int column = 0; column < best_footprint.width; ++column)
-                if (best_footprint.top[size_t(column)] > 0)
+                if (best_footprint.top[size_t(column)] > 0) {
+                    const int rests = best_y + best_footprint.bottom[size_t(column)];
+                    if (rests > skyline[size_t(best_x + column)])
+                        holes[size_t(best_x + column)].add(glm::ivec2(skyline[size_t(best_x + column)], rests));
                     skyline[size_t(best_x + column)] = best_y + best_footprint.top[size_t(column)];
+                }
         }
         placement.quarter_turns = best_turns;
         placement.inner_width = best_footprint.width - 2 * padding;
