@@ -116,9 +116,9 @@ TEST_F(BakeDenoiseVarianceTest, FilterLowersErrorAtLowAndHighSampleCounts) {
         std::printf("%u samples: relative RMS raw %.4f, filtered by variance %.4f, filtered without %.4f\n", samples,
                     raw_error, guided_error, unguided_error);
         // Measured (fixed seeds, so the same every run): 16 samples 0.0725 raw, 0.0175 by variance, 0.0294
-        // without; 256 samples 0.0093, 0.0072, 0.0081. The bounds leave room for a change of sampler.
-        EXPECT_LT(guided_error, (samples <= 16 ? 0.4 : 0.85) * raw_error);
-        EXPECT_LT(guided_error, (samples <= 16 ? 0.8 : 1.0) * unguided_error);
+        // without; 256 samples 0.0093, 0.0061, 0.0081. The bounds leave room for a change of sampler.
+        EXPECT_LT(guided_error, (samples <= 16 ? 0.4 : 0.8) * raw_error);
+        EXPECT_LT(guided_error, (samples <= 16 ? 0.8 : 0.9) * unguided_error);
     }
 }
 

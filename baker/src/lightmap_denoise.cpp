@@ -18,11 +18,17 @@ namespace {
 // lowest error from 8 to 256 samples (5.0 % against 10.8 % raw at 64 samples).
 constexpr float kDenoiseNoiseMultiple = 2.0f;
 
-// The stop with measured variance, |Y_p - Y_q| at which the weight is e^-1/2 in units of sqrt(var_p + var_q).
-// Measured with `gusuku-bake converge` on the sample site (--max-samples 256 --reference-samples 1024), for 1.5,
-// 2 and 3 noise widths: 2 was best or within 0.1 % absolute of the best from 4 to 128 samples on the overcast and
-// the sunny_1200 slot; 1.5 gained under 0.1 % at 256; 3 was 10-25 % worse from 32 samples on (more blur).
-constexpr float kLuminanceNoiseSigmas = 2.0f;
+// The stop with measured variance, |Y_p - Y_q| at which the weight is e^-1/2 in units of sqrt(var_p + var_q):
+// 2 below 32 samples, 1.5 from there on. The measured variance is that of independent samples, and the scrambled
+// Sobol draws' error falls faster than that (samples^-0.7, not ^-0.5), so the measure overstates the noise more
+// as samples grow and the stop narrows in its units. Measured with `gusuku-bake converge` (--max-samples 256
+// --reference-samples 1024 on the sample site, 64 / 256 on the shrine) for 1, 1.5, 2 and 3: 2 was best or within
+// 0.1 % absolute of the best up to 16 samples on the sample site's overcast and sunny_1200 slots; from 32 on, 1.5
+// was better on sunny_1200 (1.85 against 1.96 % at 64) and the shrine (5.7 against 6.0 % at 64) and within
+// 0.05 % on overcast; 3 was 10-25 % worse from 32 samples on (more blur), 1 worse at 16 and fewer (less smoothing).
+constexpr float kLuminanceNoiseSigmasFew = 2.0f;
+constexpr float kLuminanceNoiseSigmasMany = 1.5f;
+constexpr uint32_t kManySamples = 32;
 // Passes with measured variance: the stop tightens by itself as each pass lowers the variance it carries, so the
 // passes need not fall with samples. Past 3 they change the sample site's error by under 0.01 % at 0.25 m
 // position width; 5 reach 64 texels for denser lightmaps.
@@ -67,7 +73,7 @@ DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance) {
     options.iterations = samples <= 64 ? 3 : samples <= 512 ? 2 : 1;
     if (with_variance && samples >= 2) {
         options.iterations = kVarianceGuidedIterations;
-        options.luminance_noise_sigmas = kLuminanceNoiseSigmas;
+        options.luminance_noise_sigmas = samples < kManySamples ? kLuminanceNoiseSigmasFew : kLuminanceNoiseSigmasMany;
     }
     return options;
 }
