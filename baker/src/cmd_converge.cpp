@@ -27,7 +27,7 @@ constexpr const char* kConvergeUsage =
     "1/sqrt(samples)), rays per second, and the trace time needed to reach --target-rms (default 0.05).\n"
     "--sky-sampling forces how paths gather the sky (cosine lobe alone, or with the map by MIS; auto, the\n"
     "default, is what a bake does), to compare the two on a site's own sky.\n"
-    "--sampling: adaptive (the default, what a bake does: from 8 samples on, a pilot of half the samples and\n"
+    "--sampling: adaptive (the default, what a bake does: from 32 samples on, a pilot of half the samples and\n"
     "the other half where each texel's noise is) or uniform (every texel alike).\n"
     "--export-lighting writes the slot's sky without its sun (DIR/sky_NAME.hdr, laid out for Blender's world)\n"
     "and its sun (DIR/sun_NAME.json) as the bake traces them, for bench/cycles, and runs no study.\n"
