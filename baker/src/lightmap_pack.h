@@ -42,7 +42,8 @@ glm::ivec2 innerTexelSize(const glm::dvec2& extent_m, double texels_per_metre);
 using ChartShapesAt = std::function<std::vector<ChartShape>(double texels_per_metre)>;
 
 /// Packs the charts at `texels_per_metre` (lightmap_pack.cpp: a skyline of column heights, each chart dropped
-/// where it ends lowest, any of four turns, its touched texels grown by `padding` never meeting another's), lowering
+/// where it ends lowest, any of four turns, or a small chart into the lowest hole left under a bigger one, its
+/// touched texels grown by `padding` never meeting another's), lowering
 /// the density (bisection, 12 steps after a bracket is found) until everything fits in resolution^2. Throws
 /// InputError when even the smallest footprints (1 + 2 * padding texels square) do not fit.
 ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_metre, int resolution, int padding);

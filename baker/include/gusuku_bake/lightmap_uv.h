@@ -86,17 +86,24 @@ struct LightmapCharts {
 /// - Positions are welded within 1e-6 of the bounding-box diagonal (glTF splits vertices at normal and uv0
 ///   seams). A chart grows from a seed (largest triangles first) across welded edges that a neighbour runs in
 ///   the opposite direction (a consistently wound surface; on non-manifold edges every such pair), while the
-///   neighbour's normal stays within 40 degrees of the seed's. A triangle whose projection would overlap the
-///   chart's triangles by more than 1e-4 texel (duplicated faces, folds, a ramp passing over itself) is left
-///   for a later chart, so no chart overlaps itself. Degenerate triangles (zero area or collapsed by welding)
-///   join the chart of a triangle sharing one of their vertices.
-/// - Each chart is projected onto the plane of its seed normal, rotated in that plane to the smallest bounding
-///   rectangle (5 degree steps), and scaled to texels.
-/// - Rectangles are skyline-packed (shortest side first, largest first; each goes where its top ends lowest,
-///   either way round), each with `padding_texels` empty texels on every side of the texels its triangles
-///   touch, so at least 2 * padding_texels empty texels separate two charts. Inside its
-///   rectangle a chart is offset so its edges stay clear of rows of texel centres (coverage is then stable
-///   under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres). If the rectangles do not fit, the
+///   neighbour's normal stays within 40 degrees of the seed's. Each joining triangle is unfolded flat about the
+///   edge it joins across (its lengths and angles kept; the seed lies on its own plane), so a chart's uv1 area is
+///   its world area at the density, curved or not; a corner the chart already holds within 1e-3 texel is that
+///   point. A triangle whose unfolding would overlap the chart's triangles by more than 1e-4 texel (duplicated
+///   faces, folds, a ramp passing over itself) is left for a later chart, so no chart overlaps itself. Degenerate
+///   triangles (zero area or collapsed by welding) join the chart of a triangle sharing one of their vertices.
+/// - Charts meeting across edges of up to 90 degrees are joined by unfolding one about the longest edge they
+///   share (a rigid move: the density is kept; the seam's other corners that land within 1e-3 texel become one
+///   with their partners, the others stay cut), longest seams first, when the joined chart overlaps nothing of
+///   itself, its padded smallest rectangle at the requested density saves at least a quarter of the smaller
+///   chart's, and it takes at most 1/16 of all the charts' padded texels (bigger pieces pack worse). A thin
+///   beam's four faces become one strip with one gutter. Texels across such an edge are neighbours in uv1.
+/// - Each chart is rotated in its plane to the smallest bounding rectangle (5 degree steps) and scaled to texels.
+/// - Charts are skyline-packed by the shape of the texels they touch (lightmap_pack.cpp: largest perimeter first,
+///   four quarter turns, small charts into the holes left under bigger ones), each with `padding_texels` empty
+///   texels on every side of the texels its triangles touch, so at least 2 * padding_texels empty texels
+///   separate two charts. Inside its rectangle a chart is offset so its edges stay clear of rows of texel
+///   centres (coverage is then stable under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres). If the rectangles do not fit, the
 ///   density is lowered uniformly (bisection) until they do; texels_per_metre reports it.
 /// About linear in triangles (hash maps for welding, adjacency and overlap tests): a 65k-triangle sphere
 /// takes about 0.1-0.4 s on this machine. Throws InputError for a mesh without triangles, an index out of range, a position
@@ -107,10 +114,10 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
 
 /// generateLightmapCharts in the smallest square lightmap that holds the charts at the full density: the side
 /// is a multiple of 4 (at most max_resolution, rounded down to 4) within 1.6 % of the smallest at which they
-/// pack, found by growing from the touched area's bound and bisecting (under ten packings: 0.3 s for the
-/// shrine's 1640 charts at 540^2, 1.5 s for the house's 1838 at 1244^2); only when max_resolution cannot hold
-/// them is the density lowered. LightmapCharts::resolution says the side chosen. Throws as
-/// generateLightmapCharts.
+/// pack, found by growing from the touched area's bound and bisecting (under ten packings: 1.6-3.6 s for the
+/// shrine's 902 charts at 488^2, 4-10 s for the house's 1133 at 1172^2 on this 2-core machine while others used
+/// it); only when max_resolution cannot hold them is the density lowered. LightmapCharts::resolution says the
+/// side chosen. Throws as generateLightmapCharts.
 LightmapCharts generateLightmapChartsInSmallestLightmap(const TriangleMesh& mesh, double texels_per_metre,
                                                         int max_resolution,
                                                         int padding_texels = kLightmapPaddingTexels);
