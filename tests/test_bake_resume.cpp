@@ -84,6 +84,48 @@ TEST_F(BakeResumeTest, StoppedAndResumedBakeEqualsUninterruptedBake) {
     EXPECT_TRUE(again.up_to_date) << "a finished bake set with the same inputs is not baked again";
 }
 
+// The same with adaptive sampling (32 samples: a pilot of 16 a texel, then the extra samples as a set of their
+// own): stopped inside the extra samples' set, resumed, it writes what the uninterrupted bake writes.
+TEST_F(BakeResumeTest, StoppedInsideAdaptiveSamplingsExtraSamplesResumesToTheSameBakeSet) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-resume-adaptive");
+    gusuku::testing::MiniSiteOptions site_options;
+    site_options.samples_per_texel = 32;
+    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+
+    BakeOptions options;
+    options.show_progress = false;
+    options.target_chunk_seconds = 1e-6;  // one sample per chunk
+    options.output_dir = dir + "/uninterrupted";
+    const BakeReport uninterrupted = runBake(context(), site, options);
+    ASSERT_TRUE(uninterrupted.completed);
+
+    options.output_dir = dir + "/resumed";
+    // Polls: one before the pilot, one after each of its 16 chunks and one when it is done, one before the extra
+    // samples' set and one after its first chunk: the 20th stops there.
+    int polls = 0;
+    options.should_stop = [&polls] { return ++polls == 20; };
+    const BakeReport stopped = runBake(context(), site, options);
+    EXPECT_FALSE(stopped.completed);
+    bool extras_checkpointed = false;
+    for (const auto& entry : fs::directory_iterator(options.output_dir + "/.checkpoint"))
+        extras_checkpointed = extras_checkpointed || entry.path().filename().string().find("building_extra") != std::string::npos;
+    EXPECT_TRUE(extras_checkpointed) << "stopped inside the extra samples' set";
+
+    options.should_stop = nullptr;
+    const BakeReport resumed = runBake(context(), site, options);
+    ASSERT_TRUE(resumed.completed);
+    EXPECT_LT(resumed.rays_traced, uninterrupted.rays_traced);
+    expectSameBakeSets(dir + "/uninterrupted", dir + "/resumed");
+
+    // And adaptive sampling is not uniform sampling: --uniform-sampling writes other lightmaps.
+    options.output_dir = dir + "/uniform";
+    options.adaptive_sampling = false;
+    ASSERT_TRUE(runBake(context(), site, options).completed);
+    const ImageRGBA adaptive_lightmap = readImage(dir + "/uninterrupted/" + exrFiles(dir + "/uninterrupted").front());
+    const ImageRGBA uniform_lightmap = readImage(dir + "/uniform/" + exrFiles(dir + "/uniform").front());
+    EXPECT_NE(adaptive_lightmap.texels, uniform_lightmap.texels);
+}
+
 // Runs gusuku-bake with args; returns its pid (the caller waits).
 pid_t spawnBake(const std::vector<std::string>& args) {
     const pid_t pid = fork();
