@@ -69,10 +69,7 @@ TEST_F(BakeBytesTest, RepeatedAndResumedBakesWriteIdenticalBytes) {
     site_options.samples_per_texel = 4;
     const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
 
-    BakeOptions options;
-    options.show_progress = false;
-    options.target_chunk_seconds = 1e-6;  // one sample per chunk
-    options.output_dir = dir + "/first";
+    BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/first");
     ASSERT_TRUE(runBake(context(), site, options).completed);
     options.output_dir = dir + "/second";
     ASSERT_TRUE(runBake(context(), site, options).completed);

@@ -182,10 +182,7 @@ TEST_F(BakeDenoiseVarianceTest, CheckpointWithoutSquaresIsReportedAndTracedAfres
     gusuku::testing::MiniSiteOptions site_options;
     site_options.samples_per_texel = 4;
     const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
-    BakeOptions options;
-    options.show_progress = false;
-    options.target_chunk_seconds = 1e-6;  // one sample per chunk
-    options.output_dir = dir + "/out";
+    BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/out");
     int polls = 0;
     options.should_stop = [&polls] { return ++polls == 7; };  // stops inside the second point set
     ASSERT_FALSE(runBake(context(), site, options).completed);

@@ -57,10 +57,7 @@ TEST_F(BakeResumeTest, StoppedAndResumedBakeEqualsUninterruptedBake) {
     site_options.samples_per_texel = 6;
     const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
 
-    BakeOptions options;
-    options.show_progress = false;
-    options.target_chunk_seconds = 1e-6;  // one sample per chunk: many places to stop
-    options.output_dir = dir + "/uninterrupted";
+    BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/uninterrupted");
     const BakeReport uninterrupted = runBake(context(), site, options);
     ASSERT_TRUE(uninterrupted.completed);
     EXPECT_TRUE(fs::exists(options.output_dir + "/manifest.json"));
@@ -92,10 +89,7 @@ TEST_F(BakeResumeTest, StoppedInsideAdaptiveSamplingsExtraSamplesResumesToTheSam
     site_options.samples_per_texel = 32;
     const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
 
-    BakeOptions options;
-    options.show_progress = false;
-    options.target_chunk_seconds = 1e-6;  // one sample per chunk
-    options.output_dir = dir + "/uninterrupted";
+    BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/uninterrupted");
     const BakeReport uninterrupted = runBake(context(), site, options);
     ASSERT_TRUE(uninterrupted.completed);
 

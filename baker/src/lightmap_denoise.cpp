@@ -163,18 +163,13 @@ std::vector<float> texelLuminanceVarianceFromFootprint(const LightmapFootprint& 
     const size_t texel_count = footprint.points.size() / slots_per_texel;
     std::vector<float> variance(texel_count, 0.0f);
     if (samples_per_slot == 0) return variance;
-    const double inverse_samples = 1.0 / double(samples_per_slot);
     for (size_t i = 0; i < texel_count; ++i) {
-        const size_t first = i * slots_per_texel;
         // The slots texelSumsFromFootprint keeps: the valid ones for a valid texel, else the invalid ones.
-        auto slotValid = [&](size_t slot) { return slot_sums[slot].w * inverse_samples <= max_invalid_fraction; };
-        double invalid_weight = 0.0;
-        for (size_t slot = first; slot < first + slots_per_texel; ++slot)
-            if (!slotValid(slot)) invalid_weight += footprint.points[slot].weight;
-        const bool texel_valid = invalid_weight <= 0.5;
+        const uint64_t kept = keptFootprintSlots(footprint, slot_sums, i, samples_per_slot, max_invalid_fraction);
         double weighted_variance = 0.0, weight_sum = 0.0;
-        for (size_t slot = first; slot < first + slots_per_texel; ++slot) {
-            if (slotValid(slot) != texel_valid) continue;
+        for (size_t k = 0; k < slots_per_texel; ++k) {
+            if ((kept >> k & 1u) == 0) continue;
+            const size_t slot = i * slots_per_texel + k;
             const double weight = footprint.points[slot].weight;
             weighted_variance +=
                 weight * weight * luminanceVarianceOfMean(slot_sums[slot], slot_luminance_square_sums[slot],

@@ -164,6 +164,23 @@ LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh, int resoluti
     return footprint;
 }
 
+uint64_t keptFootprintSlots(const LightmapFootprint& footprint, const std::vector<glm::vec4>& slot_sums, size_t texel,
+                            uint32_t samples_per_slot, float max_invalid_fraction) {
+    const size_t slots_per_texel = footprint.pointsPerTexel();
+    const size_t first = texel * slots_per_texel;
+    const double inverse_samples = 1.0 / double(samples_per_slot);
+    uint64_t valid = 0;
+    double invalid_weight = 0.0;
+    for (size_t k = 0; k < slots_per_texel; ++k) {
+        if (slot_sums[first + k].w * inverse_samples <= max_invalid_fraction)
+            valid |= uint64_t(1) << k;
+        else
+            invalid_weight += footprint.points[first + k].weight;
+    }
+    const uint64_t all = slots_per_texel >= 64 ? ~uint64_t(0) : (uint64_t(1) << slots_per_texel) - 1;
+    return invalid_weight <= 0.5 ? valid : all & ~valid;
+}
+
 std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint,
                                               const std::vector<glm::vec4>& slot_sums, uint32_t samples_per_slot,
                                               float max_invalid_fraction) {
@@ -178,16 +195,12 @@ std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint
     const double inverse_samples = 1.0 / double(samples_per_slot);
     const double texel_samples = double(samples_per_slot) * double(slots_per_texel);
     for (size_t i = 0; i < texel_count; ++i) {
-        const size_t first = i * slots_per_texel;
-        auto slotValid = [&](size_t slot) { return slot_sums[slot].w * inverse_samples <= max_invalid_fraction; };
-        double invalid_weight = 0.0;
-        for (size_t slot = first; slot < first + slots_per_texel; ++slot)
-            if (!slotValid(slot)) invalid_weight += footprint.points[slot].weight;
-        const bool texel_valid = invalid_weight <= 0.5;
+        const uint64_t kept = keptFootprintSlots(footprint, slot_sums, i, samples_per_slot, max_invalid_fraction);
         glm::dvec4 mean(0.0);
         double weight_sum = 0.0;
-        for (size_t slot = first; slot < first + slots_per_texel; ++slot) {
-            if (slotValid(slot) != texel_valid) continue;
+        for (size_t k = 0; k < slots_per_texel; ++k) {
+            if ((kept >> k & 1u) == 0) continue;
+            const size_t slot = i * slots_per_texel + k;
             const double weight = footprint.points[slot].weight;
             mean += glm::dvec4(slot_sums[slot]) * (weight * inverse_samples);
             weight_sum += weight;

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "gusuku_bake/bake_job.h"
+
 namespace gusuku::testing {
 
 struct MiniSiteOptions {
@@ -18,5 +20,15 @@ struct MiniSiteOptions {
 
 /// Writes building.glb, sky_sunny.hdr, sky_overcast.hdr, site.json (and site.glb) into dir; returns site.json's path.
 std::string writeMiniSite(const std::string& dir, const MiniSiteOptions& options = {});
+
+/// Options for an in-process bake into output_dir that a test may stop anywhere: no progress bar, and one sample
+/// per chunk (the chunks' length adapts to target_chunk_seconds), so every sample is a place to stop.
+inline bake::BakeOptions stoppableBakeOptions(const std::string& output_dir) {
+    bake::BakeOptions options;
+    options.show_progress = false;
+    options.target_chunk_seconds = 1e-6;
+    options.output_dir = output_dir;
+    return options;
+}
 
 }  // namespace gusuku::testing

@@ -184,6 +184,14 @@ int footprintGridSide(uint32_t samples_per_texel, size_t texel_count = 0, size_t
 LightmapFootprint lightmapTexelFootprints(const TriangleMesh& mesh_with_uv1, int resolution,
                                           const std::vector<LightmapTexel>& texels, int grid_side, uint32_t seed);
 
+/// The slots of texel `texel` whose sums stand for it: a slot is invalid when its w / samples_per_slot exceeds
+/// max_invalid_fraction (the bake's back-face rule); the texel is invalid when its invalid slots hold more than
+/// half its weight; a valid texel keeps its valid slots, an invalid one its invalid slots. Bit k stands for slot
+/// texel * K + k (K = pointsPerTexel() <= 64). The one rule texelSumsFromFootprint and the denoiser's
+/// texelLuminanceVarianceFromFootprint both fold by. Call with samples_per_slot > 0 and slot_sums matching.
+uint64_t keptFootprintSlots(const LightmapFootprint& footprint, const std::vector<glm::vec4>& slot_sums, size_t texel,
+                            uint32_t samples_per_slot, float max_invalid_fraction);
+
 /// Combines the running sums traced at a footprint's slots (vec4 per slot: irradiance sum xyz and an
 /// invalid-sample count w, both over samples_per_slot samples) into one sum per texel over K *
 /// samples_per_slot samples, so what reads per-texel sums divides by the texel's full sample count as before.
