@@ -36,14 +36,6 @@ constexpr uint32_t kWorkgroupSize = CAMERA_TRACE_WORKGROUP_SIZE;
 // One chunk's per-sample scratch (pixels x samples vec4) is kept under this, well inside lavapipe's 128 MiB cap.
 constexpr size_t kMaxScratchBytes = size_t(64) << 20;
 
-template <typename T>
-GpuBuffer uploadedBuffer(const GpuDevice& gpu, const std::vector<T>& values,
-                         VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), 16), usage);
-    if (!values.empty()) buffer.uploadVector(values);
-    return buffer;
-}
-
 [[noreturn]] void refuse(const std::string& field, const std::string& problem) {
     throw std::invalid_argument("camera render: " + field + ": " + problem);
 }
@@ -78,26 +70,12 @@ void checkView(const GpuDevice& gpu, const CameraLight& light, const CameraIntri
 }  // namespace
 
 CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size)
-    : gpu_(gpu), submitter_(std::make_unique<GpuSubmitter>(gpu)) {
-    const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
-    triangle_count_ = scene.mesh.triangleCount();
-    const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
-    bvh_nodes_ = uploadedBuffer(gpu, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    bvh_triangles_ = uploadedBuffer(gpu, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    shading_ = uploadedBuffer(gpu, shading.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    materials_ = uploadedBuffer(gpu, shading.materials, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    textures_ = uploadedBuffer(gpu, shading.texture_words, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    : gpu_(gpu), submitter_(std::make_unique<GpuSubmitter>(gpu)),
+      scene_(uploadTraceScene(gpu, scene, max_texture_size)) {
     ray_counter_ = GpuBuffer(gpu, 16);
     trace_pipeline_ = std::make_unique<ComputePipeline>(gpu, kCameraTraceCompSpirv, sizeof(kCameraTraceCompSpirv),
                                                         CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)),
-                                                        std::vector<TexelBufferBinding>{
-                                                            {CAMERA_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                            {CAMERA_TEXTURE_BINDING, VK_FORMAT_R32_UINT},
-                                                            {CAMERA_SKY_RADIANCE_BINDING, VK_FORMAT_R32G32B32A32_SFLOAT},
-                                                            {CAMERA_SKY_TABLE_BINDING, VK_FORMAT_R32_SFLOAT}});
+                                                        traceInputTexelBindings());
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,
@@ -110,8 +88,7 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
                                   const CameraPose& pose, const CameraRenderOptions& options) {
     checkView(gpu_, light, intrinsics, pose, options);
     const auto start = std::chrono::steady_clock::now();
-    sky_radiance_ = uploadedBuffer(gpu_, light.sky->radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    sky_table_ = uploadedBuffer(gpu_, light.sky->table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    sky_ = uploadSkyTables(gpu_, *light.sky);
 
     const uint32_t pixel_count = intrinsics.width * intrinsics.height;
     TracePushConstants push{};
@@ -146,8 +123,8 @@ CameraRender CameraTracer::render(const CameraLight& light, const CameraIntrinsi
     GpuBuffer guides(gpu_, size_t(pixel_count) * CAMERA_GUIDE_VEC4S_PER_PIXEL * sizeof(glm::vec4));
     GpuBuffer sums(gpu_, pixel_bytes);
     sums.uploadVector(std::vector<glm::vec4>(pixel_count, glm::vec4(0.0f)));
-    trace_pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
-                                  &sky_table_, &sample_estimates_, &guides, &ray_counter_});
+    static_assert(CAMERA_SAMPLE_ESTIMATE_BINDING == 7 && CAMERA_GUIDE_BINDING == 8 && CAMERA_RAY_COUNTER_BINDING == 9);
+    trace_pipeline_->bindBuffers(traceInputBuffers(scene_, sky_, {&sample_estimates_, &guides, &ray_counter_}));
     // The accumulate pass also sums squared luminance (the bake's variance); a frame has no use for it, but
     // the pass needs the buffer (zeroed: a sum of non-finite garbage would be harmless but is not needed).
     GpuBuffer luminance_square_sums(gpu_, std::max<size_t>(size_t(pixel_count) * sizeof(float), 16));

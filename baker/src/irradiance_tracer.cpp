@@ -34,14 +34,6 @@ static_assert(BAKE_ACCUMULATE_WORKGROUP_SIZE == BAKE_WORKGROUP_SIZE, "one point_
 // inside lavapipe's 128 MiB storage-buffer cap).
 constexpr size_t kMaxScratchBytes = size_t(64) << 20;
 
-template <typename T>
-GpuBuffer uploadedBuffer(VulkanContext& context, const std::vector<T>& values,
-                         VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-    GpuBuffer buffer(context, std::max<size_t>(values.size() * sizeof(T), 16), usage);
-    if (!values.empty()) buffer.uploadVector(values);
-    return buffer;
-}
-
 }  // namespace
 
 void packSunLight(const SunLight& sun, float ray_offset_m, float direction_cos_max[4], float irradiance_ray_offset[4]) {
@@ -60,28 +52,12 @@ uint64_t tracerCodeHash() {
 
 IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& scene, const SkySamplingTables& sky,
                                    int max_texture_size)
-    : context_(context) {
-    const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
-    triangle_count_ = scene.mesh.triangleCount();
-    dropped_triangle_count_ = bvh.dropped_triangle_count;
-    const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
-    bvh_nodes_ = uploadedBuffer(context, bvh.nodes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    bvh_triangles_ = uploadedBuffer(context, bvh.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    shading_ = uploadedBuffer(context, shading.triangles, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    materials_ = uploadedBuffer(context, shading.materials, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    textures_ = uploadedBuffer(context, shading.texture_words, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    : context_(context), scene_(uploadTraceScene(context, scene, max_texture_size)) {
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
                                                   BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)),
-                                                  std::vector<TexelBufferBinding>{
-                                                      {BAKE_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
-                                                      {BAKE_TEXTURE_BINDING, VK_FORMAT_R32_UINT},
-                                                      {BAKE_SKY_RADIANCE_BINDING, VK_FORMAT_R32G32B32A32_SFLOAT},
-                                                      {BAKE_SKY_TABLE_BINDING, VK_FORMAT_R32_SFLOAT}});
+                                                  traceInputTexelBindings());
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));
@@ -90,8 +66,7 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
 IrradianceTracer::~IrradianceTracer() = default;
 
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
-    sky_radiance_ = uploadedBuffer(context_, sky.radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    sky_table_ = uploadedBuffer(context_, sky.table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    sky_ = uploadSkyTables(context_, sky);
     automatic_sky_sampling_ = resolveSkySampling(SkySampling::Automatic, sky);
 }
 
@@ -134,8 +109,8 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
     if (sample_estimates_.size() < std::min<size_t>(sample_count, max_chunk) * point_bytes)
         sample_estimates_ = GpuBuffer(context_, std::min<size_t>(sample_count, max_chunk) * point_bytes);
-    pipeline_->bindBuffers({&bvh_nodes_, &bvh_triangles_, &shading_, &materials_, &textures_, &sky_radiance_,
-                            &sky_table_, &accumulator.points, &sample_estimates_, &ray_counter_});
+    static_assert(BAKE_QUERY_POINT_BINDING == 7 && BAKE_SAMPLE_ESTIMATE_BINDING == 8 && BAKE_RAY_COUNTER_BINDING == 9);
+    pipeline_->bindBuffers(traceInputBuffers(scene_, sky_, {&accumulator.points, &sample_estimates_, &ray_counter_}));
     accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums, &accumulator.luminance_square_sums});
     uint64_t rays = 0;
     for (uint32_t done = 0; done < sample_count;) {

@@ -93,16 +93,17 @@ public:
     CameraRender render(const CameraLight& light, const CameraIntrinsics& intrinsics, const CameraPose& pose,
                         const CameraRenderOptions& options);
 
-    size_t triangleCount() const { return triangle_count_; }
+    size_t triangleCount() const { return scene_.triangle_count; }
 
 private:
     const GpuDevice& gpu_;
     std::unique_ptr<GpuSubmitter> submitter_;
     std::unique_ptr<ComputePipeline> trace_pipeline_;       ///< camera_trace.comp: one path per invocation
     std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums per pixel
-    GpuBuffer bvh_nodes_, bvh_triangles_, shading_, materials_, textures_, sky_radiance_, sky_table_, ray_counter_;
+    TraceSceneGpu scene_;  ///< bindings 0-4
+    SkyTablesGpu sky_;     ///< bindings 5-6, the light's of the last render
+    GpuBuffer ray_counter_;
     GpuBuffer sample_estimates_;  ///< one chunk's per-sample radiance, grown as needed
-    size_t triangle_count_ = 0;
 };
 
 }  // namespace gusuku::bake

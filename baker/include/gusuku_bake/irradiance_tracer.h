@@ -13,6 +13,7 @@
 #include "gusuku/gpu_compute.h"
 #include "gusuku/vulkan_context.h"
 #include "gusuku_bake/sky_light.h"
+#include "gusuku_bake/trace_inputs_gpu.h"
 #include "gusuku_bake/trace_scene.h"
 
 namespace gusuku::bake {
@@ -124,18 +125,17 @@ public:
     std::vector<glm::vec3> traceIrradiance(const std::vector<QueryPointGpu>& points, uint32_t samples,
                                            const TracePass& pass);
 
-    size_t triangleCount() const { return triangle_count_; }
-    size_t droppedTriangleCount() const { return dropped_triangle_count_; }
+    size_t triangleCount() const { return scene_.triangle_count; }
+    size_t droppedTriangleCount() const { return scene_.dropped_triangle_count; }
 
 private:
     VulkanContext& context_;
     std::unique_ptr<ComputePipeline> pipeline_;             ///< bake_irradiance.comp: one path per invocation
     std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums
     GpuBuffer sample_estimates_;                            ///< one chunk's per-sample estimates
-    GpuBuffer bvh_nodes_, bvh_triangles_, shading_, materials_, textures_, sky_radiance_, sky_table_,
-        ray_counter_;
-    size_t triangle_count_ = 0;
-    size_t dropped_triangle_count_ = 0;
+    TraceSceneGpu scene_;  ///< bindings 0-4
+    SkyTablesGpu sky_;     ///< bindings 5-6
+    GpuBuffer ray_counter_;
     SkySampling automatic_sky_sampling_ = SkySampling::CosineOnly;  ///< what Automatic means for the current sky
 };
 

@@ -1,0 +1,59 @@
+// The trace kernels' shared inputs on the device (trace_inputs_gpu.h).
+
+#include "gusuku_bake/trace_inputs_gpu.h"
+
+#include "bake_irradiance_interface.h"
+#include "camera_trace_interface.h"
+#include "gusuku_bake/bvh.h"
+
+namespace gusuku::bake {
+
+// Both kernels number the shared inputs alike; traceInputBuffers relies on it.
+static_assert(BAKE_BVH_NODE_BINDING == 0 && CAMERA_BVH_NODE_BINDING == 0);
+static_assert(BAKE_BVH_TRIANGLE_BINDING == 1 && CAMERA_BVH_TRIANGLE_BINDING == 1);
+static_assert(BAKE_SHADING_TRIANGLE_BINDING == 2 && CAMERA_SHADING_TRIANGLE_BINDING == 2);
+static_assert(BAKE_MATERIAL_BINDING == 3 && CAMERA_MATERIAL_BINDING == 3);
+static_assert(BAKE_TEXTURE_BINDING == 4 && CAMERA_TEXTURE_BINDING == 4);
+static_assert(BAKE_SKY_RADIANCE_BINDING == 5 && CAMERA_SKY_RADIANCE_BINDING == 5);
+static_assert(BAKE_SKY_TABLE_BINDING == 6 && CAMERA_SKY_TABLE_BINDING == 6);
+
+TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size) {
+    const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
+    const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
+    constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    TraceSceneGpu uploaded;
+    uploaded.bvh_nodes = uploadedBuffer(gpu, bvh.nodes, kTexel);
+    uploaded.bvh_triangles = uploadedBuffer(gpu, bvh.triangles, kTexel);
+    uploaded.shading_triangles = uploadedBuffer(gpu, shading.triangles, kTexel);
+    uploaded.materials = uploadedBuffer(gpu, shading.materials, kTexel);
+    uploaded.texture_words = uploadedBuffer(gpu, shading.texture_words, kTexel);
+    uploaded.triangle_count = scene.mesh.triangleCount();
+    uploaded.dropped_triangle_count = bvh.dropped_triangle_count;
+    return uploaded;
+}
+
+SkyTablesGpu uploadSkyTables(const GpuDevice& gpu, const SkySamplingTables& sky) {
+    return {uploadedBuffer(gpu, sky.radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT),
+            uploadedBuffer(gpu, sky.table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT)};
+}
+
+std::vector<TexelBufferBinding> traceInputTexelBindings() {
+    return {{BAKE_BVH_NODE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+            {BAKE_BVH_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+            {BAKE_SHADING_TRIANGLE_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+            {BAKE_MATERIAL_BINDING, VK_FORMAT_R32G32B32A32_UINT},
+            {BAKE_TEXTURE_BINDING, VK_FORMAT_R32_UINT},
+            {BAKE_SKY_RADIANCE_BINDING, VK_FORMAT_R32G32B32A32_SFLOAT},
+            {BAKE_SKY_TABLE_BINDING, VK_FORMAT_R32_SFLOAT}};
+}
+
+std::vector<const GpuBuffer*> traceInputBuffers(const TraceSceneGpu& scene, const SkyTablesGpu& sky,
+                                                const std::vector<const GpuBuffer*>& kernel_buffers) {
+    std::vector<const GpuBuffer*> buffers = {&scene.bvh_nodes,         &scene.bvh_triangles, &scene.shading_triangles,
+                                             &scene.materials,         &scene.texture_words, &sky.radiance,
+                                             &sky.table};
+    buffers.insert(buffers.end(), kernel_buffers.begin(), kernel_buffers.end());
+    return buffers;
+}
+
+}  // namespace gusuku::bake
