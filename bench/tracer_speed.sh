@@ -8,6 +8,8 @@
 #
 # usage: bench/tracer_speed.sh BASE_BAKE NEW_BAKE [ROUNDS=3] [SAMPLES=32] [SITE_JSON]
 #   SITE_JSON defaults to the sample site, written once into $TMPDIR by BASE_BAKE sample.
+#   NEW_BAKE_FLAGS (environment): extra options for NEW_BAKE's bakes only, e.g. --uniform-sampling to compare
+#   a binary with adaptive sampling against one from before it, where the bytes should then match.
 # Only ratios within one run mean anything on a shared machine; the load average is printed before and after.
 set -euo pipefail
 
@@ -36,8 +38,10 @@ printf '%-5s %-4s %12s %10s %10s %14s\n' round bake rays "Mrays/s" "cpu s" "Mray
 bake() {
     local name=$1 binary=$2 round=$3
     local out="$work/out-$name"
+    local flags=""
+    [[ "$name" == new ]] && flags=${NEW_BAKE_FLAGS:-}
     /usr/bin/time -f '%U %S' -o "$work/time.txt" \
-        "$binary" bake "$site_json" -o "$out" --samples "$samples" --force --quiet >"$work/log.txt" 2>&1 || {
+        "$binary" bake "$site_json" -o "$out" --samples "$samples" --force --quiet $flags >"$work/log.txt" 2>&1 || {
         cat "$work/log.txt" >&2
         exit 1
     }
