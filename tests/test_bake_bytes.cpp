@@ -65,9 +65,7 @@ class BakeBytesTest : public GpuTest {};
 
 TEST_F(BakeBytesTest, RepeatedAndResumedBakesWriteIdenticalBytes) {
     const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-bytes");
-    gusuku::testing::MiniSiteOptions site_options;
-    site_options.samples_per_texel = 4;
-    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+    const SiteConfig site = gusuku::testing::loadMiniSite(dir, 4);
 
     BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/first");
     ASSERT_TRUE(runBake(context(), site, options).completed);

@@ -179,9 +179,7 @@ TEST(LightmapDenoise, NothingCrossesAChartBoundary) {
 TEST_F(BakeDenoiseVarianceTest, CheckpointWithoutSquaresIsReportedAndTracedAfresh) {
     namespace fs = std::filesystem;
     const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-old-checkpoint");
-    gusuku::testing::MiniSiteOptions site_options;
-    site_options.samples_per_texel = 4;
-    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+    const SiteConfig site = gusuku::testing::loadMiniSite(dir, 4);
     BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/out");
     int polls = 0;
     options.should_stop = [&polls] { return ++polls == 7; };  // stops inside the second point set

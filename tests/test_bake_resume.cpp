@@ -53,9 +53,7 @@ class BakeResumeTest : public GpuTest {};
 
 TEST_F(BakeResumeTest, StoppedAndResumedBakeEqualsUninterruptedBake) {
     const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-resume");
-    gusuku::testing::MiniSiteOptions site_options;
-    site_options.samples_per_texel = 6;
-    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+    const SiteConfig site = gusuku::testing::loadMiniSite(dir, 6);
 
     BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/uninterrupted");
     const BakeReport uninterrupted = runBake(context(), site, options);
@@ -85,9 +83,7 @@ TEST_F(BakeResumeTest, StoppedAndResumedBakeEqualsUninterruptedBake) {
 // own): stopped inside the extra samples' set, resumed, it writes what the uninterrupted bake writes.
 TEST_F(BakeResumeTest, StoppedInsideAdaptiveSamplingsExtraSamplesResumesToTheSameBakeSet) {
     const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-resume-adaptive");
-    gusuku::testing::MiniSiteOptions site_options;
-    site_options.samples_per_texel = 32;
-    const SiteConfig site = loadSiteConfig(gusuku::testing::writeMiniSite(dir, site_options));
+    const SiteConfig site = gusuku::testing::loadMiniSite(dir, 32);
 
     BakeOptions options = gusuku::testing::stoppableBakeOptions(dir + "/uninterrupted");
     const BakeReport uninterrupted = runBake(context(), site, options);

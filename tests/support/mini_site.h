@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "gusuku/site.h"
 #include "gusuku_bake/bake_job.h"
 
 namespace gusuku::testing {
@@ -20,6 +21,13 @@ struct MiniSiteOptions {
 
 /// Writes building.glb, sky_sunny.hdr, sky_overcast.hdr, site.json (and site.glb) into dir; returns site.json's path.
 std::string writeMiniSite(const std::string& dir, const MiniSiteOptions& options = {});
+
+/// A mini site of `samples_per_texel` (the other options at their defaults) written into dir and loaded.
+inline SiteConfig loadMiniSite(const std::string& dir, int samples_per_texel) {
+    MiniSiteOptions options;
+    options.samples_per_texel = samples_per_texel;
+    return loadSiteConfig(writeMiniSite(dir, options));
+}
 
 /// Options for an in-process bake into output_dir that a test may stop anywhere: no progress bar, and one sample
 /// per chunk (the chunks' length adapts to target_chunk_seconds), so every sample is a place to stop.
