@@ -100,20 +100,26 @@ def gusuku_curves(rows):
     return raw, denoised
 
 
-def seconds_to_reach_or_extrapolated(curve, target):
-    """(seconds, extrapolated): measured as seconds_to_reach, else extended from the last two points with the
-    curve's last log-log slope (marked, so a table shows which figures were not measured)."""
+def seconds_to_reach_or_extrapolated(curve, target, samples):
+    """(seconds, extrapolated): measured as seconds_to_reach, else extended past the last point (marked, so a
+    table shows which figures were not measured). `samples`: each point's sample count. The error is extended
+    by its last power law in samples, and the time linearly in samples from the last two points (a bake's time
+    is a fixed cost plus a cost per sample): extending the time on the log-log error-time axes instead would
+    count a fixed cost (Cycles' scene sync, about 1.1 s a bake call) as if it grew with the samples, and so
+    shorten the extended time of the baker that has one."""
     seconds = seconds_to_reach(curve, target)
     if seconds is not None:
         return seconds, False
-    points = [(s, r) for s, r in curve if s > 0 and r > 0]
+    points = [(n, s, r) for n, (s, r) in zip(samples, curve) if n > 0 and s > 0 and r > 0]
     if len(points) < 2:
         return None, False
-    (s0, r0), (s1, r1) = points[-2], points[-1]
-    if r1 >= r0:
+    (n0, s0, r0), (n1, s1, r1) = points[-2], points[-1]
+    if r1 >= r0 or n1 <= n0:
         return None, False
-    slope = (math.log(r1) - math.log(r0)) / (math.log(s1) - math.log(s0))
-    return s1 * math.exp((math.log(target) - math.log(r1)) / slope), True
+    slope = (math.log(r1) - math.log(r0)) / (math.log(n1) - math.log(n0))
+    samples_needed = n1 * math.exp((math.log(target) - math.log(r1)) / slope)
+    seconds_per_sample = max(s1 - s0, 0.0) / (n1 - n0)
+    return s1 + (samples_needed - n1) * seconds_per_sample, True
 
 
 def table(out, sites, slots, target=0.02):
@@ -128,16 +134,18 @@ def table(out, sites, slots, target=0.02):
                 print(f"{site:8s} {slot:11s} (not run)")
                 continue
             rows, setup = read_gusuku(folder + "/gusuku.txt")
+            cycles_points = read_cycles(folder + "/cycles.txt")
             rows, setup, cycles_curves, _ = faster_of_two_runs(rows, setup, folder + "/gusuku_repeat.txt",
-                                                               read_cycles(folder + "/cycles.txt"),
-                                                               folder + "/cycles_repeat.txt")
+                                                               cycles_points, folder + "/cycles_repeat.txt")
             raw, denoised = gusuku_curves(rows)
-            found = [seconds_to_reach_or_extrapolated(c, target) for c in cycles_curves.values()]
+            gusuku_samples = [row["samples"] for row in rows]
+            found = [seconds_to_reach_or_extrapolated(c, target, [n for n, _, _ in cycles_points[mode]])
+                     for mode, c in cycles_curves.items()]
             found = [f for f in found if f[0] is not None]
             cycles = min(found) if found else (None, False)
             cells = []
-            for seconds, extrapolated in (seconds_to_reach_or_extrapolated(denoised, target),
-                                          seconds_to_reach_or_extrapolated(raw, target)):
+            for seconds, extrapolated in (seconds_to_reach_or_extrapolated(denoised, target, gusuku_samples),
+                                          seconds_to_reach_or_extrapolated(raw, target, gusuku_samples)):
                 cells.append((seconds + setup if seconds is not None else None, extrapolated))
 
             def show(value, width):
@@ -153,7 +161,8 @@ def table(out, sites, slots, target=0.02):
             print(f"{site:8s} {slot:11s} {show(cells[0], 12)} {show(cells[1], 12)} {show(cycles, 10)} "
                   f"{ratio(cells[0], 12)} {ratio(cells[1], 11)}")
     print("seconds of wall time to 2 % relative RMS, each against its own converged bake with that bake's own noise "
-          "taken out; gusuku's setup included; * extrapolated past the last measured point by its last slope")
+          "taken out; gusuku's setup included; * extrapolated past the last measured point: the error by its last "
+          "power law in samples, the time linearly in samples")
 
 
 def seconds_to_reach(curve, target):
