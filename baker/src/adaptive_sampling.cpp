@@ -136,4 +136,33 @@ void normaliseSetSums(SetSums& set, uint32_t nominal_samples) {
     }
 }
 
+bool traceAdaptiveExtras(SetSums& set, const std::vector<QueryPointGpu>& points,
+                         const std::vector<float>& texel_variance_of_mean, size_t points_per_texel,
+                         uint32_t pilot_per_point, uint32_t samples_per_point, size_t max_batch_points,
+                         const AdaptiveBatchTracer& trace_batch) {
+    // One sample's sigma at each texel: its mean's variance times the samples the mean is over.
+    const uint32_t pilot_per_texel = pilot_per_point * uint32_t(points_per_texel);
+    std::vector<float> sigma(texel_variance_of_mean.size());
+    for (size_t texel = 0; texel < sigma.size(); ++texel)
+        sigma[texel] = std::sqrt(texel_variance_of_mean[texel] * float(pilot_per_texel));
+    const std::vector<uint32_t> extra_per_texel =
+        planAdaptiveSamples(sigma, pilot_per_texel, samples_per_point * uint32_t(points_per_texel),
+                            {uint32_t(points_per_texel) * kAdaptiveSamplesPerCopy});
+    const AdaptiveExtras extras =
+        adaptiveExtraPoints(points, extra_per_texel, points_per_texel, kAdaptiveSamplesPerCopy, pilot_per_point);
+    const size_t batch_points =
+        std::max(points_per_texel, max_batch_points / points_per_texel * points_per_texel);
+    std::vector<glm::vec4> batch_sums;
+    std::vector<float> batch_square_sums;
+    for (size_t first = 0, batch = 0; first < extras.points.size(); first += batch_points, ++batch) {
+        const size_t last = std::min(extras.points.size(), first + batch_points);
+        const std::vector<QueryPointGpu> copies(extras.points.begin() + ptrdiff_t(first),
+                                                extras.points.begin() + ptrdiff_t(last));
+        if (!trace_batch(batch, copies, batch_sums, batch_square_sums)) return false;
+        addAdaptiveExtraSums(set, extras, first, batch_sums, batch_square_sums);
+    }
+    normaliseSetSums(set, samples_per_point);
+    return true;
+}
+
 }  // namespace gusuku::bake

@@ -65,6 +65,7 @@ struct PointSet {
     std::vector<QueryPointGpu> points;
     uint32_t skip_flags = 0;
     uint32_t samples_per_point = 0;    ///< 0: the bake's samples (the building's footprint slots take a share)
+    bool adaptive = false;             ///< half the samples as a pilot, the rest where the noise is (traceAdaptively)
     uint32_t samples(uint32_t bake_samples) const { return samples_per_point ? samples_per_point : bake_samples; }
 };
 
@@ -179,37 +180,24 @@ std::optional<SetTracer::Sums> traceAdaptively(SetTracer& set_tracer, const std:
                                                uint32_t samples, size_t max_points) {
     const uint32_t pilot = samples / 2;
     std::optional<SetTracer::Sums> pilot_sums = set_tracer.trace(slot_name, set, pass, pilot);
-    if (!pilot_sums) return std::nullopt;
-    if (set.points.empty()) return pilot_sums;
-    const size_t points_per_texel = footprint.pointsPerTexel();
+    if (!pilot_sums || set.points.empty()) return pilot_sums;
     SetSums all{std::move(pilot_sums->sums), std::move(pilot_sums->luminance_square_sums),
                 std::vector<uint32_t>(set.points.size(), pilot)};
-    // Each texel's noise: the variance of its mean over its footprint, as one sample's (times its samples).
     const std::vector<float> texel_variance = texelLuminanceVarianceFromFootprint(
         footprint, all.sums, all.luminance_square_sums, pilot, kMaxBackfaceFraction);
-    const uint32_t pilot_per_texel = pilot * uint32_t(points_per_texel);
-    std::vector<float> sigma(texel_variance.size());
-    for (size_t texel = 0; texel < sigma.size(); ++texel)
-        sigma[texel] = std::sqrt(texel_variance[texel] * float(pilot_per_texel));
-    const std::vector<uint32_t> extra_per_texel = planAdaptiveSamples(
-        sigma, pilot_per_texel, samples * uint32_t(points_per_texel),
-        {uint32_t(points_per_texel) * kAdaptiveSamplesPerCopy});
-    const AdaptiveExtras extras =
-        adaptiveExtraPoints(set.points, extra_per_texel, points_per_texel, kAdaptiveSamplesPerCopy, pilot);
-    // Batches within the device's limit on one set's points.
-    const size_t batch_points = std::max<size_t>(points_per_texel, max_points / points_per_texel * points_per_texel);
-    for (size_t first = 0, batch = 0; first < extras.points.size(); first += batch_points, ++batch) {
-        const size_t last = std::min(extras.points.size(), first + batch_points);
-        PointSet extra_set{set.name + "_extra" + (batch > 0 ? std::to_string(batch) : std::string()),
-                           std::vector<QueryPointGpu>(extras.points.begin() + ptrdiff_t(first),
-                                                      extras.points.begin() + ptrdiff_t(last)),
-                           set.skip_flags, kAdaptiveSamplesPerCopy};
-        std::optional<SetTracer::Sums> extra_sums =
-            set_tracer.trace(slot_name, extra_set, pass, kAdaptiveSamplesPerCopy);
-        if (!extra_sums) return std::nullopt;
-        addAdaptiveExtraSums(all, extras, first, extra_sums->sums, extra_sums->luminance_square_sums);
-    }
-    normaliseSetSums(all, samples);
+    const bool finished = traceAdaptiveExtras(
+        all, set.points, texel_variance, footprint.pointsPerTexel(), pilot, samples, max_points,
+        [&](size_t batch, const std::vector<QueryPointGpu>& copies, std::vector<glm::vec4>& sums,
+            std::vector<float>& square_sums) {
+            const PointSet extra_set{set.name + "_extra" + (batch > 0 ? std::to_string(batch) : std::string()),
+                                     copies, set.skip_flags, kAdaptiveSamplesPerCopy, false};
+            std::optional<SetTracer::Sums> traced = set_tracer.trace(slot_name, extra_set, pass, kAdaptiveSamplesPerCopy);
+            if (!traced) return false;
+            sums = std::move(traced->sums);
+            square_sums = std::move(traced->luminance_square_sums);
+            return true;
+        });
+    if (!finished) return std::nullopt;
     return SetTracer::Sums{std::move(all.sums), std::move(all.luminance_square_sums)};
 }
 
@@ -302,7 +290,9 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         footprintGridSide(samples, geometry.texels.size(), max_trace_points), site.bake.seed);
     const uint32_t samples_per_slot = samples / uint32_t(footprint.pointsPerTexel());
     const std::vector<PointSet> sets = {
-        {"building", buildingQueryPoints(footprint), 0u, samples_per_slot},
+        // The building adaptively once a texel has the samples for a pilot; the ground's cells alike.
+        {"building", buildingQueryPoints(footprint), 0u, samples_per_slot,
+         options.adaptive_sampling && samples >= kMinAdaptiveSamples},
         {"ground_with", groundQueryPoints(geometry), 0u},
         {"ground_without", groundQueryPoints(geometry), kTriangleFlagBuilding},
     };
@@ -332,10 +322,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         std::vector<SetTracer::Sums> sums;
         for (const PointSet& set : sets) {
             pass.skip_flags = set.skip_flags;
-            // The building adaptively once a texel has the samples for a pilot; the ground's cells alike.
-            const bool adaptive = options.adaptive_sampling && &set == &sets.front() && samples >= kMinAdaptiveSamples &&
-                                  set.samples(samples) >= 2;
-            auto set_sums = adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
+            auto set_sums = set.adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
                                                        set.samples(samples), max_trace_points)
                                      : set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
             if (!set_sums) {

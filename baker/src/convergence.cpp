@@ -151,22 +151,18 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         uint64_t extra_rays = 0;
         if (adaptive) {
             const auto start = Clock::now();
-            std::vector<float> sigma(points.size());
+            std::vector<float> variance(points.size());
             for (size_t i = 0; i < points.size(); ++i)
-                sigma[i] = std::sqrt(luminanceVarianceOfMean(set.sums[i], set.luminance_square_sums[i], uniform_samples) *
-                                     float(uniform_samples));
-            const std::vector<uint32_t> extra_per_texel =
-                planAdaptiveSamples(sigma, uniform_samples, target, {kAdaptiveSamplesPerCopy});
-            const AdaptiveExtras extras =
-                adaptiveExtraPoints(points, extra_per_texel, 1, kAdaptiveSamplesPerCopy, uniform_samples);
-            for (size_t first = 0; first < extras.points.size(); first += kExtraCopiesPerBatch) {
-                const size_t last = std::min(extras.points.size(), first + kExtraCopiesPerBatch);
-                PointAccumulator extra = tracer.createAccumulator(
-                    std::vector<QueryPointGpu>(extras.points.begin() + ptrdiff_t(first), extras.points.begin() + ptrdiff_t(last)));
-                extra_rays += tracer.addSamples(extra, extras.samples_per_copy, pass);
-                addAdaptiveExtraSums(set, extras, first, tracer.readSums(extra), tracer.readLuminanceSquareSums(extra));
-            }
-            normaliseSetSums(set, target);
+                variance[i] = luminanceVarianceOfMean(set.sums[i], set.luminance_square_sums[i], uniform_samples);
+            traceAdaptiveExtras(set, points, variance, 1, uniform_samples, target, kExtraCopiesPerBatch,
+                                [&](size_t, const std::vector<QueryPointGpu>& copies, std::vector<glm::vec4>& sums,
+                                    std::vector<float>& square_sums) {
+                                    PointAccumulator extra = tracer.createAccumulator(copies);
+                                    extra_rays += tracer.addSamples(extra, kAdaptiveSamplesPerCopy, pass);
+                                    sums = tracer.readSums(extra);
+                                    square_sums = tracer.readLuminanceSquareSums(extra);
+                                    return true;
+                                });
             extra_seconds = std::chrono::duration<double>(Clock::now() - start).count();
         }
         total_seconds += extra_seconds;

@@ -12,7 +12,9 @@
 // (copies of the noisy texels' points) for the existing tracer and checkpoints. The plan follows from the
 // pilot's sums alone, so a resumed bake plans the same set.
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -98,5 +100,21 @@ void addAdaptiveExtraSums(SetSums& set, const AdaptiveExtras& extras, size_t fir
 
 /// normaliseToSampleCount on every point of the set: afterwards every point reads as nominal_samples samples.
 void normaliseSetSums(SetSums& set, uint32_t nominal_samples);
+
+/// Traces one batch of copies (their points, samples_per_copy = kAdaptiveSamplesPerCopy samples each) and fills
+/// its sums and squared-luminance sums; false when it was stopped (a bake's Ctrl-C).
+using AdaptiveBatchTracer = std::function<bool(size_t batch, const std::vector<QueryPointGpu>& copies,
+                                               std::vector<glm::vec4>& sums, std::vector<float>& square_sums)>;
+
+/// Everything after the pilot, for the bake and `converge` alike: `set` holds the pilot's sums of `points`
+/// (pilot_per_point samples each; points_per_texel consecutive points a texel), texel_variance_of_mean each
+/// texel's variance of its mean luminance from them. Plans the extra samples toward samples_per_point a point
+/// on average (planAdaptiveSamples, in whole copies of kAdaptiveSamplesPerCopy samples), hands the copies to
+/// trace_batch in batches of at most max_batch_points (whole footprints), adds their sums and normalises the set
+/// to samples_per_point. Returns false, the set half done, when a batch was stopped.
+bool traceAdaptiveExtras(SetSums& set, const std::vector<QueryPointGpu>& points,
+                         const std::vector<float>& texel_variance_of_mean, size_t points_per_texel,
+                         uint32_t pilot_per_point, uint32_t samples_per_point, size_t max_batch_points,
+                         const AdaptiveBatchTracer& trace_batch);
 
 }  // namespace gusuku::bake
