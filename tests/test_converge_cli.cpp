@@ -1,8 +1,12 @@
 // `gusuku-bake converge` from the command line: the study's table and summary, the forced sky sampling it
 // reports, and clear refusals of bad arguments.
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "gusuku/image.h"
 
 #include "bake_command.h"
 #include "gpu_test_support.h"
@@ -87,6 +91,67 @@ TEST_F(ConvergeCli, UnknownSlotIsAnErrorNamingIt) {
     EXPECT_NE(result.exit_code, 0);
     EXPECT_TRUE(contains(result.stderr_text, "no slot named 'dusk'")) << result.stderr_text;
     EXPECT_TRUE(result.stdout_text.empty()) << result.stdout_text;
+}
+
+// --error-mask: the common_* columns hold the errors over the mask's texels only. A mask of every texel must give
+// exactly the all-texel columns; a mask of the wrong size or shape is refused, naming the file.
+TEST_F(ConvergeCli, ErrorMaskOfEveryTexelMatchesTheAllTexelColumns) {
+    const auto writeMask = [&](const std::string& name, int width, int height) {
+        gusuku::ImageRGBA mask;
+        mask.width = width;
+        mask.height = height;
+        mask.texels.assign(size_t(width) * size_t(height) * 4, 1.0f);
+        const std::string path = directory_ + "/" + name;
+        gusuku::writePngSrgb(path, mask);
+        return path;
+    };
+    const std::vector<std::string> study = {"--slot", "cloudy", "--max-samples", "4", "--reference-samples", "8"};
+    const auto withMask = [&](const std::string& path) {
+        std::vector<std::string> options = study;
+        options.insert(options.end(), {"--error-mask", path});
+        return converge(options);
+    };
+
+    const std::string not_square = writeMask("not_square.png", 4, 2);
+    const CommandResult refused_shape = withMask(not_square);
+    EXPECT_EQ(refused_shape.exit_code, 1);
+    EXPECT_TRUE(contains(refused_shape.stderr_text, not_square + ": size: 4 x 2 is not square"))
+        << refused_shape.stderr_text;
+
+    const std::string one_texel = writeMask("one_texel.png", 1, 1);
+    const CommandResult refused_size = withMask(one_texel);
+    EXPECT_EQ(refused_size.exit_code, 1);
+    std::smatch resolution;
+    const std::regex lightmap_size("size: 1 texels is not the lightmap's ([0-9]+) x ([0-9]+)");
+    ASSERT_TRUE(std::regex_search(refused_size.stderr_text, resolution, lightmap_size)) << refused_size.stderr_text;
+    EXPECT_TRUE(contains(refused_size.stderr_text, one_texel)) << refused_size.stderr_text;
+    EXPECT_TRUE(refused_size.stdout_text.empty()) << refused_size.stdout_text;
+
+    const int side = std::stoi(resolution[1]);
+    const CommandResult result = withMask(writeMask("every_texel.png", side, side));
+    ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+    // Every texel of the image: the lightmap's valid ones, and the padding between charts (not valid here).
+    std::smatch counts;
+    ASSERT_TRUE(std::regex_search(result.stdout_text, counts,
+                                  std::regex("([0-9]+) texels valid here .*, ([0-9]+) more not valid here")))
+        << result.stdout_text;
+    EXPECT_GT(std::stoi(counts[1]), 0);
+    EXPECT_EQ(std::stoi(counts[1]) + std::stoi(counts[2]), side * side) << result.stdout_text;
+    std::istringstream lines(result.stdout_text);
+    std::string line;
+    int rows = 0;
+    while (std::getline(lines, line)) {
+        std::istringstream fields(line);
+        double samples, rays, trace_s, rms, rms_denoised, denoise_s, scaled, corrected, denoised_corrected;
+        double common_corrected, common_denoised_corrected;
+        if (!(fields >> samples >> rays >> trace_s >> rms >> rms_denoised >> denoise_s >> scaled >> corrected >>
+              denoised_corrected >> common_corrected >> common_denoised_corrected))
+            continue;
+        ++rows;
+        EXPECT_DOUBLE_EQ(common_corrected, corrected) << line;
+        EXPECT_DOUBLE_EQ(common_denoised_corrected, denoised_corrected) << line;
+    }
+    EXPECT_EQ(rows, 3) << "one row per sample count 1, 2, 4:\n" << result.stdout_text;
 }
 
 }  // namespace

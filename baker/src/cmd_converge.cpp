@@ -7,6 +7,8 @@
 
 #include "commands.h"
 #include "gusuku/command_line.h"
+#include "gusuku/image.h"
+#include "gusuku/input_error.h"
 #include "gusuku/site.h"
 #include "gusuku/vulkan_context.h"
 #include "gusuku_bake/convergence.h"
@@ -19,6 +21,7 @@ namespace {
 constexpr const char* kConvergeUsage =
     "usage: gusuku-bake converge SITE.json [--slot NAME] [--reference-samples N] [--max-samples N]\n"
     "                            [--target-rms R] [--sky-sampling auto|cosine|mis] [--sampling adaptive|uniform]\n"
+    "                            [--error-mask IMAGE]\n"
     "       gusuku-bake converge SITE.json --slot NAME --export-lighting DIR\n"
     "\n"
     "Bakes the building lightmap of one slot at 1, 2, 4, ... --max-samples (default 128) samples per\n"
@@ -29,6 +32,8 @@ constexpr const char* kConvergeUsage =
     "default, is what a bake does), to compare the two on a site's own sky.\n"
     "--sampling: adaptive (the default, what a bake does: from 32 samples on, a pilot of half the samples and\n"
     "the other half where each texel's noise is) or uniform (every texel alike).\n"
+    "--error-mask: an image of the lightmap's size (row 0 at the top); its texels with a first channel above\n"
+    "0.5 get their own error columns (common_*), e.g. the texels another baker bakes too.\n"
     "--export-lighting writes the slot's sky without its sun (DIR/sky_NAME.hdr, laid out for Blender's world)\n"
     "and its sun (DIR/sun_NAME.json) as the bake traces them, for bench/cycles, and runs no study.\n"
     "Exit status: 0 ok, 1 bad input or a bad option value, 2 bad usage.\n";
@@ -41,6 +46,7 @@ struct ConvergeRequest {
     bake::ConvergenceOptions options;
     double target_rms = 0.05;
     std::string export_lighting_folder;  ///< non-empty: write the slot's lighting for bench/cycles, no study
+    std::string error_mask_path;         ///< non-empty: an image of texels with their own error columns
 };
 
 ConvergeRequest parseArguments(CommandLine& line) {
@@ -48,6 +54,7 @@ ConvergeRequest parseArguments(CommandLine& line) {
     bake::ConvergenceOptions& options = request.options;
     options.slot_name = line.text("--slot").value_or("");
     request.export_lighting_folder = line.text("--export-lighting").value_or("");
+    request.error_mask_path = line.text("--error-mask").value_or("");
     if (const std::optional<int64_t> samples = line.integer("--reference-samples", 1, kMaxSampleCount))
         options.reference_samples = uint32_t(*samples);
     if (const std::optional<int64_t> samples = line.integer("--max-samples", 1, kMaxSampleCount))
@@ -94,6 +101,19 @@ int runConvergeCommand(const std::vector<std::string>& args) {
     if (!request.export_lighting_folder.empty()) {
         bake::exportSlotLightingForCycles(site, request.options.slot_name, request.export_lighting_folder);
         return 0;
+    }
+    if (!request.error_mask_path.empty()) {
+        // Read before the device starts, so that a bad mask fails at once. The lightmap's size is known only
+        // after the charts are made: the study checks it.
+        const ImageRGBA mask = readImage(request.error_mask_path, ImageEncoding::Linear);
+        if (mask.width != mask.height)
+            throw InputError(request.error_mask_path, "size",
+                             std::to_string(mask.width) + " x " + std::to_string(mask.height) +
+                                 " is not square, as a lightmap is");
+        request.options.error_mask.resize(size_t(mask.width) * size_t(mask.height));
+        for (size_t i = 0; i < request.options.error_mask.size(); ++i)
+            request.options.error_mask[i] = mask.texels[i * 4] > 0.5f ? 1 : 0;
+        request.options.error_mask_name = request.error_mask_path;
     }
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());

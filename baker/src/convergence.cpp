@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "bake_geometry.h"
 #include "bake_outputs.h"
 #include "gusuku/colour.h"
+#include "gusuku/input_error.h"
 #include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"
@@ -25,12 +27,15 @@ using Clock = std::chrono::steady_clock;
 // buffer range, however many extra samples a large lightmap plans.
 constexpr size_t kExtraCopiesPerBatch = size_t(1) << 20;
 
-// Relative RMS of luminance over texels valid in both, against the reference.
-double relativeRms(const std::vector<glm::vec4>& estimate, const std::vector<glm::vec4>& reference) {
+// Relative RMS of luminance over texels valid in both (and set in `mask`, when one is given), against the
+// reference.
+double relativeRms(const std::vector<glm::vec4>& estimate, const std::vector<glm::vec4>& reference,
+                   const std::vector<uint8_t>& mask = {}) {
     double squared_error = 0.0, reference_sum = 0.0;
     size_t count = 0;
     for (size_t i = 0; i < reference.size(); ++i) {
         if (reference[i].a <= 0.0f || estimate[i].a <= 0.0f) continue;
+        if (!mask.empty() && mask[i] == 0) continue;
         const double reference_luminance = luminanceRec709(glm::vec3(reference[i]));
         const double error = luminanceRec709(glm::vec3(estimate[i])) - reference_luminance;
         squared_error += error * error;
@@ -119,12 +124,36 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     study.reference_seconds = std::chrono::duration<double>(Clock::now() - reference_start).count();
     const std::vector<glm::vec4> reference_texels =
         processBuildingLightmap(geometry, reference_sums, options.reference_samples, false).per_texel;
+    // The mask is an image of the lightmap; the errors are summed per texel of geometry.texels.
+    std::vector<uint8_t> mask;
+    if (!options.error_mask.empty()) {
+        const size_t resolution = size_t(geometry.lightmap_resolution);
+        if (options.error_mask.size() != resolution * resolution) {
+            throw InputError(options.error_mask_name, "size",
+                             std::to_string(options.error_mask.size()) + " texels is not the lightmap's " +
+                                 std::to_string(resolution) + " x " + std::to_string(resolution));
+        }
+        study.error_mask_name = options.error_mask_name;
+        mask.resize(geometry.texels.size());
+        for (size_t i = 0; i < geometry.texels.size(); ++i)
+            mask[i] = options.error_mask[size_t(geometry.texels[i].y) * resolution + size_t(geometry.texels[i].x)];
+        std::vector<uint8_t> in_lightmap(resolution * resolution, 0);
+        for (size_t i = 0; i < geometry.texels.size(); ++i) {
+            in_lightmap[size_t(geometry.texels[i].y) * resolution + size_t(geometry.texels[i].x)] = 1;
+            if (mask[i] != 0 && reference_texels[i].a > 0.0f) ++study.common_texel_count;
+        }
+        for (size_t i = 0; i < in_lightmap.size(); ++i)
+            if (options.error_mask[i] != 0 && in_lightmap[i] == 0) ++study.mask_texels_not_valid;
+        for (size_t i = 0; i < geometry.texels.size(); ++i)
+            if (mask[i] != 0 && reference_texels[i].a <= 0.0f) ++study.mask_texels_not_valid;
+    }
     if (half_samples[1] > 0) {
         // Halves of unequal size (an odd count) are near enough: the estimate is a measurement of noise anyway.
         study.reference_own_rms = relativeRms(half_texels[0], half_texels[1]) / 2.0;
+        if (!mask.empty()) study.common_reference_own_rms = relativeRms(half_texels[0], half_texels[1], mask) / 2.0;
     }
-    const auto correctedRms = [&](double measured) {
-        return std::sqrt(std::max(measured * measured - study.reference_own_rms * study.reference_own_rms, 0.0));
+    const auto correctedRms = [&](double measured, double reference_own_rms) {
+        return std::sqrt(std::max(measured * measured - reference_own_rms * reference_own_rms, 0.0));
     };
 
     PointAccumulator estimate = tracer.createAccumulator(points);
@@ -175,13 +204,20 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         point.samples = target;
         point.rays = rays + extra_rays;
         point.seconds = seconds + extra_seconds;
-        point.relative_rms = relativeRms(processBuildingLightmap(geometry, sums, target, false).per_texel, reference_texels);
+        const std::vector<glm::vec4> raw = processBuildingLightmap(geometry, sums, target, false).per_texel;
+        point.relative_rms = relativeRms(raw, reference_texels);
         const auto denoise_start = Clock::now();
         const ProcessedLightmap denoised = processBuildingLightmap(geometry, sums, target, true, variance);
         point.denoise_seconds = std::chrono::duration<double>(Clock::now() - denoise_start).count();
         point.relative_rms_denoised = relativeRms(denoised.per_texel, reference_texels);
-        point.relative_rms_corrected = correctedRms(point.relative_rms);
-        point.relative_rms_denoised_corrected = correctedRms(point.relative_rms_denoised);
+        point.relative_rms_corrected = correctedRms(point.relative_rms, study.reference_own_rms);
+        point.relative_rms_denoised_corrected = correctedRms(point.relative_rms_denoised, study.reference_own_rms);
+        if (!mask.empty()) {
+            point.common_relative_rms_corrected =
+                correctedRms(relativeRms(raw, reference_texels, mask), study.common_reference_own_rms);
+            point.common_relative_rms_denoised_corrected =
+                correctedRms(relativeRms(denoised.per_texel, reference_texels, mask), study.common_reference_own_rms);
+        }
         study.points.push_back(point);
     }
     total_seconds += seconds;
@@ -230,15 +266,31 @@ std::string formatConvergenceStudy(const ConvergenceStudy& study, double target)
                   "(sqrt(rms^2 - reference^2))\n",
                   study.reference_own_rms);
     text += line;
+    const bool masked = !study.error_mask_name.empty();
+    if (masked) {
+        std::snprintf(line, sizeof line,
+                      "error mask %s: %zu texels valid here (the common_* columns, reference's own noise %.4f over "
+                      "them), %zu more not valid here\n",
+                      study.error_mask_name.c_str(), study.common_texel_count, study.common_reference_own_rms,
+                      study.mask_texels_not_valid);
+        text += line;
+    }
     text += "samples      rays   trace_s   rel_rms  rel_rms_denoised  denoise_s  rms*sqrt(spp)  rel_rms_corrected"
-            "  rel_rms_denoised_corrected\n";
+            "  rel_rms_denoised_corrected";
+    text += masked ? "  common_rel_rms_corrected  common_rel_rms_denoised_corrected\n" : "\n";
     for (const ConvergencePoint& point : study.points) {
-        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %9.3f  %13.4f  %17.4f  %26.4f\n",
+        std::snprintf(line, sizeof line, "%7u  %8.3g  %8.2f  %8.4f  %16.4f  %9.3f  %13.4f  %17.4f  %26.4f",
                       point.samples, double(point.rays), point.seconds, point.relative_rms,
                       point.relative_rms_denoised, point.denoise_seconds,
                       point.relative_rms * std::sqrt(double(point.samples)), point.relative_rms_corrected,
                       point.relative_rms_denoised_corrected);
         text += line;
+        if (masked) {
+            std::snprintf(line, sizeof line, "  %24.4f  %33.4f", point.common_relative_rms_corrected,
+                          point.common_relative_rms_denoised_corrected);
+            text += line;
+        }
+        text += "\n";
     }
     std::snprintf(line, sizeof line,
                   "log-log slope: %.3f raw, %.3f denoised (1/sqrt(samples) is -0.5)\n"

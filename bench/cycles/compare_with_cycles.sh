@@ -50,11 +50,15 @@ for site in $sites; do
     mkdir -p "$dir"
     echo "== $site, $slot"
     "$bake" converge "$site_json" --slot "$slot" --export-lighting "$dir/lighting"
-    "$bake" converge "$site_json" --slot "$slot" --max-samples "$max_samples" --reference-samples "$reference" \
-      2>/dev/null > "$dir/gusuku.txt"
-    blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \
+    # Cycles first: it writes the texels it bakes (on the shrine's small triangles only those whose centre a
+    # triangle covers) as a mask, and gusuku's study measures its error over those texels too (the common_*
+    # columns), so that the two errors can be read over the same texels as well as each over its own.
+    CYCLES_COVERAGE_MASK="$dir/cycles_texels.pgm" \
+      blender -b --factory-startup --python bench/cycles/cycles_lightmap_bake.py -- \
       "$out/$site/bakeset" "$out/sample/site.glb" "$dir/lighting" "$slot" "$reference" $counts 2>&1 |
       grep -E "^CYCLES_(RESULT|AGREEMENT|REFERENCE|COVERAGE)" > "$dir/cycles.txt"
+    "$bake" converge "$site_json" --slot "$slot" --max-samples "$max_samples" --reference-samples "$reference" \
+      --error-mask "$dir/cycles_texels.pgm" 2>/dev/null > "$dir/gusuku.txt"
     if [[ "$repeat" == 1 ]]; then
       # Errors do not change between runs (fixed seeds): only the timings are repeated, interleaved with the
       # first ones, and the summary keeps the faster of each, which damps the shared machine's drift.

@@ -158,6 +158,18 @@ def relative_rms(estimate, reference, scale=1.0):
     return math.sqrt(squared / count) / (total / count)
 
 
+def write_coverage_mask(path):
+    """The texels the errors cover (gusuku-valid and baked by Cycles) as a binary PGM (255 = covered), row 0 at
+    the top as image files and gusuku have it (Blender's pixel rows run from the bottom), so that `gusuku-bake
+    converge --error-mask` measures gusuku's error over the same texels."""
+    width, height = reference_image.size
+    rows = [bytes(255 if valid[(height - 1 - y) * width + x] else 0 for x in range(width)) for y in range(height)]
+    with open(path + ".tmp", "wb") as stream:
+        stream.write(f"P5\n{width} {height}\n255\n".encode("ascii"))
+        stream.write(b"".join(rows))
+    os.replace(path + ".tmp", path)
+
+
 def bake(samples, adaptive, seed=0):
     """One timed Cycles bake of the lightmap; returns (seconds, luminance per texel)."""
     scene.cycles.samples = samples
@@ -194,6 +206,9 @@ def measured_run():
     gusuku_valid = sum(valid)
     valid = [ok and (a > 0.0 or b > 0.0) for ok, a, b in zip(valid, half_a, half_b)]
     print(f"CYCLES_COVERAGE gusuku_valid_texels={gusuku_valid} baked_by_cycles={sum(valid)}", flush=True)
+    mask_path = os.environ.get("CYCLES_COVERAGE_MASK")
+    if mask_path:
+        write_coverage_mask(mask_path)
     reference_rms = relative_rms(half_a, half_b) / 2
     print(f"CYCLES_REFERENCE samples={reference_samples} own_relative_rms={reference_rms:.4f}", flush=True)
     for mode in modes:

@@ -90,11 +90,17 @@ def faster_of_two_runs(gusuku_rows, setup_seconds, gusuku_repeat_path, cycles_cu
     return gusuku_rows, setup_seconds, curves, bool(repeat)
 
 
-def gusuku_curves(rows):
+def gusuku_curves(rows, common=False):
     """(raw, denoised) curves of (trace seconds, relative RMS), the reference's noise taken out where the table
-    has those columns; the denoised one includes the filter's time."""
-    raw_key = "rel_rms_corrected" if "rel_rms_corrected" in rows[0] else "rel_rms"
-    denoised_key = "rel_rms_denoised_corrected" if "rel_rms_denoised_corrected" in rows[0] else "rel_rms_denoised"
+    has those columns; the denoised one includes the filter's time. common: the errors over the texels Cycles
+    bakes too (the common_* columns of a study run with --error-mask); None when the table has none."""
+    if common:
+        if "common_rel_rms_corrected" not in rows[0]:
+            return None, None
+        raw_key, denoised_key = "common_rel_rms_corrected", "common_rel_rms_denoised_corrected"
+    else:
+        raw_key = "rel_rms_corrected" if "rel_rms_corrected" in rows[0] else "rel_rms"
+        denoised_key = "rel_rms_denoised_corrected" if "rel_rms_denoised_corrected" in rows[0] else "rel_rms_denoised"
     raw = [(row["trace_s"], row[raw_key]) for row in rows]
     denoised = [(row["trace_s"] + row.get("denoise_s", 0.0), row[denoised_key]) for row in rows]
     return raw, denoised
@@ -124,8 +130,11 @@ def seconds_to_reach_or_extrapolated(curve, target, samples):
 
 def table(out, sites, slots, target=0.02):
     """One line per (site, slot): wall seconds to `target` for gusuku (denoised and raw, setup included) and
-    Cycles (its faster mode), and the ratio Cycles / gusuku. '*' marks a time extrapolated past the last point."""
+    Cycles (its faster mode), and the ratio Cycles / gusuku; then gusuku's ratios with its error measured over
+    the texels Cycles bakes too (where the study had the mask). '*' marks a time extrapolated past the last
+    point."""
     print(f"{'site':8s} {'slot':11s} {'gusuku den.':>12s} {'gusuku raw':>12s} {'Cycles':>10s} "
+          f"{'Cycles/den.':>12s} {'Cycles/raw':>11s} | {'same texels: den.':>18s} {'raw':>8s} "
           f"{'Cycles/den.':>12s} {'Cycles/raw':>11s}")
     for site in sites:
         for slot in slots:
@@ -137,16 +146,21 @@ def table(out, sites, slots, target=0.02):
             cycles_points = read_cycles(folder + "/cycles.txt")
             rows, setup, cycles_curves, _ = faster_of_two_runs(rows, setup, folder + "/gusuku_repeat.txt",
                                                                cycles_points, folder + "/cycles_repeat.txt")
-            raw, denoised = gusuku_curves(rows)
             gusuku_samples = [row["samples"] for row in rows]
             found = [seconds_to_reach_or_extrapolated(c, target, [n for n, _, _ in cycles_points[mode]])
                      for mode, c in cycles_curves.items()]
             found = [f for f in found if f[0] is not None]
             cycles = min(found) if found else (None, False)
-            cells = []
-            for seconds, extrapolated in (seconds_to_reach_or_extrapolated(denoised, target, gusuku_samples),
-                                          seconds_to_reach_or_extrapolated(raw, target, gusuku_samples)):
-                cells.append((seconds + setup if seconds is not None else None, extrapolated))
+
+            def cells_of(curves):
+                cells = []
+                for curve in curves:
+                    if curve is None:
+                        cells.append((None, False))
+                        continue
+                    seconds, extrapolated = seconds_to_reach_or_extrapolated(curve, target, gusuku_samples)
+                    cells.append((seconds + setup if seconds is not None else None, extrapolated))
+                return cells
 
             def show(value, width):
                 seconds, extrapolated = value
@@ -158,11 +172,18 @@ def table(out, sites, slots, target=0.02):
                 mark = "*" if gusuku[1] or cycles[1] else ""
                 return f"{f'{cycles[0] / gusuku[0]:.2f}{mark}':>{width}s}"
 
+            raw, denoised = gusuku_curves(rows)
+            cells = cells_of((denoised, raw))
+            common_raw, common_denoised = gusuku_curves(rows, common=True)
+            common = cells_of((common_denoised, common_raw))
             print(f"{site:8s} {slot:11s} {show(cells[0], 12)} {show(cells[1], 12)} {show(cycles, 10)} "
-                  f"{ratio(cells[0], 12)} {ratio(cells[1], 11)}")
+                  f"{ratio(cells[0], 12)} {ratio(cells[1], 11)} | {show(common[0], 18)} {show(common[1], 8)} "
+                  f"{ratio(common[0], 12)} {ratio(common[1], 11)}")
     print("seconds of wall time to 2 % relative RMS, each against its own converged bake with that bake's own noise "
           "taken out; gusuku's setup included; * extrapolated past the last measured point: the error by its last "
-          "power law in samples, the time linearly in samples")
+          "power law in samples, the time linearly in samples. Left: each baker's error over the texels it bakes "
+          "(gusuku: every valid texel; Cycles: those of them it bakes, on small triangles only those whose centre a "
+          "triangle covers). Right of |: gusuku's error over Cycles' texels, the same texels for both")
 
 
 def seconds_to_reach(curve, target):
@@ -234,21 +255,23 @@ def main():
         gusuku_rows, setup_seconds, out + "/gusuku_repeat.txt", read_cycles(out + "/cycles.txt"),
         out + "/cycles_repeat.txt")
     raw, denoised = gusuku_curves(gusuku_rows)
+    common_raw, common_denoised = gusuku_curves(gusuku_rows, common=True)
     methods = [
         ("gusuku raw", raw, 0.0),
         ("gusuku denoised", denoised, 0.0),
         ("gusuku raw + setup", raw, setup_seconds),
         ("gusuku denoised + setup", denoised, setup_seconds),
-    ] + [(f"Cycles {mode}", curve, 0.0) for mode, curve in sorted(cycles_curves.items())]
+    ] + ([("raw + setup, Cycles' texels", common_raw, setup_seconds),
+          ("den. + setup, Cycles' texels", common_denoised, setup_seconds)] if common_raw else []) + [(f"Cycles {mode}", curve, 0.0) for mode, curve in sorted(cycles_curves.items())]
     print(f"seconds to reach a relative RMS error (gusuku setup before the first ray: {setup_seconds:.2f} s"
           + ("; each bake the faster of two interleaved timings)" if repeated else ")"))
-    print(f"{'method':26s}" + "".join(f"{f'{t * 100:g} %':>10s}" for t in TARGETS))
+    print(f"{'method':29s}" + "".join(f"{f'{t * 100:g} %':>10s}" for t in TARGETS))
     for label, curve, offset in methods:
         cells = []
         for target in TARGETS:
             seconds = seconds_to_reach(curve, target)
             cells.append(f"{'-' if seconds is None else f'{seconds + offset:.2f}':>10s}")
-        print(f"{label:26s}" + "".join(cells))
+        print(f"{label:29s}" + "".join(cells))
     # Cycles at its best (the faster of its two modes) against gusuku with its setup paid, raw and denoised.
     for target in TARGETS:
         cycles_best = min((s for s in (seconds_to_reach(c, target) for c in cycles_curves.values()) if s), default=None)

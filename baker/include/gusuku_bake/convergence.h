@@ -24,6 +24,12 @@ struct ConvergenceOptions {
     /// samples, every texel alike, and the other half planned by each texel's noise; its time and rays are the
     /// pilot's (cumulative, as for uniform points) plus its own extra samples'. false: every texel alike.
     bool adaptive = true;
+    /// Texels whose errors are also measured on their own (the "common" columns): resolution^2 flags in the
+    /// lightmap's layout (row 0 at the top), e.g. the texels another baker bakes too, so that two bakers'
+    /// errors cover the same texels. Empty: none. A size other than the lightmap's is an InputError naming
+    /// error_mask_name.
+    std::vector<uint8_t> error_mask;
+    std::string error_mask_name;
 };
 
 struct ConvergencePoint {
@@ -37,6 +43,9 @@ struct ConvergencePoint {
     /// independent, so their mean squares add). What the error against the exact answer is estimated to be.
     double relative_rms_corrected = 0.0;
     double relative_rms_denoised_corrected = 0.0;
+    /// The corrected errors over the texels of ConvergenceOptions::error_mask only (0 without a mask).
+    double common_relative_rms_corrected = 0.0;
+    double common_relative_rms_denoised_corrected = 0.0;
 };
 
 struct ConvergenceStudy {
@@ -54,6 +63,13 @@ struct ConvergenceStudy {
     /// The reference's own relative RMS error, measured: it is traced as two halves with independent seeds, and
     /// this is the relative RMS of their difference / 2. 0 when the reference has one sample.
     double reference_own_rms = 0.0;
+    /// With an error mask: its name, the texels it holds that the lightmap has valid (those its errors cover),
+    /// the ones it holds that the lightmap does not (0 unless the mask is misaligned or another baker covers
+    /// texels gusuku leaves out), and the reference's own noise over it.
+    std::string error_mask_name;
+    size_t common_texel_count = 0;
+    size_t mask_texels_not_valid = 0;
+    double common_reference_own_rms = 0.0;
     std::vector<ConvergencePoint> points;
     double rays_per_second = 0.0;
     double log_log_slope = 0.0;           ///< least-squares slope of log(rms) on log(samples), raw
