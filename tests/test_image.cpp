@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
@@ -136,6 +137,38 @@ TEST(SrgbCurveTest, OpenColorIOPathAgreesWithScalarFormulas) {
         }
         ASSERT_EQ(decoded.texel(i, 0)[3], 0.3f) << "alpha must pass through";
     }
+}
+
+// 8-bit files are decoded by OpenColorIO's byte table (srgbDecodeBytes): every byte value must give exactly what
+// the float path gives for the value OpenImageIO converts that byte to (so bakes do not change), grey and alpha
+// expanded as before.
+TEST(SrgbCurveTest, ByteTableIsExactlyTheFloatDecode) {
+    std::vector<uint8_t> bytes(256 * 4);
+    for (int k = 0; k < 256; ++k) {
+        bytes[size_t(k) * 4 + 0] = uint8_t(k);
+        bytes[size_t(k) * 4 + 1] = uint8_t(255 - k);
+        bytes[size_t(k) * 4 + 2] = uint8_t(k);
+        bytes[size_t(k) * 4 + 3] = uint8_t(k);
+    }
+    std::vector<float> from_table(bytes.size());
+    gusuku::srgbDecodeBytes(bytes.data(), 256, from_table.data());
+    ImageRGBA from_floats;
+    from_floats.width = 256;
+    from_floats.height = 1;
+    from_floats.texels.resize(bytes.size());
+    ASSERT_TRUE(OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, bytes.data(), OIIO::TypeDesc::FLOAT,
+                                           from_floats.texels.data(), int(bytes.size())));
+    const std::vector<float> encoded = from_floats.texels;
+    gusuku::srgbDecodeImage(from_floats);
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        if (i % 4 == 3) {
+            ASSERT_EQ(from_table[i], encoded[i]) << "alpha of byte " << i / 4 << " passes through as k / 255";
+        } else {
+            ASSERT_EQ(from_table[i], from_floats.texels[i]) << "byte " << int(bytes[i]) << ", channel " << i % 4;
+        }
+    }
+    EXPECT_EQ(from_table[0], 0.0f);
+    EXPECT_EQ(from_table[255 * 4], 1.0f);
 }
 
 TEST(ImageFileTest, ExrRoundTripIsExact) {

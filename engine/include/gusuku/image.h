@@ -3,6 +3,7 @@
 // is explicit at every read and write: HDR formats (.hdr, .exr) hold scene-referred linear Rec.709, 8-bit
 // formats (.png, .jpg) hold sRGB-encoded values.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -81,6 +82,10 @@ void writeHdr(const std::string& path, const ImageRGBA& image);
 /// decoded to linear / encoded from linear in place, alpha untouched. Encoding expects values in [0, 1].
 void srgbDecodeImage(ImageRGBA& image);
 void srgbEncodeImage(ImageRGBA& image);
+/// The same decode from 8-bit bytes (texel_count RGBA quadruples, alpha 255 = 1) into linear float RGBA:
+/// the curve is evaluated (through OpenColorIO) once per byte value, so an 8-bit texture costs a table lookup per channel
+/// instead of a pow. Byte k gives what srgbDecodeImage gives for k / 255.
+void srgbDecodeBytes(const uint8_t* encoded_rgba, size_t texel_count, float* linear_rgba);
 
 /// Box-downsamples by the smallest integer factor that brings both sides to at most max_size (averaging
 /// linear values, so no energy is lost). Returns the image unchanged when it already fits or max_size <= 0.

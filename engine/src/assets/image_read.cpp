@@ -110,6 +110,22 @@ void checkHeader(const std::string& name, const OIIO::ImageSpec& spec) {
                                        " (16384 x 16384) this reader decodes; refused before decoding");
 }
 
+// Grey, grey + alpha, RGB or RGBA values to RGBA (grey copied to R, G and B; `opaque` where there is no alpha).
+template <typename T>
+void expandToRgba(const T* in, int channels, size_t texel_count, T opaque, T* out) {
+    for (size_t i = 0; i < texel_count; ++i, in += channels, out += 4) {
+        if (channels <= 2) {  // grey, or grey + alpha
+            out[0] = out[1] = out[2] = in[0];
+            out[3] = channels == 2 ? in[1] : opaque;
+        } else {
+            out[0] = in[0];
+            out[1] = in[1];
+            out[2] = in[2];
+            out[3] = channels >= 4 ? in[3] : opaque;
+        }
+    }
+}
+
 // Reads subimage 0 of an opened input into linear RGBA, box-averaging `factor` x `factor` blocks (linear values,
 // partial blocks at the right and bottom edges averaged over what is there) band by band, so at most one band of
 // the file's rows is held at its full width.
@@ -124,7 +140,11 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
 
     // A band is a whole number of block rows, about a million file texels.
     const int block_rows_per_band = std::max(1, int((size_t(1) << 20) / (size_t(spec.width) * size_t(factor))));
+    // 8-bit sRGB files are read as bytes and decoded by table (srgbDecodeBytes: the same values as decoding
+    // them as floats, without a pow per channel).
+    const bool byte_srgb = is_srgb && spec.format == OIIO::TypeDesc::UINT8;
     std::vector<float> file_values;
+    std::vector<uint8_t> file_bytes, rgba_bytes;
     ImageRGBA band;
     std::vector<double> sums(size_t(image.width) * 4);
     std::vector<int> counts(size_t(image.width));
@@ -133,28 +153,27 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
         const int y_begin = first_out_row * factor;
         const int y_end = std::min(spec.height, (first_out_row + out_rows) * factor);
         const int band_rows = y_end - y_begin;
-        file_values.resize(size_t(spec.width) * size_t(band_rows) * size_t(file_channels));
-        if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
-                                  OIIO::TypeDesc::FLOAT, file_values.data()))
-            throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
-
+        const size_t band_texels = size_t(spec.width) * size_t(band_rows);
         band.width = spec.width;
         band.height = band_rows;
-        band.texels.resize(size_t(spec.width) * size_t(band_rows) * 4);
-        for (size_t i = 0; i < size_t(spec.width) * size_t(band_rows); ++i) {
-            const float* in = file_values.data() + i * size_t(file_channels);
-            float* out = band.texels.data() + i * 4;
-            if (file_channels <= 2) {  // grey, or grey + alpha
-                out[0] = out[1] = out[2] = in[0];
-                out[3] = file_channels == 2 ? in[1] : 1.0f;
-            } else {
-                out[0] = in[0];
-                out[1] = in[1];
-                out[2] = in[2];
-                out[3] = file_channels >= 4 ? in[3] : 1.0f;
-            }
+        band.texels.resize(band_texels * 4);
+        if (byte_srgb) {
+            // 8-bit sRGB (most textures): bytes to RGBA bytes, then one table lookup per channel.
+            file_bytes.resize(band_texels * size_t(file_channels));
+            if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
+                                      OIIO::TypeDesc::UINT8, file_bytes.data()))
+                throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
+            rgba_bytes.resize(band_texels * 4);
+            expandToRgba(file_bytes.data(), file_channels, band_texels, uint8_t(255), rgba_bytes.data());
+            srgbDecodeBytes(rgba_bytes.data(), band_texels, band.texels.data());
+        } else {
+            file_values.resize(band_texels * size_t(file_channels));
+            if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
+                                      OIIO::TypeDesc::FLOAT, file_values.data()))
+                throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
+            expandToRgba(file_values.data(), file_channels, band_texels, 1.0f, band.texels.data());
+            if (is_srgb) srgbDecodeImage(band);
         }
-        if (is_srgb) srgbDecodeImage(band);
 
         for (int out_row = 0; out_row < out_rows; ++out_row) {
             const int row_begin = out_row * factor;
