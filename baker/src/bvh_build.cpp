@@ -1,7 +1,13 @@
-// Binned-SAH BVH construction (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"):
-// per node, triangle centroids are sorted into 16 bins along each axis and the plane between bins with the
-// lowest surface-area cost is chosen. The tree is built with float boxes, then written in the GPU layout of
-// bvh.h: each inner node holding its two children's boxes quantised to 16 bits on its own grid.
+// Binned-SAH BVH construction with spatial splits. Object splits (Wald 2007, "On fast Construction of SAH-based
+// Bounding Volume Hierarchies"): per node, reference centroids are sorted into 32 bins along each axis and the
+// plane between bins with the lowest surface-area cost is chosen. Spatial splits (Stich, Friedrich and Dietrich
+// 2009, "Spatial Splits in Bounding Volume Hierarchies"): where the best object split leaves two boxes that
+// overlap, planes through the node's box are tried too, a triangle crossing the plane going to both sides with
+// the box of its piece on each. Why: a timber building's beams, rafters and roof planes are long thin triangles
+// whose boxes are mostly empty and overlap everything near them; on the shrine spatial splits cut the inner
+// nodes and triangles a bake ray visits by about 20 % and 37 %. The tree is built with float boxes,
+// then written in the GPU layout of bvh.h: each inner node holding its two children's boxes quantised to 16
+// bits on its own grid.
 
 #include <algorithm>
 #include <array>
@@ -20,13 +26,21 @@
 namespace gusuku::bake {
 namespace {
 
-constexpr int kBinCount = 16;
+constexpr int kBinCount = 32;         // object split bins (centroids)
+constexpr int kSpatialBinCount = 16;  // spatial split bins (the node's box)
+// Spatial splits are tried only where the best object split's two boxes overlap by more than this fraction of
+// the root's area (SBVH's alpha: below it the overlap costs little, and the search would only add references).
+constexpr float kSpatialSplitOverlap = 1e-5f;
+// Spatial splits stop adding references once there are this many per triangle (the shrine uses 1.5, a
+// heightfield ground 1.4; the cap bounds memory and the depth argument below).
+constexpr double kMaxReferencesPerTriangle = 2.0;
 // SAH costs in units of one ray/triangle test. A node visit on lavapipe (two child boxes fetched and tested)
 // costs about as much as one triangle test.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kTriangleCost = 1.0f;
-// Below this depth the builder stops trusting SAH and halves at the centroid median, so that even
-// pathological input (thousands of triangles in a spiral) stays within kBvhMaxDepth: 40 + log2(2^24 / 4).
+// Below this depth the builder stops trusting SAH (and makes no more spatial splits) and halves at the centroid
+// median, so that even pathological input (thousands of triangles in a spiral) stays within kBvhMaxDepth: at
+// most 2 x 2^24 references, so 40 + log2(2^25 / 4) = 63 levels.
 constexpr uint32_t kMedianSplitDepth = 40;
 
 struct Box {
@@ -49,21 +63,36 @@ struct Box {
     }
 };
 
-struct PrimitiveInfo {
+// One triangle as the builder sees it: its corners (for clipping) and the padding its boxes get.
+struct Primitive {
+    glm::vec3 corner[3];
+    float pad;  // ~1e-6 of the triangle's largest coordinate, see paddedBox
+};
+
+// A reference to a triangle, or to the part of it inside `bounds` after spatial splits: one triangle may be
+// referenced from several leaves, each reference boxing only its piece.
+struct Reference {
     Box bounds;
-    glm::vec3 centroid;
+    uint32_t primitive;
+    float centroid(int axis) const { return 0.5f * (bounds.min[axis] + bounds.max[axis]); }
 };
 
 struct BuildTask {
     uint32_t node;
-    uint32_t begin;
-    uint32_t end;
+    std::vector<Reference> references;
     uint32_t depth;
 };
 
-struct SplitChoice {
+struct ObjectSplit {
     int axis = -1;
-    int bin = 0;  // triangles in bins [0, bin] go left
+    int bin = 0;  // references whose centroid falls in bins [0, bin] go left
+    float cost = std::numeric_limits<float>::infinity();
+    Box left, right;
+};
+
+struct SpatialSplit {
+    int axis = -1;
+    int bin = 0;  // the plane is the upper face of bin `bin`
     float cost = std::numeric_limits<float>::infinity();
 };
 
@@ -74,36 +103,202 @@ int binOf(float centroid, float axis_min, float bin_scale) {
     return std::clamp(bin, 0, kBinCount - 1);
 }
 
-SplitChoice findSahSplit(const std::vector<PrimitiveInfo>& primitives, const std::vector<uint32_t>& order,
-                         uint32_t begin, uint32_t end, const Box& centroid_bounds) {
-    SplitChoice best;
+ObjectSplit findObjectSplit(const std::vector<Reference>& references, const Box& centroid_bounds) {
+    ObjectSplit best;
+    const uint32_t count = static_cast<uint32_t>(references.size());
     for (int axis = 0; axis < 3; ++axis) {
         const float extent = centroid_bounds.max[axis] - centroid_bounds.min[axis];
         if (!(extent > 0.0f)) continue;
         const float bin_scale = kBinCount / extent;
         std::array<Box, kBinCount> bin_bounds;
         std::array<uint32_t, kBinCount> bin_counts{};
-        for (uint32_t i = begin; i < end; ++i) {
-            const PrimitiveInfo& primitive = primitives[order[i]];
-            const int bin = binOf(primitive.centroid[axis], centroid_bounds.min[axis], bin_scale);
-            bin_bounds[bin].extend(primitive.bounds);
+        for (const Reference& reference : references) {
+            const int bin = binOf(reference.centroid(axis), centroid_bounds.min[axis], bin_scale);
+            bin_bounds[bin].extend(reference.bounds);
             ++bin_counts[bin];
         }
         // Sweep from the right to get the cost of every right side, then from the left.
         std::array<float, kBinCount> right_area_times_count{};
+        std::array<Box, kBinCount> right_boxes;
         Box right_box;
         uint32_t right_count = 0;
         for (int bin = kBinCount - 1; bin > 0; --bin) {
             right_box.extend(bin_bounds[bin]);
             right_count += bin_counts[bin];
             right_area_times_count[bin - 1] = right_box.halfArea() * static_cast<float>(right_count);
+            right_boxes[bin - 1] = right_box;
         }
         Box left_box;
         uint32_t left_count = 0;
         for (int bin = 0; bin < kBinCount - 1; ++bin) {
             left_box.extend(bin_bounds[bin]);
             left_count += bin_counts[bin];
-            if (left_count == 0 || left_count == end - begin) continue;
+            if (left_count == 0 || left_count == count) continue;
+            const float cost = left_box.halfArea() * static_cast<float>(left_count) + right_area_times_count[bin];
+            if (cost < best.cost) {
+                best.axis = axis;
+                best.bin = bin;
+                best.cost = cost;
+                best.left = left_box;
+                best.right = right_boxes[bin];
+            }
+        }
+    }
+    return best;
+}
+
+// Splits the part of `primitive` inside `within` (a reference's box, which holds that part with its padding)
+// at the plane x[axis] = plane: the boxes of the pieces on either side, each padded by primitive.pad and cut to
+// `within`; a side the triangle does not reach there comes out empty. Corners and edge crossings are computed
+// in double; rounding them to float errs by at most half an ulp of the triangle's largest coordinate, far
+// less than the pad (2^-20 of it), so the pieces' boxes together hold every point of the triangle in `within`.
+void splitPrimitive(const Primitive& primitive, const Box& within, int axis, float plane, Box& left, Box& right) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    glm::dvec3 left_low(inf), left_high(-inf), right_low(inf), right_high(-inf);
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 a(primitive.corner[k]), b(primitive.corner[(k + 1) % 3]);
+        if (a[axis] <= plane) {
+            left_low = glm::min(left_low, a);
+            left_high = glm::max(left_high, a);
+        }
+        if (a[axis] >= plane) {
+            right_low = glm::min(right_low, a);
+            right_high = glm::max(right_high, a);
+        }
+        if ((a[axis] < plane && b[axis] > plane) || (a[axis] > plane && b[axis] < plane)) {
+            glm::dvec3 crossing = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
+            crossing[axis] = plane;
+            left_low = glm::min(left_low, crossing);
+            left_high = glm::max(left_high, crossing);
+            right_low = glm::min(right_low, crossing);
+            right_high = glm::max(right_high, crossing);
+        }
+    }
+    auto piece = [&](const glm::dvec3& low, const glm::dvec3& high) {
+        Box box;
+        if (!(low.x <= high.x)) return box;
+        for (int a = 0; a < 3; ++a) {
+            box.min[a] = std::max(static_cast<float>(low[a] - primitive.pad), within.min[a]);
+            box.max[a] = std::min(static_cast<float>(high[a] + primitive.pad), within.max[a]);
+            if (!(box.min[a] <= box.max[a])) return Box{};
+        }
+        return box;
+    };
+    left = piece(left_low, left_high);
+    right = piece(right_low, right_high);
+}
+
+// Spatial split bins cover the node's box; bin b spans [plane(b), plane(b + 1)].
+struct SpatialBins {
+    float axis_min, axis_max, bin_size;
+    float plane(int b) const { return b >= kSpatialBinCount ? axis_max : axis_min + bin_size * static_cast<float>(b); }
+    // The bin holding a reference's lower (upper) face: a face exactly on a plane belongs to the side
+    // the reference extends into, so a reference touching a plane is not counted on both sides.
+    int binOfMin(float x) const {
+        int b = std::clamp(static_cast<int>((x - axis_min) / bin_size), 0, kSpatialBinCount - 1);
+        while (b > 0 && x < plane(b)) --b;
+        while (b < kSpatialBinCount - 1 && x >= plane(b + 1)) ++b;
+        return b;
+    }
+    int binOfMax(float x) const {
+        int b = std::clamp(static_cast<int>((x - axis_min) / bin_size), 0, kSpatialBinCount - 1);
+        while (b > 0 && x <= plane(b)) --b;
+        while (b < kSpatialBinCount - 1 && x > plane(b + 1)) ++b;
+        return b;
+    }
+};
+
+SpatialBins spatialBins(const Box& bounds, int axis) {
+    return {bounds.min[axis], bounds.max[axis], (bounds.max[axis] - bounds.min[axis]) / kSpatialBinCount};
+}
+
+// Extends bins first..last by the boxes of the pieces of `primitive` in each (the first and last bins reaching
+// out to infinity, as the reference's box already bounds it there), cut to `within` and padded as in
+// splitPrimitive. One pass over the edges: each crossing of a plane is computed once and shared by the two bins
+// it separates, where chopping the triangle plane by plane would redo all three edges per plane.
+void addPiecesToBins(const Primitive& primitive, const Box& within, const SpatialBins& bins, int axis, int first,
+                     int last, std::array<Box, kSpatialBinCount>& bin_bounds) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::array<glm::dvec3, kSpatialBinCount> low, high;
+    for (int b = first; b <= last; ++b) {
+        low[b] = glm::dvec3(inf);
+        high[b] = glm::dvec3(-inf);
+    }
+    auto add = [&](int b, const glm::dvec3& p) {
+        low[b] = glm::min(low[b], p);
+        high[b] = glm::max(high[b], p);
+    };
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 a(primitive.corner[k]), b(primitive.corner[(k + 1) % 3]);
+        // The corner's bin, clamped to the reference's; a corner exactly on a plane belongs to both sides.
+        const int bin = std::clamp(bins.binOfMin(primitive.corner[k][axis]), first, last);
+        add(bin, a);
+        if (bin > first && primitive.corner[k][axis] == bins.plane(bin)) add(bin - 1, a);
+        // Crossings of the planes strictly between the edge's ends, inside the reference's bin range.
+        const float lo = std::min(primitive.corner[k][axis], primitive.corner[(k + 1) % 3][axis]);
+        const float hi = std::max(primitive.corner[k][axis], primitive.corner[(k + 1) % 3][axis]);
+        const int plane_end = std::min(last, bins.binOfMax(hi));
+        for (int plane_index = std::max(first, bins.binOfMin(lo)) + 1; plane_index <= plane_end; ++plane_index) {
+            const double plane = bins.plane(plane_index);
+            if (!(plane > lo && plane < hi)) continue;
+            glm::dvec3 crossing = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
+            crossing[axis] = plane;
+            add(plane_index - 1, crossing);
+            add(plane_index, crossing);
+        }
+    }
+    for (int b = first; b <= last; ++b) {
+        if (!(low[b].x <= high[b].x)) continue;
+        Box piece;
+        bool empty = false;
+        for (int a = 0; a < 3; ++a) {
+            piece.min[a] = std::max(static_cast<float>(low[b][a] - primitive.pad), within.min[a]);
+            piece.max[a] = std::min(static_cast<float>(high[b][a] + primitive.pad), within.max[a]);
+            empty = empty || !(piece.min[a] <= piece.max[a]);
+        }
+        if (!empty) bin_bounds[b].extend(piece);
+    }
+}
+
+// SBVH's spatial split (Stich, Friedrich and Dietrich 2009, "Spatial Splits in Bounding Volume Hierarchies"):
+// planes through the node's box, references straddling the plane go to both sides, each with the box of its
+// piece on that side. Binned the same way as the object split; the cost counts each reference on every side
+// it reaches.
+SpatialSplit findSpatialSplit(const std::vector<Reference>& references, const std::vector<Primitive>& primitives,
+                              const Box& bounds) {
+    SpatialSplit best;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(bounds.max[axis] - bounds.min[axis] > 0.0f)) continue;
+        const SpatialBins bins = spatialBins(bounds, axis);
+        if (!(bins.bin_size > 0.0f)) continue;
+        std::array<Box, kSpatialBinCount> bin_bounds;
+        std::array<uint32_t, kSpatialBinCount> entering{}, leaving{};
+        for (const Reference& reference : references) {
+            const int first = bins.binOfMin(reference.bounds.min[axis]);
+            const int last = std::max(first, bins.binOfMax(reference.bounds.max[axis]));
+            ++entering[first];
+            ++leaving[last];
+            if (first == last) {
+                bin_bounds[first].extend(reference.bounds);
+                continue;
+            }
+            addPiecesToBins(primitives[reference.primitive], reference.bounds, bins, axis, first, last, bin_bounds);
+        }
+        std::array<float, kSpatialBinCount> right_area_times_count{};
+        Box right_box;
+        uint32_t right_count = 0;
+        for (int bin = kSpatialBinCount - 1; bin > 0; --bin) {
+            right_box.extend(bin_bounds[bin]);
+            right_count += leaving[bin];
+            right_area_times_count[bin - 1] =
+                right_count == 0 ? -1.0f : right_box.halfArea() * static_cast<float>(right_count);
+        }
+        Box left_box;
+        uint32_t left_count = 0;
+        for (int bin = 0; bin < kSpatialBinCount - 1; ++bin) {
+            left_box.extend(bin_bounds[bin]);
+            left_count += entering[bin];
+            if (left_count == 0 || right_area_times_count[bin] < 0.0f) continue;
             const float cost = left_box.halfArea() * static_cast<float>(left_count) + right_area_times_count[bin];
             if (cost < best.cost) {
                 best.axis = axis;
@@ -113,6 +308,38 @@ SplitChoice findSahSplit(const std::vector<PrimitiveInfo>& primitives, const std
         }
     }
     return best;
+}
+
+// Splits the references at the spatial split's plane; false (references untouched) if a side came out empty.
+bool applySpatialSplit(const SpatialSplit& split, const std::vector<Primitive>& primitives, const Box& bounds,
+                       std::vector<Reference>& references, std::vector<Reference>& left,
+                       std::vector<Reference>& right) {
+    const int axis = split.axis;
+    const SpatialBins bins = spatialBins(bounds, axis);
+    const float plane = bins.plane(split.bin + 1);
+    left.clear();
+    right.clear();
+    for (const Reference& reference : references) {
+        const int first = bins.binOfMin(reference.bounds.min[axis]);
+        const int last = std::max(first, bins.binOfMax(reference.bounds.max[axis]));
+        if (last <= split.bin) {
+            left.push_back(reference);
+        } else if (first > split.bin) {
+            right.push_back(reference);
+        } else {
+            Box left_piece, right_piece;
+            splitPrimitive(primitives[reference.primitive], reference.bounds, axis, plane, left_piece, right_piece);
+            // A piece can come out empty when the reference's box reaches past the plane but the triangle
+            // inside it does not: then the whole reference goes to the other side.
+            if (!left_piece.empty()) left.push_back({left_piece, reference.primitive});
+            if (!right_piece.empty()) right.push_back({right_piece, reference.primitive});
+            if (left_piece.empty() && right_piece.empty()) left.push_back(reference);  // cannot happen; be safe
+        }
+    }
+    if (!left.empty() && !right.empty()) return true;
+    left.clear();
+    right.clear();
+    return false;
 }
 
 // Node bounds grow by ~1e-6 relative: Moller-Trumbore works on v0 + edges rounded to float, and its t is
@@ -258,7 +485,7 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
 
     Bvh bvh;
     std::vector<BvhTriangleGpu> usable_triangles;
-    std::vector<PrimitiveInfo> primitives;
+    std::vector<Primitive> primitives;
     usable_triangles.reserve(triangle_count);
     primitives.reserve(triangle_count);
     for (size_t triangle = 0; triangle < triangle_count; ++triangle) {
@@ -289,9 +516,13 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         gpu.triangle_index = static_cast<uint32_t>(triangle);
         gpu.flags = triangle_flags.empty() ? 0u : triangle_flags[triangle];
         usable_triangles.push_back(gpu);
-        PrimitiveInfo primitive;
-        for (const glm::vec3& p : corner) primitive.bounds.extend(p);
-        primitive.centroid = (primitive.bounds.min + primitive.bounds.max) * 0.5f;
+        Primitive primitive;
+        float largest = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            primitive.corner[k] = corner[k];
+            largest = std::max({largest, std::fabs(corner[k].x), std::fabs(corner[k].y), std::fabs(corner[k].z)});
+        }
+        primitive.pad = largest * (1.0f / 1048576.0f) + 1e-30f;  // as paddedBox, but from the whole triangle
         primitives.push_back(primitive);
     }
 
@@ -315,66 +546,105 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
                          std::to_string(primitives.size()) + " triangles, above the BVH's limit of " +
                              std::to_string(kBvhMaxTriangles));
     const uint32_t primitive_count = static_cast<uint32_t>(primitives.size());
-    std::vector<uint32_t> order(primitive_count);
-    for (uint32_t i = 0; i < primitive_count; ++i) order[i] = i;
+    std::vector<Reference> root_references(primitive_count);
+    Box root_bounds;
+    for (uint32_t i = 0; i < primitive_count; ++i) {
+        Box box;
+        for (const glm::vec3& p : primitives[i].corner) box.extend(p);
+        box.min -= glm::vec3(primitives[i].pad);
+        box.max += glm::vec3(primitives[i].pad);
+        root_references[i] = {box, i};
+        root_bounds.extend(box);
+    }
+    const float overlap_threshold = kSpatialSplitOverlap * root_bounds.halfArea();
+    const size_t reference_budget = static_cast<size_t>(kMaxReferencesPerTriangle * primitive_count);
+    size_t reference_count = primitive_count;
 
     std::vector<FloatNode> tree;
     tree.reserve(2 * primitive_count);
     tree.emplace_back();
-    std::vector<BuildTask> tasks{{0, 0, primitive_count, 1}};
+    std::vector<uint32_t> leaf_primitives;  // the triangle of every leaf slot, in leaf order
+    leaf_primitives.reserve(primitive_count);
+    std::vector<BuildTask> tasks;
+    tasks.push_back({0, std::move(root_references), 1});
+    std::vector<Reference> left, right;
     while (!tasks.empty()) {
-        const BuildTask task = tasks.back();
+        BuildTask task = std::move(tasks.back());
         tasks.pop_back();
+        std::vector<Reference>& references = task.references;
 
         Box bounds, centroid_bounds;
-        for (uint32_t i = task.begin; i < task.end; ++i) {
-            bounds.extend(primitives[order[i]].bounds);
-            centroid_bounds.extend(primitives[order[i]].centroid);
+        for (const Reference& reference : references) {
+            bounds.extend(reference.bounds);
+            centroid_bounds.extend(0.5f * (reference.bounds.min + reference.bounds.max));
         }
         tree[task.node].bounds = paddedBox(bounds);
-        const uint32_t count = task.end - task.begin;
+        const uint32_t count = static_cast<uint32_t>(references.size());
 
         auto makeLeaf = [&] {
-            tree[task.node].left_or_first = task.begin;
+            tree[task.node].left_or_first = static_cast<uint32_t>(leaf_primitives.size());
             tree[task.node].triangle_count = count;
             tree[task.node].leaf = true;
+            for (const Reference& reference : references) leaf_primitives.push_back(reference.primitive);
         };
         if (count == 1) {
             makeLeaf();
             continue;
         }
 
-        uint32_t middle = task.begin;
-        const SplitChoice split = task.depth < kMedianSplitDepth
-                                      ? findSahSplit(primitives, order, task.begin, task.end, centroid_bounds)
-                                      : SplitChoice{};
+        const bool sah = task.depth < kMedianSplitDepth;
+        const ObjectSplit object = sah ? findObjectSplit(references, centroid_bounds) : ObjectSplit{};
+        // A spatial split can add up to `count` references: only within the budget, only where the object
+        // split's children overlap enough for it to pay, and not in nodes small enough to be a leaf (on the
+        // shrine that search cost 40 % of the build time for no fewer nodes or triangles visited per ray).
+        SpatialSplit spatial;
+        if (sah && count > kBvhMaxLeafTriangles && reference_count + count <= reference_budget) {
+            Box overlap;
+            overlap.min = glm::max(object.left.min, object.right.min);
+            overlap.max = glm::min(object.left.max, object.right.max);
+            const bool overlapping = object.axis < 0 || (overlap.min.x <= overlap.max.x &&
+                                                         overlap.min.y <= overlap.max.y &&
+                                                         overlap.min.z <= overlap.max.z);
+            if (overlapping && (object.axis < 0 || overlap.halfArea() > overlap_threshold))
+                spatial = findSpatialSplit(references, primitives, bounds);
+        }
+        const float best_cost = std::min(object.cost, spatial.cost);
         const float leaf_cost = kTriangleCost * static_cast<float>(count);
-        const float split_cost =
-            kTraversalCost + kTriangleCost * split.cost / std::max(bounds.halfArea(), 1e-30f);
-        if (count <= kBvhMaxLeafTriangles && (split.axis < 0 || leaf_cost <= split_cost)) {
+        const float split_cost = kTraversalCost + kTriangleCost * best_cost / std::max(bounds.halfArea(), 1e-30f);
+        if (count <= kBvhMaxLeafTriangles && (!(best_cost < std::numeric_limits<float>::infinity()) ||
+                                              leaf_cost <= split_cost)) {
             makeLeaf();
             continue;
         }
-        if (split.axis >= 0) {
-            const int axis = split.axis;
+
+        bool split_done = false;
+        if (spatial.cost < object.cost) {
+            split_done = applySpatialSplit(spatial, primitives, bounds, references, left, right);
+            if (split_done) reference_count += left.size() + right.size() - count;
+        }
+        if (!split_done && object.axis >= 0) {
+            const int axis = object.axis;
             const float axis_min = centroid_bounds.min[axis];
             const float bin_scale = kBinCount / (centroid_bounds.max[axis] - axis_min);
-            auto goes_left = [&](uint32_t primitive) {
-                return binOf(primitives[primitive].centroid[axis], axis_min, bin_scale) <= split.bin;
-            };
-            middle = static_cast<uint32_t>(
-                std::partition(order.begin() + task.begin, order.begin() + task.end, goes_left) - order.begin());
+            const auto middle = std::partition(references.begin(), references.end(), [&](const Reference& r) {
+                return binOf(r.centroid(axis), axis_min, bin_scale) <= object.bin;
+            });
+            if (middle != references.begin() && middle != references.end()) {
+                left.assign(references.begin(), middle);
+                right.assign(middle, references.end());
+                split_done = true;
+            }
         }
-        if (middle == task.begin || middle == task.end) {
+        if (!split_done) {
             // No SAH split (too deep, or all centroids coincide): halve at the median of the widest axis,
             // which bounds the depth and still makes progress when every centroid is the same point.
             const glm::vec3 extent = centroid_bounds.max - centroid_bounds.min;
             const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-            middle = task.begin + count / 2;
-            std::nth_element(order.begin() + task.begin, order.begin() + middle, order.begin() + task.end,
-                             [&](uint32_t a, uint32_t b) {
-                                 return primitives[a].centroid[axis] < primitives[b].centroid[axis];
-                             });
+            const auto middle = references.begin() + count / 2;
+            std::nth_element(references.begin(), middle, references.end(),
+                             [&](const Reference& a, const Reference& b) { return a.centroid(axis) < b.centroid(axis); });
+            left.assign(references.begin(), middle);
+            right.assign(middle, references.end());
         }
 
         const uint32_t left_child = static_cast<uint32_t>(tree.size());
@@ -382,13 +652,16 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         tree.emplace_back();
         tree[task.node].left_or_first = left_child;
         tree[task.node].triangle_count = 0;
-        tasks.push_back({left_child + 1, middle, task.end, task.depth + 1});
-        tasks.push_back({left_child, task.begin, middle, task.depth + 1});
+        // The left child is popped first, so leaves come out in left-to-right order.
+        tasks.push_back({left_child + 1, std::move(right), task.depth + 1});
+        tasks.push_back({left_child, std::move(left), task.depth + 1});
+        left = {};
+        right = {};
     }
 
     bvh.depth = writeQuantisedTree(tree, bvh.nodes);
-    bvh.triangles.resize(primitive_count);
-    for (uint32_t i = 0; i < primitive_count; ++i) bvh.triangles[i] = usable_triangles[order[i]];
+    bvh.triangles.resize(leaf_primitives.size());
+    for (size_t i = 0; i < leaf_primitives.size(); ++i) bvh.triangles[i] = usable_triangles[leaf_primitives[i]];
     if (bvh.dropped_triangle_count > 0)
         std::fprintf(stderr, "bvh: dropped %zu zero-area or non-finite triangles of %zu\n",
                      bvh.dropped_triangle_count, triangle_count);

@@ -74,7 +74,8 @@ bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& directio
     const glm::vec3 inverse_direction = safeInverse(direction);
     constexpr float kMiss = std::numeric_limits<float>::infinity();
     float t_closest = t_max;
-    uint32_t closest_slot = 0;  // with t_closest = t_max no slot is below it: a hit at t_max is refused
+    // With t_closest = t_max no triangle index is below closest_index: a hit at exactly t_max is refused.
+    uint32_t closest_index = 0;
     bool found = false;
     uint32_t stack_reference[kBvhMaxDepth];
     float stack_entry[kBvhMaxDepth];
@@ -109,11 +110,12 @@ bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& directio
                 if (skip_flags != 0 && (triangle.flags & skip_flags) != 0) continue;
                 float t, u, v;
                 if (!intersectTriangleAhead(triangle, origin, direction, t, u, v)) continue;
-                // Equal t: the first triangle in leaf order wins, whatever order the nodes were visited in.
-                if (!(t < t_closest || (t == t_closest && i < closest_slot))) continue;
+                // Equal t: the smallest source triangle index wins, whatever order the nodes were visited in
+                // and whichever of a triangle's references (bvh.h) was reached (copies give the same t, u, v).
+                if (!(t < t_closest || (t == t_closest && triangle.triangle_index < closest_index))) continue;
                 found = true;
                 t_closest = t;
-                closest_slot = i;
+                closest_index = triangle.triangle_index;
                 hit.t = t;
                 hit.barycentric_u = u;
                 hit.barycentric_v = v;
@@ -133,7 +135,7 @@ bool traverse(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& directio
             }
         }
     }
-    if (found) hit.triangle_index = bvh.triangles[closest_slot].triangle_index;
+    if (found) hit.triangle_index = closest_index;
     return found;
 }
 

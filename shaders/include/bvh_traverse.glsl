@@ -7,7 +7,7 @@
 //   bool bvhTraceClosest(origin, direction, t_max, skip_flags, out BvhHit hit): closest hit, 0 < t < t_max.
 //   bool bvhOccluded(origin, direction, t_max, skip_flags): any hit, 0 < t < t_max.
 // Triangles with (flags & skip_flags) != 0 are ignored. Both faces are hit (no culling). Among hits at exactly
-// the same t, the triangle first in the BVH's triangle buffer is the closest. t is in units of
+// the same t, the one with the smallest source triangle index is the closest. t is in units of
 // |direction|. hit.front_face = dot(cross(edge1, edge2), direction) < 0. Barycentrics: position =
 // v0 + u*edge1 + v*edge2, attributes interpolate as (1-u-v)*a0 + u*a1 + v*a2 in the source vertex order.
 // Rays must have finite components; the ray's origin should already be offset off the surface it leaves.
@@ -83,7 +83,8 @@ const uint kBvhNoReference = 0xffffffffu;  // a leaf reference of 7 triangles, w
 // one loop with an if (leaf) branch. lavapipe runs each storage-buffer load as a loop over the lanes, so
 // the nodes and triangles are fetched from texel buffers: three per node (both children), three per triangle
 // (bvh_layout.glsl).
-// Ties: among hits at exactly equal t the one first in the triangle buffer wins, whatever the visiting order.
+// Ties: among hits at exactly equal t the smallest source triangle index wins, whatever the visiting order (a
+// triangle referenced from several leaves gives the same t from each copy).
 bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool any_hit, out BvhHit hit) {
     hit.t = t_max;
     hit.triangle_index = 0xffffffffu;
@@ -94,7 +95,7 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
 
     vec3 inverse_direction = bvhSafeInverse(direction);
     float t_closest = t_max;
-    uint closest_slot = 0u;  // with t_closest = t_max, no slot is below it: a hit at t_max is refused
+    uint closest_index = 0u;  // with t_closest = t_max, no triangle index is below it: a hit at t_max is refused
     bool found = false;
     uint stack_reference[BVH_STACK_SIZE];
     float stack_entry[BVH_STACK_SIZE];
@@ -138,10 +139,10 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
             float t, u, v;
             if (!bvhIntersectTriangle(uintBitsToFloat(v0_index.xyz), edge1, edge2, origin, direction, t, u, v))
                 continue;
-            if (!(t < t_closest || (t == t_closest && i < closest_slot))) continue;
+            if (!(t < t_closest || (t == t_closest && v0_index.w < closest_index))) continue;
             found = true;
             t_closest = t;
-            closest_slot = i;
+            closest_index = v0_index.w;
             hit.triangle_index = v0_index.w;
             hit.t = t;
             hit.barycentric_u = u;

@@ -16,12 +16,20 @@
 //   (decodeBvhChildBox). A tree of one leaf is a root whose second child is an empty leaf.
 // - An empty BVH (no usable triangle) is a root with one leaf holding one placeholder triangle that no ray can
 //   hit (zero edges, triangle_index kBvhNoTriangle), so both buffers are never empty and need no special case.
-// - Child boxes enclose the child's triangles padded by ~1e-6 relative so that rounding in the triangle test
-//   never puts a hit just outside its leaf's box; the decoded (quantised) box always encloses the padded one.
-//   The tree depth is at most kBvhMaxDepth, so the GLSL stack cannot overflow.
+// - A leaf slot in `triangles` is a reference to a source triangle. Spatial splits reference one triangle from
+//   several leaves (never twice in one leaf; at most 2 x as many slots as usable triangles), each leaf's box
+//   holding only the triangle's piece on its side of the split; every point of the triangle is inside the boxes
+//   down to at least one of its leaves. The copies are identical, so each gives the same t, u, v.
+// - Child boxes enclose the child's triangles (or pieces) padded by ~1e-6 of the triangle's and of the box's
+//   largest coordinate, so that rounding in the triangle test never puts a hit just outside its leaf's box; the
+//   decoded (quantised) box always encloses the padded one. The tree depth is at most kBvhMaxDepth, so the
+//   GLSL stack cannot overflow.
 // - Ray/triangle: Moller-Trumbore on (v0, edge1, edge2), both faces, hits with 0 < t < t_max. The closest hit
-//   is the triangle with the smallest t; among exactly equal t, the one first in `triangles` (leaf order), so
-//   the answer does not depend on the order the traversal visits nodes in.
+//   is the triangle with the smallest t; among exactly equal t, the one with the smallest triangle_index. So the
+//   answer depends neither on the order the traversal visits nodes in nor on the tree: a leaf whose box the
+//   ray enters beyond the closest hit may or may not be visited, but every triangle hit at the closest t has a
+//   leaf whose box holds the hit point, which is always visited. (A rule by slot in `triangles` would break
+//   with references: whether a tying triangle's first slot is reached would depend on the visiting order.)
 
 #include <cstddef>
 #include <cstdint>
@@ -73,7 +81,7 @@ struct BvhBox {
 /// Child `child` (0 or 1) of `node`'s box as the traversal decodes it (GLSL bvhChildBoxes does the same).
 BvhBox decodeBvhChildBox(const BvhNodeGpu& node, int child);
 
-/// One triangle in leaf order, pre-transformed for Moller-Trumbore (48 bytes, std430).
+/// One leaf slot (a reference to a triangle), pre-transformed for Moller-Trumbore (48 bytes, std430).
 /// edge1 = p1 - p0 and edge2 = p2 - p0 in the ORIGINAL vertex order, so a hit's barycentrics (u, v)
 /// interpolate vertex attributes as (1-u-v)*a0 + u*a1 + v*a2.
 struct BvhTriangleGpu {
@@ -88,16 +96,19 @@ static_assert(sizeof(BvhTriangleGpu) == 48, "BvhTriangleGpu must match the std43
 
 struct Bvh {
     std::vector<BvhNodeGpu> nodes;          ///< upload as-is to the node texel buffer
-    std::vector<BvhTriangleGpu> triangles;  ///< upload as-is to the triangle texel buffer (never empty)
+    std::vector<BvhTriangleGpu> triangles;  ///< leaf slots (references) in leaf order, upload as-is to the
+                                            ///< triangle texel buffer (never empty; up to 2 x the triangles)
     size_t dropped_triangle_count = 0;      ///< zero-area or non-finite triangles left out
     uint32_t depth = 0;                     ///< levels in the tree, leaves included (one leaf under the root = 2)
 };
 
-/// Builds a binned-SAH BVH (16 bins, leaves of <= 4 triangles) over every triangle of `mesh`. Up to
-/// kBvhMaxTriangles usable triangles (more throws InputError; a device's maxTexelBufferElements may cap lower).
+/// Builds a binned-SAH BVH with spatial splits (SBVH: 32 object bins, 16 spatial bins, leaves of <= 4
+/// references) over every triangle of `mesh`. Up to kBvhMaxTriangles usable triangles (more throws InputError;
+/// a device's maxTexelBufferElements may cap lower, and the triangle buffer holds up to 2 slots a triangle).
 /// triangle_flags: one per triangle, or empty for all zero. Triangles with a zero-area cross product or a
-/// non-finite vertex are dropped (counted in dropped_triangle_count). Cost: O(n log n), ~0.1 s per 100k
-/// triangles on one core. Throws InputError("mesh", ...) for a vertex index out of range or a flag count
+/// non-finite vertex are dropped (counted in dropped_triangle_count). Deterministic (the same mesh gives the
+/// same bytes). Cost: O(n log n), ~0.3-0.6 CPU s per 100k triangles on one core (spatial split search is most
+/// of it; a plain binned SAH took ~0.1 s). Throws InputError("mesh", ...) for a vertex index out of range or a flag count
 /// that does not match the triangle count.
 Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags);
 
@@ -111,7 +122,7 @@ struct BvhHit {
 };
 
 /// Closest hit with 0 < t < t_max, ignoring triangles with (flags & skip_flags) != 0. No back-face culling.
-/// Ties (equal t) go to the triangle first in bvh.triangles.
+/// Ties (equal t) go to the smallest triangle_index.
 std::optional<BvhHit> traceClosestCpu(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& direction,
                                       float t_max, uint32_t skip_flags = 0);
 
