@@ -145,7 +145,8 @@ TriangleMesh beamScene(uint32_t beam_count, uint32_t seed) {
                         (k & 4 ? 0.5f : -0.5f) * thickness * up;
         const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), corner, corner + 8);
-        const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                      {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
         for (const auto& q : quads)
             mesh.indices.insert(mesh.indices.end(),
                                 {base + q[0], base + q[1], base + q[2], base + q[0], base + q[2], base + q[3]});
@@ -343,7 +344,8 @@ void expectWellFormed(const Bvh& bvh, size_t usable_triangle_count) {
             bool inside = false;
             for (uint32_t slot : slots) {
                 const BvhBox& box = slot_box[slot];
-                inside = inside || (glm::all(glm::greaterThanEqual(p, box.min)) && glm::all(glm::lessThanEqual(p, box.max)));
+                inside = inside ||
+                         (glm::all(glm::greaterThanEqual(p, box.min)) && glm::all(glm::lessThanEqual(p, box.max)));
             }
             uncovered += !inside;
         }
@@ -554,7 +556,7 @@ TEST(BvhCpu, Builds100kTrianglesQuickly) {
     EXPECT_LT(bvh.nodes.size(), mesh.triangleCount());
 }
 
-// ---- exact reference: the closest hit by a scan of the BVH's triangles in leaf order -------------------------
+// ---- exact reference: the closest hit by a linear scan of every leaf slot --------------------------------------
 
 uint32_t bitsOf(float value) {
     uint32_t bits;

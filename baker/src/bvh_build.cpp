@@ -642,7 +642,9 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
             const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
             const auto middle = references.begin() + count / 2;
             std::nth_element(references.begin(), middle, references.end(),
-                             [&](const Reference& a, const Reference& b) { return a.centroid(axis) < b.centroid(axis); });
+                             [&](const Reference& a, const Reference& b) {
+                                 return a.centroid(axis) < b.centroid(axis);
+                             });
             left.assign(references.begin(), middle);
             right.assign(middle, references.end());
         }
