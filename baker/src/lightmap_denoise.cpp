@@ -29,6 +29,22 @@ constexpr float kDenoiseNoiseMultiple = 2.0f;
 constexpr float kLuminanceNoiseSigmasFew = 2.0f;
 constexpr float kLuminanceNoiseSigmasMany = 1.5f;
 constexpr uint32_t kManySamples = 32;
+// Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness): a position weight of one
+// texel at 8 texels per metre and a stop of kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall
+// measured sigmas, at most kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as
+// samples grow (its square by 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot, against
+// an independent 1024-sample reference), so the stop narrows at about half that rate. Chosen with each a-trous
+// variant run on the dumped lightmaps of `gusuku-bake converge` (shrine overcast and sunny_1200, sample overcast)
+// against the reference, over position widths 0.125/0.1875/0.25 m, stops 1.2/1.5/1.8/2 at 32 and falls 0/0.225/
+// 0.35: on the shrine this is the best (raw error^2 over filtered, the reference's noise taken out, at 32/64/128/
+// 256 samples: 1.35/1.25/1.15/1.06 overcast, 1.35/1.22/1.16/1.10 sunny_1200, where 447f357's filter gave 1.28/
+// 1.06/0.85/0.58 and 1.30/1.06/0.87/0.65); on the sample site it is 1.5-2.5x worse than the wide filter, which
+// its smooth light wants (6.6/5.6/4.5/3.4 there). The sample site's roughness is 0.06-0.20 from 8 to 256 samples,
+// the shrine's 0.34-0.79 (overcast and sunny_1200): the threshold lies between.
+constexpr float kDetailRoughness = 0.25f;
+constexpr float kDetailPositionSigmaM = 0.125f;
+constexpr float kDetailNoiseSigmasAt32 = 1.5f;
+constexpr float kDetailNoiseSigmasFall = 0.35f;
 // Passes with measured variance: the stop tightens by itself as each pass lowers the variance it carries, so the
 // passes need not fall with samples. Past 3 they change the sample site's error by under 0.01 % at 0.25 m
 // position width; 5 reach 64 texels for denser lightmaps.
@@ -74,18 +90,69 @@ DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance) {
     if (with_variance && samples >= 2) {
         options.iterations = kVarianceGuidedIterations;
         options.luminance_noise_sigmas = samples < kManySamples ? kLuminanceNoiseSigmasFew : kLuminanceNoiseSigmasMany;
+        options.detail_roughness_threshold = kDetailRoughness;
+        options.detail_position_sigma_m = kDetailPositionSigmaM;
+        options.detail_luminance_noise_sigmas =
+            std::min(kLuminanceNoiseSigmasFew,
+                     kDetailNoiseSigmasAt32 * std::pow(float(samples) / float(kManySamples), -kDetailNoiseSigmasFall));
     }
     return options;
 }
 
+float lightmapRoughnessAgainstNoise(const std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides,
+                                    int resolution, const std::vector<float>& luminance_variance) {
+    const size_t texel_count = size_t(resolution) * size_t(resolution);
+    if (rgba.size() != texel_count || guides.size() != texel_count || luminance_variance.size() != texel_count)
+        throw std::invalid_argument("lightmapRoughnessAgainstNoise: buffers do not hold resolution^2 texels");
+    constexpr float kMinNormalCosine = 0.99f;             // 8.1 degrees
+    constexpr double kChiSquareOneLowerQuartile = 0.1015;  // P(chi^2_1 < 0.1015) = 0.25
+    constexpr size_t kMinQualifying = 16;
+    const auto luminanceAt = [&](size_t i) { return double(luminanceRec709(glm::vec3(rgba[i]))); };
+    std::vector<double> ratios;
+    for (int y = 1; y + 1 < resolution; ++y)
+        for (int x = 1; x + 1 < resolution; ++x) {
+            const size_t centre = size_t(y) * size_t(resolution) + size_t(x);
+            if (rgba[centre].a <= 0.0f || !(luminance_variance[centre] > 0.0f)) continue;
+            const size_t neighbours[4] = {centre - 1, centre + 1, centre - size_t(resolution),
+                                          centre + size_t(resolution)};
+            double neighbour_sum = 0.0, neighbour_variance = 0.0;
+            bool qualifies = true;
+            for (const size_t q : neighbours) {
+                if (rgba[q].a <= 0.0f || guides[q].chart != guides[centre].chart ||
+                    glm::dot(guides[q].normal, guides[centre].normal) < kMinNormalCosine) {
+                    qualifies = false;
+                    break;
+                }
+                neighbour_sum += luminanceAt(q);
+                neighbour_variance += luminance_variance[q];
+            }
+            if (!qualifies) continue;
+            const double residual = luminanceAt(centre) - neighbour_sum / 4.0;
+            ratios.push_back(residual * residual / (double(luminance_variance[centre]) + neighbour_variance / 16.0));
+        }
+    if (ratios.size() < kMinQualifying) return 1.0f;
+    // The lower quartile rather than the mean or the median: edges and texel-wide features make the upper
+    // part of the distribution, the noise and the smooth light its lower part.
+    const auto quartile = ratios.begin() + long((ratios.size() - 1) / 4);
+    std::nth_element(ratios.begin(), quartile, ratios.end());
+    return float(*quartile / kChiSquareOneLowerQuartile);
+}
+
 void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides, int resolution,
-                     const DenoiseOptions& options, const std::vector<float>& luminance_variance) {
+                     const DenoiseOptions& chosen_options, const std::vector<float>& luminance_variance) {
     const size_t texel_count = size_t(resolution) * size_t(resolution);
     if (rgba.size() != texel_count || guides.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: buffers do not hold resolution^2 texels");
     const bool measured = !luminance_variance.empty();
     if (measured && luminance_variance.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: luminance_variance does not hold resolution^2 texels");
+    DenoiseOptions options = chosen_options;
+    if (measured && options.detail_roughness_threshold > 0.0f &&
+        lightmapRoughnessAgainstNoise(rgba, guides, resolution, luminance_variance) >=
+            options.detail_roughness_threshold) {
+        options.position_sigma_m = options.detail_position_sigma_m;
+        options.luminance_noise_sigmas = options.detail_luminance_noise_sigmas;
+    }
     const float inverse_position_variance = 1.0f / (2.0f * options.position_sigma_m * options.position_sigma_m);
     const float inverse_relative_variance =
         1.0f / (2.0f * options.relative_luminance_sigma * options.relative_luminance_sigma);

@@ -37,16 +37,37 @@ struct DenoiseOptions {
     /// With measured variance: the irradiance stop reads each texel's variance averaged over its 3 x 3
     /// neighbours of the same chart (as SVGF), since a variance from a few samples is itself noisy.
     bool smooth_variance = true;
+    /// With measured variance, fine detail: when the lightmap's roughness against its measured noise
+    /// (lightmapRoughnessAgainstNoise) is at least this, the filter uses the two detail_* settings below instead
+    /// of position_sigma_m and luminance_noise_sigmas. 0 never switches.
+    float detail_roughness_threshold = 0.0f;
+    float detail_position_sigma_m = 0.125f;
+    float detail_luminance_noise_sigmas = 1.5f;
 };
 
 /// Options for a bake of `samples` samples per texel. With measured variance the irradiance stop follows each
 /// texel's own noise; without it (the caller has no square sums, or a single sample) it narrows as the noise
 /// of the sample site (samples^-0.75) and the passes fall with samples, as before the variance was measured.
+/// With measured variance the options also hold the settings for lightmaps of fine detail (a roughness
+/// threshold, a narrower position weight and an irradiance stop that narrows with samples), which
+/// denoiseLightmap picks from the data.
 DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance = false);
+
+/// How rough a lightmap is against its measured noise: over the texels whose four neighbours are valid, of
+/// their chart and of their normal (within 8 degrees), the lower quartile of r^2 / (var_p + sum var_q / 16),
+/// r = Y_p - mean of the four Y_q, over the lower quartile of chi-square with one degree of freedom (0.1015).
+/// Noise alone of the measured variance gives 1; the bake's scrambled Sobol samples err 3 to 15 times less
+/// (in square) than the variance of independent samples it measures, and smooth light adds little, so a smooth
+/// lightmap gives 0.05-0.2; texel-wide detail (beams, contact edges) keeps it at 0.3 or more however many
+/// samples. 1 when fewer than 16 texels qualify (a lightmap of slivers is all detail).
+float lightmapRoughnessAgainstNoise(const std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides,
+                                    int resolution, const std::vector<float>& luminance_variance);
 
 /// Filters rgba (alpha > 0 marks a valid texel; invalid texels neither change nor contribute), in place.
 /// guides holds resolution^2 entries (ignored where invalid). luminance_variance: resolution^2 variances of each
-/// texel's mean luminance (luminanceVarianceOfMean), or empty for the relative stop. O(iterations * 25 * texels).
+/// texel's mean luminance (luminanceVarianceOfMean), or empty for the relative stop. With measured variance and
+/// options.detail_roughness_threshold > 0, a lightmap whose lightmapRoughnessAgainstNoise reaches the threshold
+/// is filtered with the detail_* settings. O(iterations * 25 * texels).
 /// Throws std::invalid_argument when a buffer's size is not resolution^2.
 void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides, int resolution,
                      const DenoiseOptions& options = {}, const std::vector<float>& luminance_variance = {});
