@@ -37,14 +37,22 @@ TEST(AdaptiveSampling, ExtraSamplesFollowEachTexelsNoiseWithinTheBudget) {
     const double spent = std::accumulate(extra.begin(), extra.end(), 0.0);
     const double wanted = double(budget - pilot) * double(sigma.size());
     EXPECT_NEAR(spent, wanted, 2.0 * sigma.size());
-    // Monotone in sigma, proportional to it between the pilot floor and the cap (8x the budget in all).
+    // Monotone in sigma, proportional to sigma^kAdaptiveNoiseExponent between the pilot floor and the cap (8x
+    // the budget in all).
     std::vector<size_t> order(sigma.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return sigma[a] < sigma[b]; });
     for (size_t k = 1; k < order.size(); ++k) EXPECT_LE(extra[order[k - 1]], extra[order[k]]);
     for (uint32_t e : extra) EXPECT_LE(pilot + e, 8 * budget + 2);
     const size_t middle = order[order.size() * 9 / 10], higher = order[order.size() * 97 / 100];
-    EXPECT_NEAR(double(pilot + extra[higher]) / double(pilot + extra[middle]), sigma[higher] / sigma[middle], 0.1);
+    EXPECT_NEAR(double(pilot + extra[higher]) / double(pilot + extra[middle]),
+                std::pow(sigma[higher] / sigma[middle], kAdaptiveNoiseExponent), 0.1);
+    // With the exponent 1, proportional to sigma itself (the minimum summed variance for exact sigmas).
+    AdaptivePlanOptions proportional{4, 8.0};
+    proportional.noise_exponent = 1.0;
+    const std::vector<uint32_t> extra_by_sigma = planAdaptiveSamples(sigma, pilot, budget, proportional);
+    EXPECT_NEAR(double(pilot + extra_by_sigma[higher]) / double(pilot + extra_by_sigma[middle]),
+                sigma[higher] / sigma[middle], 0.1);
     // What it buys: the summed variance sigma^2 / n against uniform sampling at the same spent samples.
     double adaptive_variance = 0.0, uniform_variance = 0.0;
     const double uniform_samples = pilot + spent / double(sigma.size());
@@ -53,8 +61,24 @@ TEST(AdaptiveSampling, ExtraSamplesFollowEachTexelsNoiseWithinTheBudget) {
         uniform_variance += double(sigma[t]) * sigma[t] / uniform_samples;
     }
     // The optimum (n proportional to sigma, no pilot floor) is (mean sigma)^2 / mean(sigma^2) = exp(-1.2^2) =
-    // 0.24 of uniform here; the pilot's floor of half the budget keeps part of that.
+    // 0.24 of uniform here; the pilot's floor of half the budget and the flatter sigma^0.6 keep part of that.
     EXPECT_LT(adaptive_variance, 0.6 * uniform_variance);
+}
+
+TEST(AdaptiveSampling, PilotIsAQuarterOfTheSamplesAndAtLeastSixteen) {
+    EXPECT_EQ(adaptivePilotSamples(kMinAdaptiveSamples), 16u);  // at least 16: half of the first adaptive count
+    EXPECT_EQ(adaptivePilotSamples(64), 16u);
+    EXPECT_EQ(adaptivePilotSamples(128), 32u);
+    EXPECT_EQ(adaptivePilotSamples(512), 128u);
+    EXPECT_EQ(adaptivePilotSamples(24), 12u);  // never more than half: the plan must have samples to place
+    // `converge` continues one uniform trace from study point to study point: the pilot must never shrink as
+    // the samples double.
+    for (uint32_t samples = kMinAdaptiveSamples; samples < (1u << 20); samples *= 2)
+        EXPECT_LE(adaptivePilotSamples(samples), adaptivePilotSamples(2 * samples)) << samples;
+    // A footprint of 4 points sharing 128 samples a texel (32 each): 8 pilot samples a point, 32 a texel.
+    EXPECT_EQ(adaptivePilotSamplesPerPoint(32, 4), 8u);
+    EXPECT_EQ(adaptivePilotSamplesPerPoint(64, 1), 16u);
+    EXPECT_EQ(adaptivePilotSamplesPerPoint(2, 16), 1u);  // at least one sample a point
 }
 
 TEST(AdaptiveSampling, QuietTexelsGetNothingAndCopiesAreWholeFootprints) {

@@ -22,33 +22,47 @@ bool usableSigma(float sigma) { return std::isfinite(sigma) && sigma > 0.0f; }
 
 }  // namespace
 
+uint32_t adaptivePilotSamples(uint32_t samples_per_texel) {
+    return std::min(std::max(samples_per_texel / 4, kMinAdaptivePilotSamples), samples_per_texel / 2);
+}
+
+uint32_t adaptivePilotSamplesPerPoint(uint32_t samples_per_point, size_t points_per_texel) {
+    const uint32_t points = uint32_t(std::max<size_t>(points_per_texel, 1));
+    return std::max(adaptivePilotSamples(samples_per_point * points) / points, 1u);
+}
+
 std::vector<uint32_t> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,
                                           uint32_t budget_samples, const AdaptivePlanOptions& options) {
     std::vector<uint32_t> extra_per_texel(texel_sample_sigma.size(), 0u);
     if (budget_samples <= pilot_samples || texel_sample_sigma.empty()) return extra_per_texel;
+    // The plan's weight of each texel: sigma^exponent (adaptive_sampling.h says why not sigma itself).
+    std::vector<float> weight(texel_sample_sigma.size(), 0.0f);
+    for (size_t texel = 0; texel < weight.size(); ++texel)
+        if (usableSigma(texel_sample_sigma[texel]))
+            weight[texel] = float(std::pow(double(texel_sample_sigma[texel]), options.noise_exponent));
     const double pilot = double(pilot_samples);
     const double cap = std::max(pilot, options.max_budget_multiple * double(budget_samples));
-    const double extra_total = double(budget_samples - pilot_samples) * double(texel_sample_sigma.size());
-    double smallest_sigma = 0.0, room = 0.0;
-    for (float sigma : texel_sample_sigma)
-        if (usableSigma(sigma)) {
-            smallest_sigma = smallest_sigma > 0.0 ? std::min(smallest_sigma, double(sigma)) : double(sigma);
+    const double extra_total = double(budget_samples - pilot_samples) * double(weight.size());
+    double smallest_weight = 0.0, room = 0.0;
+    for (float w : weight)
+        if (usableSigma(w)) {
+            smallest_weight = smallest_weight > 0.0 ? std::min(smallest_weight, double(w)) : double(w);
             room += cap - pilot;
         }
-    if (smallest_sigma <= 0.0) return extra_per_texel;
+    if (smallest_weight <= 0.0) return extra_per_texel;
 
-    // Extra samples of a texel for a given lambda: n_t = clamp(lambda sigma_t, pilot, cap), less the pilot.
-    const auto extraFor = [&](double lambda, float sigma) {
-        return usableSigma(sigma) ? std::clamp(lambda * double(sigma), pilot, cap) - pilot : 0.0;
+    // Extra samples of a texel for a given lambda: n_t = clamp(lambda w_t, pilot, cap), less the pilot.
+    const auto extraFor = [&](double lambda, float w) {
+        return usableSigma(w) ? std::clamp(lambda * double(w), pilot, cap) - pilot : 0.0;
     };
     const auto extraSum = [&](double lambda) {
         double total = 0.0;
-        for (float sigma : texel_sample_sigma) total += extraFor(lambda, sigma);
+        for (float w : weight) total += extraFor(lambda, w);
         return total;
     };
-    // The total grows with lambda, and at cap / smallest sigma every texel is at its cap: bisect for the
+    // The total grows with lambda, and at cap / smallest weight every texel is at its cap: bisect for the
     // budget, or take that when even every texel at its cap spends less.
-    double lambda = cap / smallest_sigma;
+    double lambda = cap / smallest_weight;
     if (room > extra_total) {
         double low = 0.0;
         for (int iteration = 0; iteration < 60; ++iteration) {
@@ -57,9 +71,9 @@ std::vector<uint32_t> planAdaptiveSamples(const std::vector<float>& texel_sample
         }
     }
     const double granularity = double(std::max(options.granularity, 1u));
-    for (size_t texel = 0; texel < texel_sample_sigma.size(); ++texel)
+    for (size_t texel = 0; texel < weight.size(); ++texel)
         extra_per_texel[texel] =
-            uint32_t(granularity * std::round(extraFor(lambda, texel_sample_sigma[texel]) / granularity));
+            uint32_t(granularity * std::round(extraFor(lambda, weight[texel]) / granularity));
     return extra_per_texel;
 }
 

@@ -48,7 +48,9 @@ uint64_t traceInputHash(const SiteConfig& site, const std::vector<std::string>& 
     // The sky-sampling threshold picks the tracer's method per sky: a checkpoint from another method must not
     // be resumed, or the result would differ from an uninterrupted bake.
     hash.addString("texel footprints 1");  // texels traced over their footprints (lightmap_uv.h), not at centres
-    hash.addString(options.adaptive_sampling ? "adaptive sampling 1" : "uniform sampling");
+    // Version 2: a pilot of a quarter and the plan by sigma^kAdaptiveNoiseExponent (version 1's checkpoints hold
+    // a pilot of half, which this plan must not resume).
+    hash.addString(options.adaptive_sampling ? "adaptive sampling 2" : "uniform sampling");
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
         .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
@@ -65,7 +67,7 @@ struct PointSet {
     std::vector<QueryPointGpu> points;
     uint32_t skip_flags = 0;
     uint32_t samples_per_point = 0;    ///< 0: the bake's samples (the building's footprint slots take a share)
-    bool adaptive = false;             ///< half the samples as a pilot, the rest where the noise is (traceAdaptively)
+    bool adaptive = false;             ///< a pilot of a quarter, the rest where the noise is (traceAdaptively)
     uint32_t samples(uint32_t bake_samples) const { return samples_per_point ? samples_per_point : bake_samples; }
 };
 
@@ -170,7 +172,7 @@ private:
     bool stop_requested_ = false;
 };
 
-/// The building's set traced adaptively (adaptive_sampling.h): a pilot of half the samples per point, every
+/// The building's set traced adaptively (adaptive_sampling.h): a pilot (adaptivePilotSamplesPerPoint), every
 /// point alike (checkpointed as the set itself), then extra samples planned per texel from the pilot's noise,
 /// traced as copies of the texels' footprint points in sets of their own ("building_extra", checkpointed like
 /// any set; the plan follows from the pilot's sums, so a resumed bake plans the same copies), added to their
@@ -178,7 +180,7 @@ private:
 std::optional<SetTracer::Sums> traceAdaptively(SetTracer& set_tracer, const std::string& slot_name, const PointSet& set,
                                                const LightmapFootprint& footprint, const TracePass& pass,
                                                uint32_t samples, size_t max_points) {
-    const uint32_t pilot = samples / 2;
+    const uint32_t pilot = adaptivePilotSamplesPerPoint(samples, footprint.pointsPerTexel());
     std::optional<SetTracer::Sums> pilot_sums = set_tracer.trace(slot_name, set, pass, pilot);
     if (!pilot_sums || set.points.empty()) return pilot_sums;
     SetSums all{std::move(pilot_sums->sums), std::move(pilot_sums->luminance_square_sums),

@@ -163,7 +163,8 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     uint64_t total_rays = 0;
     for (uint32_t target = 1; target <= options.max_samples; target *= 2) {
         const bool adaptive = options.adaptive && target >= kMinAdaptiveSamples;
-        const uint32_t uniform_samples = adaptive ? target / 2 : target;
+        // The pilot never shrinks as target doubles (16, 16, 32, ...), so the running uniform sums are the pilot.
+        const uint32_t uniform_samples = adaptive ? adaptivePilotSamples(target) : target;
         if (uniform_samples > estimate.samples_done) {
             const auto start = Clock::now();
             const uint32_t chunk = uniform_samples - estimate.samples_done;

@@ -7,10 +7,19 @@
 // sample standard deviation sigma_t (Lagrange); uniform sampling wastes (mean sigma^2) / (mean sigma)^2 of the
 // rays, about 2x there.
 //
-// The bake traces a pilot (half the samples, every texel alike), estimates each texel's sigma from its sums of
-// luminance and squared luminance, and plans the other half per texel; the extra samples are one more point set
-// (copies of the noisy texels' points) for the existing tracer and checkpoints. The plan follows from the
-// pilot's sums alone, so a resumed bake plans the same set.
+// The bake traces a pilot (a quarter of the samples, at least 16 a texel, every texel alike), estimates each
+// texel's sigma from its sums of luminance and squared luminance, and plans the rest per texel; the extra samples
+// are one more point set (copies of the noisy texels' points) for the existing tracer and checkpoints. The plan
+// follows from the pilot's sums alone, so a resumed bake plans the same set.
+//
+// Two measured departures from n_t proportional to sigma_t (issue 11.1, the shrine site, `converge` against a
+// 1024-sample reference, error^2 x rays): a pilot of a quarter instead of half (41 % of the shrine's texels get
+// under 0.15 of the mean irradiance, under its eaves and inside, and hold 1 % of the squared error at 64 uniform
+// samples, with the longest paths: 3.9 rays a sample against 2.5 on its bright walls), and
+// n_t proportional to sigma_t^0.6 instead of sigma_t. The allocation n ~ sigma is optimal for exact sigmas and
+// independent samples, but a 16-sample pilot's sigma is itself noisy (a rare bright path in the pilot makes a
+// texel look far noisier than it is, and draw that many more samples), and the scrambled Sobol draws' error falls faster
+// than 1/sqrt(n) (error^2 ~ n^-1.4 makes the optimum sigma^0.83 even for exact sigmas). Both flatten the plan.
 
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +40,27 @@ namespace gusuku::bake {
 /// 1.40x).
 inline constexpr uint32_t kMinAdaptiveSamples = 32;
 
+/// The fewest pilot samples a texel gets (the pilot at kMinAdaptiveSamples): fewer judged the noise too poorly.
+inline constexpr uint32_t kMinAdaptivePilotSamples = 16;
+
+/// Texel t is planned toward n_t proportional to sigma_t^kAdaptiveNoiseExponent (see the top of this file for
+/// why not 1). Measured (`converge`'s study points against a 1024-sample reference, its noise taken out),
+/// error^2 x rays of the plan before (a pilot of half, exponent 1) over this one (a quarter, 0.6), at 64 / 128
+/// samples: shrine overcast 1.33 / 1.40x, shrine sunny_1200 1.24 / 1.32x, sample overcast 1.30 / 1.27x, sample
+/// sunny_1200 1.14 / 1.04x. Exponent 0.5 gained 2-3 % more on the shrine and 3 % less on the sample's sunny
+/// slot, 0.65 and 0.8 less on the shrine (0.8: 1.19 / 1.35x on its overcast).
+inline constexpr double kAdaptiveNoiseExponent = 0.6;
+
+/// A texel's pilot for `samples_per_texel` samples: a quarter of them, at least kMinAdaptivePilotSamples, at
+/// most half. Measured on the shrine's overcast slot (exponent 1), against a pilot of half: a quarter 1.07x /
+/// 1.19x less error^2 x rays at 64 / 128 samples; an eighth (8 samples at 64) 1.17x more at 64; with exponent
+/// 0.8, three eighths 1.11x more than a quarter at 128. Only meaningful from kMinAdaptiveSamples on.
+uint32_t adaptivePilotSamples(uint32_t samples_per_texel);
+
+/// The pilot per trace point of a texel's footprint (points_per_texel points sharing its samples):
+/// adaptivePilotSamples(samples_per_point * points_per_texel) / points_per_texel, at least 1.
+uint32_t adaptivePilotSamplesPerPoint(uint32_t samples_per_point, size_t points_per_texel);
+
 /// Samples of one copy of a texel's point in the extra set: small, so the extras' granularity stays fine, but
 /// a stratified handful (the first points of a scrambled Sobol sequence) rather than one sample each.
 inline constexpr uint32_t kAdaptiveSamplesPerCopy = 4;
@@ -42,11 +72,14 @@ struct AdaptivePlanOptions {
     /// No texel gets more than this many times the mean budget in all: a sigma estimated from a pilot that met
     /// one rare bright path is itself noisy, and must not draw the whole budget.
     double max_budget_multiple = 8.0;
+    /// n_t proportional to sigma_t to this power (kAdaptiveNoiseExponent; 1: the minimum summed variance for
+    /// exact sigmas and independent samples).
+    double noise_exponent = kAdaptiveNoiseExponent;
 };
 
 /// Plans the samples after a pilot: every texel already has `pilot_samples`; the texels together get about
-/// (budget_samples - pilot_samples) * texel_count more, texel t toward n_t = lambda * sigma_t (n_t >= pilot, at
-/// most max_budget_multiple * budget_samples), lambda set so the total is the budget. Returns each texel's
+/// (budget_samples - pilot_samples) * texel_count more, texel t toward n_t = lambda * sigma_t^noise_exponent
+/// (n_t >= pilot, at most max_budget_multiple * budget_samples), lambda set so the total is the budget. Returns each texel's
 /// extra samples, rounded to the nearest multiple of the granularity. Texels with sigma 0 (or not finite) get
 /// nothing. Deterministic. All zero when budget <= pilot or no sigma is positive.
 std::vector<uint32_t> planAdaptiveSamples(const std::vector<float>& texel_sample_sigma, uint32_t pilot_samples,

@@ -20,9 +20,10 @@ struct ConvergenceOptions {
     int max_texture_size = 512;
     bool show_progress = true;
     SkySampling sky_sampling = SkySampling::Automatic;  ///< the study and its reference both use it
-    /// As the bake samples (adaptive_sampling.h): from 32 samples on, each study point is a pilot of half its
-    /// samples, every texel alike, and the other half planned by each texel's noise; its time and rays are the
-    /// pilot's (cumulative, as for uniform points) plus its own extra samples'. false: every texel alike.
+    /// As the bake samples (adaptive_sampling.h): from 32 samples on, each study point is a pilot
+    /// (adaptivePilotSamples: a quarter, at least 16), every texel alike, and the rest planned by each texel's
+    /// noise; its time and rays are the pilot's (cumulative, as for uniform points) plus its own extra
+    /// samples'. false: every texel alike.
     bool adaptive = true;
     /// Texels whose errors are also measured on their own (the "common" columns): resolution^2 flags in the
     /// lightmap's layout (row 0 at the top), e.g. the texels another baker bakes too, so that two bakers'
