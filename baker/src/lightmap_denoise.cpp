@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -29,19 +30,22 @@ constexpr float kDenoiseNoiseMultiple = 2.0f;
 constexpr float kLuminanceNoiseSigmasFew = 2.0f;
 constexpr float kLuminanceNoiseSigmasMany = 1.5f;
 constexpr uint32_t kManySamples = 32;
-// Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness): a position weight of one
-// texel at 8 texels per metre and a stop of kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall
-// measured sigmas, at most kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as
-// samples grow (its square by 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot, against
-// an independent 1024-sample reference), so the stop narrows at about half that rate. Chosen with each a-trous
-// variant run on the dumped lightmaps of `gusuku-bake converge` (shrine overcast and sunny_1200, sample overcast)
-// against the reference, over position widths 0.125/0.1875/0.25 m, stops 1.2/1.5/1.8/2 at 32 and falls 0/0.225/
-// 0.35: on the shrine this is the best (raw error^2 over filtered, the reference's noise taken out, at 32/64/128/
-// 256 samples: 1.35/1.25/1.15/1.06 overcast, 1.35/1.22/1.16/1.10 sunny_1200, where 447f357's filter gave 1.28/
-// 1.06/0.85/0.58 and 1.30/1.06/0.87/0.65); on the sample site it is 1.5-2.5x worse than the wide filter, which
-// its smooth light wants (6.6/5.6/4.5/3.4 there). The sample site's roughness is 0.06-0.20 from 8 to 256 samples,
-// the shrine's 0.34-0.79 (overcast and sunny_1200): the threshold lies between.
+// Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness), in their charts of fewer
+// than kDetailMaxChartTexels texels, from kManySamples on: a position weight of one texel at 8 texels per metre
+// and a stop of kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall measured sigmas, at most
+// kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow (its square
+// by 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot), so the stop narrows at about
+// half that rate. Chosen by running filter variants on the lightmaps `gusuku-bake converge` filters (dumped;
+// shrine overcast and sunny_1200, sample overcast and sunny_1200, 8 to 256 samples) against 1024-sample
+// references: position widths 0.125/0.1875/0.25 m, stops 1.2-2 at 32 falling as samples^0/-0.225/-0.35; per
+// texel choices among the passes (SURE, intersection of confidence intervals), non-local means, a first-order
+// regression and a stop on a self-calibrated variance gained less. On the shrine, whose charts all have under
+// 512 texels, this is the best found; on the sample site, whose light is smooth, it is 1.5-2.5x worse than the
+// wide filter, which the sample site keeps: its overcast slot's roughness is 0.06-0.20 from 8 samples on, the
+// shrine's 0.34-0.79 (its sunny_1200 slot's 0.22-0.43 from 32 on: its large charts keep the wide filter, its
+// charts of under 512 texels lose 2-6 % in error^2 at 32-128 samples).
 constexpr float kDetailRoughness = 0.25f;
+constexpr uint32_t kDetailMaxChartTexels = 512;
 constexpr float kDetailPositionSigmaM = 0.125f;
 constexpr float kDetailNoiseSigmasAt32 = 1.5f;
 constexpr float kDetailNoiseSigmasFall = 0.35f;
@@ -90,7 +94,8 @@ DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance) {
     if (with_variance && samples >= 2) {
         options.iterations = kVarianceGuidedIterations;
         options.luminance_noise_sigmas = samples < kManySamples ? kLuminanceNoiseSigmasFew : kLuminanceNoiseSigmasMany;
-        options.detail_roughness_threshold = kDetailRoughness;
+        options.detail_roughness_threshold = samples >= kManySamples ? kDetailRoughness : 0.0f;
+        options.detail_max_chart_texels = kDetailMaxChartTexels;
         options.detail_position_sigma_m = kDetailPositionSigmaM;
         options.detail_luminance_noise_sigmas =
             std::min(kLuminanceNoiseSigmasFew,
@@ -146,14 +151,23 @@ void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuid
     const bool measured = !luminance_variance.empty();
     if (measured && luminance_variance.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: luminance_variance does not hold resolution^2 texels");
-    DenoiseOptions options = chosen_options;
+    const DenoiseOptions& options = chosen_options;
+    // Per texel: whether it takes the detail settings (a small chart of a rough lightmap).
+    std::vector<bool> detail(texel_count, false);
     if (measured && options.detail_roughness_threshold > 0.0f &&
         lightmapRoughnessAgainstNoise(rgba, guides, resolution, luminance_variance) >=
             options.detail_roughness_threshold) {
-        options.position_sigma_m = options.detail_position_sigma_m;
-        options.luminance_noise_sigmas = options.detail_luminance_noise_sigmas;
+        std::unordered_map<uint32_t, uint32_t> chart_texels;
+        for (size_t i = 0; i < texel_count; ++i)
+            if (rgba[i].a > 0.0f) ++chart_texels[guides[i].chart];
+        for (size_t i = 0; i < texel_count; ++i)
+            detail[i] = rgba[i].a > 0.0f && chart_texels[guides[i].chart] < options.detail_max_chart_texels;
     }
     const float inverse_position_variance = 1.0f / (2.0f * options.position_sigma_m * options.position_sigma_m);
+    const float detail_inverse_position_variance =
+        1.0f / (2.0f * options.detail_position_sigma_m * options.detail_position_sigma_m);
+    const float detail_inverse_sigmas_squared =
+        1.0f / (2.0f * options.detail_luminance_noise_sigmas * options.detail_luminance_noise_sigmas);
     const float inverse_relative_variance =
         1.0f / (2.0f * options.relative_luminance_sigma * options.relative_luminance_sigma);
     const float inverse_sigmas_squared =
@@ -173,6 +187,9 @@ void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuid
                 if (source[centre].a <= 0.0f) continue;
                 const DenoiseGuide& guide = guides[centre];
                 const float centre_luminance = luminance[centre];
+                const float position_falloff =
+                    detail[centre] ? detail_inverse_position_variance : inverse_position_variance;
+                const float noise_falloff = detail[centre] ? detail_inverse_sigmas_squared : inverse_sigmas_squared;
                 glm::vec3 weighted_sum(0.0f);
                 float weight_sum = 0.0f, weighted_variance = 0.0f;
                 for (int j = 0; j < 5; ++j) {
@@ -184,7 +201,7 @@ void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuid
                         const size_t q = size_t(qy) * size_t(resolution) + size_t(qx);
                         if (source[q].a <= 0.0f || guides[q].chart != guide.chart) continue;
                         const glm::vec3 offset = guides[q].position - guide.position;
-                        const float position_weight = std::exp(-glm::dot(offset, offset) * inverse_position_variance);
+                        const float position_weight = std::exp(-glm::dot(offset, offset) * position_falloff);
                         const float normal_weight =
                             std::pow(std::max(0.0f, glm::dot(guides[q].normal, guide.normal)), options.normal_power);
                         const float difference = luminance[q] - centre_luminance;
@@ -194,7 +211,7 @@ void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuid
                             // from any neighbour that differs, without dividing by zero.
                             const float floor = 1e-6f * (luminance[q] + centre_luminance);
                             const float noise = stop_variance[centre] + stop_variance[q] + floor * floor;
-                            colour_weight = noise > 0.0f ? std::exp(-difference * difference * inverse_sigmas_squared / noise)
+                            colour_weight = noise > 0.0f ? std::exp(-difference * difference * noise_falloff / noise)
                                                          : (difference == 0.0f ? 1.0f : 0.0f);
                         } else {
                             const float relative = std::fabs(difference) /
