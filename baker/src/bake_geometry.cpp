@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "gusuku/gltf_loader.h"
 #include "gusuku/input_error.h"
@@ -72,6 +73,7 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
                                                          geometry.site_mesh_is_stand_in);
     geometry.scene = makeTraceScene(geometry.building, &site_mesh);
     geometry.cpu_bvh = buildBvh(geometry.scene.mesh, geometry.scene.triangle_flags);
+    geometry.scene.bvh = std::make_shared<const Bvh>(geometry.cpu_bvh);  // the tracers upload this one
     if (geometry.cpu_bvh.dropped_triangle_count > 0)
         geometry.warnings.push_back(std::to_string(geometry.cpu_bvh.dropped_triangle_count) +
                                     " degenerate or non-finite triangles were left out of the trace");

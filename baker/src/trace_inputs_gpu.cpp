@@ -2,6 +2,8 @@
 
 #include "gusuku_bake/trace_inputs_gpu.h"
 
+#include <memory>
+
 #include "bake_irradiance_interface.h"
 #include "camera_trace_interface.h"
 #include "gusuku_bake/bvh.h"
@@ -18,7 +20,9 @@ static_assert(BAKE_SKY_RADIANCE_BINDING == 5 && CAMERA_SKY_RADIANCE_BINDING == 5
 static_assert(BAKE_SKY_TABLE_BINDING == 6 && CAMERA_SKY_TABLE_BINDING == 6);
 
 TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size) {
-    const Bvh bvh = buildBvh(scene.mesh, scene.triangle_flags);
+    std::shared_ptr<const Bvh> built = scene.bvh;
+    if (!built) built = std::make_shared<const Bvh>(buildBvh(scene.mesh, scene.triangle_flags));
+    const Bvh& bvh = *built;
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
     constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     TraceSceneGpu uploaded;

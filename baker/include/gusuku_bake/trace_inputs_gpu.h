@@ -26,7 +26,7 @@ struct TraceSceneGpu {
     size_t dropped_triangle_count = 0;  ///< left out of the BVH (degenerate or not finite)
 };
 
-/// Builds the BVH and packs the shading (textures box-downsampled to max_texture_size), then uploads both.
+/// Builds the BVH (or takes scene.bvh when the scene carries one) and packs the shading (textures box-downsampled to max_texture_size), then uploads both.
 /// Throws what buildBvh, packSceneShading and GpuBuffer throw.
 TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size);
 

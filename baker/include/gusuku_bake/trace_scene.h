@@ -4,6 +4,7 @@
 // shaders/include/scene_shading.glsl reads.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -12,6 +13,8 @@
 
 namespace gusuku::bake {
 
+struct Bvh;
+
 /// Triangle flag: the triangle belongs to the building (skipped by "without building" passes).
 constexpr uint32_t kTriangleFlagBuilding = 1u;
 
@@ -19,6 +22,11 @@ struct TraceScene {
     TriangleMesh mesh;                     ///< building triangles first, then the site's
     std::vector<uint32_t> triangle_flags;  ///< one per triangle of mesh
     size_t building_triangle_count = 0;
+    /// The BVH over exactly this mesh and these flags, when the caller has built one already (the bake's geometry
+    /// builds it for its CPU work): the tracers upload it instead of building their own (with spatial splits a
+    /// build of a detailed site costs a few tenths of a second). Null: the tracer builds it. Whoever changes
+    /// mesh or triangle_flags afterwards must reset it.
+    std::shared_ptr<const Bvh> bvh;
 };
 
 /// Merges the building and (optionally) the site mesh. Either may be empty, not both.
