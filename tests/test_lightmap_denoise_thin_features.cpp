@@ -2,10 +2,10 @@
 // against a known true lightmap (issue 11, item 1: on the shrine site the filter of 447f357 added more bias
 // across the 1-2 texel wide beams than the noise it took out).
 //
-// The true image: eight charts of 420 texels (the shrine's beams and boards: all its charts have under 512) of a
-// lightmap at 8 texels per metre (the shrine's density), each a face with a smooth falloff towards its foot, a
-// texel-wide line 20 % darker across it every 4 rows (the shadow of a beam) and its two outer columns 25 % and
-// 10 % darker (a face meeting another: the light falls off within a texel or two). The noise imitates the
+// The true image: fourteen charts of 7 x 30 texels (the shrine's beams and boards) of a lightmap at 8 texels per
+// metre (the shrine's density), each a face with a smooth falloff towards its foot, a texel-wide line 20 %
+// darker across it every 5 rows (the shadow of a beam) and its two outer columns 25 % and 10 % darker (a face
+// meeting another: the light falls off within a texel or two). The noise imitates the
 // baker's scrambled Sobol samples as measured on the shrine (gusuku-bake converge, overcast and sunny_1200,
 // each against a 1024-sample estimate): the true error of a texel's mean falls as
 // 0.9 samples^-0.7 of its irradiance (Gaussian, independent between texels: the measured correlation between
@@ -28,7 +28,7 @@ namespace {
 
 constexpr int kSide = 64;
 constexpr float kTexelM = 0.125f;  // 8 texels per metre
-constexpr int kChartColumns = 4, kChartRows = 2, kChartWidth = 14, kChartHeight = 30, kChartGap = 2;
+constexpr int kChartColumns = 7, kChartRows = 2, kChartWidth = 7, kChartHeight = 30, kChartGap = 2;
 
 struct TrueLightmap {
     std::vector<glm::vec4> irradiance;  // alpha 1 where valid
@@ -52,7 +52,7 @@ TrueLightmap makeTrueLightmap() {
                 const float height_m = (float(row) + 0.5f) * kTexelM;
                 // A smooth falloff towards the foot (as under eaves or near the ground), 1 at the top.
                 float level = 0.35f + 0.65f * (1.0f - std::exp(-height_m / 1.5f));
-                if (row % 4 == 2) level *= 0.8f;                                     // a beam's shadow line
+                if (row % 5 == 2) level *= 0.8f;                                     // a beam's shadow line
                 if (column == 0 || column == kChartWidth - 1) level *= 0.75f;       // the contact falloff
                 if (column == 1 || column == kChartWidth - 2) level *= 0.9f;
                 truth.irradiance[i] = glm::vec4(glm::vec3(level * (1.0f + 0.1f * float(chart))), 1.0f);

@@ -30,8 +30,9 @@ constexpr float kDenoiseNoiseMultiple = 2.0f;
 constexpr float kLuminanceNoiseSigmasFew = 2.0f;
 constexpr float kLuminanceNoiseSigmasMany = 1.5f;
 constexpr uint32_t kManySamples = 32;
-// Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness), in their charts of fewer
-// than kDetailMaxChartTexels texels, from kManySamples on: a position weight of one texel at 8 texels per metre
+// Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness), in their thin charts (at
+// least kDetailMinChartEdgeFraction of the texels on the chart's edge: a rectangle under about 7-13 texels
+// across), from kManySamples on: a position weight of one texel at 8 texels per metre
 // and a stop of kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall measured sigmas, at most
 // kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow (its square
 // by 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot), so the stop narrows at about
@@ -39,13 +40,14 @@ constexpr uint32_t kManySamples = 32;
 // shrine overcast and sunny_1200, sample overcast and sunny_1200, 8 to 256 samples) against 1024-sample
 // references: position widths 0.125/0.1875/0.25 m, stops 1.2-2 at 32 falling as samples^0/-0.225/-0.35; per
 // texel choices among the passes (SURE, intersection of confidence intervals), non-local means, a first-order
-// regression and a stop on a self-calibrated variance gained less. On the shrine, whose charts all have under
-// 512 texels, this is the best found; on the sample site, whose light is smooth, it is 1.5-2.5x worse than the
-// wide filter, which the sample site keeps: its overcast slot's roughness is 0.06-0.20 from 8 samples on, the
-// shrine's 0.34-0.79 (its sunny_1200 slot's 0.22-0.43 from 32 on: its large charts keep the wide filter, its
-// charts of under 512 texels lose 2-6 % in error^2 at 32-128 samples).
+// regression and a stop on a self-calibrated variance gained less. On the shrine this is the best found; on the
+// sample site, whose light is smooth, it is 1.5-2.5x worse than the wide filter, which the sample site keeps: its
+// overcast slot's roughness is 0.06-0.20 from 8 samples on, the shrine's 0.34-0.79. The sample site's
+// sunny_1200 slot is rough too (0.22-0.43 from 32 samples on): its broad charts keep the wide filter, its thin
+// ones lose 1-5 % in error^2 at 32-128 samples (charts by size, under 512 texels, lost 2-6 %; edge fractions of
+// 0.4-0.7 lose less there but keep half of the shrine's gain or less).
 constexpr float kDetailRoughness = 0.25f;
-constexpr uint32_t kDetailMaxChartTexels = 512;
+constexpr float kDetailMinChartEdgeFraction = 0.3f;
 constexpr float kDetailPositionSigmaM = 0.125f;
 constexpr float kDetailNoiseSigmasAt32 = 1.5f;
 constexpr float kDetailNoiseSigmasFall = 0.35f;
@@ -95,7 +97,7 @@ DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance) {
         options.iterations = kVarianceGuidedIterations;
         options.luminance_noise_sigmas = samples < kManySamples ? kLuminanceNoiseSigmasFew : kLuminanceNoiseSigmasMany;
         options.detail_roughness_threshold = samples >= kManySamples ? kDetailRoughness : 0.0f;
-        options.detail_max_chart_texels = kDetailMaxChartTexels;
+        options.detail_min_chart_edge_fraction = kDetailMinChartEdgeFraction;
         options.detail_position_sigma_m = kDetailPositionSigmaM;
         options.detail_luminance_noise_sigmas =
             std::min(kLuminanceNoiseSigmasFew,
@@ -152,16 +154,36 @@ void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuid
     if (measured && luminance_variance.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: luminance_variance does not hold resolution^2 texels");
     const DenoiseOptions& options = chosen_options;
-    // Per texel: whether it takes the detail settings (a small chart of a rough lightmap).
+    // Per texel: whether it takes the detail settings (a thin chart of a rough lightmap).
     std::vector<bool> detail(texel_count, false);
     if (measured && options.detail_roughness_threshold > 0.0f &&
         lightmapRoughnessAgainstNoise(rgba, guides, resolution, luminance_variance) >=
             options.detail_roughness_threshold) {
-        std::unordered_map<uint32_t, uint32_t> chart_texels;
-        for (size_t i = 0; i < texel_count; ++i)
-            if (rgba[i].a > 0.0f) ++chart_texels[guides[i].chart];
-        for (size_t i = 0; i < texel_count; ++i)
-            detail[i] = rgba[i].a > 0.0f && chart_texels[guides[i].chart] < options.detail_max_chart_texels;
+        struct ChartCounts {
+            uint32_t texels = 0, on_edge = 0;
+        };
+        std::unordered_map<uint32_t, ChartCounts> charts;
+        const auto inChart = [&](int x, int y, uint32_t chart) {
+            if (x < 0 || y < 0 || x >= resolution || y >= resolution) return false;
+            const size_t q = size_t(y) * size_t(resolution) + size_t(x);
+            return rgba[q].a > 0.0f && guides[q].chart == chart;
+        };
+        for (int y = 0; y < resolution; ++y)
+            for (int x = 0; x < resolution; ++x) {
+                const size_t i = size_t(y) * size_t(resolution) + size_t(x);
+                if (rgba[i].a <= 0.0f) continue;
+                const uint32_t chart = guides[i].chart;
+                ChartCounts& counts = charts[chart];
+                ++counts.texels;
+                if (!inChart(x - 1, y, chart) || !inChart(x + 1, y, chart) || !inChart(x, y - 1, chart) ||
+                    !inChart(x, y + 1, chart))
+                    ++counts.on_edge;
+            }
+        for (size_t i = 0; i < texel_count; ++i) {
+            if (rgba[i].a <= 0.0f) continue;
+            const ChartCounts& counts = charts[guides[i].chart];
+            detail[i] = float(counts.on_edge) >= options.detail_min_chart_edge_fraction * float(counts.texels);
+        }
     }
     const float inverse_position_variance = 1.0f / (2.0f * options.position_sigma_m * options.position_sigma_m);
     const float detail_inverse_position_variance =

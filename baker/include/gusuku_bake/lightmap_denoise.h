@@ -38,11 +38,12 @@ struct DenoiseOptions {
     /// neighbours of the same chart (as SVGF), since a variance from a few samples is itself noisy.
     bool smooth_variance = true;
     /// With measured variance, fine detail: when the lightmap's roughness against its measured noise
-    /// (lightmapRoughnessAgainstNoise) is at least this, texels of charts with fewer than
-    /// detail_max_chart_texels valid texels (beams, brackets, boards: where texel-wide detail lies) are filtered
-    /// with the two detail_* settings instead of position_sigma_m and luminance_noise_sigmas. 0 never switches.
+    /// (lightmapRoughnessAgainstNoise) is at least this, texels of thin charts (at least
+    /// detail_min_chart_edge_fraction of their valid texels lack a valid 4-neighbour of the chart: beams,
+    /// brackets, boards, where texel-wide detail lies) are filtered with the two detail_* settings instead of
+    /// position_sigma_m and luminance_noise_sigmas. 0 never switches.
     float detail_roughness_threshold = 0.0f;
-    uint32_t detail_max_chart_texels = 512;
+    float detail_min_chart_edge_fraction = 0.3f;
     float detail_position_sigma_m = 0.125f;
     float detail_luminance_noise_sigmas = 1.5f;
 };
@@ -50,7 +51,7 @@ struct DenoiseOptions {
 /// Options for a bake of `samples` samples per texel. With measured variance the irradiance stop follows each
 /// texel's own noise; without it (the caller has no square sums, or a single sample) it narrows as the noise
 /// of the sample site (samples^-0.75) and the passes fall with samples, as before the variance was measured.
-/// With measured variance and from 32 samples on, the options also hold the settings for the small charts of
+/// With measured variance and from 32 samples on, the options also hold the settings for the thin charts of
 /// lightmaps of fine detail (a roughness threshold, a narrower position weight and an irradiance stop that
 /// narrows with samples), which denoiseLightmap applies where the data asks for them.
 DenoiseOptions denoiseOptionsForSamples(uint32_t samples, bool with_variance = false);
@@ -69,7 +70,7 @@ float lightmapRoughnessAgainstNoise(const std::vector<glm::vec4>& rgba, const st
 /// guides holds resolution^2 entries (ignored where invalid). luminance_variance: resolution^2 variances of each
 /// texel's mean luminance (luminanceVarianceOfMean), or empty for the relative stop. With measured variance and
 /// options.detail_roughness_threshold > 0, in a lightmap whose lightmapRoughnessAgainstNoise reaches the
-/// threshold the texels of small charts are filtered with the detail_* settings. O(iterations * 25 * texels).
+/// threshold the texels of thin charts are filtered with the detail_* settings. O(iterations * 25 * texels).
 /// Throws std::invalid_argument when a buffer's size is not resolution^2.
 void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides, int resolution,
                      const DenoiseOptions& options = {}, const std::vector<float>& luminance_variance = {});
