@@ -1,10 +1,12 @@
 #include "gusuku_bake/irradiance_tracer.h"
 
 #include <algorithm>
-#include <cstddef>
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "bake_accumulate_comp_spv.h"
 #include "bake_accumulate_interface.h"
@@ -21,7 +23,8 @@ namespace {
 // Bindings and push constants are written once, in shaders/include/bake_{irradiance,accumulate}_interface.h.
 using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
 using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
-static_assert(sizeof(BakePushConstants) == 72 && offsetof(BakePushConstants, bounces_before_roulette) == 68 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
+static_assert(sizeof(BakePushConstants) == 76 && offsetof(BakePushConstants, bounces_before_roulette) == 68 &&
+                  offsetof(BakePushConstants, sky_rays_at_point) == 72 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
                   offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
                   offsetof(BakePushConstants, sky_next_event) == 64,
               "std430 offsets of bake_irradiance_interface.h's push constants");
@@ -104,6 +107,7 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
                  push.sun_irradiance_ray_offset.components);
     push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
     push.bounces_before_roulette = pass.bounces_before_roulette;
+    push.sky_rays_at_point = resolvedSkyRaysAtPoint(pass);
 
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
     const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
@@ -177,6 +181,17 @@ float luminanceVarianceOfMean(const glm::vec4& sum, float luminance_square_sum, 
 
 SkySampling IrradianceTracer::resolvedSkySampling(SkySampling requested) const {
     return requested == SkySampling::Automatic ? automatic_sky_sampling_ : requested;
+}
+
+uint32_t IrradianceTracer::resolvedSkyRaysAtPoint(const TracePass& pass) const {
+    if (resolvedSkySampling(pass.sky_sampling) != SkySampling::CosineAndMap) return 1;
+    if (pass.sky_rays_at_point == 0)
+        return pass.sun.present || pass.mode != TraceMode::IndirectIrradiance ? 1u : kSkyRaysAtPointWithoutSun;
+    // A power of two: the rays of a sample are then one aligned block of the Sobol sequence (rngNext2Split).
+    if (pass.sky_rays_at_point > 64 || !std::has_single_bit(pass.sky_rays_at_point))
+        throw std::invalid_argument("TracePass::sky_rays_at_point " + std::to_string(pass.sky_rays_at_point) +
+                                    " is not a power of two up to 64");
+    return pass.sky_rays_at_point;
 }
 
 SkySampling resolveSkySampling(SkySampling requested, const SkySamplingTables& sky) {

@@ -60,6 +60,7 @@ void main() {
         settings.ray_offset = pc.sun_irradiance_ray_offset.w;
         settings.sky_next_event = pc.sky_next_event != 0u;
         g_bounces_before_roulette = max(pc.bounces_before_roulette, 1u);
+        g_sky_rays_at_point = max(pc.sky_rays_at_point, 1u);
 
         // The face plane on the shading normal's side: the half-space light may come from (irradiance_paths.glsl).
         vec3 face_normal = point.face_normal.xyz;

@@ -38,6 +38,7 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(BakeIrradiancePushConstants)
     vec4 sun_irradiance_ray_offset;  // xyz E_sun (W/m^2 per channel), w ray offset (metres)
     uint sky_next_event;             // 1: sample the sky map too (MIS), 0: cosine lobe alone
     uint bounces_before_roulette;    // Russian roulette from this many reflections on (irradiance_paths.glsl)
+    uint sky_rays_at_point;          // sky next-event rays at the query point itself (irradiance_paths.glsl)
 GUSUKU_PUSH_CONSTANTS_END(BakeIrradiancePushConstants, pc)
 
 // local_size_x of bake_irradiance.comp and bake_accumulate.comp

@@ -44,6 +44,10 @@ const uint kBouncesBeforeRoulette = 3u;
 // What the paths use; a kernel may override it before tracing (bake_irradiance.comp takes it from its push
 // constants so that tests can run the earlier estimator, 1, side by side with this one).
 uint g_bounces_before_roulette = kBouncesBeforeRoulette;
+// Sky next-event rays at the query point (depth 0), a power of two; 1 at every later vertex. Their draws are one
+// aligned block of the sample's Sobol sequence (rngNext2Split), and the MIS weights count them (Veach's
+// multi-sample power heuristic: n_map p_map against p_cos), so the estimate stays unbiased for any count.
+uint g_sky_rays_at_point = 1u;
 
 bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
     g_rays_traced++;
@@ -92,15 +96,21 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         // Sky by importance sampling the map, weighted against the cosine lobe (power heuristic). Skipped for
         // smooth skies (the caller decides from the map): there the cosine lobe alone is nearly as good per
         // sample and costs one ray per vertex instead of two.
+        uint sky_rays = depth == 0u ? g_sky_rays_at_point : 1u;
         if (settings.sky_next_event) {
-            float sky_pdf;
-            vec3 sky_direction = sampleSkyDirection(rngNext2(rng), sky_pdf);
-            float sky_cos = dot(vertex_normal, sky_direction);
-            if (sky_cos > 0.0 && sky_pdf > 0.0 && dot(vertex_face_normal, sky_direction) > 0.0 &&
-                !traceOccluded(origin, sky_direction, settings)) {
-                float mis = powerHeuristic(sky_pdf, sky_cos / kPi);
-                irradiance += path_weight * skyRadiance(sky_direction) * (sky_cos / sky_pdf * mis);
+            for (uint k = 0u; k < sky_rays; ++k) {
+                float sky_pdf;
+                vec2 draw = sky_rays == 1u ? rngNext2(rng) : rngNext2Split(rng, k, sky_rays);
+                vec3 sky_direction = sampleSkyDirection(draw, sky_pdf);
+                float sky_cos = dot(vertex_normal, sky_direction);
+                if (sky_cos > 0.0 && sky_pdf > 0.0 && dot(vertex_face_normal, sky_direction) > 0.0 &&
+                    !traceOccluded(origin, sky_direction, settings)) {
+                    float mis = powerHeuristic(float(sky_rays) * sky_pdf, sky_cos / kPi);
+                    irradiance += path_weight * skyRadiance(sky_direction) *
+                                  (sky_cos / (float(sky_rays) * sky_pdf) * mis);
+                }
             }
+            if (sky_rays > 1u) rng.dimension++;
         }
         // The sun lights every surface the path reaches; at the query point itself it is the real-time term.
         if (depth > 0u)
@@ -117,7 +127,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         if (!bvhTraceClosest(origin, direction, 1e30, settings.skip_flags, hit)) {
             float sky_pdf;
             vec3 sky_radiance = skyRadianceAndPdf(direction, sky_pdf);
-            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, sky_pdf) : 1.0;
+            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, float(sky_rays) * sky_pdf) : 1.0;
             irradiance += path_weight * kPi * sky_radiance * mis;
             break;
         }

@@ -67,14 +67,26 @@ uint sobolSecondDimension(uint index) {
     return result;
 }
 
-vec2 rngNext2(inout Rng rng) {
+// The 2D draw of the current dimension at an index of the point's sequence; the dimension does not advance.
+vec2 rngDraw2At(Rng rng, uint index) {
     uint pair_seed = pcgHash(rng.point_seed ^ pcgHash(rng.dimension + 0x2c1b3c6du));
-    rng.dimension++;
-    uint shuffled_index = nestedUniformScramble(rng.sample_index, pair_seed);
+    uint shuffled_index = nestedUniformScramble(index, pair_seed);
     uint x = nestedUniformScramble(bitfieldReverse(shuffled_index), pcgHash(pair_seed ^ 0xa511e9b3u));
     uint y = nestedUniformScramble(sobolSecondDimension(shuffled_index), pcgHash(pair_seed ^ 0x63d83595u));
     // 24 bits, so the result stays below 1 in float.
     return vec2(float(x >> 8u), float(y >> 8u)) * (1.0 / 16777216.0);
+}
+
+// Draw k of `count` (a power of two) for this sample: index sample * count + k of the current dimension's
+// sequence, so the count draws of a sample are one aligned block of the scrambled Sobol sequence (stratified
+// among themselves, and all samples' draws together one longer sequence). The caller advances rng.dimension
+// once after the last.
+vec2 rngNext2Split(Rng rng, uint k, uint count) { return rngDraw2At(rng, rng.sample_index * count + k); }
+
+vec2 rngNext2(inout Rng rng) {
+    vec2 draw = rngDraw2At(rng, rng.sample_index);
+    rng.dimension++;
+    return draw;
 }
 
 // Orthonormal basis around a unit normal (Duff et al. 2017, branchless).
