@@ -32,20 +32,22 @@ constexpr float kLuminanceNoiseSigmasMany = 1.5f;
 constexpr uint32_t kManySamples = 32;
 // Lightmaps of fine detail (lightmapRoughnessAgainstNoise at least kDetailRoughness), in their thin charts (at
 // least kDetailMinChartEdgeFraction of the texels on the chart's edge: a rectangle under about 7-13 texels
-// across), from kManySamples on: a position weight of one texel at 8 texels per metre
-// and a stop of kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall measured sigmas, at most
-// kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow (its square
-// by 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot), so the stop narrows at about
-// half that rate. Chosen by running filter variants on the lightmaps `gusuku-bake converge` filters (dumped;
-// shrine overcast and sunny_1200, sample overcast and sunny_1200, 8 to 256 samples) against 1024-sample
-// references: position widths 0.125/0.1875/0.25 m, stops 1.2-2 at 32 falling as samples^0/-0.225/-0.35; per
-// texel choices among the passes (SURE, intersection of confidence intervals), non-local means, a first-order
-// regression and a stop on a self-calibrated variance gained less. On the shrine this is the best found; on the
-// sample site, whose light is smooth, it is 1.5-2.5x worse than the wide filter, which the sample site keeps: its
-// overcast slot's roughness is 0.06-0.20 from 8 samples on, the shrine's 0.34-0.79. The sample site's
-// sunny_1200 slot is rough too (0.22-0.43 from 32 samples on): its broad charts keep the wide filter, its thin
-// ones lose 1-5 % in error^2 at 32-128 samples (charts by size, under 512 texels, lost 2-6 %; edge fractions of
-// 0.4-0.7 lose less there but keep half of the shrine's gain or less).
+// across), from kManySamples on: a position weight of one texel at 8 texels per metre and a stop of
+// kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall measured sigmas, at most
+// kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow (its square by
+// 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot; 7.5x to 15x on the sample site's),
+// so the stop narrows at about half that rate. Chosen by running variants on the lightmaps `gusuku-bake converge`
+// filters (dumped: shrine overcast and sunny_1200, sample overcast and sunny_1200, 8 to 256 samples) against the
+// same study at 1024 samples: position widths 0.125/0.1875/0.25 m, stops 1.2-2 at 32 falling as samples^0/
+// -0.225/-0.35; per-texel choices among the passes (SURE, intersection of confidence intervals), non-local
+// means, a first-order regression and a stop on a self-calibrated variance gained less. Even a stop on the
+// reference's own irradiance (an oracle) lowers the shrine's error^2 only 1.76x at 128 samples: its light
+// changes by 40 % on average between neighbouring texels of a flat face. On the sample site, whose light is
+// smooth, these settings are 1.5-2.5x worse than the wide filter, which it keeps: its overcast slot's roughness
+// is 0.06-0.20 from 8 samples on, the shrine's 0.34-0.79. The sample site's sunny_1200 slot is rough too
+// (0.22-0.43 from 32 samples on): its broad charts keep the wide filter, its thin ones lose a few % in error^2
+// at 32-64 samples (charts by size, under 512 texels, lost more; edge fractions of 0.4-0.7 lose less there but
+// keep half of the shrine's gain or less).
 constexpr float kDetailRoughness = 0.25f;
 constexpr float kDetailMinChartEdgeFraction = 0.3f;
 constexpr float kDetailPositionSigmaM = 0.125f;
@@ -146,14 +148,13 @@ float lightmapRoughnessAgainstNoise(const std::vector<glm::vec4>& rgba, const st
 }
 
 void denoiseLightmap(std::vector<glm::vec4>& rgba, const std::vector<DenoiseGuide>& guides, int resolution,
-                     const DenoiseOptions& chosen_options, const std::vector<float>& luminance_variance) {
+                     const DenoiseOptions& options, const std::vector<float>& luminance_variance) {
     const size_t texel_count = size_t(resolution) * size_t(resolution);
     if (rgba.size() != texel_count || guides.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: buffers do not hold resolution^2 texels");
     const bool measured = !luminance_variance.empty();
     if (measured && luminance_variance.size() != texel_count)
         throw std::invalid_argument("denoiseLightmap: luminance_variance does not hold resolution^2 texels");
-    const DenoiseOptions& options = chosen_options;
     // Per texel: whether it takes the detail settings (a thin chart of a rough lightmap).
     std::vector<bool> detail(texel_count, false);
     if (measured && options.detail_roughness_threshold > 0.0f &&
