@@ -69,7 +69,8 @@ Traced trace(IrradianceTracer& tracer, const std::vector<QueryPointGpu>& points,
     const std::vector<float> squares = tracer.readLuminanceSquareSums(accumulator);
     for (size_t p = 0; p < points.size(); ++p) {
         traced.mean += luminanceRec709(glm::vec3(sums[p])) / samples / double(points.size());
-        traced.sample_variance += luminanceVarianceOfMean(sums[p], squares[p], samples) * samples / double(points.size());
+        traced.sample_variance +=
+            luminanceVarianceOfMean(sums[p], squares[p], samples) * samples / double(points.size());
     }
     return traced;
 }

@@ -24,7 +24,8 @@ namespace {
 using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
 using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
 static_assert(sizeof(BakePushConstants) == 76 && offsetof(BakePushConstants, bounces_before_roulette) == 68 &&
-                  offsetof(BakePushConstants, sky_rays_at_point) == 72 && offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
+                  offsetof(BakePushConstants, sky_rays_at_point) == 72 &&
+                  offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
                   offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
                   offsetof(BakePushConstants, sky_next_event) == 64,
               "std430 offsets of bake_irradiance_interface.h's push constants");

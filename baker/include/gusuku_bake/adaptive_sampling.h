@@ -15,11 +15,11 @@
 // Two measured departures from n_t proportional to sigma_t (issue 11.1, the shrine site, `converge` against a
 // 1024-sample reference, error^2 x rays): a pilot of a quarter instead of half (41 % of the shrine's texels get
 // under 0.15 of the mean irradiance, under its eaves and inside, and hold 1 % of the squared error at 64 uniform
-// samples, with the longest paths: 3.9 rays a sample against 2.5 on its bright walls), and
-// n_t proportional to sigma_t^0.6 instead of sigma_t. The allocation n ~ sigma is optimal for exact sigmas and
-// independent samples, but a 16-sample pilot's sigma is itself noisy (a rare bright path in the pilot makes a
-// texel look far noisier than it is, and draw that many more samples), and the scrambled Sobol draws' error falls faster
-// than 1/sqrt(n) (error^2 ~ n^-1.4 makes the optimum sigma^0.83 even for exact sigmas). Both flatten the plan.
+// samples, with the longest paths: 3.9 rays a sample against 2.5 on its bright walls), and n_t proportional to
+// sigma_t^0.6 instead of sigma_t. The allocation n ~ sigma is optimal for exact sigmas and independent samples,
+// but a 16-sample pilot's sigma is itself noisy (a rare bright path in the pilot makes a texel look far noisier
+// than it is, and draw that many more samples), and the scrambled Sobol draws' error falls faster than
+// 1/sqrt(n) (error^2 ~ n^-1.4 makes the optimum sigma^0.83 even for exact sigmas). Both flatten the plan.
 
 #include <cstddef>
 #include <cstdint>
