@@ -72,15 +72,14 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
     const TriangleMesh site_mesh = loadSiteMeshOrStandIn(site, building_bounds, max_texture_size, geometry.warnings,
                                                          geometry.site_mesh_is_stand_in);
     geometry.scene = makeTraceScene(geometry.building, &site_mesh);
-    geometry.cpu_bvh = buildBvh(geometry.scene.mesh, geometry.scene.triangle_flags);
-    geometry.scene.bvh = std::make_shared<const Bvh>(geometry.cpu_bvh);  // the tracers upload this one
-    if (geometry.cpu_bvh.dropped_triangle_count > 0)
-        geometry.warnings.push_back(std::to_string(geometry.cpu_bvh.dropped_triangle_count) +
+    geometry.scene.bvh = std::make_shared<const Bvh>(buildBvh(geometry.scene.mesh, geometry.scene.triangle_flags));
+    if (geometry.cpuBvh().dropped_triangle_count > 0)
+        geometry.warnings.push_back(std::to_string(geometry.cpuBvh().dropped_triangle_count) +
                                     " degenerate or non-finite triangles were left out of the trace");
 
     geometry.ground_region = chooseGroundRegion(building_bounds, lowest_sun_elevation_deg, site.bake.ground_cell_m);
     const Bounds3 scene_bounds = meshBounds(geometry.scene.mesh);
-    geometry.ground_cells = sampleGround(geometry.ground_region, geometry.cpu_bvh, geometry.scene.mesh,
+    geometry.ground_cells = sampleGround(geometry.ground_region, geometry.cpuBvh(), geometry.scene.mesh,
                                          kTriangleFlagBuilding, scene_bounds.max.z + 1.0f);
     return geometry;
 }

@@ -22,11 +22,13 @@ struct BakeGeometry {
     std::vector<LightmapTexel> texels;     ///< the building's lightmap texels
     std::vector<uint32_t> texel_chart;     ///< per texel, its uv1 chart (lightmapUvCharts), for the filter
     bool site_mesh_is_stand_in = false;    ///< no sfm_mesh in site.json: a flat ground plane was used
-    TraceScene scene;                      ///< building + site
-    Bvh cpu_bvh;                           ///< over scene.mesh, for the ground grid and visibility on the CPU
+    TraceScene scene;                      ///< building + site, with its BVH (scene.bvh, never null here)
     GroundRegion ground_region;
     std::vector<GroundCell> ground_cells;
     std::vector<std::string> warnings;
+
+    /// The scene's BVH, for the ground grid and visibility on the CPU; the tracers upload the same one.
+    const Bvh& cpuBvh() const { return *scene.bvh; }
 };
 
 /// Loads and prepares. lowest_sun_elevation_deg sizes the ground grid (negative: overcast only).

@@ -128,6 +128,7 @@ public:
         }
         if (!ignored_checkpoint.empty()) std::fprintf(stderr, "gusuku-bake: %s\n", ignored_checkpoint.c_str());
         auto last_checkpoint = Clock::now();
+        std::optional<Sums> written;  // what the last checkpoint of this call wrote: the accumulator's sums then
         while (accumulator.samples_done < samples) {
             const uint32_t chunk = std::min(chunk_samples_, samples - accumulator.samples_done);
             const auto start = Clock::now();
@@ -140,17 +141,22 @@ public:
             chunk_samples_ = uint32_t(std::clamp(wanted, 1.0, 64.0));
             const bool stop = stopRequested();
             if (stop || accumulator.samples_done >= samples || secondsSince(last_checkpoint) > 2.0) {
-                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator),
-                                                   tracer_.readLuminanceSquareSums(accumulator)});
+                written = Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
+                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, written->sums,
+                                                   written->luminance_square_sums});
                 last_checkpoint = Clock::now();
             }
             if (stop) return std::nullopt;
         }
-        if (!std::filesystem::exists(checkpoint_path))
-            writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, tracer_.readSums(accumulator),
-                                                   tracer_.readLuminanceSquareSums(accumulator)});
+        // The loop's last chunk wrote the final sums; without a chunk (resumed complete) they are read once here.
+        if (!written) {
+            written = Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
+            if (!std::filesystem::exists(checkpoint_path))
+                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, written->sums,
+                                                   written->luminance_square_sums});
+        }
         if (stopRequested()) return std::nullopt;
-        return Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
+        return written;
     }
 
     double traceSeconds() const { return trace_seconds_; }

@@ -117,7 +117,7 @@ std::vector<DeviceBuffer> bakeDeviceBuffers(const SiteConfig& site, const BakeGe
     const std::string scene_field = site.sfm_mesh && site_triangles > building_triangles ? "/sfm_mesh/path"
                                                                                          : "/building/path";
     const std::string triangles = std::to_string(geometry.scene.mesh.triangleCount()) + " triangles";
-    const Bvh& bvh = geometry.cpu_bvh;  // built over the same mesh and flags as the tracer's
+    const Bvh& bvh = geometry.cpuBvh();  // built over the same mesh and flags as the tracer's
     buffers.push_back({scene_field, "BVH nodes (" + triangles + ")", bvh.nodes.size() * sizeof(BvhNodeGpu)});
     buffers.push_back({scene_field, "BVH triangles (" + triangles + ")",
                        bvh.triangles.size() * sizeof(BvhTriangleGpu)});

@@ -48,7 +48,7 @@ LabStatistics bakedAppearanceStatistics(const BakeGeometry& geometry, const std:
         if (sun.present) {
             const float cos_theta = glm::dot(texel.shading_normal, sun_direction);
             if (cos_theta > 0.0f &&
-                !occludedCpu(geometry.cpu_bvh, texel.position + texel.geometric_normal * 1e-3f, sun_direction, 1e30f))
+                !occludedCpu(geometry.cpuBvh(), texel.position + texel.geometric_normal * 1e-3f, sun_direction, 1e30f))
                 total_irradiance += glm::vec3(sun.irradiance_rgb) * cos_theta;
         }
         const glm::vec3 radiance =

@@ -135,17 +135,14 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
         }
         study.error_mask_name = options.error_mask_name;
         mask.resize(geometry.texels.size());
-        for (size_t i = 0; i < geometry.texels.size(); ++i)
-            mask[i] = options.error_mask[size_t(geometry.texels[i].y) * resolution + size_t(geometry.texels[i].x)];
-        std::vector<uint8_t> in_lightmap(resolution * resolution, 0);
         for (size_t i = 0; i < geometry.texels.size(); ++i) {
-            in_lightmap[size_t(geometry.texels[i].y) * resolution + size_t(geometry.texels[i].x)] = 1;
+            mask[i] = options.error_mask[size_t(geometry.texels[i].y) * resolution + size_t(geometry.texels[i].x)];
             if (mask[i] != 0 && reference_texels[i].a > 0.0f) ++study.common_texel_count;
         }
-        for (size_t i = 0; i < in_lightmap.size(); ++i)
-            if (options.error_mask[i] != 0 && in_lightmap[i] == 0) ++study.mask_texels_not_valid;
-        for (size_t i = 0; i < geometry.texels.size(); ++i)
-            if (mask[i] != 0 && reference_texels[i].a <= 0.0f) ++study.mask_texels_not_valid;
+        // Every other texel of the mask is either no texel of the lightmap (a texel has one owner) or invalid.
+        const size_t mask_texels = size_t(std::count_if(options.error_mask.begin(), options.error_mask.end(),
+                                                        [](uint8_t flag) { return flag != 0; }));
+        study.mask_texels_not_valid = mask_texels - study.common_texel_count;
     }
     if (half_samples[1] > 0) {
         // Halves of unequal size (an odd count) are near enough: the estimate is a measurement of noise anyway.

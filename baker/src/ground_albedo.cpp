@@ -60,7 +60,7 @@ std::vector<glm::vec4> sampleGroundAlbedo(const BakeGeometry& geometry) {
                 for (int i = 0; i < kGroundAlbedoSubsamples; ++i) {
                     const double dx = ((i + 0.5) / kGroundAlbedoSubsamples - 0.5) * region.cell_m;
                     const double dy = ((j + 0.5) / kGroundAlbedoSubsamples - 0.5) * region.cell_m;
-                    const auto hit = traceClosestCpu(geometry.cpu_bvh,
+                    const auto hit = traceClosestCpu(geometry.cpuBvh(),
                                                      glm::vec3(float(centre.x + dx), float(centre.y + dy), top_z),
                                                      down, 1e30f, kTriangleFlagBuilding);
                     if (!hit) continue;
