@@ -1,10 +1,12 @@
 # `cmake --install BUILD --prefix P` installs what an app links, as the CMake package "gusuku" (find_package):
-#   component runtime  the public headers (engine/include/gusuku: the C++ API runtime.h and the C API gusuku.h
-#                      among them), gusuku_maths, gusuku_gpu and gusuku_runtime (static), and the package files;
+#   component runtime  gusuku_maths, gusuku_gpu and gusuku_runtime (static), their headers (gusuku/maths/,
+#                      gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h among them), the
+#                      licence and the package files;
 #                      find_package(gusuku) gives gusuku::runtime, which needs Vulkan and glm only
 #   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
-#                      gusuku::loader, which needs the tools' I/O stack (OpenImageIO, OpenColorIO, tinygltf,
-#                      nlohmann-json, GeographicLib: Debian packages, found again by the package config)
+#                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
+#                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
+#                      packages, found again by the package config)
 # Not installed: the baker, the tools, the embedded SPIR-V and the shader interface headers (shaders/include),
 # which only the runtime's private sources include.
 include(GNUInstallDirs)
@@ -20,13 +22,22 @@ set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
 install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        COMPONENT runtime FILES_MATCHING PATTERN "*.h")
+# Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
+# component installs the folders of exactly the libraries it installs.
+foreach(library maths gpu runtime)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
+          COMPONENT runtime FILES_MATCHING PATTERN "*.h")
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
 
 install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+foreach(library assets loader)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
+          COMPONENT loader FILES_MATCHING PATTERN "*.h")
+endforeach()
 install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/gusukuConfig.cmake.in

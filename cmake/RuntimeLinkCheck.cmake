@@ -31,7 +31,7 @@ function(gusuku_check_runtime_links)
   foreach(forbidden ${ARG_FORBIDDEN})
     if(forbidden IN_LIST visited)
       message(FATAL_ERROR "${ARG_TARGET} links ${forbidden}: the runtime may depend on gusuku_maths, gusuku_gpu "
-                          "and Vulkan only (DESIGN.md 8)")
+                          "and Vulkan only (docs/design.md 8)")
     endif()
   endforeach()
 endfunction()

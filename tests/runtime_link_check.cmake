@@ -1,6 +1,6 @@
 # Fails when the program linked against gusuku_runtime alone (runtime_link_probe) needs a shared library outside
 # the runtime's allowed set: Vulkan, and the C/C++ runtime. OpenImageIO, OpenColorIO, tinygltf, GeographicLib
-# (the tools' I/O stack) must never reach an app that links the runtime (DESIGN.md 8).
+# (the tools' I/O stack) must never reach an app that links the runtime (docs/design.md 8).
 # Usage: cmake -DPROBE=<path> -DREADELF=<path> -P runtime_link_check.cmake
 execute_process(COMMAND ${READELF} -d ${PROBE} OUTPUT_VARIABLE dynamic_section RESULT_VARIABLE readelf_result)
 if(NOT readelf_result EQUAL 0)

@@ -2,8 +2,8 @@
 // its dynamic section: the runtime must bring in Vulkan and the C++ runtime, never the I/O stack.
 #include <cstdio>
 
-#include "gusuku/gpu_device.h"
-#include "gusuku/runtime_version.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/runtime/runtime_version.h"
 
 int main() {
     std::printf("gusuku_runtime %s\n", gusuku::runtimeVersion());

@@ -11,7 +11,7 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"
 

@@ -1,5 +1,5 @@
 // gusuku-bake's bake, check and sample commands read their command lines with the tools' shared reader
-// (gusuku/command_line.h, through readCommandLine in baker/src/commands.h): a bad value exits 1 with the
+// (gusuku/tools/command_line.h, through readCommandLine in baker/src/commands.h): a bad value exits 1 with the
 // reader's one line naming the option, bad usage exits 2, and nothing is opened or written before the command
 // line is accepted. The reader's own messages are held to their texts in test_command_line.cpp; this holds the
 // commands to the exit codes and messages of commands.h.

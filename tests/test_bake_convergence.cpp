@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/convergence.h"
 #include "mini_site.h"
 

@@ -20,8 +20,8 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/lightmap_denoise.h"

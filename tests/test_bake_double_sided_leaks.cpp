@@ -15,9 +15,9 @@
 
 #include "bake_output_checks.h"
 #include "gpu_test_support.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"

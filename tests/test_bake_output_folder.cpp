@@ -17,8 +17,8 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"

@@ -14,8 +14,8 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
 #include "gusuku_bake/ground_grid.h"
 #include "mini_site.h"
 

@@ -15,8 +15,8 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/image.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"
 

@@ -11,8 +11,8 @@
 
 #include "bake_output_checks.h"
 #include "gpu_test_support.h"
-#include "gusuku/image.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 
 namespace gusuku::bake {

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"

@@ -1,4 +1,4 @@
-// The bake set loader (gusuku/bakeset_loader.h), the in-memory check (gusuku/bakeset_validate.h) and the
+// The bake set loader (gusuku/assets/bakeset_loader.h), the in-memory check (gusuku/maths/bakeset_validate.h) and the
 // occluder the baker writes (gusuku_bake/occluder.h, issue 9). One real bake of the mini site with an SfM mesh
 // (2 samples) is loaded and checked against what is known independently of the loader: the house's and the
 // site's geometry, the manifest's texel counts, the ground grid's addressing. Each error case corrupts a copy.
@@ -19,14 +19,14 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/bakeset_loader.h"
-#include "gusuku/bakeset_manifest_json.h"
-#include "gusuku/bakeset_validate.h"
-#include "gusuku/glb_positions.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/assets/glb_positions.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/occluder.h"
 #include "mini_site.h"

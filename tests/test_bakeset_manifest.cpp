@@ -1,4 +1,4 @@
-// The bake set manifest (gusuku/bakeset_manifest.h, gusuku/bakeset_manifest_json.h, docs/bakeset.md): a
+// The bake set manifest (gusuku/maths/bakeset_manifest.h, gusuku/assets/bakeset_manifest_json.h, docs/bakeset.md): a
 // manifest written and read back is the same manifest and the same bytes; every reader error names the file and
 // the field (JSON pointer); the writer refuses what the reader would refuse; and a manifest written by a real
 // small bake reads back, with the bytes the baker wrote reproduced by the shared writer.
@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
-#include "gusuku/bakeset_manifest.h"
-#include "gusuku/bakeset_manifest_json.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"
 

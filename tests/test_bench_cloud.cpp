@@ -1,4 +1,4 @@
-// The cloud-cover estimate from a camera frame (gusuku/weather_estimate.h; Weather::estimatedFrom in the runtime) on synthetic frames whose weather
+// The cloud-cover estimate from a camera frame (gusuku/maths/weather_estimate.h; Weather::estimatedFrom in the runtime) on synthetic frames whose weather
 // is known by construction: a clear frame (blue sky, hard shadows on the ground), an overcast one (grey sky, no
 // shadows), and their blends, which must read as more clouded the more overcast they hold.
 
@@ -7,9 +7,9 @@
 #include <glm/common.hpp>
 #include <gtest/gtest.h>
 
-#include "gusuku/weather_estimate.h"
-#include "gusuku/colour.h"
-#include "gusuku/runtime.h"
+#include "gusuku/maths/weather_estimate.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::bench {
 namespace {

@@ -23,8 +23,8 @@
 
 #include "bvh_probe_comp_spv.h"
 #include "gpu_test_support.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/input_error.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {
@@ -798,7 +798,7 @@ TEST_F(BvhGpuTest, ReportsRaysPerSecond) {
         occluded_hits += occluded[i].occluded;
     }
     std::printf("BVH on %s: %zu triangles, %zu rays: closest hit %.2f M rays/s (%zu hits), "
-                "any hit %.2f M rays/s (%zu hits) (DESIGN.md 5: ~1.0 and ~0.85 on lavapipe, 2 cores)\n",
+                "any hit %.2f M rays/s (%zu hits) (docs/design.md 5: ~1.0 and ~0.85 on lavapipe, 2 cores)\n",
                 context().deviceDescription().c_str(), scene.triangleCount(), rays.size(),
                 rays.size() / closest_seconds * 1e-6, closest_hits, rays.size() / occluded_seconds * 1e-6,
                 occluded_hits);

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gusuku/gusuku.h"
+#include "gusuku/runtime/gusuku.h"
 
 static int g_failures = 0;
 

@@ -12,11 +12,11 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/bakeset_loader.h"
-#include "gusuku/gusuku.h"
-#include "gusuku/gusuku_loader.h"
-#include "gusuku/runtime.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/runtime/gusuku.h"
+#include "gusuku/loader/gusuku_loader.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"
 

@@ -1,7 +1,7 @@
 // The camera path tracer (issue 9 item 4; the benchmark's ground truth) against answers known independently:
 // - a camera looking straight down at a large plane of albedo rho under a uniform sky of radiance L sees rho L
 //   in every pixel (every path's one bounce escapes to the same sky: exact up to rounding);
-// - a view of the sky alone shows the map's radiance per pixel direction (gusuku/equirect.h on the CPU,
+// - a view of the sky alone shows the map's radiance per pixel direction (gusuku/maths/equirect.h on the CPU,
 //   averaged over each pixel's area);
 // - the projection: small emissive markers at known ENU points light the pixels runtime.h's pinhole formula
 //   predicts (within 1 px), for a camera turned off every axis with fx != fy and an off-centre principal point;
@@ -18,11 +18,11 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 #include "mini_site.h"
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/camera_frame.h"
 #include "gusuku_bake/camera_tracer.h"
@@ -90,7 +90,7 @@ ImageRGBA patternedSky(int width, int height) {
     return sky;
 }
 
-// The texel of `sky` that contains a direction, by gusuku/equirect.h.
+// The texel of `sky` that contains a direction, by gusuku/maths/equirect.h.
 glm::vec3 equirectLookup(const ImageRGBA& sky, const glm::dvec3& direction, double north_deg) {
     const glm::dvec2 uv = equirectCoordinates(glm::normalize(direction), north_deg);
     const int x = std::min(int(uv.x * sky.width), sky.width - 1);

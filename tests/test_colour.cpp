@@ -1,6 +1,6 @@
-// The colour module (gusuku/colour.h) against independent answers: the sRGB standard's own numbers, the Lab
+// The colour module (gusuku/maths/colour.h) against independent answers: the sRGB standard's own numbers, the Lab
 // definition's closed forms, published Lab values of the sRGB primaries, the 34 CIEDE2000 pairs published by
-// Sharma, Wu and Dalal (2005) with their dE00, and DESIGN.md 4's pinned transfer example. Then its GLSL twin
+// Sharma, Wu and Dalal (2005) with their dE00, and docs/design.md 4's pinned transfer example. Then its GLSL twin
 // (shaders/include/colour.glsl, run by shaders/tests/colour_probe.comp on the device) against the C++ for a
 // 17^3 grid of linear colours plus HDR values.
 
@@ -18,8 +18,8 @@
 
 #include "colour_probe_comp_spv.h"
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/gpu_compute.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/gpu/gpu_compute.h"
 
 namespace gusuku {
 namespace {
@@ -204,7 +204,7 @@ TEST(ColourCiede2000, FloatVersionAgreesOffTheHueBoundary) {
 // ---- Reinhard transfer ------------------------------------------------------------------------------------
 
 TEST(ColourTransfer, SigmaRatioRunsTargetOverSource) {
-    // DESIGN.md 4's pinned direction: src mu (50,0,0) sigma (10,5,5), tgt mu (60,5,-5) sigma (20,5,5);
+    // docs/design.md 4's pinned direction: src mu (50,0,0) sigma (10,5,5), tgt mu (60,5,-5) sigma (20,5,5);
     // the src pixel (60,5,-5) is one source sigma above in L (-> 60 + 1 * 20 = 80) and one below/above in a, b.
     const LabStatistics source{vec3(50, 0, 0), vec3(10, 5, 5)};
     const LabStatistics target{vec3(60, 5, -5), vec3(20, 5, 5)};

@@ -1,9 +1,9 @@
-// The runtime's colour match (gusuku/colour_match.h, DESIGN.md 4): the CPU double reference against hand
-// values (DESIGN.md 4's pinned direction case, the sampling grid, the smoothing's step response), then the GPU
+// The runtime's colour match (gusuku/maths/colour_match.h, docs/design.md 4): the CPU double reference against hand
+// values (docs/design.md 4's pinned direction case, the sampling grid, the smoothing's step response), then the GPU
 // against that reference: the statistics pass (shaders/runtime/colour_statistics*.comp, recorded by the
 // runtime's ColourStatisticsPass) on made-up camera frames, and the GLSL transfer (shaders/include/
 // colour_match.glsl, through shaders/tests/colour_match_probe.comp) over a grid of colours in both modes. The
-// failure modes of DESIGN.md 4 each have a case: a flat frame, a black frame, a clipped white frame, a frame of
+// failure modes of docs/design.md 4 each have a case: a flat frame, a black frame, a clipped white frame, a frame of
 // sky only, a step change of the camera (no flash), a reset; and out-of-gamut and non-finite inputs.
 
 #include <algorithm>
@@ -21,10 +21,10 @@
 #include "colour_match_probe_comp_spv.h"
 #include "colour_statistics_pass.h"
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/colour_match.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/colour_match.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/vulkan_context.h"
 
 namespace gusuku {
 namespace {
@@ -65,7 +65,7 @@ ColourMatchState stateFor(ColourMatchMode mode, const dvec3& source_mean, const 
     return state;
 }
 
-// DESIGN.md 4's pinned example: src mu (50,0,0) sigma (10,5,5), tgt mu (60,5,-5) sigma (20,5,5).
+// docs/design.md 4's pinned example: src mu (50,0,0) sigma (10,5,5), tgt mu (60,5,-5) sigma (20,5,5).
 ColourMatchState designExampleState(ColourMatchMode mode) {
     return stateFor(mode, dvec3(50, 0, 0), dvec3(10, 5, 5), dvec3(60, 5, -5), dvec3(20, 5, 5), 2.0f);
 }

@@ -1,4 +1,4 @@
-// The runtime's ground colour match (gusuku/colour_match.h, mode kGround): the camera's pixels of the real ground
+// The runtime's ground colour match (gusuku/maths/colour_match.h, mode kGround): the camera's pixels of the real ground
 // against what the bake set predicts there. A camera frame is synthesised from the prediction itself (every
 // ground pixel = known per-channel gains x predicted radiance, sRGB-encoded to 8 bits), so the gain the match
 // must find is known in closed form and the only error left is the 8-bit quantisation, whose bound each test
@@ -22,12 +22,12 @@
 #include "colour_match_probe_comp_spv.h"
 #include "colour_statistics_pass.h"
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/bakeset_manifest_json.h"
-#include "gusuku/bakeset_validate.h"
-#include "gusuku/colour_match.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/runtime.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/maths/colour_match.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/runtime/runtime.h"
 #include "synthetic_bakeset.h"
 
 namespace gusuku {

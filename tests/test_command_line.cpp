@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 
 namespace gusuku {
 namespace {

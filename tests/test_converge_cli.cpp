@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 #include "bake_command.h"
 #include "gpu_test_support.h"

@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/image.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/cycles_lighting_export.h"
 #include "gusuku_bake/slot_lighting.h"
 #include "mini_site.h"

@@ -1,4 +1,4 @@
-// Pins the equirectangular sky-map convention (DESIGN.md 2, gusuku/equirect.h): row 0 is the zenith,
+// Pins the equirectangular sky-map convention (docs/design.md 2, gusuku/maths/equirect.h): row 0 is the zenith,
 // u = north_azimuth / 360 faces north, azimuth east of north grows with u, and texel solid angles sum to 4 pi.
 #include <cmath>
 #include <numbers>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/equirect.h"
+#include "gusuku/maths/equirect.h"
 
 namespace {
 
@@ -33,7 +33,7 @@ TEST(Equirect, AzimuthGrowsEastOfNorthWithU) {
 }
 
 TEST(Equirect, MatchesTheSunVectorConvention) {
-    // DESIGN.md 2: towards azimuth A (east of north) at elevation e is (cos e sin A, cos e cos A, sin e).
+    // docs/design.md 2: towards azimuth A (east of north) at elevation e is (cos e sin A, cos e cos A, sin e).
     const double north = 37.0, azimuth_deg = 123.0, elevation_deg = 28.0;
     const double a = azimuth_deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
     const glm::dvec3 expected{std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};

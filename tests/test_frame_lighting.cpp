@@ -1,5 +1,5 @@
-// The runtime's CPU side of a frame: slot choice and weights by the sun's position (gusuku/frame_lighting.h) and
-// the shadow map's fit and snapping (gusuku/shadow_fit.h), against closed-form expectations.
+// The runtime's CPU side of a frame: slot choice and weights by the sun's position (gusuku/maths/frame_lighting.h) and
+// the shadow map's fit and snapping (gusuku/maths/shadow_fit.h), against closed-form expectations.
 
 #include <cmath>
 #include <vector>
@@ -7,9 +7,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "gusuku/frame_lighting.h"
-#include "gusuku/shadow_fit.h"
-#include "gusuku/sun.h"
+#include "gusuku/maths/frame_lighting.h"
+#include "gusuku/maths/shadow_fit.h"
+#include "gusuku/maths/sun.h"
 #include "synthetic_bakeset.h"
 
 namespace gusuku {

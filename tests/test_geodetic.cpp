@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/geodetic.h"
+#include "gusuku/assets/geodetic.h"
 
 namespace {
 

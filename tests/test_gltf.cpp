@@ -1,4 +1,4 @@
-// glTF loading (gusuku/gltf_loader.h) and writing. Small glTF files are built here as JSON text plus a .bin, so
+// glTF loading (gusuku/assets/gltf_loader.h) and writing. Small glTF files are built here as JSON text plus a .bin, so
 // each expected position, normal and error comes from the test's own arithmetic, not from a previous run.
 #include <sys/stat.h>
 
@@ -16,10 +16,10 @@
 
 #include "fifo_watchdog.h"
 #include "gpu_test_support.h"
-#include "gusuku/atomic_file.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
 
 namespace {
 
@@ -667,7 +667,7 @@ TEST_F(GltfTest, EmissionBeyondFloatRangeIsRefused) {
     const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); });
     EXPECT_EQ(error.field(), "materials[0].emissiveFactor[0]");
     EXPECT_EQ(error.problem(), "1e+39 is beyond float range");
-    // Within float range but above the radiance limit (gusuku/image.h kMaxRadiance), and negative.
+    // Within float range but above the radiance limit (gusuku/assets/image.h kMaxRadiance), and negative.
     builder.document()["materials"][0]["emissiveFactor"] = {0, 1e20, 0};
     EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); }).problem(),
               "1e+20 is above the limit 1e+15");

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_device.h"
 #include "app_owned_device.h"
 #include "smoke_scale_add_comp_spv.h"
 

@@ -1,4 +1,4 @@
-// Image I/O (gusuku/image.h), the sRGB curve, InputError's message and atomic writes.
+// Image I/O (gusuku/assets/image.h), the sRGB curve, InputError's message and atomic writes.
 // Expected values come from the sRGB standard (IEC 61966-2-1) and from the inputs themselves, never from a
 // previous run of the code.
 #include <cmath>
@@ -12,9 +12,9 @@
 
 #include "fifo_watchdog.h"
 #include "gpu_test_support.h"
-#include "gusuku/atomic_file.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
 
 namespace {
 

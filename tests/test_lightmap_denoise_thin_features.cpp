@@ -20,7 +20,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 #include "gusuku_bake/lightmap_denoise.h"
 
 namespace gusuku::bake {

@@ -18,8 +18,8 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "gusuku_bake/sample_site.h"
 

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 
 namespace {

@@ -14,10 +14,10 @@
 
 #include "app_owned_device.h"
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_image.h"
-#include "gusuku/runtime.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_image.h"
+#include "gusuku/runtime/runtime.h"
 #include "synthetic_bakeset.h"
 
 namespace gusuku {

@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/image.h"
-#include "gusuku/runtime.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/runtime/runtime.h"
 #include "synthetic_bakeset.h"
 
 namespace gusuku {

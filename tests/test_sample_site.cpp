@@ -15,11 +15,11 @@
 #include <glm/mat4x4.hpp>
 #include <gtest/gtest.h>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/equirect.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/site.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/maths/equirect.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/sample_site.h"
 #include "gpu_test_support.h"
 

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
 
 namespace {
 

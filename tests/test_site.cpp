@@ -16,8 +16,8 @@
 
 #include "bake_command.h"
 #include "gpu_test_support.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 
 namespace {
 

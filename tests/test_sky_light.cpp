@@ -14,10 +14,10 @@
 
 #include "gpu_test_support.h"
 #include "sky_probe.h"
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace {

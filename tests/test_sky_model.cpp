@@ -8,9 +8,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
-#include "gusuku/image.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
+#include "gusuku/assets/image.h"
 #include "gusuku_bake/sky_model.h"
 #include "gpu_test_support.h"
 

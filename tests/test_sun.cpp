@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
-#include "gusuku/site.h"
-#include "gusuku/sun.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 
 namespace {
 
@@ -304,7 +304,7 @@ TEST(SunCli, BadArgumentsExitNonZeroNamingTheOption) {
     EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
 }
 
-// The command refuses exactly what site.json refuses for the reference point and the air (gusuku/site.h's
+// The command refuses exactly what site.json refuses for the reference point and the air (gusuku/assets/site.h's
 // ranges): a value just outside each range is refused naming the option, the range's own ends are accepted.
 TEST(SunCli, RefusesWhatSiteJsonRefuses) {
     const std::string place_and_time = "--lat 26 --lon 127.8 --time 2026-06-21T09:00:00+09:00 ";

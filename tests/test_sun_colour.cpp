@@ -1,4 +1,4 @@
-// The sun's colour against its elevation (gusuku/sun_air_mass.h): Kasten-Young air mass against its table
+// The sun's colour against its elevation (gusuku/maths/sun_air_mass.h): Kasten-Young air mass against its table
 // values, Rayleigh depth against Bodhaine et al. (1999), the extraterrestrial colour against its chromaticity,
 // the carry of a measured sun (identity, round trip, fit recovery, clamps, luminance-only), the clear-sky
 // fallback's calibration, and both on the shared photographed skies (skipped without ../shared/data).
@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/colour.h"
-#include "gusuku/image.h"
-#include "gusuku/sun_air_mass.h"
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/sun_air_mass.h"
+#include "gusuku/maths/sun_irradiance.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/slot_lighting.h"
 

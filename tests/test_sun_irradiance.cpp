@@ -1,4 +1,4 @@
-// The clear-sky sun (gusuku/sun_irradiance.h): Kasten-Young air mass and the ESRA beam model against their
+// The clear-sky sun (gusuku/maths/sun_irradiance.h): Kasten-Young air mass and the ESRA beam model against their
 // published formulas, the colour and elevation behaviour the header documents, the carrying of a measured
 // E_sun between elevations, and values pinned from the baker's own copy before the model moved to
 // gusuku_maths (so bake sets did not change).
@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
 
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/maths/sun_irradiance.h"
 
 namespace {
 
@@ -61,7 +61,7 @@ TEST(SunIrradiance, ClearSkyIsPlausibleMonotonicAndZeroBelowHorizon) {
 }
 
 TEST(SunIrradiance, ReddeningAsTheHeaderStates) {
-    // gusuku/sun_irradiance.h: with T_L = 3, R/G 1.04 and B/G 0.92 at 30 deg, R/G 1.25 and B/G 0.62 at 5 deg.
+    // gusuku/maths/sun_irradiance.h: with T_L = 3, R/G 1.04 and B/G 0.92 at 30 deg, R/G 1.25 and B/G 0.62 at 5 deg.
     const glm::dvec3 at30 = clearSkySunIrradianceRgb(30.0);
     const glm::dvec3 at5 = clearSkySunIrradianceRgb(5.0);
     EXPECT_NEAR(at30.x / at30.y, 1.04, 0.005);

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/time_utc.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu/gpu_compute.h"
 #include "smoke_scale_add_comp_spv.h"
 
 namespace gusuku {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "gusuku/atomic_file.h"
+#include "gusuku/assets/atomic_file.h"
 
 namespace gusuku::bake {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku::bake {
 

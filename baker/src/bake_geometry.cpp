@@ -4,8 +4,8 @@
 #include <cmath>
 #include <memory>
 
-#include "gusuku/gltf_loader.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku::bake {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/mesh.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/mesh.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bvh.h"
 #include "gusuku_bake/ground_grid.h"
 #include "gusuku_bake/lightmap_uv.h"

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku::bake {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 
 namespace gusuku::bake {
 

@@ -7,10 +7,10 @@
 #include <map>
 
 #include "bake_inputs.h"
-#include "gusuku/atomic_file.h"
-#include "gusuku/bakeset_loader.h"
-#include "gusuku/bakeset_manifest_json.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/content_hash.h"
 

@@ -9,7 +9,7 @@
 
 #include <glm/vec4.hpp>
 #include "bake_geometry.h"
-#include "gusuku/bakeset_manifest.h"
+#include "gusuku/maths/bakeset_manifest.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
 
@@ -42,7 +42,7 @@ public:
     void writeSlot(const SlotLighting& lighting, const std::vector<glm::vec4>& building_sums,
                    const std::vector<float>& building_luminance_variance,
                    const std::vector<glm::vec4>& ground_with_sums, const std::vector<glm::vec4>& ground_without_sums);
-    /// Input paths are written relative to the output folder (gusuku/bakeset_loader.h's
+    /// Input paths are written relative to the output folder (gusuku/assets/bakeset_loader.h's
     /// bakeSetRelativeInputPath), so the set moves with its inputs. `partial`: this is one slot's partial set.
     void writeManifest(const SiteConfig& site, uint64_t input_hash, const BakeReport& report,
                        const std::optional<BakeSetPartial>& partial = std::nullopt);

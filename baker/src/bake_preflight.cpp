@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/time_utc.h"
 #include "gusuku_bake/bvh.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/trace_scene.h"

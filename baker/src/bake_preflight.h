@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "bake_geometry.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
-#include "gusuku/sun.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/maths/sun.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace gusuku::bake {

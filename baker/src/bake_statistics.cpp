@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku::bake {
 

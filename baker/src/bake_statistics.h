@@ -1,5 +1,5 @@
 #pragma once
-// Colour statistics of the baked appearance, for the runtime's CIE Lab colour match (DESIGN.md 4): the source
+// Colour statistics of the baked appearance, for the runtime's CIE Lab colour match (docs/design.md 4): the source
 // side of the Reinhard transfer. The appearance of a lightmap texel is rho / pi * (E_ind + V E_sun max(0, n.s)),
 // with V the sun's visibility traced on the CPU; mean and standard deviation are over valid texels in Lab.
 

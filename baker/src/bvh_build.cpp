@@ -20,7 +20,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {

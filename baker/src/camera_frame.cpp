@@ -4,9 +4,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "gusuku/colour.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/maths/input_error.h"
 #include "bake_geometry.h"
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/ground_grid.h"

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
-#include "gusuku/site.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/tools/command_line.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/bake_progress.h"
 

@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/tools/command_line.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/convergence.h"
 #include "gusuku_bake/cycles_lighting_export.h"
 

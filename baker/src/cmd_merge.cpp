@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 #include "gusuku_bake/bake_merge.h"
 #include "gusuku_bake/bake_progress.h"
 

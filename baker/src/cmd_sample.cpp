@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 #include "gusuku_bake/sample_site.h"
 
 namespace gusuku::bake_cli {

@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
-#include "gusuku/site.h"
-#include "gusuku/sun.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/tools/command_line.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 
 namespace gusuku::bake_cli {
 
@@ -75,7 +75,7 @@ struct SunRequest {
 SunRequest parseArguments(CommandLine& line) {
     SunRequest request;
     request.json = line.flag("--json");
-    // The same ranges as site.json's (gusuku/site.h), so the command refuses what a site would.
+    // The same ranges as site.json's (gusuku/assets/site.h), so the command refuses what a site would.
     auto inRange = [&](const char* option, const SiteValueRange& range) {
         return line.number(option, range.minimum, range.maximum);
     };

@@ -20,7 +20,7 @@ int runConvergeCommand(const std::vector<std::string>& args);  // cmd_converge.c
 int runCheckCommand(const std::vector<std::string>& args);     // cmd_check.cpp: validate site.json and load all
 int runMergeCommand(const std::vector<std::string>& args);     // cmd_merge.cpp: join partial bake sets
 
-/// How every subcommand reads its command line (gusuku/command_line.h), so that all behave alike. `parse` takes
+/// How every subcommand reads its command line (gusuku/tools/command_line.h), so that all behave alike. `parse` takes
 /// the command's options and positionals from `line` and calls line.finish(); it throws UsageError for bad usage
 /// and OptionValueError for a bad value. Returns nullopt when the command is to run, else its exit code: 0 after
 /// --help / -h printed `usage` on stdout; 1 after a bad value and 2 after bad usage, each reported as the error's

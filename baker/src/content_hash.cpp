@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "gusuku/atomic_file.h"
+#include "gusuku/assets/atomic_file.h"
 
 namespace gusuku::bake {
 

@@ -10,8 +10,8 @@
 
 #include "bake_geometry.h"
 #include "bake_outputs.h"
-#include "gusuku/colour.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"

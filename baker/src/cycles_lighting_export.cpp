@@ -8,8 +8,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/image.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/image.h"
 #include "gusuku_bake/slot_lighting.h"
 
 namespace gusuku::bake {

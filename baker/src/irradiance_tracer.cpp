@@ -12,7 +12,7 @@
 #include "bake_accumulate_interface.h"
 #include "bake_irradiance_comp_spv.h"
 #include "bake_irradiance_interface.h"
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/bvh.h"
 

@@ -7,8 +7,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/colour.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {

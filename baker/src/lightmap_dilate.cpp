@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 
 namespace gusuku::bake {

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku::bake::detail {
 namespace {

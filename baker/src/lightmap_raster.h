@@ -8,7 +8,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake::detail {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 
 namespace gusuku::bake_cli {
 

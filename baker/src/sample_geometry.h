@@ -7,8 +7,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/image.h"
-#include "gusuku/mesh.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake::sample {
 

@@ -13,11 +13,11 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <nlohmann/json.hpp>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/sun.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 #include "gusuku_bake/sky_model.h"
 #include "sample_geometry.h"
 

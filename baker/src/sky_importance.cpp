@@ -11,9 +11,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
-#include "gusuku/input_error.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
+#include "gusuku/maths/input_error.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace gusuku::bake {

@@ -10,8 +10,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
 
 namespace gusuku::bake {
 

@@ -5,10 +5,10 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "gusuku/colour.h"
-#include "gusuku/equirect.h"
-#include "gusuku/image.h"
-#include "gusuku/sun_air_mass.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/equirect.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/sun_air_mass.h"
 
 namespace gusuku::bake {
 

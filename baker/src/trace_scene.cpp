@@ -7,8 +7,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/colour.h"
-#include "gusuku/image.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku::bake {
 

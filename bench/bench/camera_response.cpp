@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku::bench {
 

@@ -14,7 +14,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku::bench {
 

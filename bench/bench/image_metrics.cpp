@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku::bench {
 namespace {

@@ -2,7 +2,7 @@
 // gusuku-bench's accuracy metrics: how far a frame is from the truth, per pixel and summed over a region.
 //
 // Frames are what the runtime writes and the truth is turned into: RGBA8, RGB sRGB-encoded, row 0 at the top
-// (gusuku/runtime.h's image convention); alpha is ignored. A pixel's colour difference is CIEDE2000 (gusuku/
+// (gusuku/runtime/runtime.h's image convention); alpha is ignored. A pixel's colour difference is CIEDE2000 (gusuku/
 // colour.h) between the CIE Lab (D65) of the two decoded pixels, in double. A region is a mask of one byte per
 // pixel (non-zero: in); an empty mask is the whole frame.
 
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gusuku/percentile.h"
+#include "gusuku/maths/percentile.h"
 
 #include <glm/vec3.hpp>
 
@@ -23,7 +23,7 @@ glm::dvec3 labOfSrgb8(uint8_t red, uint8_t green, uint8_t blue);
 /// per pixel, row-major. Colours repeat a lot in 8-bit frames, but 1280 x 720 takes ~0.1 s; no cache needed.
 std::vector<double> ciede2000PerPixel(const std::vector<uint8_t>& frame, const std::vector<uint8_t>& truth);
 
-/// Percentiles: gusuku/percentile.h, shared with the runtime's weather estimate.
+/// Percentiles: gusuku/maths/percentile.h, shared with the runtime's weather estimate.
 using gusuku::percentile;
 
 /// Peak signal-to-noise ratio of the RGB bytes (alpha ignored) over the mask's pixels: 10 log10(255^2 / MSE),

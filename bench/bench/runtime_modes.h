@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/runtime.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::bench {
 

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "camera_view.h"
-#include "gusuku/atomic_file.h"
+#include "gusuku/assets/atomic_file.h"
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/camera_frame.h"
 #include "gusuku_bake/camera_tracer.h"

@@ -18,10 +18,10 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/gpu_device.h"
-#include "gusuku/image.h"
-#include "gusuku/runtime.h"
-#include "gusuku/site.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/assets/site.h"
 
 namespace gusuku::bench {
 

@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "gusuku/bakeset_loader.h"
-#include "gusuku/input_error.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/maths/time_utc.h"
 
 namespace gusuku::bench_common {
 

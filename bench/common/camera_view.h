@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/runtime.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::bench_common {
 

@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/bakeset_loader.h"
-#include "gusuku/command_line.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
-#include "gusuku/runtime.h"
-#include "gusuku/time_utc.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/tools/command_line.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/maths/time_utc.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "bakeset_site.h"
 #include "camera_view.h"
 #include "frame_spread.h"

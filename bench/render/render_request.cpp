@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 
 namespace gusuku::render_cli {
 

@@ -1,5 +1,5 @@
 #pragma once
-// What one gusuku-render run is asked to do, read from its command line (gusuku/command_line.h).
+// What one gusuku-render run is asked to do, read from its command line (gusuku/tools/command_line.h).
 
 #include <cstdint>
 #include <optional>
@@ -8,7 +8,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/runtime.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::render_cli {
 
@@ -36,7 +36,7 @@ struct RenderRequest {
 
 extern const char* const kRenderUsage;
 
-/// Parses the command line; UsageError / OptionValueError (gusuku/command_line.h) on a bad one.
+/// Parses the command line; UsageError / OptionValueError (gusuku/tools/command_line.h) on a bad one.
 RenderRequest parseRenderRequest(const std::vector<std::string>& args);
 
 }  // namespace gusuku::render_cli

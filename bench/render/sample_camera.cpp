@@ -2,7 +2,7 @@
 
 #include "sample_camera.h"
 
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/camera_frame.h"
 
 namespace gusuku::render_cli {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_device.h"
 #include "truth_renderer.h"
 
 namespace gusuku::render_cli {

@@ -2,7 +2,7 @@
 // Adds a chunk's one-sample estimates (bake_irradiance.comp) onto each point's running sum, one sample at a
 // time in sample order, so the floating-point sum is the same however the samples were split into chunks,
 // dispatches or runs: a resumed bake matches an uninterrupted one bit for bit. Alongside, the sum of each
-// estimate's squared luminance (Rec.709 weights, as gusuku/colour.h's luminanceRec709), from which the lightmap
+// estimate's squared luminance (Rec.709 weights, as gusuku/maths/colour.h's luminanceRec709), from which the lightmap
 // filter knows how noisy each texel's mean is (lightmap_denoise.h).
 
 #extension GL_GOOGLE_include_directive : require

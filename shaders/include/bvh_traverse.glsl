@@ -1,4 +1,4 @@
-// Software ray tracing against the baker's BVH (lavapipe has no ray queries, DESIGN.md 5). Same tests and
+// Software ray tracing against the baker's BVH (lavapipe has no ray queries, docs/design.md 5). Same tests and
 // same node visiting order as baker/src/bvh_cpu_trace.cpp; tests/test_bvh.cpp holds the two together, hit for
 // hit and bit for bit.
 //

@@ -42,7 +42,7 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(CameraTracePushConstants)
     uint seed;
     uint skip_flags;    // triangles with these flags are invisible (kTriangleFlagBuilding: the site without it)
     uint flags;         // CAMERA_FLAG_*
-    vec4 intrinsics;    // fx, fy, cx, cy in pixels (gusuku/runtime.h's pinhole convention)
+    vec4 intrinsics;    // fx, fy, cx, cy in pixels (gusuku/runtime/runtime.h's pinhole convention)
     vec4 camera_row0;   // rows of the 3x4 matrix [R | c]: ENU = R * camera + c, R's columns the camera's
     vec4 camera_row1;   //   x (right), y (down), z (forward) axes in ENU, c the camera centre in ENU
     vec4 camera_row2;

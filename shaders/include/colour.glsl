@@ -1,10 +1,10 @@
-// Colour maths for shaders: the GLSL twin of engine/include/gusuku/colour.h (float only), with the same
+// Colour maths for shaders: the GLSL twin of engine/include/gusuku/maths/colour.h (float only), with the same
 // function names, constants and formulas; read the contracts there. tests/test_colour.cpp holds every function
 // here to its C++ twin through shaders/tests/colour_probe.comp. Change both files together.
 //
 // Linear Rec.709 RGB (sRGB primaries, D65) <-> CIE XYZ (Y = relative luminance) <-> CIE L*a*b* with white
-// (0.95047, 1, 1.08883), epsilon 216/24389, kappa 24389/27 (DESIGN.md 2); the sRGB curve of IEC 61966-2-1;
-// CIEDE2000 (Sharma, Wu and Dalal 2005); Reinhard's transfer of Lab statistics (DESIGN.md 4).
+// (0.95047, 1, 1.08883), epsilon 216/24389, kappa 24389/27 (docs/design.md 2); the sRGB curve of IEC 61966-2-1;
+// CIEDE2000 (Sharma, Wu and Dalal 2005); Reinhard's transfer of Lab statistics (docs/design.md 4).
 // No bindings, no extensions; includes only constants.glsl.
 #ifndef GUSUKU_COLOUR_GLSL
 #define GUSUKU_COLOUR_GLSL
@@ -145,7 +145,7 @@ float ciede2000(vec3 lab1, vec3 lab2) {
     return sqrt(lightness * lightness + chroma * chroma + hue * hue + r_t * chroma * hue);
 }
 
-// ---- Reinhard transfer of Lab statistics (DESIGN.md 4) ----
+// ---- Reinhard transfer of Lab statistics (docs/design.md 4) ----
 // gain = clamp(sigma_tgt / max(sigma_src, kLabTransferMinSourceSigma), 1 / max_gain, max_gain), max_gain below
 // 1 taken as 1; then y = (x - mu_src) * gain + mu_tgt. colour.h documents why the floor and the clamp.
 

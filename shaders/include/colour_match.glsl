@@ -1,5 +1,5 @@
-// The colour match's transfer for shaders (DESIGN.md 4): the GLSL twin of the transfer in
-// engine/include/gusuku/colour_match.h (read the choices and contracts there), same steps, float. The building's
+// The colour match's transfer for shaders (docs/design.md 4): the GLSL twin of the transfer in
+// engine/include/gusuku/maths/colour_match.h (read the choices and contracts there), same steps, float. The building's
 // fragment shader calls applyColourMatch on its linear radiance before writing:
 //
 //   #extension GL_GOOGLE_include_directive : require

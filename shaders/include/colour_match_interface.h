@@ -1,6 +1,6 @@
 // The colour match's GPU state and the two statistics kernels' bindings and push constants, written once for
 // the GLSL (shaders/runtime/colour_statistics.comp, colour_statistics_reduce.comp, include/colour_match.glsl)
-// and for C++ (engine/src/runtime/colour_statistics_pass.cpp, engine/include/gusuku/colour_match.h). See
+// and for C++ (engine/src/runtime/colour_statistics_pass.cpp, engine/include/gusuku/maths/colour_match.h). See
 // interface_types.h for the rules; the C++ side pins every offset with static_assert (colour_match.h).
 //
 // The state lives in one small storage buffer that the runtime keeps for its life:

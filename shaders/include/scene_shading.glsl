@@ -3,7 +3,7 @@
 // texel buffers: views of format VK_FORMAT_R32G32B32A32_UINT on the first two and VK_FORMAT_R32_UINT on the
 // textures. Layouts match baker/include/gusuku_bake/trace_scene.h (TriangleShadingGpu, MaterialGpu), one
 // 16-byte texel per vec4 member. Textures are packed RGBA8 sRGB words in one buffer because lavapipe has no
-// descriptor indexing (DESIGN.md 5). Why texel buffers: as for the BVH (bvh_layout.glsl), lavapipe gathers a
+// descriptor indexing (docs/design.md 5). Why texel buffers: as for the BVH (bvh_layout.glsl), lavapipe gathers a
 // texel fetch's lanes in vector code where a storage-buffer load at per-lane addresses loops over the lanes.
 #ifndef GUSUKU_SCENE_SHADING_GLSL
 #define GUSUKU_SCENE_SHADING_GLSL

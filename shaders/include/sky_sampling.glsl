@@ -12,7 +12,7 @@
 //   vec3  sampleSkyDirection(vec2 xi, out float pdf_solid_angle) xi in [0, 1)^2; pdf per steradian
 //   float skyPdf(vec3 direction_enu)                            density of sampleSkyDirection per steradian
 //   vec3  skyRadianceAndPdf(vec3 direction_enu, out float pdf)   both of the above from one texel load
-// Equirect convention (gusuku/equirect.h): azimuth = 360 u - north_azimuth_in_image_deg, v = theta / pi.
+// Equirect convention (gusuku/maths/equirect.h): azimuth = 360 u - north_azimuth_in_image_deg, v = theta / pi.
 #ifndef GUSUKU_SKY_SAMPLING_GLSL
 #define GUSUKU_SKY_SAMPLING_GLSL
 

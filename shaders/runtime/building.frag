@@ -1,5 +1,5 @@
 #version 450
-// The building (DESIGN.md 3 and 8 step 5): radiance = albedo / pi x (E_ind + V x E_sun x max(0, n . s)), with
+// The building (docs/design.md 3 and 8 step 5): radiance = albedo / pi x (E_ind + V x E_sun x max(0, n . s)), with
 // E_ind the slots' baked lightmaps blended by the frame's weights, V the sun's visibility from the building's
 // and the site's shadow maps, then the colour match to the camera (colour_match.glsl). Direct-only mode: a
 // constant ambient instead of E_ind, no colour match (what AR apps draw today).

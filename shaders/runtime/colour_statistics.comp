@@ -1,6 +1,6 @@
 #version 450
-// Colour statistics of the camera frame, first pass (DESIGN.md 4, 5 and 8 pass 7; choices in
-// engine/include/gusuku/colour_match.h). One invocation per sampled pixel (every stride-th pixel in x and y):
+// Colour statistics of the camera frame, first pass (docs/design.md 4, 5 and 8 pass 7; choices in
+// engine/include/gusuku/maths/colour_match.h). One invocation per sampled pixel (every stride-th pixel in x and y):
 // decode sRGB, convert to CIE Lab (D65, float), leave out clipped pixels (a channel at 255 or all at 0) and
 // count them. Each subgroup then reduces its samples with subgroupAdd (no shared memory, no barrier) to the
 // valid samples' count, mean and sum of squared deviations from that mean, and one lane writes them as the

@@ -1,6 +1,6 @@
 #version 450
 // The ground colour match's first pass (mode GROUND; choices and the CPU reference in
-// engine/include/gusuku/colour_match.h). One invocation per sampled pixel: its ray is followed onto the ground
+// engine/include/gusuku/maths/colour_match.h). One invocation per sampled pixel: its ray is followed onto the ground
 // grid's height field, the cell's predicted radiance (exposure albedo / pi (E_without blended + E_sun cos)) is set
 // against the camera's sRGB-decoded pixel, and the sample is written with its log2 luminance-ratio bin (-1 when
 // it does not count). No shared memory, no barrier, no subgroup operation: llvmpipe runs a barrier as a switch

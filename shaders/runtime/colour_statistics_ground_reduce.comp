@@ -6,7 +6,7 @@
 // colour of its samples within GROUND_MATCH_WINDOW_BINS of it, the sums meet by subgroupAdd and shared memory,
 // and invocation 0 forms the clamped von Kries gain observed / predicted per channel and smooths it into the
 // ColourMatchState. Two passes over the samples in all: O(samples), not O(samples x bins). The CPU reference of
-// every step is in engine/include/gusuku/colour_match.h (measureGroundColourGain, smoothGroundGain).
+// every step is in engine/include/gusuku/maths/colour_match.h (measureGroundColourGain, smoothGroundGain).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require

@@ -1,7 +1,7 @@
 #version 450
 // Colour statistics of the camera frame, second pass: one workgroup combines the partials of
 // colour_statistics.comp into the frame's Lab mean and sigma over the valid samples, then updates the smoothed
-// statistics in the ColourMatchState (choices in engine/include/gusuku/colour_match.h, which holds the CPU
+// statistics in the ColourMatchState (choices in engine/include/gusuku/maths/colour_match.h, which holds the CPU
 // reference of every step). Each invocation folds every 64th partial with Chan, Golub and LeVeque's pairwise
 // update; lanes combine with subgroupAdd by the law of total variance (grand mean first, then each lane's M2
 // plus its count times its squared offset from the grand mean: no sum(x^2) - n mean^2 cancellation); the few

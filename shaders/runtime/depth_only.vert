@@ -1,6 +1,6 @@
 #version 450
 // Depth only: the building and the site's occluder mesh into the sun's shadow maps, and the occluder mesh into
-// the camera's depth (so real walls hide the building; DESIGN.md 8 steps 3 and 4). Positions in ENU metres.
+// the camera's depth (so real walls hide the building; docs/design.md 8 steps 3 and 4). Positions in ENU metres.
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_depth_push.h"
 

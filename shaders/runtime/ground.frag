@@ -1,5 +1,5 @@
 #version 450
-// The shadow catcher (DESIGN.md 3 and 8 step 6): the camera pixel of a ground point is multiplied by
+// The shadow catcher (docs/design.md 3 and 8 step 6): the camera pixel of a ground point is multiplied by
 //   ratio = (E_with + V_bld E_sun) / (E_without + E_sun),  E_sun = V_scene I_sun max(0, n . s)
 // through the blend unit (in linear: the attachment is sRGB). Where the building changes the light by less than
 // half an 8-bit step the fragment writes a ratio of exactly 1: the blend then returns the camera's own value

@@ -4,7 +4,7 @@
 // where the building's shadow may fall (chosen on the CPU). The baked terms and the sun's cosine term E_with and E_without are
 // blended over the frame's slots here, once per cell, and interpolated to the fragments: vertices sit on the
 // cell centres, so the interpolation is the texture's own bilinear one, without a texture read per fragment.
-// Pulled a little towards the camera so the occluder mesh it was sampled from does not hide it (DESIGN.md 8).
+// Pulled a little towards the camera so the occluder mesh it was sampled from does not hide it (docs/design.md 8).
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_interface.h"
 

@@ -1,6 +1,6 @@
 #version 450
 // Test kernel for shaders/include/colour_match.glsl: runs its transfer for a list of colours, so
-// tests/test_colour_match.cpp can hold it to the C++ reference in engine/include/gusuku/colour_match.h.
+// tests/test_colour_match.cpp can hold it to the C++ reference in engine/include/gusuku/maths/colour_match.h.
 // Bindings: 0 the ColourMatchState; 1 inputs, per probe: vec4(linear rgb, 0), vec4(lab, 0);
 // 2 outputs, per probe: vec4(colourMatchTransferLab(lab), 0), vec4(applyColourMatch(rgb), 0).
 #extension GL_GOOGLE_include_directive : require

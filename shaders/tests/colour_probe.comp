@@ -1,6 +1,6 @@
 #version 450
 // Test kernel for shaders/include/colour.glsl: evaluates every function there for a list of colours, so
-// tests/test_colour.cpp can hold each to its C++ twin in engine/include/gusuku/colour.h.
+// tests/test_colour.cpp can hold each to its C++ twin in engine/include/gusuku/maths/colour.h.
 // Bindings: 0 inputs, per probe: vec4(rgb, 0) (linear RGB, also read as sRGB-encoded), vec4(lab1, 0),
 // vec4(lab2, 0) (two Lab colours for CIEDE2000 and the inverse chain);
 // 1 transfer statistics: vec4(source mean, max_gain), vec4(source sigma, 0), vec4(target mean, 0),

@@ -1,6 +1,6 @@
 #version 450
 // Smoke test for the compute path (tests/test_vulkan.cpp): out[i] = scale * in[i] + offset, plus one
-// subgroupAdd reduction so the test proves subgroup arithmetic works on the device (DESIGN.md 5 relies on it
+// subgroupAdd reduction so the test proves subgroup arithmetic works on the device (docs/design.md 5 relies on it
 // for colour statistics).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require

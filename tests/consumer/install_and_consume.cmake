@@ -20,7 +20,7 @@ function(run_step name)
 endfunction()
 
 run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(expected include/gusuku/gusuku.h include/gusuku/runtime.h include/gusuku/gusuku_loader.h
+foreach(expected include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h include/gusuku/loader/gusuku_loader.h
         lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
   if(NOT EXISTS ${prefix}/${expected})
     message(FATAL_ERROR "install: ${expected} is missing from the prefix")
@@ -42,6 +42,26 @@ endforeach()
 if(NOT EXISTS ${WORK_DIR}/runtime_only/lib/libgusuku_runtime.a)
   message(FATAL_ERROR "install --component runtime: lib/libgusuku_runtime.a is missing")
 endif()
+# Headers by library: the runtime component carries the headers of the libraries it installs and no others.
+foreach(folder maths gpu runtime)
+  if(NOT IS_DIRECTORY ${WORK_DIR}/runtime_only/include/gusuku/${folder})
+    message(FATAL_ERROR "install --component runtime: include/gusuku/${folder}/ is missing")
+  endif()
+endforeach()
+file(GLOB runtime_only_entries RELATIVE ${WORK_DIR}/runtime_only/include/gusuku ${WORK_DIR}/runtime_only/include/gusuku/*)
+list(REMOVE_ITEM runtime_only_entries maths gpu runtime)
+if(runtime_only_entries)
+  message(FATAL_ERROR "install --component runtime: include/gusuku/ also holds ${runtime_only_entries}, "
+                      "headers of libraries the component does not install")
+endif()
+if(NOT EXISTS ${WORK_DIR}/runtime_only/share/doc/gusuku/LICENSE)
+  message(FATAL_ERROR "install --component runtime: share/doc/gusuku/LICENSE is missing")
+endif()
+
+# Every installed header, each compiled on its own (one translation unit each) by the consumer below.
+file(GLOB_RECURSE installed_headers RELATIVE ${prefix}/include ${prefix}/include/gusuku/*.h)
+list(LENGTH installed_headers installed_header_count)
+message(STATUS "installed headers: ${installed_header_count}")
 
 set(compilers)
 if(C_COMPILER)
@@ -51,7 +71,8 @@ if(CXX_COMPILER)
   list(APPEND compilers -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 endif()
 run_step("configure the consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
-         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers})
+         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers}
+         "-DGUSUKU_INSTALLED_HEADERS=${installed_headers}")
 run_step("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
 run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)

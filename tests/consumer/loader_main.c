@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <gusuku/gusuku_loader.h>
+#include <gusuku/loader/gusuku_loader.h>
 
 int main(void) {
     gusuku_bakeset* bake_set = NULL;

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <gusuku/gusuku.h>
+#include <gusuku/runtime/gusuku.h>
 
 #define SIZE 16
 

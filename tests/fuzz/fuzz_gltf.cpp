@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "fuzz_workdir.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/maths/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #ifdef GUSUKU_FUZZ_GLB

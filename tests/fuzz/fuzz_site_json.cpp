@@ -4,8 +4,8 @@
 #include <cstdint>
 
 #include "fuzz_workdir.h"
-#include "gusuku/input_error.h"
-#include "gusuku/site.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/assets/site.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string path = gusuku::fuzz::writeInput("site.json", data, size);

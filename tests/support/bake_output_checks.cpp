@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku::testing {
 

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/vulkan_context.h"
+#include "gusuku/gpu/vulkan_context.h"
 
 namespace gusuku::testing {
 

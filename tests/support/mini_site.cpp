@@ -5,8 +5,8 @@
 
 #include <glm/matrix.hpp>
 
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
 #include "test_meshes.h"
 
 namespace gusuku::testing {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 
 namespace gusuku::testing {

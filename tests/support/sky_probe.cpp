@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu/gpu_compute.h"
 #include "sky_probe.h"
 #include "sky_probe_comp_spv.h"
 

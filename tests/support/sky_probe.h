@@ -7,7 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/vulkan_context.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace gusuku::bake {

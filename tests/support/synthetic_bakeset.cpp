@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "gusuku/sun.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 
 namespace gusuku::testing {
 namespace {

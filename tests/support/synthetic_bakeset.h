@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gusuku/bakeset_data.h"
+#include "gusuku/maths/bakeset_data.h"
 
 namespace gusuku::testing {
 

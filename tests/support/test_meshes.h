@@ -3,8 +3,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/image.h"
-#include "gusuku/mesh.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::testing {
 

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/bakeset_manifest.h"
-#include "gusuku/site.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/gpu/vulkan_context.h"
 
 namespace gusuku::bake {
 
-// The bake set layout's version, kBakeSetFormat, is gusuku/bakeset_manifest.h's (gusuku::kBakeSetFormat).
+// The bake set layout's version, kBakeSetFormat, is gusuku/maths/bakeset_manifest.h's (gusuku::kBakeSetFormat).
 
 struct BakeOptions {
     std::string output_dir;

@@ -1,7 +1,7 @@
 #pragma once
 // The baker's ray-tracing structure: a binary BVH built on the CPU with binned SAH and traversed in GLSL
 // compute (shaders/include/bvh_traverse.glsl) from two uniform texel buffers, because lavapipe has no ray queries
-// or acceleration structures (DESIGN.md 5). The CPU traversal here mirrors the GLSL one operation for
+// or acceleration structures (docs/design.md 5). The CPU traversal here mirrors the GLSL one operation for
 // operation, so tests can compare the two and tools can trace a few rays without a GPU.
 //
 // Layout contract (std430, shared with bvh_layout.glsl, which reads both arrays as RGBA32UI texels). Why this
@@ -38,7 +38,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake {
 

@@ -12,8 +12,8 @@
 
 #include <cstdint>
 
-#include "gusuku/image.h"
-#include "gusuku/runtime.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/runtime/runtime.h"
 #include "gusuku_bake/camera_tracer.h"
 
 namespace gusuku::bake {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/gpu_device.h"
-#include "gusuku/image.h"
-#include "gusuku/runtime.h"
-#include "gusuku/site.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/assets/site.h"
 #include "gusuku_bake/camera_tracer.h"
 #include "gusuku_bake/slot_lighting.h"
 #include "gusuku_bake/trace_scene.h"
@@ -78,16 +78,16 @@ SiteCameraFrame renderSiteCameraFrame(const GpuDevice& gpu, const SiteConfig& si
                                       const CameraIntrinsics& intrinsics, const CameraPose& pose,
                                       uint32_t samples_per_pixel, const SiteCameraOptions& options = {});
 
-/// The runtime's camera input from a linear frame: RGBA8, RGB sRGB-encoded (gusuku/colour.h's srgbEncode) after
+/// The runtime's camera input from a linear frame: RGBA8, RGB sRGB-encoded (gusuku/maths/colour.h's srgbEncode) after
 /// multiplying by `exposure` and clamping to [0, 1], rounded to nearest; alpha 255; row 0 at the top, width * 4
-/// bytes a row (gusuku/runtime.h's image convention).
+/// bytes a row (gusuku/runtime/runtime.h's image convention).
 std::vector<uint8_t> packRgba8Srgb(const ImageRGBA& linear, float exposure = 1.0f);
 
 /// An exposure that puts the frame's log-average luminance at middle grey (0.18; Reinhard et al. 2002's key),
 /// sky and surfaces alike. 1 for a black frame.
 float middleGreyExposure(const ImageRGBA& linear);
 
-/// Writes the frame times `exposure` as an 8-bit sRGB PNG (gusuku/image.h's writePngSrgb: atomic, clamped).
+/// Writes the frame times `exposure` as an 8-bit sRGB PNG (gusuku/assets/image.h's writePngSrgb: atomic, clamped).
 void writeCameraPng(const std::string& path, const ImageRGBA& linear, float exposure = 1.0f);
 
 }  // namespace gusuku::bake

@@ -7,7 +7,7 @@
 // so the sun is seen only by next-event estimation and never twice); a ray that reaches a surface of albedo rho
 // shows rho / pi * (E_sun + E_ind) + emission there, E_sun and E_ind estimated by the bake's own path code
 // (shaders/include/irradiance_paths.glsl), so where the bake and this camera should agree they do by
-// construction; the back of a one-sided surface is black. Camera conventions are gusuku/runtime.h's (x right,
+// construction; the back of a one-sided surface is black. Camera conventions are gusuku/runtime/runtime.h's (x right,
 // y down, z forward; u = fx X / Z + cx, v = fy Y / Z + cy; pixel (0, 0)'s centre at (0.5, 0.5)).
 //
 // Cost: the camera ray, then the bake's path from its hit (a sun ray and a bounce ray per vertex, one more where
@@ -23,10 +23,10 @@
 
 #include <glm/vec4.hpp>
 
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_device.h"
-#include "gusuku/image.h"
-#include "gusuku/runtime.h"  // CameraIntrinsics, CameraPose: the runtime's camera, used as is
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/runtime/runtime.h"  // CameraIntrinsics, CameraPose: the runtime's camera, used as is
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"

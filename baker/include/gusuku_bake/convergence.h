@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/site.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {

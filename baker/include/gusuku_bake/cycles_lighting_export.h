@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 
 namespace gusuku::bake {
 

@@ -1,11 +1,11 @@
 #pragma once
-// The ground grid (DESIGN.md 3): a top-down grid over the region the building can shade or light (its
+// The ground grid (docs/design.md 3): a top-down grid over the region the building can shade or light (its
 // footprint plus the shadow reach at the lowest baked sun, plus a bounce margin), holding the real ground's
 // height and normal (from the SfM mesh) and, per slot, the ground's sky-and-bounce irradiance with and without
 // the building. The runtime turns those into the shadow-catcher ratio.
 //
 // The grid's addressing (cell <-> ENU position, image order) is shared with the runtime and lives in
-// gusuku/ground_grid.h (column 0 west, row 0 NORTH); this header chooses the region and samples the ground.
+// gusuku/maths/ground_grid.h (column 0 west, row 0 NORTH); this header chooses the region and samples the ground.
 
 #include <cstdint>
 #include <vector>
@@ -13,8 +13,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/ground_grid.h"
-#include "gusuku/mesh.h"
+#include "gusuku/maths/ground_grid.h"
+#include "gusuku/maths/mesh.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {

@@ -10,8 +10,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/gpu_compute.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_inputs_gpu.h"
 #include "gusuku_bake/trace_scene.h"

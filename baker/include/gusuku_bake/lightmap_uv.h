@@ -22,7 +22,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The bake set's occluder (docs/bakeset.md, DESIGN.md 8 pass 4): the site's SfM mesh simplified to what a
+// The bake set's occluder (docs/bakeset.md, docs/design.md 8 pass 4): the site's SfM mesh simplified to what a
 // depth-only pass needs, so real walls in front of the building hide it. Positions and indices only.
 
 #include <cstddef>

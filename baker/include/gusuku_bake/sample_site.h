@@ -13,7 +13,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake::sample_site {
 

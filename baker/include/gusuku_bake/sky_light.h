@@ -1,13 +1,13 @@
 #pragma once
-// Sky light for the bake (DESIGN.md 3): the baked E_ind sees the 360 sky photo WITH ITS SUN DISC REMOVED, and the
+// Sky light for the bake (docs/design.md 3): the baked E_ind sees the 360 sky photo WITH ITS SUN DISC REMOVED, and the
 // direct sun is added in real time with an irradiance E_sun measured from the removed disc (HDR maps) or taken
 // from a clear-sky model of the sun's elevation (clipped or sunless maps). This header holds two CPU parts:
 //   - sun disc extraction            (sun_disc.cpp)
 //   - sky importance-sampling tables (sky_importance.cpp), and their CPU twins of shaders/include/sky_sampling.glsl
-// The clear-sky sun model, shared with the runtime, is gusuku/sun_irradiance.h (engine/src/maths).
+// The clear-sky sun model, shared with the runtime, is gusuku/maths/sun_irradiance.h (engine/src/maths).
 // (the GPU probe of that GLSL lives with the tests: tests/support/sky_probe.h).
 //
-// Conventions: equirect maps as in gusuku/equirect.h (row 0 zenith, azimuth = 360 u - north_azimuth_in_image_deg),
+// Conventions: equirect maps as in gusuku/maths/equirect.h (row 0 zenith, azimuth = 360 u - north_azimuth_in_image_deg),
 // directions are unit vectors in the site's east-north-up frame, radiance in the map's linear Rec.709 units,
 // irradiance = radiance units * sr. Luminance is Rec.709 Y = 0.2126 R + 0.7152 G + 0.0722 B.
 
@@ -18,7 +18,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku {
 class VulkanContext;

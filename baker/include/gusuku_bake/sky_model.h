@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku::bake {
 

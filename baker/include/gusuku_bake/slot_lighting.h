@@ -1,13 +1,13 @@
 #pragma once
 // What lights each bake slot: the sky map (sun disc removed) and the sun, placed by NREL SPA from the slot's
 // time and the site's position, with an irradiance E_sun measured from the map's disc where the map holds it
-// unclipped, else from the clear-sky model (DESIGN.md 3). The source is recorded in the manifest.
+// unclipped, else from the clear-sky model (docs/design.md 3). The source is recorded in the manifest.
 
 #include <string>
 #include <vector>
 
-#include "gusuku/site.h"
-#include "gusuku/sun.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/maths/sun.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"
 
@@ -30,7 +30,7 @@ PreparedSky prepareSky(const SkyConfig& sky);
 
 /// E_sun on a plane facing the sun (direct normal irradiance, the map's units) for a sunny slot:
 ///  - the map's disc found, unclipped and above 0.5 deg: the measured disc carried from the photo's sun elevation
-///    to the slot's by air mass (gusuku/sun_air_mass.h carryMeasuredSunRgb: Rayleigh plus a fitted aerosol depth,
+///    to the slot's by air mass (gusuku/maths/sun_air_mass.h carryMeasuredSunRgb: Rayleigh plus a fitted aerosol depth,
 ///    per channel; identity when the slot's sun stands where the photo's did);
 ///  - else the clear-sky fallback calibrated on the map's own diffuse light (calibratedClearSkySunRgb: aerosol
 ///    depth from the diffuse light's colour, luminance from ESRA's clear-sky direct/diffuse ratio), evaluated at

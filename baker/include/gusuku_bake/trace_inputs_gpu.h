@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_device.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"
 

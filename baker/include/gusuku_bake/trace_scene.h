@@ -9,7 +9,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku::bake {
 

@@ -1,4 +1,4 @@
-#include "gusuku/atomic_file.h"
+#include "gusuku/assets/atomic_file.h"
 
 #include <atomic>
 #include <cerrno>
@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku {
 

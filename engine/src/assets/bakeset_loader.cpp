@@ -1,6 +1,6 @@
-// loadBakeSet (gusuku/bakeset_loader.h): manifest first, then each file it names, each checked against the
+// loadBakeSet (gusuku/assets/bakeset_loader.h): manifest first, then each file it names, each checked against the
 // manifest as it is read so errors name the file; findBakeSetProblem last, as the runtime will.
-#include "gusuku/bakeset_loader.h"
+#include "gusuku/assets/bakeset_loader.h"
 
 #include <algorithm>
 #include <array>
@@ -10,12 +10,12 @@
 #include <map>
 #include <sstream>
 
-#include "gusuku/bakeset_manifest_json.h"
-#include "gusuku/bakeset_validate.h"
-#include "gusuku/colour.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku {
 

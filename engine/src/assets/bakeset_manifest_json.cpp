@@ -1,9 +1,9 @@
-// manifest.json <-> BakeSetManifest (gusuku/bakeset_manifest_json.h). The writer's JSON is built member by
+// manifest.json <-> BakeSetManifest (gusuku/assets/bakeset_manifest_json.h). The writer's JSON is built member by
 // member with the value types the baker always wrote (unsigned counts, int sizes, doubles), so the bytes of a
 // bake set's manifest did not change when the baker moved onto this writer; the reader is strict (unknown
 // fields are errors), so what it accepts round-trips through the struct without loss.
 
-#include "gusuku/bakeset_manifest_json.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
 
 #include <algorithm>
 #include <charconv>
@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/maths/input_error.h"
 #include "site_json_reader.h"
 
 namespace gusuku {

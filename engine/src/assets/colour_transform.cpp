@@ -1,14 +1,14 @@
-// The sRGB transfer curve for whole images, as an OpenColorIO CPU processor (DESIGN.md 2 routes colour
+// The sRGB transfer curve for whole images, as an OpenColorIO CPU processor (docs/design.md 2 routes colour
 // conversions through OpenColorIO). The scalar IEC 61966-2-1 formulas are srgbEncode / srgbDecode in
-// gusuku/colour.h (engine/src/maths/colour.cpp); a test pins the two to each other.
+// gusuku/maths/colour.h (engine/src/maths/colour.cpp); a test pins the two to each other.
 #include <array>
 #include <cstdint>
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/imageio.h>
 
-#include "gusuku/colour.h"
-#include "gusuku/image.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/assets/image.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 

@@ -1,4 +1,4 @@
-#include "gusuku/geodetic.h"
+#include "gusuku/assets/geodetic.h"
 
 #include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/LocalCartesian.hpp>

@@ -1,8 +1,8 @@
-// glTF 2.0 -> one TriangleMesh in ENU (gusuku/gltf_loader.h). tinygltf parses the JSON and buffers; images are
-// kept encoded by a custom loader callback and decoded here through OpenImageIO (gusuku/image.h), so that every
+// glTF 2.0 -> one TriangleMesh in ENU (gusuku/assets/gltf_loader.h). tinygltf parses the JSON and buffers; images are
+// kept encoded by a custom loader callback and decoded here through OpenImageIO (gusuku/assets/image.h), so that every
 // texture goes through the same colour handling. Every index, range and value read from the file is checked:
 // a bad file is an InputError naming the glTF element, never a crash.
-#include "gusuku/gltf_loader.h"
+#include "gusuku/assets/gltf_loader.h"
 
 #include <cmath>
 #include <cstring>
@@ -22,8 +22,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "gusuku/image.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/input_error.h"
 #include "one_line.h"
 #include "regular_file.h"
 

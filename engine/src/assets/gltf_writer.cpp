@@ -1,4 +1,4 @@
-// TriangleMesh -> .glb (gusuku/gltf_loader.h, writeGlb): one mesh, one primitive per used material, textures
+// TriangleMesh -> .glb (gusuku/assets/gltf_loader.h, writeGlb): one mesh, one primitive per used material, textures
 // embedded as sRGB PNG. Each primitive carries only the vertices its triangles use, so that loading the file
 // back gives the same vertex count as was written.
 #include <cstring>
@@ -11,10 +11,10 @@
 #include <glm/matrix.hpp>
 #include <tiny_gltf.h>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/glb_positions.h"
-#include "gusuku/gltf_loader.h"
-#include "gusuku/image.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/glb_positions.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/image.h"
 
 namespace gusuku {
 
@@ -160,7 +160,7 @@ void writeGlb(const std::string& path, const TriangleMesh& mesh, const glm::dmat
         out.name = material.name;
         const glm::vec4& f = material.base_color_factor;
         out.pbrMetallicRoughness.baseColorFactor = {f.x, f.y, f.z, f.w};
-        // Diffuse surfaces only (DESIGN.md 6): fully rough dielectric.
+        // Diffuse surfaces only (docs/design.md 6): fully rough dielectric.
         out.pbrMetallicRoughness.metallicFactor = 0.0;
         out.pbrMetallicRoughness.roughnessFactor = 1.0;
         if (material.base_color_texture >= 0) {

@@ -1,6 +1,6 @@
 // Image files through OpenImageIO, with the colour encoding decided explicitly at every read and write
-// (gusuku/image.h). Pixels in memory are always linear float RGBA. Reading is in image_read.cpp.
-#include "gusuku/image.h"
+// (gusuku/assets/image.h). Pixels in memory are always linear float RGBA. Reading is in image_read.cpp.
+#include "gusuku/assets/image.h"
 
 #include <algorithm>
 #include <cctype>
@@ -13,8 +13,8 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "gusuku/atomic_file.h"
-#include "gusuku/input_error.h"
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku {
 

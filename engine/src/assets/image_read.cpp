@@ -1,8 +1,8 @@
-// Reading image files through OpenImageIO into linear float RGBA (gusuku/image.h). The header is checked before
+// Reading image files through OpenImageIO into linear float RGBA (gusuku/assets/image.h). The header is checked before
 // a texel is decoded, large images are box-downsampled band by band while they are decoded (never held at full
 // size), and whatever OpenImageIO or its codecs print on stderr (libpng's "libpng error: ...") is captured and
 // folded into the one-line InputError.
-#include "gusuku/image.h"
+#include "gusuku/assets/image.h"
 
 #include <unistd.h>
 
@@ -19,7 +19,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 #include "one_line.h"
 #include "regular_file.h"
 

@@ -1,6 +1,6 @@
 // site.json: reading and validating the format documented in docs/site-json.md, and the model -> ENU
 // placement transforms of the building and the SfM mesh.
-#include "gusuku/site.h"
+#include "gusuku/assets/site.h"
 
 #include <algorithm>
 #include <cctype>
@@ -11,9 +11,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "gusuku/input_error.h"
-#include "gusuku/sun.h"
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 #include "regular_file.h"
 #include "site_json_reader.h"
 
@@ -211,7 +211,7 @@ BakeSlot sunnySlot(const std::string& name, const std::string& local_time) {
     return slot;
 }
 
-/// DESIGN.md 3: by default sunny 09:00, 12:00 and 15:00 site time, and overcast when there is an overcast sky.
+/// docs/design.md 3: by default sunny 09:00, 12:00 and 15:00 site time, and overcast when there is an overcast sky.
 std::vector<BakeSlot> defaultSlots(bool has_overcast_sky) {
     std::vector<BakeSlot> slots = {sunnySlot("sunny_0900", "09:00"), sunnySlot("sunny_1200", "12:00"),
                                    sunnySlot("sunny_1500", "15:00")};

@@ -1,6 +1,6 @@
 // Buffers and compute pipelines over storage and uniform texel buffers (see gpu_compute.h for the contract).
 
-#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu/gpu_compute.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,6 +1,6 @@
 // The non-owning device view and one-shot submissions (see gpu_device.h for the contract).
 
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_device.h"
 
 #include <sstream>
 #include <stdexcept>

@@ -1,13 +1,13 @@
 // Device-local images with one view, and their setup uploads (see gpu_image.h).
 
-#include "gusuku/gpu_image.h"
+#include "gusuku/gpu/gpu_image.h"
 
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "gusuku/gpu_compute.h"
+#include "gusuku/gpu/gpu_compute.h"
 
 namespace gusuku {
 

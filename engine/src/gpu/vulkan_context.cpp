@@ -1,7 +1,7 @@
 // The one headless Vulkan context (see vulkan_context.h for the contract). No surface extensions: the baker,
 // the tests and the bench render offscreen; the runtime presents through its host application.
 
-#include "gusuku/vulkan_context.h"
+#include "gusuku/gpu/vulkan_context.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,9 +1,9 @@
 // gusuku_bakeset_load (gusuku_loader.h): gusuku_assets' loadBakeSet behind the C API's error convention.
-#include "gusuku/gusuku_loader.h"
+#include "gusuku/loader/gusuku_loader.h"
 
 #include <memory>
 
-#include "gusuku/bakeset_loader.h"
+#include "gusuku/assets/bakeset_loader.h"
 #include "gusuku_c_api_detail.h"
 
 extern "C" gusuku_result gusuku_bakeset_load(const char* folder, gusuku_bakeset** out_bake_set) {

@@ -1,6 +1,6 @@
-// findBakeSetProblem (gusuku/bakeset_validate.h): every size, count, index and number the runtime relies on,
+// findBakeSetProblem (gusuku/maths/bakeset_validate.h): every size, count, index and number the runtime relies on,
 // checked once, reported as the first "FIELD: PROBLEM".
-#include "gusuku/bakeset_validate.h"
+#include "gusuku/maths/bakeset_validate.h"
 
 #include <cmath>
 #include <cstdio>

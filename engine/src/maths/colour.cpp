@@ -1,8 +1,8 @@
-// The sRGB curve and the linear Rec.709 -> XYZ -> Lab chain of gusuku/colour.h, one template per formula so
+// The sRGB curve and the linear Rec.709 -> XYZ -> Lab chain of gusuku/maths/colour.h, one template per formula so
 // the float and double overloads cannot drift apart. shaders/include/colour.glsl is the float twin.
 #include <cmath>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku {
 

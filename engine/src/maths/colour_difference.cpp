@@ -1,10 +1,10 @@
-// CIEDE2000 (gusuku/colour.h), following Sharma, Wu and Dalal (2005) step by step; their equation numbers are in
+// CIEDE2000 (gusuku/maths/colour.h), following Sharma, Wu and Dalal (2005) step by step; their equation numbers are in
 // the comments. Angles stay in radians throughout (their published values were computed so too), which also
 // decides the rounding on the 180-degree boundary that their pairs 13-16 straddle.
 #include <cmath>
 #include <numbers>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku {
 

@@ -1,6 +1,6 @@
-// CPU reference of the runtime's colour match (gusuku/colour_match.h): camera statistics, their smoothing and
+// CPU reference of the runtime's colour match (gusuku/maths/colour_match.h): camera statistics, their smoothing and
 // the transfer, in double, with the same steps as the GPU kernels and colour_match.glsl.
-#include "gusuku/colour_match.h"
+#include "gusuku/maths/colour_match.h"
 
 #include <algorithm>
 #include <cmath>

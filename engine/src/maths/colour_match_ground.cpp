@@ -1,4 +1,4 @@
-// CPU reference of the runtime's ground colour match (gusuku/colour_match.h, mode kGround): the ground cell
+// CPU reference of the runtime's ground colour match (gusuku/maths/colour_match.h, mode kGround): the ground cell
 // under each sampled pixel, its predicted radiance, the trimmed von Kries gain and its smoothing, in double, with
 // the same steps as shaders/runtime/colour_statistics_ground.comp and its reduce.
 #include <algorithm>
@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "gusuku/bakeset_data.h"
-#include "gusuku/colour_match.h"
+#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/maths/colour_match.h"
 
 namespace gusuku {
 

@@ -1,10 +1,10 @@
-// Reinhard's transfer of Lab statistics (gusuku/colour.h, DESIGN.md 4): measuring mu and sigma, and turning two
+// Reinhard's transfer of Lab statistics (gusuku/maths/colour.h, docs/design.md 4): measuring mu and sigma, and turning two
 // sets of them into per-channel gains with the documented floor and clamp. Applying it is one line in the
 // header and in shaders/include/colour.glsl.
 #include <algorithm>
 #include <cmath>
 
-#include "gusuku/colour.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku {
 

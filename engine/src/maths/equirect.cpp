@@ -1,4 +1,4 @@
-#include "gusuku/equirect.h"
+#include "gusuku/maths/equirect.h"
 
 #include <cmath>
 #include <numbers>

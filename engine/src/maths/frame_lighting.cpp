@@ -1,6 +1,6 @@
 // The frame's sun, E_sun and slot weights (see frame_lighting.h for the rules).
 
-#include "gusuku/frame_lighting.h"
+#include "gusuku/maths/frame_lighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/sun_air_mass.h"
+#include "gusuku/maths/sun_air_mass.h"
 
 namespace gusuku {
 namespace {

@@ -1,4 +1,4 @@
-#include "gusuku/input_error.h"
+#include "gusuku/maths/input_error.h"
 
 #include <utility>
 

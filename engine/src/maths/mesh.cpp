@@ -1,4 +1,4 @@
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 #include <glm/common.hpp>
 

@@ -1,6 +1,6 @@
 // Percentiles of a sample (see percentile.h).
 
-#include "gusuku/percentile.h"
+#include "gusuku/maths/percentile.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Shadow map placement fitted to the receivers and snapped to texels (see shadow_fit.h).
 
-#include "gusuku/shadow_fit.h"
+#include "gusuku/maths/shadow_fit.h"
 
 #include <algorithm>
 #include <cmath>

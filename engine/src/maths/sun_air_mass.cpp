@@ -1,13 +1,13 @@
-// The sun's colour by air mass (gusuku/sun_air_mass.h): Rayleigh plus Angstrom aerosol per Rec.709 channel, the
+// The sun's colour by air mass (gusuku/maths/sun_air_mass.h): Rayleigh plus Angstrom aerosol per Rec.709 channel, the
 // closed-form aerosol fit to a measured sun, and the carry between elevations.
 
-#include "gusuku/sun_air_mass.h"
+#include "gusuku/maths/sun_air_mass.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/maths/sun_irradiance.h"
 
 namespace gusuku {
 

@@ -1,8 +1,8 @@
-// Clear-sky direct sun (gusuku/sun_irradiance.h): ESRA beam model with Kasten-Young air mass and a per-channel
+// Clear-sky direct sun (gusuku/maths/sun_irradiance.h): ESRA beam model with Kasten-Young air mass and a per-channel
 // reddening. The baker's E_sun for every slot goes through these lines, so a change here changes bake sets:
 // keep the arithmetic as it is unless the bake is meant to change.
 
-#include "gusuku/sun_irradiance.h"
+#include "gusuku/maths/sun_irradiance.h"
 
 #include <cmath>
 #include <numbers>

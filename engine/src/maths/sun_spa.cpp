@@ -1,7 +1,7 @@
 // NREL's Solar Position Algorithm (Reda and Andreas 2004, NREL/TP-560-34302), double precision, written from
 // the paper's steps 3.1 to 3.15 (numbers in comments are the paper's sections). The periodic-term tables are
 // in sun_spa_terms.cpp. Only the sun's position is computed: no sunrise/sunset, no surface incidence.
-#include "gusuku/sun.h"
+#include "gusuku/maths/sun.h"
 
 #include <cmath>
 #include <numbers>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/time_utc.h"
 #include "sun_spa_terms.h"
 
 namespace gusuku {

@@ -1,7 +1,7 @@
 // ISO 8601 instants with explicit offsets, and Julian days. All calendar arithmetic is done here with the
 // proleptic Gregorian days-from-civil formula, so nothing depends on the machine's zone (no mktime, no timegm,
 // no TZ).
-#include "gusuku/time_utc.h"
+#include "gusuku/maths/time_utc.h"
 
 #include <cmath>
 #include <cstdint>

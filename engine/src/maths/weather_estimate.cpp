@@ -1,12 +1,12 @@
 // Cloud cover from the camera frame (see weather_estimate.h).
 
-#include "gusuku/weather_estimate.h"
+#include "gusuku/maths/weather_estimate.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "gusuku/colour.h"
-#include "gusuku/percentile.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/percentile.h"
 
 namespace gusuku {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
-// The runtime's colour statistics pass (DESIGN.md 8, pass 7): records, into the frame's command buffer, the two
+// The runtime's colour statistics pass (docs/design.md 8, pass 7): records, into the frame's command buffer, the two
 // compute dispatches that measure the camera frame's Lab statistics and smooth them into the ColourMatchState
 // that the next frame's building pass reads (through shaders/include/colour_match.glsl). Choices and the CPU
-// reference: gusuku/colour_match.h; GPU layout: shaders/include/colour_match_interface.h.
+// reference: gusuku/maths/colour_match.h; GPU layout: shaders/include/colour_match_interface.h.
 //
 // Everything is allocated at construction (the state buffer, the partials buffer, two pipelines); recording
 // allocates nothing. Not thread-safe; one frame in flight at a time (the runtime waits on its fence).
@@ -13,11 +13,11 @@
 #include <vulkan/vulkan.h>
 
 #include "colour_match_interface.h"
-#include "gusuku/colour.h"
-#include "gusuku/colour_match.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_device.h"
-#include "gusuku/runtime.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/colour_match.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku {
 

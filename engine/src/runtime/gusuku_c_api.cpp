@@ -1,6 +1,6 @@
 // The C API (gusuku.h) over the C++ runtime (runtime.h): C structs in, C++ structs through, and every exception
 // caught at the boundary and turned into a code and a one-line message.
-#include "gusuku/gusuku.h"
+#include "gusuku/runtime/gusuku.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,10 +11,10 @@
 #include <string>
 #include <tuple>
 
-#include "gusuku/bakeset_validate.h"
-#include "gusuku/input_error.h"
-#include "gusuku/runtime.h"
-#include "gusuku/runtime_version.h"
+#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/runtime/runtime_version.h"
 #include "gusuku_c_api_detail.h"
 
 /// The runtime handle. The C++ runtime holds a reference to the device view, so the view lives here, beside it,

@@ -5,8 +5,8 @@
 
 #include <exception>
 
-#include "gusuku/bakeset_data.h"
-#include "gusuku/gusuku.h"
+#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/runtime/gusuku.h"
 
 /// The bake set handle: a complete, checked BakeSetData in host memory.
 struct gusuku_bakeset {

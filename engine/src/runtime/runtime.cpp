@@ -1,4 +1,4 @@
-// gusuku_runtime's frame (runtime.h; DESIGN.md 8): the sun and slot weights on the CPU, then on the GPU the
+// gusuku_runtime's frame (runtime.h; docs/design.md 8): the sun and slot weights on the CPU, then on the GPU the
 // camera image in, colour statistics, the sun's shadow maps, the occluder's depth, the building, the ground
 // ratio, and the composite out. Everything is created in open(); a frame records into one pre-allocated command
 // buffer, submits it and waits on one fence, and allocates nothing.
@@ -21,11 +21,11 @@
 #include "depth_only_vert_spv.h"
 #include "ground_frag_spv.h"
 #include "ground_vert_spv.h"
-#include "gusuku/bakeset_validate.h"
-#include "gusuku/frame_lighting.h"
-#include "gusuku/runtime.h"
-#include "gusuku/shadow_fit.h"
-#include "gusuku/vulkan_context.h"
+#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/maths/frame_lighting.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/maths/shadow_fit.h"
+#include "gusuku/gpu/vulkan_context.h"
 #include "runtime_camera.h"
 #include "runtime_depth_push.h"
 #include "runtime_interface.h"
@@ -945,7 +945,7 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
     const Clock::time_point start = Clock::now();
     const FrameInfo info = prepareFrame(frame);
     // Each pass alone in its own submission, waited for: lavapipe writes timestamps only when graphics work is
-    // flushed (DESIGN.md 5), so wall time around a fenced submission is the honest per-pass figure.
+    // flushed (docs/design.md 5), so wall time around a fenced submission is the honest per-pass figure.
     auto timed = [&](double& slot, const auto& record) {
         const Clock::time_point pass_start = Clock::now();
         submit(record);

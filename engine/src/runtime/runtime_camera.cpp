@@ -11,8 +11,8 @@
 
 #include <glm/matrix.hpp>
 
-#include "gusuku/runtime.h"
-#include "gusuku/weather_estimate.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku/maths/weather_estimate.h"
 
 namespace gusuku {
 

@@ -6,7 +6,7 @@
 
 #include <glm/mat4x4.hpp>
 
-#include "gusuku/runtime.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::runtime_detail {
 

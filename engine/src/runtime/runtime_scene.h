@@ -7,9 +7,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/bakeset_data.h"
-#include "gusuku/gpu_compute.h"
-#include "gusuku/gpu_image.h"
+#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_image.h"
 
 namespace gusuku::runtime_detail {
 

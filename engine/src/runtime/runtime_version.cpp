@@ -1,5 +1,5 @@
 // The runtime's version, for apps that log what they linked (the package's version, CMakeLists.txt's project()).
-#include "gusuku/runtime_version.h"
+#include "gusuku/runtime/runtime_version.h"
 
 namespace gusuku {
 

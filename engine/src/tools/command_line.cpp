@@ -1,6 +1,6 @@
 // The tools' one command-line reader (see command_line.h for the contract).
 
-#include "gusuku/command_line.h"
+#include "gusuku/tools/command_line.h"
 
 #include <cctype>
 #include <cerrno>

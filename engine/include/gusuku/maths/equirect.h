@@ -1,5 +1,5 @@
 #pragma once
-// The equirectangular convention for sky maps (DESIGN.md 2): row 0 is the zenith, the bottom row the nadir.
+// The equirectangular convention for sky maps (docs/design.md 2): row 0 is the zenith, the bottom row the nadir.
 // u in [0, 1) runs from the left edge; the column at 360 * u = north_azimuth_in_image_deg faces north, and
 // azimuth (east of north) grows with u: azimuth = 360 * u - north_azimuth_in_image_deg.
 // v in [0, 1] runs from the top: elevation = 90 - 180 * v degrees.

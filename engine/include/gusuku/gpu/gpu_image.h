@@ -8,7 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_device.h"
 
 namespace gusuku {
 

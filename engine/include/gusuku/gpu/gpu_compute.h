@@ -2,7 +2,7 @@
 // Minimal compute helpers on a GpuDevice (the app's device or a VulkanContext's, gpu_device.h): buffers and
 // compute pipelines whose descriptor set 0 holds buffers at bindings 0..N-1 (storage buffers, or uniform texel
 // buffers where the pipeline says so) plus one push-constant block. That is all the baker needs: textures, sky
-// maps and the BVH travel as buffers (lavapipe lacks descriptor indexing, DESIGN.md 5). A VulkanContext converts to `const GpuDevice&`, so it can be passed as is.
+// maps and the BVH travel as buffers (lavapipe lacks descriptor indexing, docs/design.md 5). A VulkanContext converts to `const GpuDevice&`, so it can be passed as is.
 //
 // Lifetime: the GpuDevice object passed in (not only its handles) must outlive the buffers and pipelines made
 // on it; they keep a pointer to it.
@@ -14,7 +14,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "gusuku/gpu_device.h"
+#include "gusuku/gpu/gpu_device.h"
 
 namespace gusuku {
 

@@ -10,8 +10,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/geodetic.h"
-#include "gusuku/sun.h"
+#include "gusuku/assets/geodetic.h"
+#include "gusuku/maths/sun.h"
 
 namespace gusuku {
 

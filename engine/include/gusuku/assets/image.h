@@ -8,20 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/colour.h"  // srgbEncode, srgbDecode (per value; the whole-image versions are below)
+#include "gusuku/maths/colour.h"      // srgbEncode, srgbDecode (per value; the whole-image versions are below)
+#include "gusuku/maths/image_rgba.h"  // the image type
 
 namespace gusuku {
-
-struct ImageRGBA {
-    int width = 0;
-    int height = 0;
-    std::vector<float> texels;  ///< width * height * 4 floats, linear, row-major, row 0 at the top
-
-    float* texel(int x, int y) { return texels.data() + (size_t(y) * size_t(width) + size_t(x)) * 4; }
-    const float* texel(int x, int y) const {
-        return texels.data() + (size_t(y) * size_t(width) + size_t(x)) * 4;
-    }
-};
 
 /// How to interpret a file's values when reading.
 enum class ImageEncoding {
@@ -76,9 +66,9 @@ std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha
 /// Writes a Radiance .hdr (RGBE), atomically. Values are linear.
 void writeHdr(const std::string& path, const ImageRGBA& image);
 
-// The scalar sRGB transfer function and its inverse, srgbEncode / srgbDecode, live in gusuku/colour.h.
+// The scalar sRGB transfer function and its inverse, srgbEncode / srgbDecode, live in gusuku/maths/colour.h.
 
-/// Whole-image sRGB transfer through OpenColorIO (the one place colour conversions go, DESIGN.md 2): RGB
+/// Whole-image sRGB transfer through OpenColorIO (the one place colour conversions go, docs/design.md 2): RGB
 /// decoded to linear / encoded from linear in place, alpha untouched. Encoding expects values in [0, 1].
 void srgbDecodeImage(ImageRGBA& image);
 void srgbEncodeImage(ImageRGBA& image);

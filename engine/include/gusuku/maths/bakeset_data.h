@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/bakeset_manifest.h"
+#include "gusuku/maths/bakeset_manifest.h"
 
 namespace gusuku {
 

@@ -1,6 +1,6 @@
 #pragma once
 // gusuku_runtime: draws a lost building into the camera frame with baked global illumination, a real-time sun
-// and its shadow on the real ground, and matches its colour to the camera (DESIGN.md 3, 4 and 8).
+// and its shadow on the real ground, and matches its colour to the camera (docs/design.md 3, 4 and 8).
 //
 // What an AR app links: Vulkan and glm only. It opens on the app's own Vulkan device (GpuDevice, gpu_device.h:
 // the runtime creates nothing global, only its own pools, buffers, images and pipelines on that device) and holds
@@ -29,9 +29,9 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/bakeset_data.h"
-#include "gusuku/colour_match.h"
-#include "gusuku/gpu_device.h"
+#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/maths/colour_match.h"
+#include "gusuku/gpu/gpu_device.h"
 
 namespace gusuku {
 
@@ -86,13 +86,13 @@ struct Weather {
     static Weather sunny() { return {0.0f}; }
     static Weather overcast() { return {1.0f}; }
     /// The weather read off the camera frame alone (RGBA8 as FrameInput's), for when no weather service
-    /// answers: the cover of gusuku/weather_estimate.h (hard shadows on the lower half, a blue sky on the top
+    /// answers: the cover of gusuku/maths/weather_estimate.h (hard shadows on the lower half, a blue sky on the top
     /// rows). Allocates two frame-sized arrays: call it every second or so, not per frame. gusuku-bench measures
     /// how often it picks the better weather.
     static Weather estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height);
 };
 
-/// The colour match of a frame, one enum with the GPU state's (gusuku/colour_match.h):
+/// The colour match of a frame, one enum with the GPU state's (gusuku/maths/colour_match.h):
 ///   kOff       no colour match;
 ///   kPaper     Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
 ///              target the camera frame (the seed paper's method);
@@ -115,7 +115,7 @@ struct RuntimeOptions {
     uint32_t frame_width = 1280;   ///< every frame's images must have this size
     uint32_t frame_height = 720;
     /// Shadow map side, texels. Fitted to the building (and the ground it can shade) as seen from the sun, so
-    /// 1024 gives about bounds / 1024 per texel. Cost grows with its area (DESIGN.md 5).
+    /// 1024 gives about bounds / 1024 per texel. Cost grows with its area (docs/design.md 5).
     uint32_t shadow_map_size = 1024;
     /// Depth bias of the shadow test, in shadow-map texels (slope-scaled by the receiver's normal).
     float shadow_bias_texels = 1.5f;
@@ -125,7 +125,7 @@ struct RuntimeOptions {
     /// only when the rounded sun moves: every 12 s or so at 0.05 degrees, which shifts a 10 m shadow by 9 mm.
     /// The building and the site are static, so nothing else can change them. 0: redraw every frame.
     float shadow_sun_step_deg = 0.05f;
-    /// Colour statistics are gathered on every n-th pixel in x and y of the camera frame (DESIGN.md 5).
+    /// Colour statistics are gathered on every n-th pixel in x and y of the camera frame (docs/design.md 5).
     uint32_t statistics_stride = 8;
     /// Frames for the exponential smoothing of the camera's colour statistics (time constant), >= 1.
     float statistics_smoothing_frames = 8.0f;
@@ -185,7 +185,7 @@ struct FrameInfo {
 };
 
 /// Per-pass time of one frame in profiling mode, milliseconds of wall time (each pass submitted and waited on
-/// alone, which works around lavapipe's timestamps: DESIGN.md 5).
+/// alone, which works around lavapipe's timestamps: docs/design.md 5).
 struct PassTimings {
     double upload_ms = 0.0;      ///< camera image into the frame
     double shadow_ms = 0.0;      ///< shadow maps

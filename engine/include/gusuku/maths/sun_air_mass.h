@@ -11,7 +11,7 @@
 //   tau_A(lambda) = beta lambda^-alpha         aerosol, Angstrom (1929): turbidity coefficient beta (the aerosol
 //                                              depth at 1 um), exponent alpha = kAngstromExponent = 1.3
 //   m(h)                                       relative air mass, Kasten and Young (1989): kastenYoungAirMass in
-//                                              gusuku/sun_irradiance.h (m(90) = 1, m(10) = 5.6, m(0) = 37.9)
+//                                              gusuku/maths/sun_irradiance.h (m(90) = 1, m(10) = 5.6, m(0) = 37.9)
 //   lambda_c = 0.610, 0.550, 0.465 um          the dominant wavelengths of the Rec.709 primaries (ITU-R BT.709
 //                                              chromaticities against D65; Bruneton's 2017 three-wavelength
 //                                              atmosphere uses 680/550/440 nm, which reddens the low sun about

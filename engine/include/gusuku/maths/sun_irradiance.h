@@ -1,5 +1,5 @@
 #pragma once
-// The sun's direct irradiance against its elevation (DESIGN.md 3 and 8): what the baker uses to carry an E_sun
+// The sun's direct irradiance against its elevation (docs/design.md 3 and 8): what the baker uses to carry an E_sun
 // measured from a sky photo's sun disc to a slot's sun elevation (or to give E_sun outright when the photo cannot
 // say), and what the runtime uses once per frame, on the CPU, to carry a slot's E_sun to the current sun.
 //

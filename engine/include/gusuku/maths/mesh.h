@@ -1,6 +1,6 @@
 #pragma once
 // A triangle mesh in the site's east-north-up frame (metres), with what the baker and runtime need of its
-// materials: base colour (factor times texture) and emission. Nothing else: diffuse surfaces only (DESIGN.md 6).
+// materials: base colour (factor times texture) and emission. Nothing else: diffuse surfaces only (docs/design.md 6).
 
 #include <cstdint>
 #include <string>
@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/image.h"
+#include "gusuku/maths/image_rgba.h"
 
 namespace gusuku {
 

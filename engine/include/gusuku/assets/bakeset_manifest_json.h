@@ -1,10 +1,10 @@
 #pragma once
 // manifest.json of a bake set (docs/bakeset.md) to and from gusuku::BakeSetManifest. Part of gusuku_assets (the
-// I/O stack: nlohmann json); the struct itself is in gusuku/bakeset_manifest.h and needs none of it.
+// I/O stack: nlohmann json); the struct itself is in gusuku/maths/bakeset_manifest.h and needs none of it.
 
 #include <string>
 
-#include "gusuku/bakeset_manifest.h"
+#include "gusuku/maths/bakeset_manifest.h"
 
 namespace gusuku {
 
@@ -16,7 +16,7 @@ namespace gusuku {
 /// position, a local time or a UTC time.
 std::string bakeSetManifestJson(const BakeSetManifest& manifest);
 
-/// Writes bakeSetManifestJson(manifest) to path atomically (gusuku/atomic_file.h).
+/// Writes bakeSetManifestJson(manifest) to path atomically (gusuku/assets/atomic_file.h).
 void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manifest);
 
 /// Reads a manifest written by bakeSetManifestJson. Every problem is an InputError(file, "/json/pointer",
@@ -25,7 +25,7 @@ void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manife
 /// irradiance, a direction that is not a unit vector, a count that is not a whole number >= 0), a sunny slot
 /// without its time or sun position, an overcast slot with them, an input_hash that is not 16 hex digits, an
 /// "input_paths" other than its fixed text, a "partial" whose slot is not the manifest's one slot or not among
-/// its site_slots. Input paths are returned as written (see resolveBakeSetInputPath in gusuku/bakeset_loader.h).
+/// its site_slots. Input paths are returned as written (see resolveBakeSetInputPath in gusuku/assets/bakeset_loader.h).
 /// `file` names the text in messages.
 BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string& text);
 

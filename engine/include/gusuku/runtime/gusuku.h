@@ -1,5 +1,5 @@
 /* gusuku.h: the C API of gusuku_runtime, for apps (and languages) that do not take C++. C99; include it from C or
- * C++. It wraps gusuku/runtime.h one to one: read that header for what the runtime draws and how.
+ * C++. It wraps gusuku/runtime/runtime.h one to one: read that header for what the runtime draws and how.
  *
  * Use:
  *     gusuku_bakeset* set;    gusuku_bakeset_create(&desc, &set)     (or gusuku_bakeset_load, gusuku_loader.h)
@@ -70,7 +70,7 @@ const char* gusuku_last_error_message(void);
 const char* gusuku_version(void);
 
 /* ------------------------------------------------------------------------------------------------------------ */
-/* The bake set in memory (mirrors gusuku/bakeset_data.h, keeping only what the runtime draws from)               */
+/* The bake set in memory (mirrors gusuku/maths/bakeset_data.h, keeping only what the runtime draws from)               */
 
 /* A float RGBA image: width * height * 4 floats, row 0 at the top. */
 typedef struct gusuku_image {
@@ -140,7 +140,7 @@ typedef struct gusuku_bakeset_desc {
     const uint32_t* occluder_indices; /* 3 per triangle */
     uint32_t occluder_index_count;
 
-    /* The ground grid (gusuku/ground_grid.h): column 0 west, row 0 north, square cells. */
+    /* The ground grid (gusuku/maths/ground_grid.h): column 0 west, row 0 north, square cells. */
     double ground_origin_enu_m[2];    /* south-west corner, ENU x and y */
     double ground_cell_m;
     int32_t ground_columns;
@@ -156,7 +156,7 @@ typedef struct gusuku_bakeset gusuku_bakeset;
 
 /* Copies desc into a new bake set and checks it. A NULL array with a non-zero count: INVALID_ARGUMENT naming the
  * desc's field ("desc.normals: NULL with vertex_count 24"); bad data (every size, index and texel is checked):
- * INVALID_BAKE_SET naming the field as gusuku/bakeset_data.h does (desc.indices is building.indices, desc.slots[i]
+ * INVALID_BAKE_SET naming the field as gusuku/maths/bakeset_data.h does (desc.indices is building.indices, desc.slots[i]
  * .building is slots[i].building: "bake set: slots[2].building: texel (4, 0) channel R is NaN"). O(data size)
  * time and host memory; the app may free its arrays when it returns. */
 gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bakeset** out_bake_set);

@@ -1,6 +1,6 @@
 #pragma once
 // Weather from the camera frame alone: an estimate of cloud cover the app can hand the runtime as its Weather
-// (gusuku/runtime.h: Weather::estimatedFrom), when no weather service answers. CPU, glm only (gusuku_maths);
+// (gusuku/runtime/runtime.h: Weather::estimatedFrom), when no weather service answers. CPU, glm only (gusuku_maths);
 // it allocates (arrays the size of the frame): call it now and then (every second or so), not per frame.
 // Two cues a sunny frame has and an overcast one lacks:
 //   - a blue sky: how much bluer the top eighth of the rows is than the ground, ln(B / R) of linear RGB at the
@@ -34,7 +34,7 @@ inline constexpr float kClearShadowContrast = 2.4f;
 inline constexpr float kOvercastSkyBlueness = 0.80f;
 inline constexpr float kClearSkyBlueness = 1.20f;
 
-/// The estimate for an RGBA8 frame (RGB sRGB-encoded, row 0 at the top; gusuku/runtime.h). A frame smaller
+/// The estimate for an RGBA8 frame (RGB sRGB-encoded, row 0 at the top; gusuku/runtime/runtime.h). A frame smaller
 /// than 2 x 8 pixels or entirely black is taken as overcast (cover 1: no sun added is the safer error).
 CloudEstimate estimateCloudCover(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height);
 /// The same over width * height * 4 bytes at rgba8 (null: overcast).

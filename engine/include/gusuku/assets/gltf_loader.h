@@ -8,7 +8,7 @@
 
 #include <glm/mat4x4.hpp>
 
-#include "gusuku/mesh.h"
+#include "gusuku/maths/mesh.h"
 
 namespace gusuku {
 
@@ -24,7 +24,7 @@ struct GltfLoadOptions {
     /// placement * enuFromGltfYUp(); for an SfM mesh it is site.json's similarity transform as given.
     glm::dmat4 enu_from_model{1.0};
     /// Textures larger than this on either side are box-downsampled while they are decoded (the bake needs
-    /// albedo, not detail). 0 or more than kMaxImageSide (8192, gusuku/image.h) means kMaxImageSide.
+    /// albedo, not detail). 0 or more than kMaxImageSide (8192, gusuku/assets/image.h) means kMaxImageSide.
     int max_texture_size = 0;
     /// The flattened scene's limits (counted from accessor counts with every instance, before expansion); a
     /// larger scene is an InputError naming the limit. A primitive without normals counts one vertex per corner.

@@ -1,11 +1,11 @@
 #pragma once
-// The runtime's colour match (DESIGN.md 4 and 8, pass 7 feeding pass 5): the camera frame's Lab statistics,
+// The runtime's colour match (docs/design.md 4 and 8, pass 7 feeding pass 5): the camera frame's Lab statistics,
 // their smoothing over frames, and the transfer that moves the building's colours towards the camera's. This
 // header is the CPU double-precision reference of what the GPU does (gusuku_maths, glm only); the GPU side is
 // shaders/runtime/colour_statistics.comp + colour_statistics_reduce.comp (recorded by the runtime's private
 // ColourStatisticsPass) and shaders/include/colour_match.glsl (called by the building's fragment shader), whose
 // shared state layout is shaders/include/colour_match_interface.h. tests/test_colour_match.cpp holds the GPU to
-// these functions. Colour maths (sRGB, Lab, the gain's floor and clamp) comes from gusuku/colour.h.
+// these functions. Colour maths (sRGB, Lab, the gain's floor and clamp) comes from gusuku/maths/colour.h.
 //
 // Choices, and why:
 // - Sampling: pixel (offset + i stride, offset + j stride), offset = stride / 2 (the middle of each stride x
@@ -26,7 +26,7 @@
 //   updates the smoothed state. No float atomics: lavapipe (Mesa 22.3.6) does offer VK_EXT_shader_atomic_float
 //   (shaderBufferFloat32AtomicAdd), but an app's device need not have or enable it, their order (so the
 //   result) would change from run to run, and a single pass would need sum(x^2) - n mean^2 (cancellation);
-//   no shared-memory tree either (DESIGN.md 5: 82 ms against 24 ms with subgroupAdd at full 720p).
+//   no shared-memory tree either (docs/design.md 5: 82 ms against 24 ms with subgroupAdd at full 720p).
 // - Cost on lavapipe (2 shared cores, fence-timed medians of 20, both dispatches): 0.6 ms at 1280 x 720 with
 //   stride 8, 2.3-5.6 ms with stride 4 (the machine's load moves it), 0.18 ms at 640 x 360 with stride 8,
 //   0.55 ms with stride 4 (test_colour_match's ColourStatisticsTiming prints them).
@@ -93,8 +93,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/colour.h"
-#include "gusuku/ground_grid.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/ground_grid.h"
 
 namespace gusuku {
 
@@ -214,7 +214,7 @@ struct GroundMatchCell {
 /// The bake set's ground as the match needs it.
 struct GroundMatchScene {
     GroundGrid grid;
-    std::vector<GroundMatchCell> cells;                       ///< texel order (gusuku/ground_grid.h)
+    std::vector<GroundMatchCell> cells;                       ///< texel order (gusuku/maths/ground_grid.h)
     std::vector<std::vector<glm::vec3>> irradiance_without;  ///< per slot, per cell: E_without, bake set units
     float start_height_m = 0.0f;  ///< mean height of the cells with ground: the ray's first plane
 };

@@ -1,10 +1,10 @@
 #pragma once
-// The one home of colour maths for the baker, the runtime's colour match and the benchmark (DESIGN.md 2, 4):
+// The one home of colour maths for the baker, the runtime's colour match and the benchmark (docs/design.md 2, 4):
 // the sRGB transfer curve, Rec.709 luminance, linear Rec.709 RGB <-> CIE XYZ <-> CIE L*a*b* (D65), the
 // CIEDE2000 colour difference and the Reinhard transfer of Lab statistics. glm only; whole-image transfers
-// that go through an OpenColorIO config stay in gusuku/image.h and use these scalars where plain maths will do.
+// that go through an OpenColorIO config stay in gusuku/assets/image.h and use these scalars where plain maths will do.
 //
-// Precision: float32 everywhere the runtime works (DESIGN.md 2: never 8-bit Lab); the double overloads are
+// Precision: float32 everywhere the runtime works (docs/design.md 2: never 8-bit Lab); the double overloads are
 // the same formulas for CPU references and for baker code that accumulates in double. Every function here has
 // a GLSL twin of the same name in shaders/include/colour.glsl (float only), held to it by tests/test_colour.cpp
 // through shaders/tests/colour_probe.comp.
@@ -101,7 +101,7 @@ double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2);
 float ciede2000(const glm::vec3& lab1, const glm::vec3& lab2);
 
 // ------------------------------------------------------------------------------------------------------------
-// Reinhard transfer of Lab statistics (colour_transfer.cpp; DESIGN.md 4)
+// Reinhard transfer of Lab statistics (colour_transfer.cpp; docs/design.md 4)
 // ------------------------------------------------------------------------------------------------------------
 
 /// Mean and standard deviation per Lab channel of a set of pixels.
@@ -120,7 +120,7 @@ LabStatistics measureLabStatistics(std::span<const glm::vec3> lab_pixels);
 /// its sigma is raised to this floor, so the gain stays finite and the gain clamp then bounds it.
 inline constexpr float kLabTransferMinSourceSigma = 0.01f;
 /// Default for the max_gain parameter below: the colour match may stretch or squeeze a channel's spread by
-/// at most 4 times (DESIGN.md 4's example needs 2).
+/// at most 4 times (docs/design.md 4's example needs 2).
 inline constexpr float kLabTransferDefaultMaxGain = 4.0f;
 
 /// A transfer reduced to its per-channel terms: y = (x - source_mean) * gain + target_mean.
@@ -140,7 +140,7 @@ LabTransfer makeLabTransfer(const LabStatistics& source, const LabStatistics& ta
                             float max_gain = kLabTransferDefaultMaxGain);
 
 /// Applies a transfer to one Lab pixel: (lab - source_mean) * gain + target_mean. No clamping of the result:
-/// out-of-gamut handling is the caller's (DESIGN.md 4 lists it as its own failure mode).
+/// out-of-gamut handling is the caller's (docs/design.md 4 lists it as its own failure mode).
 inline glm::vec3 applyLabTransfer(const LabTransfer& transfer, const glm::vec3& lab) {
     return (lab - transfer.source_mean) * transfer.gain + transfer.target_mean;
 }

@@ -2,7 +2,7 @@
 // What a bake set's manifest.json says (docs/bakeset.md), as plain data: the baker fills it and writes it, the
 // runtime (or the app for it) reads it, and both see the same fields. This header needs only glm and the
 // standard library, so the runtime can hold a manifest without the I/O stack; reading and writing the JSON
-// lives in gusuku_assets (gusuku/bakeset_manifest_json.h).
+// lives in gusuku_assets (gusuku/assets/bakeset_manifest_json.h).
 //
 // Frame and units, throughout: directions and positions in the site's east-north-up frame (metres), angles in
 // degrees, azimuth east of north, sun elevation APPARENT (refracted, as SunPosition gives it), irradiance per
@@ -16,7 +16,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/ground_grid.h"
+#include "gusuku/maths/ground_grid.h"
 
 namespace gusuku {
 
@@ -29,7 +29,7 @@ struct BakeSetInput {
     std::string role;     ///< "site", "building", "sfm_mesh", "sunny_sky", "overcast_sky"
     /// Relative to the bake set's folder (or absolute), so the set moves with its inputs; in a manifest with
     /// input_paths_relative_to_folder false (written before this rule), as the bake named it. Resolve it with
-    /// gusuku/bakeset_loader.h's resolveBakeSetInputPath.
+    /// gusuku/assets/bakeset_loader.h's resolveBakeSetInputPath.
     std::string path;
     std::string fnv1a64;
     bool operator==(const BakeSetInput&) const = default;
@@ -64,7 +64,7 @@ struct BakeSetBuilding {
     bool operator==(const BakeSetBuilding&) const = default;
 };
 
-/// The ground grid: its addressing is gusuku/ground_grid.h (column 0 west, row 0 north).
+/// The ground grid: its addressing is gusuku/maths/ground_grid.h (column 0 west, row 0 north).
 struct BakeSetGroundGrid {
     std::string geometry = "ground_geometry.exr";  ///< RGB: unit normal (ENU), A: height (ENU z, metres)
     GroundGrid grid;
@@ -76,7 +76,7 @@ struct BakeSetGroundGrid {
     bool operator==(const BakeSetGroundGrid&) const = default;
 };
 
-/// The real site's surfaces for the runtime's depth-only pass (DESIGN.md 8, pass 4): the SfM mesh simplified
+/// The real site's surfaces for the runtime's depth-only pass (docs/design.md 8, pass 4): the SfM mesh simplified
 /// to what occlusion needs, positions and indices only. Present only when site.json has an SfM mesh. Fixed by
 /// the format (written, and checked by the reader): the mesh's frame is the building's (site ENU metres in glTF
 /// Y-up axes).
@@ -108,14 +108,14 @@ struct BakeSetSun {
     std::string irradiance_source;
     std::optional<BakeSetSunPosition> position;  ///< sunny slots only
     /// E_sun on a plane facing the sun, at position->apparent_elevation_deg; carry it to another elevation with
-    /// gusuku/sun_air_mass.h's carryMeasuredSunRgb (what the baker and the runtime do).
+    /// gusuku/maths/sun_air_mass.h's carryMeasuredSunRgb (what the baker and the runtime do).
     glm::dvec3 irradiance_rgb{0.0};
     double angular_radius_deg = 0.0;  ///< of the sun disc the tracer samples
     bool operator==(const BakeSetSun&) const = default;
 };
 
 /// CIE Lab (D65) mean and standard deviation of the baked appearance rho/pi (E_ind + V E_sun cos) over the valid
-/// lightmap texels: the source side of the runtime's colour match (DESIGN.md 4).
+/// lightmap texels: the source side of the runtime's colour match (docs/design.md 4).
 struct BakeSetColourStatistics {
     glm::dvec3 lab_mean{0.0};
     glm::dvec3 lab_sigma{0.0};

@@ -8,13 +8,13 @@
 #ifndef GUSUKU_GUSUKU_LOADER_H
 #define GUSUKU_GUSUKU_LOADER_H
 
-#include "gusuku/gusuku.h"
+#include "gusuku/runtime/gusuku.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Loads folder/manifest.json and every file it names (gusuku/bakeset_loader.h's loadBakeSet), checked as
+/* Loads folder/manifest.json and every file it names (gusuku/assets/bakeset_loader.h's loadBakeSet), checked as
  * gusuku_bakeset_create checks a desc, into a new bake set for gusuku_runtime_open(_headless); free it with
  * gusuku_bakeset_free. A missing folder or file, a corrupt or inconsistent file: GUSUKU_ERROR_INVALID_BAKE_SET
  * with "gusuku_bakeset_load: FILE: FIELD: PROBLEM". Reads and decodes every file: O(bake set size) time and host

@@ -1,5 +1,5 @@
 #pragma once
-// The version of gusuku_runtime, the library an AR app links (maths and Vulkan only, DESIGN.md 8).
+// The version of gusuku_runtime, the library an AR app links (maths and Vulkan only, docs/design.md 8).
 
 namespace gusuku {
 

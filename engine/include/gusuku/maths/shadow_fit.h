@@ -1,5 +1,5 @@
 #pragma once
-// The runtime's shadow map placement (DESIGN.md 8 step 3): an orthographic view from the sun fitted to what can
+// The runtime's shadow map placement (docs/design.md 8 step 3): an orthographic view from the sun fitted to what can
 // receive the building's shadow (the building and the ground grid), snapped to the map's texel grid so the
 // shadow does not shimmer. Pure maths (glm only), tested without a GPU.
 //

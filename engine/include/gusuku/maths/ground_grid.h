@@ -1,5 +1,5 @@
 #pragma once
-// The ground grid of a bake set and the shadow-catcher ratio it exists for (DESIGN.md 3, docs/bakeset.md):
+// The ground grid of a bake set and the shadow-catcher ratio it exists for (docs/design.md 3, docs/bakeset.md):
 // the baker writes the grid, the runtime reads it. One home for both, with a GLSL twin of every function in
 // shaders/include/ground_ratio.glsl (same names), held to this header by tests/test_ground_ratio.cpp.
 //
@@ -62,7 +62,7 @@ GroundCellAddress groundCellFromIndex(const GroundGrid& grid, size_t index);
 glm::dvec2 groundGridUv(const GroundGrid& grid, const glm::dvec2& enu_xy);
 
 // ------------------------------------------------------------------------------------------------------------
-// The shadow-catcher ratio (differential rendering, Debevec 1998; DESIGN.md 3)
+// The shadow-catcher ratio (differential rendering, Debevec 1998; docs/design.md 3)
 // ------------------------------------------------------------------------------------------------------------
 // The runtime never draws the ground: it scales the camera pixel of a ground point by
 //   ratio = (E_with + V_bld E_sun) / (E_without + E_sun),   E_sun = V_scene I_sun max(0, n . s)

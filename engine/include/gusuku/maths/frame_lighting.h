@@ -1,6 +1,6 @@
 #pragma once
 // The light of one runtime frame, worked out on the CPU from the instant, the place and the weather
-// (DESIGN.md 8, steps 1 and 2): where the sun is (NREL SPA), its irradiance E_sun carried from the baked slots to
+// (docs/design.md 8, steps 1 and 2): where the sun is (NREL SPA), its irradiance E_sun carried from the baked slots to
 // the current elevation, and the weights of the baked slots. Pure maths (glm only, microseconds), so it is
 // tested without a GPU and the runtime calls it once per frame.
 //
@@ -21,11 +21,11 @@
 //     linearly to 0 between 0 and -6 degrees apparent elevation (civil twilight) while the overcast slot keeps
 //     its cloud weight. Defined, finite, never NaN; the colour match then adapts the building to the dim camera.
 //   - E_sun: each chosen sunny slot's irradiance_rgb carried from its baked elevation to the current one
-//     (carryMeasuredSunRgb of gusuku/sun_air_mass.h, the baker's air-mass model: the aerosol depth refitted to
+//     (carryMeasuredSunRgb of gusuku/maths/sun_air_mass.h, the baker's air-mass model: the aerosol depth refitted to
 //     the slot's own colour is the one the baker used), blended with the slot weights.
 
-#include "gusuku/bakeset_manifest.h"
-#include "gusuku/sun.h"
+#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/maths/sun.h"
 
 namespace gusuku {
 
