@@ -62,6 +62,8 @@ endif()
 file(GLOB_RECURSE installed_headers RELATIVE ${prefix}/include ${prefix}/include/gusuku/*.h)
 list(LENGTH installed_headers installed_header_count)
 message(STATUS "installed headers: ${installed_header_count}")
+# Passed to the consumer joined by '|': run_step's ARGN would split a ';' list into separate arguments.
+list(JOIN installed_headers "|" installed_headers_joined)
 
 set(compilers)
 if(C_COMPILER)
@@ -72,7 +74,7 @@ if(CXX_COMPILER)
 endif()
 run_step("configure the consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
          -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers}
-         "-DGUSUKU_INSTALLED_HEADERS=${installed_headers}")
+         "-DGUSUKU_INSTALLED_HEADERS=${installed_headers_joined}")
 run_step("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
 run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
