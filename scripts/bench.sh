@@ -70,6 +70,7 @@ find bench/results -mindepth 1 -maxdepth 1 ! -name README.md -exec rm -rf {} +
 # The code the figures come from, as the summary's last line.
 printf '\ncode: %s\n' "$code" >> bench/results/summary.md
 python3 - <<'PY'
+import os
 path = "bench/results/README.md"
 readme = open(path).read()
 summary = open("bench/results/summary.md").read()
@@ -79,6 +80,6 @@ if begin not in readme or end not in readme:
 head, rest = readme.split(begin, 1)
 _, tail = rest.split(end, 1)
 open(path + ".tmp", "w").write(head + begin + "\n" + summary + end + tail)
+os.replace(path + ".tmp", path)
 PY
-mv bench/results/README.md.tmp bench/results/README.md
 echo "scripts/bench.sh: bench/results/README.md's figures now from bench/results/results.json"

@@ -107,7 +107,7 @@ while IFS= read -r file; do
       fi
     fi
     if [[ -n "$anchor" && "$resolved" == *.md ]]; then
-      anchors "$resolved" | grep -qxF -- "$anchor" \
+      grep -qxF -- "$anchor" <<<"$(anchors "$resolved")" \
         || report "$file:$line" "links $target: $resolved has no heading #$anchor"
     fi
   done < <(awk '
