@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Regenerates every figure and chart README.md's "Benchmark" section quotes, from one gusuku-bench run, and
-# pastes the run's summary (bench-results/summary.md, written by the bench itself) between the README's
-# <!-- bench:begin --> and <!-- bench:end --> markers: no figure there is typed by hand.
+# Regenerates every figure and chart of the benchmark (docs/measurements.md, "The benchmark") from one gusuku-bench
+# run, and pastes the run's summary (bench/results/summary.md, written by the bench itself) between the
+# <!-- bench:begin --> and <!-- bench:end --> markers of bench/results/README.md: no figure there is typed by hand.
 #
 # Usage: scripts/bench.sh [--quick] [BAKESET]   (default BAKESET: out/bakeset). Results: bench/results/
-# (results.json, chart.svg, chart.json, day.svg, summary.md, frames/), the README's section from them. The full
+# (results.json, chart.svg, chart.json, day.svg, summary.md, frames/, and README.md's pasted summary). The full
 # run takes about an hour on 2 shared cores (most of it the day's truths); --quick one to two minutes.
 # Path-traced frames are cached in out/bench-cache/ by key, so a rerun traces only what changed.
 set -euo pipefail
@@ -16,7 +16,7 @@ bench="${GUSUKU_BENCH:-./build/bench/gusuku-bench}"  # GUSUKU_BENCH: another bui
 bake="${GUSUKU_BAKE:-./build/baker/gusuku-bake}"
 # The code the figures come from (the working tree as the run starts), for the summary's last line.
 code="$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')"
-# The photographed skies (issue 10, part 5): the same site baked under ../shared/data/env's clear sky and
+# The photographed skies: the same site baked under ../shared/data/env's clear sky and
 # overcast sky, when those files are there (they are never copied into the repository). Not in the quick run.
 photographed=()
 env_dir="../shared/data/env"
@@ -63,20 +63,23 @@ PY
     echo "scripts/bench.sh: skipping the photographed skies: $env_dir/rooitou_park_1k.hdr or potsdamer_platz_1k.hdr not found"
   fi
 fi
-rm -rf bench/results
+# The previous run's results go, all but bench/results/README.md (its text around the markers is kept).
+mkdir -p bench/results
+find bench/results -mindepth 1 -maxdepth 1 ! -name README.md -exec rm -rf {} +
 "$bench" "$bakeset" -o bench/results --cache out/bench-cache $quick "${photographed[@]}"
 # The code the figures come from, as the summary's last line.
 printf '\ncode: %s\n' "$code" >> bench/results/summary.md
 python3 - <<'PY'
-import re
-readme = open("README.md").read()
+import os
+path = "bench/results/README.md"
+readme = open(path).read()
 summary = open("bench/results/summary.md").read()
 begin, end = "<!-- bench:begin -->", "<!-- bench:end -->"
 if begin not in readme or end not in readme:
-    raise SystemExit("scripts/bench.sh: README.md: the <!-- bench:begin --> / <!-- bench:end --> markers are missing")
+    raise SystemExit("scripts/bench.sh: " + path + ": the <!-- bench:begin --> / <!-- bench:end --> markers are missing")
 head, rest = readme.split(begin, 1)
 _, tail = rest.split(end, 1)
-open("README.md.tmp", "w").write(head + begin + "\n" + summary + end + tail)
+open(path + ".tmp", "w").write(head + begin + "\n" + summary + end + tail)
+os.replace(path + ".tmp", path)
 PY
-mv README.md.tmp README.md
-echo "scripts/bench.sh: README.md's Benchmark figures now from bench/results/results.json"
+echo "scripts/bench.sh: bench/results/README.md's figures now from bench/results/results.json"

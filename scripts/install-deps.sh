@@ -9,6 +9,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev
   libopenimageio-dev openimageio-tools libopencolorio-dev libgeographiclib-dev libmeshoptimizer-dev
   libgtest-dev
+  universal-ctags  # the function-length check lists the sources' functions with it
 )
 
 # --fuzz: also clang-14 and its compiler runtime (libFuzzer, sanitizers), for scripts/fuzz.sh only.

@@ -4,7 +4,7 @@
 # and the camera frame it was drawn into. The camera frames are path-traced (the sample has no photograph).
 # Usage: scripts/render-composites.sh [BAKESET] [OUTDIR] [WxH] [SAMPLES]
 #   defaults: out/bakeset out/composites 480x270 32
-# The README's pictures are remade with: scripts/render-composites.sh out/bakeset docs/images 384x216 64
+# The pictures of README.md and docs/runtime.md are remade with: scripts/render-composites.sh out/bakeset docs/images 384x216 64
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bakeset="${1:-out/bakeset}"

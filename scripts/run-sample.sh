@@ -11,5 +11,5 @@ bash scripts/build.sh
 ./build/baker/gusuku-bake bake out/sample/site.json -o out/bakeset --force
 # Composites of the sample at 09:00, 12:00, 15:00, 16:30 and overcast, each beside direct-only, into out/composites.
 bash scripts/render-composites.sh out/bakeset out/composites 480x270 32
-# The benchmark's short run: frame time against accuracy to a path-traced truth (the README's Benchmark section).
+# The benchmark's short run: frame time against accuracy to a path-traced truth (docs/measurements.md, "The benchmark").
 ./build/bench/gusuku-bench out/bakeset -o out/bench-quick --cache out/bench-cache --quick

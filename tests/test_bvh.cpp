@@ -641,7 +641,7 @@ TEST(BvhCpu, TraversalEqualsLinearScanBitForBitTiesIncluded) {
 
 // ---- GPU: the GLSL traversal against the CPU traversal ---------------------------------------------------
 
-// Mirrors shaders/bvh_probe.comp.
+// Mirrors shaders/tests/bvh_probe.comp.
 struct ProbeRay {
     float origin[3];
     float t_max;

@@ -375,7 +375,7 @@ TEST(SkySampling, BlackMapFallsBackToUniformAndDarkRowsAreNeverChosen) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// GLSL twin (shaders/include/sky_sampling.glsl through shaders/sky_probe.comp)
+// GLSL twin (shaders/include/sky_sampling.glsl through shaders/tests/sky_probe.comp)
 // ---------------------------------------------------------------------------------------------------------
 
 class SkySamplingGpu : public gusuku::testing::GpuTest {};

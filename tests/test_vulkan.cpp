@@ -19,7 +19,7 @@ namespace {
 
 using testing::GpuTest;
 
-// Mirrors the push-constant block of shaders/smoke_scale_add.comp.
+// Mirrors the push-constant block of shaders/tests/smoke_scale_add.comp.
 struct ScaleAddParams {
     float scale;
     float offset;

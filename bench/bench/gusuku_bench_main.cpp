@@ -1,5 +1,5 @@
 // gusuku-bench: the runtime's frame time on this machine's Vulkan against its accuracy to a path-traced truth,
-// one mode against another, from one run (README "Benchmark"; the parts 1-7).
+// one mode against another, from one run (docs/measurements.md, "The benchmark").
 //
 // Sections, in order (each writes its part of results.json; the summary is printed and written as summary.md):
 //   truth     the site WITH the building, path-traced (the truth), its noise between two seeds; the site

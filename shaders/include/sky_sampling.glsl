@@ -1,6 +1,6 @@
 // Sky radiance lookup and importance sampling on the GPU: the twin of sky_importance.cpp (gusuku_bake/sky_light.h
 // documents the buffers' layout and the densities; keep the two in step, tests/test_sky_light.cpp holds them to
-// each other through shaders/sky_probe.comp).
+// each other through shaders/tests/sky_probe.comp).
 //
 // The includer defines, before including:
 //   SKY_RADIANCE_BINDING  set-0 binding of SkySamplingTables::radiance_rgba (width * height vec4, row 0 zenith),

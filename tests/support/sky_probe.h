@@ -28,7 +28,7 @@ struct SkyProbeResult {
     float combined_pdf = 0.0f;              ///< and its pdf out-parameter
 };
 
-/// Runs shaders/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).
+/// Runs shaders/tests/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).
 /// One synchronous dispatch; throws std::runtime_error on Vulkan failure.
 std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamplingTables& tables,
                                            const std::vector<glm::vec2>& xi,

@@ -18,9 +18,9 @@
 
 namespace gusuku::bake {
 
-/// A point where irradiance is estimated, in the shader's layout. The convention at a surface (README, "How the
-/// baker works"): the cosine lobe about `normal`, with directions below the plane of `face_normal` contributing
-/// nothing, so a lightmap texel and a path vertex on the same surface gather the same light.
+/// A point where irradiance is estimated, in the shader's layout. The convention at a surface (docs/baker.md,
+/// "One convention at the surface"): the cosine lobe about `normal`, with directions below the plane of
+/// `face_normal` contributing nothing, so a lightmap texel and a path vertex on the same surface gather the same light.
 struct QueryPointGpu {
     glm::vec4 position;                  ///< xyz ENU metres
     glm::vec4 normal;                    ///< xyz unit: the shading normal, about which the cosine lobe gathers;
