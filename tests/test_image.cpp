@@ -8,6 +8,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include "fifo_watchdog.h"
@@ -370,6 +372,93 @@ TEST(ImageFileTest, ImagesAboveTheSideLimitAreDownsampledWhileDecoding) {
     ASSERT_EQ(small.height, 1);
     EXPECT_FLOAT_EQ(small.texel(7, 0)[0], 90.0f * 7.0f + 44.5f);
     EXPECT_FLOAT_EQ(small.texel(7, 0)[1], 1.5f);
+}
+
+// Writes `image` as a tiled file (OpenEXR float or TIFF 8-bit) with tiles of tile_side texels, as Nuke and Blender
+// write OpenEXR; the image's sides are deliberately not multiples of the tile side.
+void writeTiled(const std::string& path, const ImageRGBA& image, int tile_side, OIIO::TypeDesc format) {
+    OIIO::ImageSpec spec(image.width, image.height, 4, format);
+    spec.tile_width = tile_side;
+    spec.tile_height = tile_side;
+    auto output = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(output) << OIIO::geterror();
+    ASSERT_TRUE(output->open(path, spec)) << output->geterror();
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, image.texels.data())) << output->geterror();
+    ASSERT_TRUE(output->close());
+}
+
+TEST(ImageFileTest, TiledExrReadsAsTheScanlineFileDoes) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const ImageRGBA image = makeGradient(45, 37, 250.0f);
+    for (int tile_side : {16, 64}) {
+        const std::string path = dir + "/tiled_" + std::to_string(tile_side) + ".exr";
+        writeTiled(path, image, tile_side, OIIO::TypeDesc::FLOAT);
+        {
+            auto input = OIIO::ImageInput::open(path);
+            ASSERT_TRUE(input);
+            ASSERT_EQ(input->spec().tile_width, tile_side) << "the file is not tiled";
+        }
+        const ImageRGBA back = gusuku::readImage(path);
+        ASSERT_EQ(back.width, image.width);
+        ASSERT_EQ(back.height, image.height);
+        for (size_t i = 0; i < image.texels.size(); ++i)
+            ASSERT_EQ(back.texels[i], image.texels[i]) << "float " << i << ", tiles of " << tile_side;
+        const ImageRGBA sky = gusuku::readRadianceMap(path);
+        EXPECT_EQ(sky.texels, back.texels);
+        // Box-downsampled while decoding (factor 3): bands that do not start on a tile row.
+        const ImageRGBA reduced = gusuku::readImage(path, gusuku::ImageEncoding::Linear, 15);
+        ASSERT_EQ(reduced.width, 15);
+        ASSERT_EQ(reduced.height, 13);
+        for (int y : {0, 5, 12})
+            for (int x : {0, 7, 14}) {
+                double expected_red = 0.0;
+                int count = 0;
+                for (int fy = 3 * y; fy < std::min(image.height, 3 * y + 3); ++fy)
+                    for (int fx = 3 * x; fx < 3 * x + 3; ++fx, ++count) expected_red += image.texel(fx, fy)[0];
+                EXPECT_NEAR(reduced.texel(x, y)[0], expected_red / count, 1e-3) << x << ", " << y;
+            }
+    }
+}
+
+TEST(ImageFileTest, TiledMipmappedExrReadsItsFullResolutionLevel) {
+    // The texture route (maketx, ImageBufAlgo::make_texture): tiled, with a full mip chain.
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    const ImageRGBA image = makeGradient(40, 24, 3.0f);
+    OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT),
+                          const_cast<float*>(image.texels.data()));
+    OIIO::ImageSpec config;
+    config.tile_width = config.tile_height = 16;
+    config.attribute("maketx:filtername", "box");
+    const std::string path = dir + "/mipmapped.exr";
+    ASSERT_TRUE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, source, path, config))
+        << OIIO::geterror();
+    {
+        auto input = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(input);
+        ASSERT_GT(input->spec().tile_width, 0) << "the file is not tiled";
+        ASSERT_TRUE(input->seek_subimage(0, 1)) << "the file has no second mip level";
+    }
+    const ImageRGBA back = gusuku::readImage(path);
+    ASSERT_EQ(back.width, image.width);
+    ASSERT_EQ(back.height, image.height);
+    for (size_t i = 0; i < image.texels.size(); ++i) ASSERT_NEAR(back.texels[i], image.texels[i], 2e-3f) << i;
+}
+
+TEST(ImageFileTest, TiledEightBitTiffDecodesAsSrgbBytes) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    ImageRGBA image = makeGradient(33, 20, 1.0f);
+    const std::string path = dir + "/tiled.tif";
+    writeTiled(path, image, 16, OIIO::TypeDesc::UINT8);
+    const ImageRGBA back = gusuku::readImage(path);  // 8-bit: sRGB-encoded, decoded to linear
+    ASSERT_EQ(back.width, image.width);
+    ASSERT_EQ(back.height, image.height);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float byte = std::round(image.texel(x, y)[c] * 255.0f);
+                // Within 1e-5 of the curve (the table is OpenColorIO's), far below one byte's step (3e-4 at least).
+                ASSERT_NEAR(back.texel(x, y)[c], gusuku::srgbDecode(byte / 255.0f), 1e-5f) << x << ", " << y;
+            }
 }
 
 // A PNG header declaring 100000 x 100000 texels (40 GB as float RGBA) in a file of a few dozen bytes.

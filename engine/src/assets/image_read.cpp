@@ -126,6 +126,28 @@ void expandToRgba(const T* in, int channels, size_t texel_count, T opaque, T* ou
     }
 }
 
+// Reads rows [y_begin, y_end) of subimage 0, mip level 0 (file channels [0, channels)) as `format` into `rows`,
+// from a scanline file or a tiled one alike. A tiled file (as Nuke, Blender and maketx write OpenEXR) can only be
+// read by whole tiles, and read_scanlines on one fails deep inside the codec, so the tile rows that cover the range
+// are read into `tile_rows` and the wanted rows copied out of them.
+bool readFileRows(OIIO::ImageInput& input, int y_begin, int y_end, int channels, OIIO::TypeDesc format,
+                  void* rows, std::vector<unsigned char>& tile_rows) {
+    const OIIO::ImageSpec& spec = input.spec();
+    if (spec.tile_width <= 0 || spec.tile_height <= 0)
+        return input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, channels, format, rows);
+    const int tile_height = spec.tile_height;
+    const int tiles_begin = (y_begin / tile_height) * tile_height;
+    const int tiles_end = std::min(spec.height, ((y_end + tile_height - 1) / tile_height) * tile_height);
+    const size_t row_bytes = size_t(spec.width) * size_t(channels) * format.size();
+    tile_rows.resize(row_bytes * size_t(tiles_end - tiles_begin));
+    if (!input.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + tiles_begin, spec.y + tiles_end, spec.z,
+                          spec.z + std::max(1, spec.depth), 0, channels, format, tile_rows.data()))
+        return false;
+    std::memcpy(rows, tile_rows.data() + row_bytes * size_t(y_begin - tiles_begin),
+                row_bytes * size_t(y_end - y_begin));
+    return true;
+}
+
 // Reads subimage 0 of an opened input into linear RGBA, box-averaging `factor` x `factor` blocks (linear values,
 // partial blocks at the right and bottom edges averaged over what is there) band by band, so at most one band of
 // the file's rows is held at its full width.
@@ -145,6 +167,7 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
     const bool byte_srgb = is_srgb && spec.format == OIIO::TypeDesc::UINT8;
     std::vector<float> file_values;
     std::vector<uint8_t> file_bytes, rgba_bytes;
+    std::vector<unsigned char> tile_rows;  // a tiled file's covering tile rows (readFileRows)
     ImageRGBA band;
     std::vector<double> sums(size_t(image.width) * 4);
     std::vector<int> counts(size_t(image.width));
@@ -160,16 +183,16 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
         if (byte_srgb) {
             // 8-bit sRGB (most textures): bytes to RGBA bytes, then one table lookup per channel.
             file_bytes.resize(band_texels * size_t(file_channels));
-            if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
-                                      OIIO::TypeDesc::UINT8, file_bytes.data()))
+            if (!readFileRows(input, y_begin, y_end, file_channels, OIIO::TypeDesc::UINT8, file_bytes.data(),
+                              tile_rows))
                 throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
             rgba_bytes.resize(band_texels * 4);
             expandToRgba(file_bytes.data(), file_channels, band_texels, uint8_t(255), rgba_bytes.data());
             srgbDecodeBytes(rgba_bytes.data(), band_texels, band.texels.data());
         } else {
             file_values.resize(band_texels * size_t(file_channels));
-            if (!input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, file_channels,
-                                      OIIO::TypeDesc::FLOAT, file_values.data()))
+            if (!readFileRows(input, y_begin, y_end, file_channels, OIIO::TypeDesc::FLOAT, file_values.data(),
+                              tile_rows))
                 throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
             expandToRgba(file_values.data(), file_channels, band_texels, 1.0f, band.texels.data());
             if (is_srgb) srgbDecodeImage(band);
