@@ -196,6 +196,7 @@ std::vector<BadManifest> badManifests() {
         without("no format", "", "format"),
         without("no latitude", "/site", "latitude_deg"),
         without("no slots", "", "slots"),
+        withValue("an empty slot list", "/slots", json::array(), "empty: a bake set holds at least one slot"),
         without("no sun in a slot", "/slots/0", "sun"),
         without("sunny slot without utc", "/slots/0", "utc"),
         without("sunny slot without sun position", "/slots/1/sun", "direction_enu"),

@@ -222,6 +222,12 @@ static void testBadBakeSetsAreRefusedNamingTheField(void) {
     CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);
     CHECK_MESSAGE_HAS(gusuku_last_error_message(), "desc.slots[0].ground_with: 70000 x 16 texels");
     scene->slots[0].ground_with.width = kCells;
+    /* No slot: the runtime would have no lightmap layer to upload. */
+    scene->desc.slot_count = 0;
+    CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);
+    CHECK(bake_set == NULL);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "manifest.slots: empty");
+    scene->desc.slot_count = 2;
     /* An index out of range. */
     scene->indices[7] = 24;
     CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);

@@ -353,6 +353,8 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     manifest.input_paths_relative_to_folder = root.has("input_paths");
 
     const json& slots = root.array("slots");
+    // The runtime draws from one slot at least: an empty list would open and then have no lightmap to sample.
+    if (slots.empty()) root.fail("slots", "empty: a bake set holds at least one slot");
     for (size_t i = 0; i < slots.size(); ++i) {
         const ObjectReader slot =
             elementObject(root, "slots", i,

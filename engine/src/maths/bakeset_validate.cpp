@@ -83,6 +83,8 @@ Problem checkManifest(const BakeSetManifest& manifest) {
         !std::isfinite(grid.origin_enu_m.y))
         return "manifest.ground_grid: cell_m " + number(grid.cell_m) + ", origin (" + number(grid.origin_enu_m.x) +
                ", " + number(grid.origin_enu_m.y) + "): the cell must be positive and all finite";
+    // The runtime uploads the slots as the layers of one array image, which may not have 0 layers.
+    if (manifest.slots.empty()) return "manifest.slots: empty; a bake set holds at least one slot";
     for (size_t s = 0; s < manifest.slots.size(); ++s) {
         const BakeSetSun& sun = manifest.slots[s].sun;
         const std::string field = "manifest.slots[" + std::to_string(s) + "].sun";

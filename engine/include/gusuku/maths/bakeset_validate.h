@@ -13,7 +13,7 @@ namespace gusuku {
 /// The first problem found, as one line "FIELD: PROBLEM" (FIELD as a C++ path into BakeSetData, e.g.
 /// "slots[2].building: 199 x 200 texels, the manifest says lightmap_resolution 200"), or nothing when the data
 /// is consistent. Checked, in this order:
-///   - the manifest: lightmap_resolution and the ground grid's columns, rows and cell_m > 0; each sunny slot's sun
+///   - the manifest: at least one slot; lightmap_resolution and the ground grid's columns, rows and cell_m > 0; each sunny slot's sun
 ///     direction a finite unit vector; a present sun's irradiance finite and >= 0;
 ///   - the building: at least one triangle; indices a multiple of 3 and in range; normals, uv0 and uv1 one per
 ///     position; one material per triangle, naming an existing material; each material's texture -1 or an
