@@ -17,6 +17,7 @@
 #include <tiny_gltf.h>
 
 #include "bake_output_checks.h"
+#include "fifo_watchdog.h"
 #include "gpu_test_support.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
@@ -98,6 +99,44 @@ TEST_F(BakeBadInputTest, BuildingSunkIntoTheGroundDoesNotLeakLight) {
     const size_t invalid = manifest["slots"][0]["invalid_texels"].get<size_t>();
     EXPECT_GT(invalid, report.building_texels / 10) << "of " << report.building_texels;
     EXPECT_LT(invalid, report.building_texels / 2);
+}
+
+// The bake hashes every input file before it decodes any (the bake set's input hash), glTF buffers included,
+// which the site's own checks do not see: each is checked first, so a FIFO named as a building's buffer is
+// refused unopened (it used to block the bake forever) and nothing is written.
+TEST_F(BakeBadInputTest, GltfBufferThatIsAFifoIsRefusedUnopened) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-fifobuffer");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    // building.glb as building.gltf with its buffer in building.bin, then that buffer replaced by a FIFO.
+    tinygltf::TinyGLTF gltf;
+    tinygltf::Model model;
+    std::string error, warning;
+    ASSERT_TRUE(gltf.LoadBinaryFromFile(&model, &error, &warning, dir + "/building.glb")) << error;
+    ASSERT_EQ(model.buffers.size(), 1u);
+    model.buffers[0].uri = "building.bin";
+    ASSERT_TRUE(gltf.WriteGltfSceneToFile(&model, dir + "/building.gltf", false, false, true, false));
+    ASSERT_TRUE(fs::remove(dir + "/building.bin"));
+    ASSERT_TRUE(gusuku::testing::makeFifo(dir + "/building.bin"));
+    std::string text;
+    {
+        std::ifstream in(site_path);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    text.replace(text.find("building.glb"), std::string("building.glb").size(), "building.gltf");
+    std::ofstream(site_path) << text;
+
+    std::string message;
+    EXPECT_FALSE(gusuku::testing::fifoWasOpenedDuring(dir + "/building.bin", [&] {
+        try {
+            runBake(context(), loadSiteConfig(site_path), quietOptions(dir + "/bake"));
+            ADD_FAILURE() << "a FIFO buffer was accepted";
+        } catch (const InputError& error) {
+            message = error.what();
+        }
+    }));
+    EXPECT_NE(message.find("building.bin"), std::string::npos) << message;
+    EXPECT_NE(message.find("is a FIFO (named pipe), not a regular file; not read"), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(dir + "/bake/manifest.json"));
 }
 
 TEST_F(BakeBadInputTest, SkyWithNanTexelsIsRefusedNamingTheFile) {

@@ -102,6 +102,31 @@ TEST(AtomicFileTest, ReadingMissingFileNamesIt) {
     EXPECT_NE(message.find("/nonexistent/gusuku.txt"), std::string::npos) << message;
 }
 
+// Every file a tool reads whole (glTF buffers and images being hashed for the bake set's input hash, a bake set's
+// manifest) is checked before it is opened: a FIFO would block the bake forever, /dev/zero fill memory.
+TEST(AtomicFileTest, ReadingWholeRefusesWhatIsNotAFileOfBoundedSize) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_atomic");
+    const std::string fifo = dir + "/buffer.bin";
+    ASSERT_TRUE(gusuku::testing::makeFifo(fifo));
+    std::string message;
+    EXPECT_FALSE(gusuku::testing::fifoWasOpenedDuring(
+        fifo, [&] { message = expectInputError([&] { gusuku::readWholeFile(fifo); }); }));
+    EXPECT_EQ(message, fifo + ": is a FIFO (named pipe), not a regular file; not read");
+    fs::create_symlink("/dev/zero", dir + "/zero.bin");
+    EXPECT_EQ(expectInputError([&] { gusuku::readWholeFile(dir + "/zero.bin"); }),
+              dir + "/zero.bin: is a character device, not a regular file; not read");
+    fs::create_directory(dir + "/folder.bin");
+    EXPECT_EQ(expectInputError([&] { gusuku::readWholeFile(dir + "/folder.bin"); }),
+              dir + "/folder.bin: is a directory, not a regular file; not read");
+    // The size limit: a file of exactly max_bytes is read whole, one byte more is refused unread.
+    const std::string bytes(1000, 'g');
+    gusuku::writeBytesAtomically(dir + "/data.bin", bytes.data(), bytes.size());
+    EXPECT_EQ(gusuku::readWholeFile(dir + "/data.bin", 1000), bytes);
+    EXPECT_EQ(expectInputError([&] { gusuku::readWholeFile(dir + "/data.bin", 999); }),
+              dir + "/data.bin: is 1000 bytes, more than the 999 a file read whole may have");
+    EXPECT_EQ(gusuku::readWholeFile(dir + "/data.bin"), bytes);  // the default limit, kMaxInputFileBytes
+}
+
 TEST(SrgbCurveTest, MatchesPublishedValues) {
     // IEC 61966-2-1: linear 0.5 encodes to 0.735357; encoded 0.5 decodes to 0.214041; breakpoints
     // 0.0031308 (linear) <-> 0.04045 (encoded).

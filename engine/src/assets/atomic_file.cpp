@@ -1,5 +1,6 @@
 #include "gusuku/assets/atomic_file.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "gusuku/maths/input_error.h"
+#include "regular_file.h"
 
 namespace gusuku {
 
@@ -79,11 +81,23 @@ void writeBytesAtomically(const std::string& final_path, const void* bytes, size
     });
 }
 
-std::string readWholeFile(const std::string& path) {
+std::string readWholeFile(const std::string& path, uint64_t max_bytes) {
+    if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
+    std::error_code size_error;
+    const uintmax_t size = fs::file_size(path, size_error);
+    if (size_error) throw InputError(path, "", "cannot read its size: " + size_error.message());
+    if (size > max_bytes)
+        throw InputError(path, "", "is " + std::to_string(size) + " bytes, more than the " +
+                                       std::to_string(max_bytes) + " a file read whole may have");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
-    std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // One byte past the limit tells a file that grew after its size was read.
+    std::string contents(size_t(std::min<uintmax_t>(size, max_bytes) + 1), '\0');
+    in.read(contents.data(), std::streamsize(contents.size()));
     if (in.bad()) throw InputError(path, "", "read failed");
+    contents.resize(size_t(in.gcount()));
+    if (contents.size() > max_bytes)
+        throw InputError(path, "", "grew past " + std::to_string(max_bytes) + " bytes while it was read");
     return contents;
 }
 

@@ -473,7 +473,10 @@ BakeSetManifest parseBakeSetManifest(const std::string& file, const std::string&
 }
 
 BakeSetManifest readBakeSetManifest(const std::string& path) {
-    return parseBakeSetManifest(path, readWholeFile(path));
+    // A manifest is a few kilobytes (tens with many warnings); its parsed tree takes many times its size, so a
+    // larger file is refused unread.
+    constexpr uint64_t kMaxManifestBytes = uint64_t(16) << 20;
+    return parseBakeSetManifest(path, readWholeFile(path, kMaxManifestBytes));
 }
 
 }  // namespace gusuku

@@ -25,6 +25,7 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/maths/input_error.h"
 #include "one_line.h"
+#include "gusuku/assets/atomic_file.h"  // kMaxInputFileBytes
 #include "regular_file.h"
 
 namespace gusuku {
@@ -62,6 +63,12 @@ bool readRegularFile(std::vector<unsigned char>* bytes, std::string* error, cons
     const std::streamoff size = stream ? std::streamoff(stream.tellg()) : std::streamoff(-1);
     if (size < 0) {
         if (error) *error += "cannot be opened for reading";
+        return false;
+    }
+    if (uint64_t(size) > kMaxInputFileBytes) {
+        if (error)
+            *error += "is " + std::to_string(size) + " bytes, more than the " + std::to_string(kMaxInputFileBytes) +
+                      " a file read whole may have";
         return false;
     }
     bytes->resize(size_t(size));
