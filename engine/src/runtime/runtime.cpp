@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <functional>
 #include <mutex>
@@ -41,8 +42,17 @@ using shader_interface::DepthOnlyPushConstants;
 using shader_interface::FrameUniforms;
 using shader_interface::MaterialPushConstants;
 
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 10 * 16, "std140 layout of runtime_interface.h's FrameUniforms");
-static_assert(sizeof(DepthOnlyPushConstants) == 96);
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 6 * 16 + 2 * 16 + 2 * 4, "std140 layout of runtime_interface.h's FrameUniforms");
+static_assert(offsetof(FrameUniforms, camera_position) == 128 && offsetof(FrameUniforms, exposure) == 140);
+static_assert(offsetof(FrameUniforms, sun_direction) == 144 && offsetof(FrameUniforms, sun_shines) == 156);
+static_assert(offsetof(FrameUniforms, sun_irradiance) == 160 && offsetof(FrameUniforms, site_shadows) == 172);
+static_assert(offsetof(FrameUniforms, slot_layers) == 176 && offsetof(FrameUniforms, render_mode) == 188);
+static_assert(offsetof(FrameUniforms, slot_weights) == 192 && offsetof(FrameUniforms, irradiance_scale) == 204);
+static_assert(offsetof(FrameUniforms, direct_only_ambient) == 208 &&
+              offsetof(FrameUniforms, direct_only_shadow_darkening) == 220);
+static_assert(offsetof(FrameUniforms, shadow_texel_uv) == 224 && offsetof(FrameUniforms, ground_origin_east_m) == 240);
+static_assert(offsetof(FrameUniforms, ground_columns) == 256 && offsetof(FrameUniforms, ground_rows) == 260);
+static_assert(sizeof(DepthOnlyPushConstants) == 80 && offsetof(DepthOnlyPushConstants, pull_m) == 76);
 
 constexpr double kNearPlaneM = 0.05;
 constexpr float kGroundPullM = 0.10f;      // the ground pass moves towards the camera by this
@@ -54,8 +64,8 @@ void toShader(const glm::dmat4& matrix, shader_interface::mat4& out) {
         for (int row = 0; row < 4; ++row) out.columns[column][row] = float(matrix[column][row]);
 }
 
-void toShader(const glm::dvec3& xyz, float w, shader_interface::vec4& out) {
-    out = {{float(xyz.x), float(xyz.y), float(xyz.z), w}};
+void toShader(const glm::dvec3& xyz, shader_interface::vec3& out) {
+    out = {{float(xyz.x), float(xyz.y), float(xyz.z)}};
 }
 
 RuntimeError deviceError(const std::exception& error) {
@@ -605,23 +615,32 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     render_site_shadow_ = site_shadows_ && !site_shadow_valid_;
     const ShadowFit& fit = shadow_fit_;
     toShader(fit.enu_to_clip, u.enu_to_shadow_clip);
-    toShader(frame.pose.position_enu, 1.0f, u.camera_position);
-    toShader(lighting.sun.direction_enu, sun_shines_ ? 1.0f : 0.0f, u.sun_direction);
-    toShader(lighting.sun_irradiance_rgb, frame.exposure, u.sun_irradiance);
+    toShader(frame.pose.position_enu, u.camera_position);
+    u.exposure = frame.exposure;
+    toShader(lighting.sun.direction_enu, u.sun_direction);
+    u.sun_shines = sun_shines_ ? 1u : 0u;
+    toShader(lighting.sun_irradiance_rgb, u.sun_irradiance);
+    u.site_shadows = site_shadows_ ? 1u : 0u;
     const float slot_a = float(std::max(lighting.slot_a, 0)), slot_b = float(std::max(lighting.slot_b, 0));
     const float overcast = float(std::max(lighting.overcast_slot, 0));
-    u.slot_layers = {{slot_a, slot_b, overcast, direct_only ? float(RUNTIME_MODE_DIRECT_ONLY) : 0.0f}};
+    u.slot_layers = {{slot_a, slot_b, overcast}};
+    u.render_mode = direct_only ? RUNTIME_RENDER_MODE_DIRECT_ONLY : RUNTIME_RENDER_MODE_PROPOSED;
     const float weight_a = lighting.slot_a >= 0 ? lighting.sunny_weight * (1.0f - lighting.slot_b_weight) : 0.0f;
     const float weight_b = lighting.slot_b >= 0 ? lighting.sunny_weight * lighting.slot_b_weight : 0.0f;
-    u.slot_weights = {{weight_a, weight_b, lighting.overcast_slot >= 0 ? lighting.overcast_weight : 0.0f, 0.0f}};
+    u.slot_weights = {{weight_a, weight_b, lighting.overcast_slot >= 0 ? lighting.overcast_weight : 0.0f}};
     // Depth bias: the stated texels of the map, in its depth units.
     const double bias = options_.shadow_bias_texels * fit.texel_size_m / fit.depth_range_m;
-    u.shadow_parameters = {{1.0f / float(options_.shadow_map_size), float(bias), float(options_.shadow_pcf_radius),
-                            site_shadows_ ? 1.0f : 0.0f}};
+    u.shadow_texel_uv = 1.0f / float(options_.shadow_map_size);
+    u.shadow_depth_bias = float(bias);
+    u.shadow_pcf_radius = float(options_.shadow_pcf_radius);
+    u.pass_through_threshold = kPassThroughThreshold;
     const GroundGrid& grid = manifest_.ground_grid.grid;
-    u.ground_grid = {{float(grid.origin_enu_m.x), float(grid.origin_enu_m.y), float(grid.cell_m),
-                      float(std::max(grid.columns, 1))}};
-    u.ground_parameters = {{float(std::max(grid.rows, 1)), kGroundPullM, 0.0f, kPassThroughThreshold}};
+    u.ground_origin_east_m = float(grid.origin_enu_m.x);
+    u.ground_origin_north_m = float(grid.origin_enu_m.y);
+    u.ground_cell_m = float(grid.cell_m);
+    u.ground_pull_m = kGroundPullM;
+    u.ground_columns = std::max(grid.columns, 1);
+    u.ground_rows = std::max(grid.rows, 1);
     // Direct-only's ambient: one colour, the frame's slots' mean baked E_ind over the building.
     const int blend_slots[3] = {lighting.slot_a, lighting.slot_b, lighting.overcast_slot};
     const float blend_weights[3] = {u.slot_weights[0], u.slot_weights[1], u.slot_weights[2]};
@@ -629,9 +648,9 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     for (int index = 0; index < 3; ++index)
         if (blend_slots[index] >= 0)
             ambient += double(blend_weights[index]) * glm::dvec3(scene_.slot_mean_indirect[size_t(blend_slots[index])]);
-    toShader(ambient * double(options_.direct_only_ambient_fraction), options_.direct_only_shadow_darkening,
-             u.direct_only);
-    u.irradiance_scale = {{scene_.irradiance_scale, 0.0f, 0.0f, 0.0f}};
+    toShader(ambient * double(options_.direct_only_ambient_fraction), u.direct_only_ambient);
+    u.direct_only_shadow_darkening = options_.direct_only_shadow_darkening;
+    u.irradiance_scale = scene_.irradiance_scale;
     uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
 
     // The colour match's source: the baked appearance's statistics, blended like the lightmaps.
@@ -668,7 +687,7 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     // Depth passes' push constants.
     toShader(shadow_fit_.enu_to_clip, shadow_push_.enu_to_clip);
     occluder_push_.enu_to_clip = u.enu_to_clip;
-    occluder_push_.pull = {{-kOccluderPushM, 0.0f, 0.0f, 0.0f}};
+    occluder_push_.pull_m = -kOccluderPushM;
     occluder_push_.pull_origin = u.camera_position;
 
     if (frame.camera_rgba8 != nullptr)
