@@ -111,6 +111,9 @@ inline constexpr double kColourMatchMaxWhiteBalanceShift = 15.0;
 inline constexpr int kColourMatchGamutSteps = 12;
 /// Linear input is clamped to [0, this] (NaN taken as 0) before the transfer, so that Lab stays finite.
 inline constexpr double kColourMatchMaxLinear = 65504.0;
+/// kPreserve's gamut test: linear values this close outside [0, 1] count as inside (float rounding of white,
+/// L 100 -> 1.0000001).
+inline constexpr double kColourMatchGamutTolerance = 1e-5;
 /// Frames are accepted with at least this fraction of the samples valid (and at least the count below).
 inline constexpr double kColourStatisticsMinValidFraction = 0.05;
 inline constexpr uint32_t kColourStatisticsMinValidSamplesFloor = 16;
