@@ -92,8 +92,7 @@ void RuntimeImpl::createPipelines() {
     ground.blend = BlendMode::kMultiplyTwice;
     // Two variants of the ground's shader, by a specialisation constant: llvmpipe runs every branch of a
     // fragment shader for the whole SIMD group (masked), so a shadow lookup that most fragments skip still costs
-    // them all; the quads no shadow can reach get a shader without one (measured on the sample at 1280x720:
-    // the ratio pass went from 37 ms to a fraction of it).
+    // them all; the quads no shadow can reach get a shader without one.
     // constant 0: read the building's shadow; constant 1: the sun shines (read the site's shadow, add E_sun).
     const VkBool32 variants[3][2] = {{VK_TRUE, VK_TRUE}, {VK_FALSE, VK_TRUE}, {VK_FALSE, VK_FALSE}};
     const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};

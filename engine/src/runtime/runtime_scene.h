@@ -13,7 +13,7 @@
 
 namespace gusuku::runtime_detail {
 
-/// The building's vertex layout (runtime_pipelines' vertex input): position, normal, base colour uv, lightmap uv.
+/// The building's vertex layout (runtime_frame_pipelines.cpp's vertex input): position, normal, base colour uv, lightmap uv.
 struct BuildingVertex {
     float position[3];
     float normal[3];
