@@ -79,8 +79,8 @@ const uint kBvhNoReference = 0xffffffffu;  // a leaf reference of 7 triangles, w
 // One traversal for both queries: any_hit stops at the first accepted triangle. Nearest child first, the
 // farther one on the stack with its entry distance (skipped when popped beyond the closest hit). Loop shape
 // "while-while" (Aila and Laine 2009, "Understanding the Efficiency of Ray Traversal on GPUs"): descend to a
-// leaf, then test its triangles; on lavapipe, whose SIMD lanes run in step, this measured 0-20 % faster than
-// one loop with an if (leaf) branch. lavapipe runs each storage-buffer load as a loop over the lanes, so
+// leaf, then test its triangles; on lavapipe, whose SIMD lanes run in step, this ran faster than one loop
+// with an if (leaf) branch. lavapipe runs each storage-buffer load as a loop over the lanes, so
 // the nodes and triangles are fetched from texel buffers: three per node (both children), three per triangle
 // (bvh_layout.glsl).
 // Ties: among hits at exactly equal t the smallest source triangle index wins, whatever the visiting order (a

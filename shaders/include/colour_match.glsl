@@ -16,10 +16,10 @@
 #include "colour.glsl"
 #include "colour_match_interface.h"
 
-const float kColourMatchMaxWhiteBalanceShift = 15.0;
-const int kColourMatchGamutSteps = 12;
-const float kColourMatchMaxLinear = 65504.0;
-const float kColourMatchGamutTolerance = 1e-5;
+const float kColourMatchMaxWhiteBalanceShift = COLOUR_MATCH_MAX_WHITE_BALANCE_SHIFT;
+const int kColourMatchGamutSteps = COLOUR_MATCH_GAMUT_STEPS;
+const float kColourMatchMaxLinear = COLOUR_MATCH_MAX_LINEAR;
+const float kColourMatchGamutTolerance = COLOUR_MATCH_GAMUT_TOLERANCE;
 
 bool colourMatchActive(ColourMatchState state) {
     if (state.mode == COLOUR_MATCH_MODE_GROUND) return state.ground_valid != 0u;

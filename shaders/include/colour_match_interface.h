@@ -19,6 +19,14 @@
 #define COLOUR_MATCH_MODE_PRESERVE 2u
 #define COLOUR_MATCH_MODE_GROUND 3u
 
+// The transfer's constants, for colour_match.glsl and the runtime's C++; the CPU reference's public
+// kColourMatch* (gusuku/maths/colour_match.h, where the choices are explained) are held equal to these by
+// static_assert in colour_statistics_pass.cpp.
+#define COLOUR_MATCH_MAX_WHITE_BALANCE_SHIFT 15.0  // Lab units: preserve's longest shift of the a, b means
+#define COLOUR_MATCH_GAMUT_STEPS 12                // bisection steps of preserve's gamut mapping
+#define COLOUR_MATCH_MAX_LINEAR 65504.0            // linear input is clamped to [0, this] before the transfer
+#define COLOUR_MATCH_GAMUT_TOLERANCE 1e-5          // linear RGB this far outside [0, 1] still counts as inside
+
 #ifdef __cplusplus
 namespace gusuku::shader_interface {
 #endif

@@ -3,8 +3,10 @@
 // through the gusuku_shader_interface target.
 //
 // Rules for an interface block: scalar uint, int and float members, and vec4 and mat4 only at a 16-byte
-// offset: std430 and C++ then agree on every offset, which the C++ side pins with static_assert. No vec3.
-// (The C++ vec4 is not alignas(16), so the struct's size is the GLSL block's size, not padded past it.)
+// offset: std430 and C++ then agree on every offset, which the C++ side pins with static_assert. A vec3 only at
+// a 16-byte offset and always followed by a scalar member (named for what it holds) that fills its last 4 bytes:
+// std140 and std430 align a vec3 to 16 and pack a following scalar into its tail, which is where C++ puts it.
+// (The C++ vec3 and vec4 are not alignas(16), so the struct's size is the GLSL block's size, not padded past it.)
 #ifndef GUSUKU_INTERFACE_TYPES_H
 #define GUSUKU_INTERFACE_TYPES_H
 
@@ -12,6 +14,11 @@
 #include <cstdint>
 namespace gusuku::shader_interface {
 using uint = std::uint32_t;
+struct vec3 {
+    float components[3];
+    float& operator[](int index) { return components[index]; }
+    float operator[](int index) const { return components[index]; }
+};
 struct vec4 {
     float components[4];
     float& operator[](int index) { return components[index]; }

@@ -35,10 +35,9 @@ uint g_rays_traced = 0u;
 // Russian roulette starts only after this many reflections. Earlier, it ran from the second reflection on, with
 // a survival chance of the path weight (rho1 rho2, about 0.1 on the sample site): a surviving path carried 10
 // times the weight into the sun's next-event estimate at its second reflection, so sunlight bounced twice came as
-// a rare, bright yes-or-no that the Sobol draws could not stratify (it took a 1D random number). Measured on the
-// sample's sunny_1200 slot (gusuku-bake converge, 64 samples, the reference's noise taken out): relative RMS
-// 8.8 % -> 4.4 % at 1.33x the rays, 3.0x less error^2 x rays, and the error now falls as samples^-0.64 instead
-// of -0.54 (no roulette at all measured the same: 3.9 % at 1.66x the rays). Past three reflections the weight
+// a rare, bright yes-or-no that the Sobol draws could not stratify (it took a 1D random number). Starting later
+// cuts the error for the rays spent and makes it fall faster with the samples (gusuku-bake converge on the
+// sample; the figures are in docs/measurements.md). Past three reflections the weight
 // is rho^3 (under 0.03 for stone and plaster), where roulette's extra noise is small and it saves long paths.
 const uint kBouncesBeforeRoulette = 3u;
 // What the paths use; a kernel may override it before tracing (bake_irradiance.comp takes it from its push

@@ -4,7 +4,7 @@
 #include "interface_types.h"
 GUSUKU_PUSH_CONSTANTS_BEGIN(DepthOnlyPushConstants)
     mat4 enu_to_clip;  // the view this depth pass renders (the sun's or the camera's)
-    vec4 pull;         // x metres to move each vertex towards `pull_origin` (0: none), yzw unused
-    vec4 pull_origin;  // xyz ENU
+    vec3 pull_origin;  // ENU metres: the point vertices are moved towards
+    float pull_m;      // metres to move each vertex towards `pull_origin` (0: none; < 0 moves it away)
 GUSUKU_PUSH_CONSTANTS_END(DepthOnlyPushConstants, push)
 #endif

@@ -21,24 +21,37 @@
 #define RUNTIME_MATERIAL_SET 1
 #define RUNTIME_BASE_COLOUR_BINDING 0          // sampler2D, sRGB: the material's base colour texture (or white)
 
-// Render modes (FrameUniforms::slot_layers.w)
-#define RUNTIME_MODE_PROPOSED 0.0
-#define RUNTIME_MODE_DIRECT_ONLY 1.0
+// FrameUniforms::render_mode (RenderMode kProposed, kDirectOnly)
+#define RUNTIME_RENDER_MODE_PROPOSED 0u
+#define RUNTIME_RENDER_MODE_DIRECT_ONLY 1u
 
+// Each vec3 is followed by the scalar that fills its last 4 bytes (interface_types.h's rules).
 GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFORMS_BINDING)
-    mat4 enu_to_clip;          // the camera: ENU -> Vulkan clip (x right, y down, z in [0, 1])
-    mat4 enu_to_shadow_clip;   // the sun's view, fitted to the receivers (shadow_fit.h)
-    vec4 camera_position;      // xyz ENU metres
-    vec4 sun_direction;        // xyz unit towards the sun (ENU); w 1 when the sun shines this frame, else 0
-    vec4 sun_irradiance;       // rgb E_sun this frame (bake set units, after cloud cover); w exposure
-    vec4 slot_layers;          // x lightmap layer of slot A, y of slot B, z of the overcast slot; w render mode
-    vec4 slot_weights;         // x weight of A, y of B, z of the overcast slot (weights include cloud cover)
-    vec4 shadow_parameters;    // x 1 / map size, y depth bias per unit tan(angle), z PCF radius (taps), w 1: site shadows on
-    vec4 ground_grid;          // x, y south-west corner (ENU m), z cell size (m), w columns
-    vec4 ground_parameters;    // x rows, y pull towards the camera (m), z unused, w pass-through threshold
-    vec4 direct_only;          // rgb ambient irradiance (bake set units), w shadow darkening factor
-    vec4 irradiance_scale;     // x: stored lightmaps and ground terms times this are the bake set's irradiance
-                               // (the colour match's mode and gain live in its own state buffer)
+    mat4 enu_to_clip;              // the camera: ENU -> Vulkan clip (x right, y down, z in [0, 1])
+    mat4 enu_to_shadow_clip;       // the sun's view, fitted to the receivers (shadow_fit.h)
+    vec3 camera_position;          // ENU metres
+    float exposure;                // linear radiance times this is the display value (FrameInput::exposure)
+    vec3 sun_direction;            // unit towards the sun (ENU)
+    uint sun_shines;               // 1 when the sun shines this frame, else 0
+    vec3 sun_irradiance;           // E_sun this frame (bake set units, after cloud cover)
+    uint site_shadows;             // 1: the site's occluder casts the sun's shadow this frame (its map is valid)
+    vec3 slot_layers;              // lightmap layer of slot A, of slot B, of the overcast slot
+    uint render_mode;              // RUNTIME_RENDER_MODE_*
+    vec3 slot_weights;             // weight of A, of B, of the overcast slot (weights include cloud cover)
+    float irradiance_scale;        // stored lightmaps and ground terms times this are the bake set's irradiance
+    vec3 direct_only_ambient;      // direct-only mode's ambient irradiance (bake set units)
+    float direct_only_shadow_darkening;  // direct-only mode: the ground's ratio in the building's full shadow
+    float shadow_texel_uv;         // 1 / shadow map size
+    float shadow_depth_bias;       // depth bias per unit tan(angle), in the map's depth units
+    float shadow_pcf_radius;       // PCF radius in taps: (2r + 1)^2 taps
+    float pass_through_threshold;  // |ratio - 1| below this in every channel: the camera pixel is untouched
+    float ground_origin_east_m;    // the ground grid's south-west corner (ENU m)
+    float ground_origin_north_m;
+    float ground_cell_m;           // the ground grid's cell size (m)
+    float ground_pull_m;           // the ground pass moves towards the camera by this (m)
+    int ground_columns;            // the ground grid's cells west to east (at least 1)
+    int ground_rows;               // cells north to south (at least 1)
+                                   // (the colour match's mode and gain live in its own state buffer)
 GUSUKU_UNIFORM_BLOCK_END(FrameUniforms, frame)
 
 #endif

@@ -3,15 +3,27 @@
 #ifndef GUSUKU_RUNTIME_SHADOW_GLSL
 #define GUSUKU_RUNTIME_SHADOW_GLSL
 
+// The slope-scaled bias grows with tan(angle between the normal and the sun), which is unbounded at grazing
+// light: the cosine is held at or above this (about 87 degrees) so the tangent stays finite...
+const float kShadowMinCosine = 0.05;
+// ... and the tangent's share of the bias is capped at this (about 84 degrees): a larger bias would detach the
+// shadow from the contact line of the surfaces that cast it, for a gain only on surfaces nearly edge-on to the sun.
+const float kShadowMaxBiasTangent = 10.0;
+// surelyLit's corner taps sit this many texels out at least: with PCF radius 0 the footprint is still the
+// hardware's 2x2 compare filter, which reaches half a texel about the centre.
+const float kSurelyLitMinReachTexels = 0.5;
+// The centre and four corners: all lit means the whole footprint is lit.
+const float kSurelyLitTaps = 5.0;
+
 // The point's shadow-map coordinates and biased depth; false outside the fitted window (nothing of the building
 // can shade it there).
 bool shadowLookup(vec3 position_enu, vec3 normal_enu, out vec2 uv, out float depth) {
     vec4 clip = frame.enu_to_shadow_clip * vec4(position_enu, 1.0);
     uv = clip.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
-    float cosine = clamp(dot(normal_enu, frame.sun_direction.xyz), 0.05, 1.0);
+    float cosine = clamp(dot(normal_enu, frame.sun_direction), kShadowMinCosine, 1.0);
     float tangent = sqrt(1.0 - cosine * cosine) / cosine;
-    depth = clip.z - frame.shadow_parameters.y * (1.0 + min(tangent, 10.0));
+    depth = clip.z - frame.shadow_depth_bias * (1.0 + min(tangent, kShadowMaxBiasTangent));
     return true;
 }
 
@@ -21,20 +33,20 @@ bool surelyLit(sampler2DShadow shadow_map, vec3 position_enu, vec3 normal_enu) {
     vec2 uv;
     float depth;
     if (!shadowLookup(position_enu, normal_enu, uv, depth)) return true;
-    float reach = frame.shadow_parameters.x * max(frame.shadow_parameters.z, 0.5);
+    float reach = frame.shadow_texel_uv * max(frame.shadow_pcf_radius, kSurelyLitMinReachTexels);
     float lit = texture(shadow_map, vec3(uv, depth)) + texture(shadow_map, vec3(uv + vec2(reach, reach), depth)) +
                 texture(shadow_map, vec3(uv + vec2(-reach, reach), depth)) +
                 texture(shadow_map, vec3(uv + vec2(reach, -reach), depth)) +
                 texture(shadow_map, vec3(uv + vec2(-reach, -reach), depth));
-    return lit >= 5.0;
+    return lit >= kSurelyLitTaps;
 }
 
 float sunVisibility(sampler2DShadow shadow_map, vec3 position_enu, vec3 normal_enu) {
     vec2 uv;
     float depth;
     if (!shadowLookup(position_enu, normal_enu, uv, depth)) return 1.0;
-    int radius = int(frame.shadow_parameters.z);
-    float texel = frame.shadow_parameters.x;
+    int radius = int(frame.shadow_pcf_radius);
+    float texel = frame.shadow_texel_uv;
     float lit = 0.0;
     for (int y = -radius; y <= radius; ++y)
         for (int x = -radius; x <= radius; ++x) lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, depth));

@@ -32,10 +32,10 @@ void main() {
     // Two-sided: a face seen from behind is lit as its front (thin walls, eaves).
     if (!gl_FrontFacing) normal = -normal;
 
-    bool direct_only = frame.slot_layers.w == RUNTIME_MODE_DIRECT_ONLY;
+    bool direct_only = frame.render_mode == RUNTIME_RENDER_MODE_DIRECT_ONLY;
     vec3 indirect_irradiance;
     if (direct_only) {
-        indirect_irradiance = frame.direct_only.rgb;
+        indirect_irradiance = frame.direct_only_ambient;
     } else {
         indirect_irradiance = vec3(0.0);
         if (frame.slot_weights.x > 0.0)
@@ -44,24 +44,24 @@ void main() {
             indirect_irradiance += frame.slot_weights.y * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.y)).rgb;
         if (frame.slot_weights.z > 0.0)
             indirect_irradiance += frame.slot_weights.z * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.z)).rgb;
-        indirect_irradiance *= frame.irradiance_scale.x;  // the lightmaps are stored scaled to fit half floats
+        indirect_irradiance *= frame.irradiance_scale;  // the lightmaps are stored scaled to fit half floats
     }
 
     vec3 sun_irradiance = vec3(0.0);
-    float cosine = dot(normal, frame.sun_direction.xyz);
-    if (frame.sun_direction.w > 0.0 && cosine > 0.0) {
+    float cosine = dot(normal, frame.sun_direction);
+    if (frame.sun_shines != 0u && cosine > 0.0) {
         // Five taps settle most fragments (fully lit); only the rest pay for the whole PCF kernel.
         float visibility = surelyLit(building_shadow, position_enu, normal)
                                ? 1.0
                                : sunVisibility(building_shadow, position_enu, normal);
         // The real site's shadow on the building: one bilinear compare tap (its edges come from far away and
         // are soft in the camera image anyway).
-        if (frame.shadow_parameters.w > 0.0 && visibility > 0.0) {
+        if (frame.site_shadows != 0u && visibility > 0.0) {
             vec2 uv;
             float depth;
             if (shadowLookup(position_enu, normal, uv, depth)) visibility *= texture(site_shadow, vec3(uv, depth));
         }
-        sun_irradiance = frame.sun_irradiance.rgb * (visibility * cosine);
+        sun_irradiance = frame.sun_irradiance * (visibility * cosine);
     }
     vec3 radiance = albedo / kPi * (indirect_irradiance + sun_irradiance);
     if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
@@ -71,9 +71,9 @@ void main() {
     // the ground match multiplies the exposed radiance by the gain that takes the predicted ground to the camera's.
     vec3 display_linear;
     if (direct_only || !colourMatchActive(colour_state))
-        display_linear = clamp(radiance * frame.sun_irradiance.w, vec3(0.0), vec3(1.0));
+        display_linear = clamp(radiance * frame.exposure, vec3(0.0), vec3(1.0));
     else if (colour_state.mode == COLOUR_MATCH_MODE_GROUND)
-        display_linear = applyColourMatch(radiance * frame.sun_irradiance.w, colour_state);
+        display_linear = applyColourMatch(radiance * frame.exposure, colour_state);
     else
         display_linear = applyColourMatch(radiance, colour_state);
     out_colour = vec4(display_linear, 1.0);

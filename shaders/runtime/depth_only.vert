@@ -8,8 +8,8 @@ layout(location = 0) in vec3 position_enu;
 
 void main() {
     vec3 position = position_enu;
-    // The occluder is pushed a little away from the camera (pull.x < 0) so the ground it was built from does not
+    // The occluder is pushed a little away from the camera (pull_m < 0) so the ground it was built from does not
     // hide the ground-ratio pass drawn on the same surface.
-    if (push.pull.x != 0.0) position += normalize(push.pull_origin.xyz - position) * push.pull.x;
+    if (push.pull_m != 0.0) position += normalize(push.pull_origin - position) * push.pull_m;
     gl_Position = push.enu_to_clip * vec4(position, 1.0);
 }

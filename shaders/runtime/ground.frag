@@ -4,8 +4,8 @@
 // through the blend unit (in linear: the attachment is sRGB). Where the building changes the light by less than
 // half an 8-bit step the fragment writes a ratio of exactly 1: the blend then returns the camera's own value
 // (decode, times 1, encode: the same byte, which tests pin), and quads the building cannot change are not drawn
-// at all (the CPU chooses them). No `discard`: on llvmpipe a shader that may discard costs twice as much per
-// fragment as one that always writes (measured: 33 ms against 15 ms for the sample's ground at 1280x720).
+// at all (the CPU chooses them). No `discard`: on llvmpipe a shader that may discard costs more per fragment
+// than one that always writes.
 // Direct-only mode: a fixed darkening in the building's shadow, nothing else.
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_interface.h"
@@ -32,19 +32,26 @@ layout(constant_id = 0) const bool kBuildingShadow = true;
 // False in the variant for frames without sun (overcast, night): no shadow-map reads and no sun term.
 layout(constant_id = 1) const bool kSunShines = true;
 
+// The presence (ground_irradiance layer 0's alpha: 0 no ground, 1 ground, 2 ground whose baked light the building
+// changes) is interpolated between cell centres: within this of 1 counts as ground on every corner (interpolating
+// equal values may round by an ulp or so)...
+const float kPresentOnEveryCorner = 0.999;
+// ... and above 1 by more than the same margin, a corner that is marked 2.
+const float kBakedChangeOnACorner = 1.001;
+
 void main() {
     const vec4 kUnchanged = vec4(0.5, 0.5, 0.5, 1.0);  // ratio 1 through the blend's factor of 2
     // Between a cell with ground and one without, the interpolated presence falls below 1: no ratio there.
-    if (ground_present < 0.999) {
+    if (ground_present < kPresentOnEveryCorner) {
         out_ratio = kUnchanged;
         return;
     }
     // Presence above 1 marks cells where the building changes the baked light (runtime_scene.h); elsewhere only
     // its shadow can change the pixel, so a surely lit fragment there is left alone at once.
-    bool direct_only = frame.slot_layers.w == RUNTIME_MODE_DIRECT_ONLY;
-    bool baked_change = ground_present > 1.001 && !direct_only;
+    bool direct_only = frame.render_mode == RUNTIME_RENDER_MODE_DIRECT_ONLY;
+    bool baked_change = ground_present > kBakedChangeOnACorner && !direct_only;
     vec3 normal = normalize(normal_enu);
-    bool sun_shines = kSunShines && frame.sun_direction.w > 0.0 && dot(normal, frame.sun_direction.xyz) > 0.0;
+    bool sun_shines = kSunShines && frame.sun_shines != 0u && dot(normal, frame.sun_direction) > 0.0;
     // Only cells the CPU found in the building's shadow reach read the building's shadow map at all.
     bool lit = !kBuildingShadow || !sun_shines || shadow_candidate <= 0.0 ||
                surelyLit(building_shadow, position_enu, normal);
@@ -56,11 +63,11 @@ void main() {
 
     vec3 ratio;
     if (direct_only) {
-        ratio = vec3(mix(frame.direct_only.w, 1.0, building_visibility));
+        ratio = vec3(mix(frame.direct_only_shadow_darkening, 1.0, building_visibility));
     } else {
         // The real scene's own shadow only decides whether the sun adds to this point: one bilinear compare tap.
         float scene_visibility = 1.0;
-        if (sun_shines && frame.shadow_parameters.w > 0.0) {
+        if (sun_shines && frame.site_shadows != 0u) {
             vec2 uv;
             float depth;
             if (shadowLookup(position_enu, normal, uv, depth)) scene_visibility = texture(site_shadow, vec3(uv, depth));
@@ -72,6 +79,6 @@ void main() {
     // The blend computes destination x source x 2 (source and destination factors DST_COLOR and SRC_COLOR), so
     // a ratio up to 2 (light the building bounces onto the ground) survives the attachment's [0, 1] clamp.
     ratio = clamp(ratio, vec3(0.0), vec3(2.0));
-    if (all(lessThan(abs(ratio - 1.0), vec3(frame.ground_parameters.w)))) ratio = vec3(1.0);
+    if (all(lessThan(abs(ratio - 1.0), vec3(frame.pass_through_threshold)))) ratio = vec3(1.0);
     out_ratio = vec4(0.5 * ratio, 1.0);
 }

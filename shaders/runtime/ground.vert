@@ -27,13 +27,18 @@ vec3 slotIrradiance(ivec2 cell, float slot_layer, float weight, bool with_buildi
     return weight * texelFetch(ground_irradiance, ivec3(cell, layer), 0).rgb;
 }
 
+// The pull moves the vertex towards the camera by at most half the distance to it (never past it), and divides by
+// that distance no nearer than this (a vertex at the camera stays put instead of becoming NaN).
+const float kMinPullDistanceM = 1e-3;
+const float kMaxPullFraction = 0.5;
+
 void main() {
-    int columns = int(frame.ground_grid.w);
-    int rows = int(frame.ground_parameters.x);
+    int columns = frame.ground_columns;
+    int rows = frame.ground_rows;
     ivec2 cell = ivec2(gl_VertexIndex % columns, gl_VertexIndex / columns);
     vec4 geometry = texelFetch(ground_geometry, cell, 0);
-    vec2 centre = vec2(frame.ground_grid.x + (float(cell.x) + 0.5) * frame.ground_grid.z,
-                       frame.ground_grid.y + (float(rows - cell.y) - 0.5) * frame.ground_grid.z);
+    vec2 centre = vec2(frame.ground_origin_east_m + (float(cell.x) + 0.5) * frame.ground_cell_m,
+                       frame.ground_origin_north_m + (float(rows - cell.y) - 0.5) * frame.ground_cell_m);
     vec3 position = vec3(centre, geometry.a);
     out_position_enu = position;
     out_normal_enu = geometry.rgb;
@@ -45,15 +50,15 @@ void main() {
                             slotIrradiance(cell, frame.slot_layers.y, frame.slot_weights.y, false) +
                             slotIrradiance(cell, frame.slot_layers.z, frame.slot_weights.z, false);
     // Stored scaled to fit half floats: the scale cancels between the two but not against E_sun.
-    out_irradiance_with = with_building * frame.irradiance_scale.x;
-    out_irradiance_without = without_building * frame.irradiance_scale.x;
-    out_sun_irradiance = frame.sun_direction.w > 0.0
-                             ? frame.sun_irradiance.rgb * max(0.0, dot(geometry.rgb, frame.sun_direction.xyz))
+    out_irradiance_with = with_building * frame.irradiance_scale;
+    out_irradiance_without = without_building * frame.irradiance_scale;
+    out_sun_irradiance = frame.sun_shines != 0u
+                             ? frame.sun_irradiance * max(0.0, dot(geometry.rgb, frame.sun_direction))
                              : vec3(0.0);
     out_shadow_candidate = shadow_candidate;
-    vec3 towards_camera = frame.camera_position.xyz - position;
+    vec3 towards_camera = frame.camera_position - position;
     float distance_to_camera = length(towards_camera);
-    vec3 pulled = position + towards_camera / max(distance_to_camera, 1e-3) *
-                                 min(frame.ground_parameters.y, 0.5 * distance_to_camera);
+    vec3 pulled = position + towards_camera / max(distance_to_camera, kMinPullDistanceM) *
+                                 min(frame.ground_pull_m, kMaxPullFraction * distance_to_camera);
     gl_Position = frame.enu_to_clip * vec4(pulled, 1.0);
 }

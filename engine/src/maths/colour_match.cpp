@@ -124,9 +124,6 @@ bool inUnitCube(const glm::dvec3& rgb, double tolerance) {
     return true;
 }
 
-// Linear values this close outside [0, 1] count as inside (float rounding of white, 100 -> 1.0000001).
-constexpr double kGamutTolerance = 1e-5;
-
 }  // namespace
 
 glm::dvec3 colourMatchTransferLab(const glm::dvec3& lab, const ColourMatchParameters& parameters) {
@@ -154,11 +151,12 @@ glm::dvec3 colourMatchTransferLab(const glm::dvec3& lab, const ColourMatchParame
 glm::dvec3 colourMatchChromaIntoGamut(const glm::dvec3& lab) {
     const double lightness = std::clamp(lab.x, 0.0, 100.0);
     auto withChromaScale = [&](double scale) { return glm::dvec3(lightness, lab.y * scale, lab.z * scale); };
-    if (inUnitCube(linearRec709FromLab(withChromaScale(1.0)), kGamutTolerance)) return withChromaScale(1.0);
+    if (inUnitCube(linearRec709FromLab(withChromaScale(1.0)), kColourMatchGamutTolerance))
+        return withChromaScale(1.0);
     double inside = 0.0, outside = 1.0;  // scale 0 is grey of that L: always inside
     for (int step = 0; step < kColourMatchGamutSteps; ++step) {
         const double middle = 0.5 * (inside + outside);
-        if (inUnitCube(linearRec709FromLab(withChromaScale(middle)), kGamutTolerance))
+        if (inUnitCube(linearRec709FromLab(withChromaScale(middle)), kColourMatchGamutTolerance))
             inside = middle;
         else
             outside = middle;

@@ -9,11 +9,17 @@
 #include <glm/common.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include "ground_quads.h"
+
 namespace gusuku::runtime_detail {
 namespace {
 
 // Half floats hold up to 65504: irradiance above this fraction of it is stored scaled down.
 constexpr float kLargestStoredHalf = 30000.0f;
+// A ground term's change is relative to E_without, but never to less than this (unlit cells: no division by 0).
+constexpr float kSmallestRelativeTo = 1e-6f;
+constexpr VkBufferUsageFlags kVertexUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
 
 template <typename T>
 GpuBuffer deviceBuffer(const GpuDevice& gpu, const std::vector<T>& values, VkBufferUsageFlags usage) {
@@ -43,13 +49,8 @@ void extend(glm::dvec3& low, glm::dvec3& high, const glm::dvec3& point) {
     high = glm::max(high, point);
 }
 
-}  // namespace
-
-GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold) {
-    GpuScene scene;
-    const BakeSetMesh& mesh = bake_set.building;
-
-    // Vertices, and indices grouped by material so each material is one draw.
+// The building's vertices, and its indices grouped by material so each material is one draw; its bounds.
+void uploadBuilding(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& scene) {
     std::vector<BuildingVertex> vertices(mesh.positions.size());
     scene.building_min = glm::dvec3(INFINITY);
     scene.building_max = glm::dvec3(-INFINITY);
@@ -78,13 +79,13 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
         for (int corner = 0; corner < 3; ++corner) indices.push_back(mesh.indices[size_t(triangle) * 3 + corner]);
         scene.draws.back().index_count += 3;
     }
-    const VkBufferUsageFlags vertex_usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
-    const VkBufferUsageFlags index_usage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
-    scene.building_vertices = deviceBuffer(gpu, vertices, vertex_usage);
-    scene.building_indices = deviceBuffer(gpu, indices, index_usage);
+    scene.building_vertices = deviceBuffer(gpu, vertices, kVertexUsage);
+    scene.building_indices = deviceBuffer(gpu, indices, kIndexUsage);
     scene.building_index_count = uint32_t(indices.size());
+}
 
-    // Materials and their textures (sRGB: the sampler decodes to linear).
+// Materials and their textures (sRGB: the sampler decodes to linear), and the white texture of untextured ones.
+void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& scene) {
     for (const BakeSetMaterial& material : mesh.materials) {
         scene.base_colour_factors.push_back(material.base_color_factor);
         scene.material_texture.push_back(material.base_color_texture);
@@ -102,25 +103,28 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
         scene.textures.back().upload(texture.rgba8.data(), texture.rgba8.size(), 0,
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
-    {
-        GpuImageDescription description;
-        description.format = VK_FORMAT_R8G8B8A8_SRGB;
-        scene.white_texture = GpuImage(gpu, description);
-        const uint8_t white[4] = {255, 255, 255, 255};
-        scene.white_texture.upload(white, sizeof white, 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R8G8B8A8_SRGB;
+    scene.white_texture = GpuImage(gpu, description);
+    const uint8_t white[4] = {255, 255, 255, 255};
+    scene.white_texture.upload(white, sizeof white, 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
 
-    // The occluder (depth only).
+// The occluder (depth only); the casters' bounds are the building's and its.
+void uploadOccluder(const GpuDevice& gpu, const BakeSetOccluder& occluder, GpuScene& scene) {
     scene.casters_min = scene.building_min;
     scene.casters_max = scene.building_max;
-    scene.occluder_vertices = deviceBuffer(gpu, bake_set.occluder.positions, vertex_usage);
-    scene.occluder_indices = deviceBuffer(gpu, bake_set.occluder.indices, index_usage);
-    scene.occluder_index_count = uint32_t(bake_set.occluder.indices.size());
-    for (const glm::vec3& position : bake_set.occluder.positions)
+    scene.occluder_vertices = deviceBuffer(gpu, occluder.positions, kVertexUsage);
+    scene.occluder_indices = deviceBuffer(gpu, occluder.indices, kIndexUsage);
+    scene.occluder_index_count = uint32_t(occluder.indices.size());
+    for (const glm::vec3& position : occluder.positions)
         extend(scene.casters_min, scene.casters_max, glm::dvec3(position));
+}
 
-    // Each slot's mean E_ind over the building's valid texels: direct-only's ambient estimate.
-    for (const BakeSetSlotImages& slot : bake_set.slots) {
+// Each slot's mean E_ind over the building's valid texels: direct-only's ambient estimate.
+std::vector<glm::vec3> slotMeanIndirect(const std::vector<BakeSetSlotImages>& slots) {
+    std::vector<glm::vec3> means;
+    for (const BakeSetSlotImages& slot : slots) {
         glm::dvec3 sum(0.0);
         double count = 0.0;
         for (size_t texel = 0; texel + 3 < slot.building.rgba.size(); texel += 4)
@@ -128,111 +132,154 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
                 sum += glm::dvec3(slot.building.rgba[texel], slot.building.rgba[texel + 1], slot.building.rgba[texel + 2]);
                 count += 1.0;
             }
-        scene.slot_mean_indirect.push_back(count > 0.0 ? glm::vec3(sum / count) : glm::vec3(0.0f));
+        means.push_back(count > 0.0 ? glm::vec3(sum / count) : glm::vec3(0.0f));
     }
+    return means;
+}
 
-    // Lightmaps and ground terms as half-float arrays, scaled so the largest value fits.
+// The scale that makes the largest irradiance of the lightmaps and ground terms fit a half float.
+float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots) {
     float largest = 0.0f;
-    for (const BakeSetSlotImages& slot : bake_set.slots)
+    for (const BakeSetSlotImages& slot : slots)
         largest = std::max({largest, largestRgb(slot.building), largestRgb(slot.ground_with),
                             largestRgb(slot.ground_without)});
-    scene.irradiance_scale = largest > kLargestStoredHalf ? largest / kLargestStoredHalf : 1.0f;
-    const float inverse_scale = 1.0f / scene.irradiance_scale;
+    return largest > kLargestStoredHalf ? largest / kLargestStoredHalf : 1.0f;
+}
+
+// The lightmaps as one half-float array, a layer per slot.
+void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float inverse_scale, GpuScene& scene) {
     const uint32_t slot_count = uint32_t(bake_set.slots.size());
     const int resolution = bake_set.manifest.building.lightmap_resolution;
-    {
-        GpuImageDescription description;
-        description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        description.width = uint32_t(resolution);
-        description.height = uint32_t(resolution);
-        description.layers = slot_count;
-        description.array_view = true;
-        scene.lightmaps = GpuImage(gpu, description);
-        for (uint32_t slot = 0; slot < slot_count; ++slot) {
-            const std::vector<uint16_t> halves = toHalf(bake_set.slots[slot].building, inverse_scale);
-            scene.lightmaps.upload(halves.data(), halves.size() * 2, slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    description.width = uint32_t(resolution);
+    description.height = uint32_t(resolution);
+    description.layers = slot_count;
+    description.array_view = true;
+    scene.lightmaps = GpuImage(gpu, description);
+    for (uint32_t slot = 0; slot < slot_count; ++slot) {
+        const std::vector<uint16_t> halves = toHalf(bake_set.slots[slot].building, inverse_scale);
+        scene.lightmaps.upload(halves.data(), halves.size() * 2, slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+}
+
+// The CPU's copy of the ground cells (GpuScene::ground_cell_state and ground_cell_height), and slot 0's
+// E_with as half floats with layer 0's alpha marking (2) the cells where the building changes the baked light
+// in any slot by more than change_threshold: elsewhere only the building's shadow can change the pixel.
+std::vector<uint16_t> classifyGroundCells(const BakeSetData& bake_set, size_t cells, float change_threshold,
+                                          float inverse_scale, GpuScene& scene) {
+    std::vector<uint16_t> flagged = toHalf(bake_set.slots[0].ground_with, inverse_scale);
+    scene.ground_cell_state.assign(cells, kCellNoGround);
+    scene.ground_cell_height.assign(cells, 0.0f);
+    for (size_t cell = 0; cell < cells; ++cell) {
+        scene.ground_cell_height[cell] = bake_set.ground_geometry.rgba[cell * 4 + 3];
+        if (bake_set.slots[0].ground_with.rgba[cell * 4 + 3] > 0.0f) scene.ground_cell_state[cell] = kCellGround;
+        bool changed = false;
+        for (const BakeSetSlotImages& slot : bake_set.slots)
+            for (int channel = 0; channel < 3 && !changed; ++channel) {
+                const float with = slot.ground_with.rgba[cell * 4 + channel];
+                const float without = slot.ground_without.rgba[cell * 4 + channel];
+                changed = std::abs(with - without) > change_threshold * std::max(without, kSmallestRelativeTo);
+            }
+        if (changed && scene.ground_cell_state[cell] == kCellGround) {
+            flagged[cell * 4 + 3] = uint16_t(glm::packHalf1x16(float(kCellGroundChangedByBuilding)));
+            scene.ground_cell_state[cell] = kCellGroundChangedByBuilding;
         }
     }
+    return flagged;
+}
+
+// The ground terms as one half-float array: layers 2 slot (with the building) and 2 slot + 1 (without); zeros
+// without ground.
+void uploadGroundIrradiance(const GpuDevice& gpu, const BakeSetData& bake_set, uint32_t columns, uint32_t rows,
+                            bool has_ground, float change_threshold, float inverse_scale, GpuScene& scene) {
+    const uint32_t slot_count = uint32_t(bake_set.slots.size());
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    description.width = columns;
+    description.height = rows;
+    description.layers = std::max(2 * slot_count, 1u);
+    description.array_view = true;
+    scene.ground_irradiance = GpuImage(gpu, description);
+    if (!has_ground) {
+        const std::vector<uint16_t> zeros(size_t(columns) * rows * 4, 0);
+        for (uint32_t layer = 0; layer < description.layers; ++layer)
+            scene.ground_irradiance.upload(zeros.data(), zeros.size() * 2, layer,
+                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        return;
+    }
+    const std::vector<uint16_t> flagged =
+        classifyGroundCells(bake_set, size_t(columns) * rows, change_threshold, inverse_scale, scene);
+    for (uint32_t slot = 0; slot < slot_count; ++slot) {
+        const std::vector<uint16_t> with =
+            slot == 0 ? flagged : toHalf(bake_set.slots[slot].ground_with, inverse_scale);
+        const std::vector<uint16_t> without = toHalf(bake_set.slots[slot].ground_without, inverse_scale);
+        scene.ground_irradiance.upload(with.data(), with.size() * 2, 2 * slot,
+                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        scene.ground_irradiance.upload(without.data(), without.size() * 2, 2 * slot + 1,
+                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+}
+
+// The ground's normals and heights (one texel of zeros without ground).
+void uploadGroundGeometry(const GpuDevice& gpu, const BakeSetData& bake_set, uint32_t columns, uint32_t rows,
+                          bool has_ground, GpuScene& scene) {
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    description.width = columns;
+    description.height = rows;
+    scene.ground_geometry = GpuImage(gpu, description);
+    std::vector<float> geometry = has_ground ? bake_set.ground_geometry.rgba : std::vector<float>(4, 0.0f);
+    scene.ground_geometry.upload(geometry.data(), geometry.size() * sizeof(float), 0,
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+// The receivers' bounds: the building's, and the ground grid's cells with ground between their lowest and
+// highest heights.
+void boundReceivers(const BakeSetData& bake_set, uint32_t columns, uint32_t rows, bool has_ground,
+                    GpuScene& scene) {
+    scene.receivers_min = scene.building_min;
+    scene.receivers_max = scene.building_max;
+    if (!has_ground) return;
+    const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
+    double low_height = INFINITY, high_height = -INFINITY;
+    for (size_t texel = 0; texel < size_t(columns) * rows; ++texel) {
+        if (bake_set.slots.empty() || bake_set.slots[0].ground_with.rgba[texel * 4 + 3] <= 0.0f) continue;
+        low_height = std::min(low_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
+        high_height = std::max(high_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
+    }
+    if (low_height <= high_height) {
+        extend(scene.receivers_min, scene.receivers_max, glm::dvec3(grid.origin_enu_m, low_height));
+        extend(scene.receivers_min, scene.receivers_max,
+               glm::dvec3(grid.origin_enu_m + glm::dvec2(grid.columns, grid.rows) * grid.cell_m, high_height));
+    }
+}
+
+}  // namespace
+
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold) {
+    GpuScene scene;
+    uploadBuilding(gpu, bake_set.building, scene);
+    uploadMaterials(gpu, bake_set.building, scene);
+    uploadOccluder(gpu, bake_set.occluder, scene);
+    scene.slot_mean_indirect = slotMeanIndirect(bake_set.slots);
+
+    // Lightmaps and ground terms as half-float arrays, scaled so the largest value fits.
+    scene.irradiance_scale = irradianceScaleOf(bake_set.slots);
+    const float inverse_scale = 1.0f / scene.irradiance_scale;
+    uploadLightmaps(gpu, bake_set, inverse_scale, scene);
     const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
     const uint32_t columns = uint32_t(std::max(grid.columns, 1)), rows = uint32_t(std::max(grid.rows, 1));
     const bool has_ground = grid.columns > 0 && grid.rows > 0 && !bake_set.ground_geometry.rgba.empty();
-    {
-        GpuImageDescription description;
-        description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        description.width = columns;
-        description.height = rows;
-        description.layers = std::max(2 * slot_count, 1u);
-        description.array_view = true;
-        scene.ground_irradiance = GpuImage(gpu, description);
-        if (has_ground) {
-            // Layer 0's alpha also marks (2) the cells where the building changes the baked light in any slot
-            // by more than change_threshold: elsewhere only the building's shadow can change the pixel.
-            std::vector<uint16_t> flagged = toHalf(bake_set.slots[0].ground_with, inverse_scale);
-            scene.ground_cell_state.assign(size_t(columns) * rows, 0);
-            scene.ground_cell_height.assign(size_t(columns) * rows, 0.0f);
-            for (size_t cell = 0; cell < size_t(columns) * rows; ++cell) {
-                scene.ground_cell_height[cell] = bake_set.ground_geometry.rgba[cell * 4 + 3];
-                if (bake_set.slots[0].ground_with.rgba[cell * 4 + 3] > 0.0f) scene.ground_cell_state[cell] = 1;
-                bool changed = false;
-                for (const BakeSetSlotImages& slot : bake_set.slots)
-                    for (int channel = 0; channel < 3 && !changed; ++channel) {
-                        const float with = slot.ground_with.rgba[cell * 4 + channel];
-                        const float without = slot.ground_without.rgba[cell * 4 + channel];
-                        changed = std::abs(with - without) > change_threshold * std::max(without, 1e-6f);
-                    }
-                if (changed && scene.ground_cell_state[cell] == 1) {
-                    flagged[cell * 4 + 3] = uint16_t(glm::packHalf1x16(2.0f));
-                    scene.ground_cell_state[cell] = 2;
-                }
-            }
-            for (uint32_t slot = 0; slot < slot_count; ++slot) {
-                const std::vector<uint16_t> with =
-                    slot == 0 ? flagged : toHalf(bake_set.slots[slot].ground_with, inverse_scale);
-                const std::vector<uint16_t> without = toHalf(bake_set.slots[slot].ground_without, inverse_scale);
-                scene.ground_irradiance.upload(with.data(), with.size() * 2, 2 * slot,
-                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                scene.ground_irradiance.upload(without.data(), without.size() * 2, 2 * slot + 1,
-                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            }
-        } else {
-            const std::vector<uint16_t> zeros(size_t(columns) * rows * 4, 0);
-            for (uint32_t layer = 0; layer < description.layers; ++layer)
-                scene.ground_irradiance.upload(zeros.data(), zeros.size() * 2, layer,
-                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        }
-    }
-    {
-        GpuImageDescription description;
-        description.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        description.width = columns;
-        description.height = rows;
-        scene.ground_geometry = GpuImage(gpu, description);
-        std::vector<float> geometry = has_ground ? bake_set.ground_geometry.rgba : std::vector<float>(4, 0.0f);
-        scene.ground_geometry.upload(geometry.data(), geometry.size() * sizeof(float), 0,
-                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }
+    uploadGroundIrradiance(gpu, bake_set, columns, rows, has_ground, change_threshold, inverse_scale, scene);
+    uploadGroundGeometry(gpu, bake_set, columns, rows, has_ground, scene);
 
     // Room for the ground grid's triangles, two per square of four neighbouring cell centres; each frame
     // writes the quads it draws.
-    scene.receivers_min = scene.building_min;
-    scene.receivers_max = scene.building_max;
     scene.ground_quad_capacity = has_ground ? (columns - 1) * (rows - 1) : 0;
     scene.ground_indices = GpuBuffer(gpu, std::max<size_t>(size_t(scene.ground_quad_capacity) * 6 * 4, 16),
-                                     index_usage, GpuMemory::kHostVisible);
-    if (has_ground) {
-        double low_height = INFINITY, high_height = -INFINITY;
-        for (size_t texel = 0; texel < size_t(columns) * rows; ++texel) {
-            if (bake_set.slots.empty() || bake_set.slots[0].ground_with.rgba[texel * 4 + 3] <= 0.0f) continue;
-            low_height = std::min(low_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
-            high_height = std::max(high_height, double(bake_set.ground_geometry.rgba[texel * 4 + 3]));
-        }
-        if (low_height <= high_height) {
-            extend(scene.receivers_min, scene.receivers_max,
-                   glm::dvec3(grid.origin_enu_m, low_height));
-            extend(scene.receivers_min, scene.receivers_max,
-                   glm::dvec3(grid.origin_enu_m + glm::dvec2(grid.columns, grid.rows) * grid.cell_m, high_height));
-        }
-    }
+                                     kIndexUsage, GpuMemory::kHostVisible);
+    boundReceivers(bake_set, columns, rows, has_ground, scene);
     glm::dvec3 all_min = glm::min(scene.receivers_min, scene.casters_min);
     glm::dvec3 all_max = glm::max(scene.receivers_max, scene.casters_max);
     scene.scene_radius_m = std::max(0.5 * glm::length(all_max - all_min), 1.0);

@@ -13,7 +13,7 @@
 
 namespace gusuku::runtime_detail {
 
-/// The building's vertex layout (runtime_pipelines' vertex input): position, normal, base colour uv, lightmap uv.
+/// The building's vertex layout (runtime_frame_pipelines.cpp's vertex input): position, normal, base colour uv, lightmap uv.
 struct BuildingVertex {
     float position[3];
     float normal[3];
@@ -42,11 +42,11 @@ struct GpuScene {
     GpuBuffer occluder_indices;
     uint32_t occluder_index_count = 0;
     /// The ground's triangles between neighbouring cell centres, chosen per frame (host-visible, room for every
-    /// quad): only quads the building can change are drawn (runtime.cpp, selectGroundQuads).
+    /// quad): only quads the building can change are drawn (ground_quads.h, selectGroundQuads).
     GpuBuffer ground_indices;
     uint32_t ground_quad_capacity = 0;
-    /// Per cell (texel order): 0 no ground, 1 ground, 2 ground whose baked light the building changes; and the
-    /// ground's height (ENU z). The CPU's copy, for choosing the quads to draw.
+    /// Per cell (texel order): kCellNoGround, kCellGround, or kCellGroundChangedByBuilding (ground_quads.h); and
+    /// the ground's height (ENU z). The CPU's copy, for choosing the quads to draw.
     std::vector<uint8_t> ground_cell_state;
     std::vector<float> ground_cell_height;
     GpuImage lightmaps;          ///< RGBA16F array, one layer per slot, values / irradiance_scale

@@ -26,10 +26,10 @@
 //   updates the smoothed state. No float atomics: lavapipe (Mesa 22.3.6) does offer VK_EXT_shader_atomic_float
 //   (shaderBufferFloat32AtomicAdd), but an app's device need not have or enable it, their order (so the
 //   result) would change from run to run, and a single pass would need sum(x^2) - n mean^2 (cancellation);
-//   no shared-memory tree either (docs/design.md 5: 82 ms against 24 ms with subgroupAdd at full 720p).
-// - Cost on lavapipe (2 shared cores, fence-timed medians of 20, both dispatches): 0.6 ms at 1280 x 720 with
-//   stride 8, 2.3-5.6 ms with stride 4 (the machine's load moves it), 0.18 ms at 640 x 360 with stride 8,
-//   0.55 ms with stride 4 (test_colour_match's ColourStatisticsTiming prints them).
+//   no shared-memory tree either: llvmpipe runs each barrier as a switch between invocations, so the tree
+//   costs more than subgroupAdd (docs/design.md 5).
+// - Cost on lavapipe: test_colour_match's ColourStatisticsTiming prints it per frame size and stride (the
+//   figures are in docs/measurements.md); it grows with the samples, 1 / stride^2 of the pixels.
 // - Transfer, kPaper: Reinhard per Lab channel, y = (x - mu_src) g + mu_tgt, g = sigma_tgt / sigma_src with
 //   sigma_src floored at kLabTransferMinSourceSigma (0.01 Lab) and g clamped to [1 / gain_limit, gain_limit]
 //   (colour.h makeLabTransfer / colour.glsl labTransferGain: the one definition of the floor and the clamp).
@@ -83,7 +83,8 @@
 //   barrier and no shared memory; colour_statistics_ground_reduce.comp (one workgroup of 64) counts the bins
 //   per lane, finds the median, sums the window per lane and combines by subgroupAdd: two passes over the
 //   samples. No atomics: the same sums every run. Cost on lavapipe (2 shared cores): see the test
-//   GroundMatchGpu timing print; a per-workgroup shared-memory histogram cost 24-34 ms (llvmpipe's barriers).
+//   GroundMatchGpu timing print; a per-workgroup shared-memory histogram costs many times more (llvmpipe runs
+//   each barrier as a switch between invocations).
 
 #include <cstdint>
 #include <optional>
@@ -111,6 +112,9 @@ inline constexpr double kColourMatchMaxWhiteBalanceShift = 15.0;
 inline constexpr int kColourMatchGamutSteps = 12;
 /// Linear input is clamped to [0, this] (NaN taken as 0) before the transfer, so that Lab stays finite.
 inline constexpr double kColourMatchMaxLinear = 65504.0;
+/// kPreserve's gamut test: linear values this close outside [0, 1] count as inside (float rounding of white,
+/// L 100 -> 1.0000001).
+inline constexpr double kColourMatchGamutTolerance = 1e-5;
 /// Frames are accepted with at least this fraction of the samples valid (and at least the count below).
 inline constexpr double kColourStatisticsMinValidFraction = 0.05;
 inline constexpr uint32_t kColourStatisticsMinValidSamplesFloor = 16;

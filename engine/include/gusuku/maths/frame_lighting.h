@@ -1,7 +1,7 @@
 #pragma once
 // The light of one runtime frame, worked out on the CPU from the instant, the place and the weather
 // (docs/design.md 8, steps 1 and 2): where the sun is (NREL SPA), its irradiance E_sun carried from the baked slots to
-// the current elevation, and the weights of the baked slots. Pure maths (glm only, microseconds), so it is
+// the current elevation, and the weights of the baked slots. Pure maths (glm only), so it is
 // tested without a GPU and the runtime calls it once per frame.
 //
 // Slot choice is by the sun's position, never by the clock: a daylight-saving clock, a wrong time zone or a

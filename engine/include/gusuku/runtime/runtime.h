@@ -8,7 +8,8 @@
 // weather, and writes the composited RGBA8 frame. Everything a frame needs is allocated when the runtime opens:
 // a frame allocates nothing, on the host or the device.
 //
-// Conventions, pinned by tests (tests/test_runtime_camera.cpp):
+// Conventions, pinned by tests (tests/test_runtime.cpp: RuntimeCamera.ProjectionConventionIsPinned and
+// RuntimeTest.RendersTheBuildingWherePinholeProjectionPutsIt; tests/test_frame_preparation.cpp for the clip matrix):
 //   - World: the site's east-north-up frame, metres (the bake set's).
 //   - Camera frame: x right, y down, z forward (the OpenCV / photogrammetry convention). CameraPose holds the
 //     camera's centre in ENU and the rotation whose columns are the camera's x, y and z axes in ENU.

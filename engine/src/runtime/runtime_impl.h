@@ -1,0 +1,163 @@
+#pragma once
+// gusuku_runtime's Runtime (runtime.h; docs/design.md 8), declared once for the files that implement it by job:
+//   runtime.cpp             the option checks, open() and the headless wrapper
+//   runtime_resources.cpp   the targets, descriptors, command buffer and fence made in open(), and their release
+//   runtime_frame_pipelines.cpp  the frame's graphics pipelines
+//   runtime_frame.cpp       the frame on the CPU: frame_preparation.h's pure functions, kept and uploaded
+//   runtime_passes.cpp      the frame on the GPU, pass by pass (recorders only)
+//   runtime_submission.cpp  submission, the fence, read-back and the profiled frame
+// Everything is created in open(); a frame records into one pre-allocated command buffer, submits it and waits
+// on one fence, and allocates nothing. Private to gusuku_runtime.
+
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "colour_statistics_pass.h"
+#include "frame_preparation.h"
+#include "gusuku/maths/frame_lighting.h"
+#include "gusuku/maths/shadow_fit.h"
+#include "gusuku/runtime/runtime.h"
+#include "runtime_depth_push.h"
+#include "runtime_interface.h"
+#include "runtime_scene.h"
+
+namespace gusuku::runtime_detail {
+
+inline RuntimeError deviceError(const std::exception& error) {
+    return RuntimeError(RuntimeErrorCode::kDevice, std::string("gusuku runtime: ") + error.what());
+}
+
+/// Throws RuntimeError(kInvalidFrame) for options out of their documented ranges (runtime.h).
+void checkRuntimeOptions(const RuntimeOptions& options);
+
+class RuntimeImpl final : public Runtime {
+public:
+    RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options);
+    ~RuntimeImpl() override;
+
+    FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) override;
+    FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) override;
+    VkImage compositeImage() const override { return colour_target_.handle(); }
+    void resetColourStatistics() override { statistics_->reset(); }
+    void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
+    uint64_t deviceMemoryBytes() const override;
+
+private:
+    // runtime_resources.cpp and runtime_frame_pipelines.cpp
+    void createGroundSelectionArrays();
+    void createTargets();
+    void createDescriptors();
+    void createPipelines();
+    void createCommands();
+    void destroy() noexcept;
+
+    // runtime_frame.cpp
+    FrameInfo prepareFrame(const FrameInput& frame);
+    void updateShadowState(const glm::dvec3& shadow_sun);
+    void updateGroundSelection(bool wanted, bool include_baked_changes, const glm::dvec3& shadow_sun);
+    void prepareColourMatch(const FrameInput& frame, const FrameLighting& lighting, const SlotBlend& blend);
+
+    // runtime_passes.cpp
+    void recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame);
+    void recordStatistics(VkCommandBuffer cmd, const FrameInput& frame);
+    void recordShadows(VkCommandBuffer cmd);
+    void recordOccluder(VkCommandBuffer cmd);
+    void recordBuilding(VkCommandBuffer cmd);
+    void recordGround(VkCommandBuffer cmd);
+    void recordReadback(VkCommandBuffer cmd);
+    void beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass);
+
+    // runtime_submission.cpp
+    // Records `record` into the frame's one command buffer, submits it and waits on the fence. A template, not a
+    // std::function, so a frame allocates nothing even where a standard library would box the lambda.
+    template <typename Record> void submit(const Record& record) {
+        beginCommands();
+        record(command_buffer_);
+        submitCommandsAndWait();
+    }
+    void beginCommands();
+    void submitCommandsAndWait();
+    void finishOutput(uint8_t* output_rgba8);
+
+    const GpuDevice& gpu_;
+    RuntimeOptions options_;
+    BakeSetManifest manifest_;
+    std::vector<LabStatistics> slot_colour_statistics_;  // per slot (zero when the manifest has none)
+    GpuScene scene_;
+
+    // Per-frame resources, all made in open().
+    GpuImage colour_target_;
+    GpuImage depth_target_;
+    GpuImage building_shadow_;
+    GpuImage site_shadow_;
+    GpuBuffer camera_buffer_;    // host-visible RGBA8 of the camera frame (uploaded, or copied from the app's image)
+    GpuBuffer readback_buffer_;  // host-visible RGBA8 of the composite
+    GpuBuffer uniform_buffer_;   // host-visible FrameUniforms
+    std::unique_ptr<ColourStatisticsPass> statistics_;
+
+    VkRenderPass main_passes_[4] = {};  // MainPassVariant order
+    VkRenderPass shadow_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer main_framebuffer_ = VK_NULL_HANDLE;
+    VkFramebuffer building_shadow_framebuffer_ = VK_NULL_HANDLE;
+    VkFramebuffer site_shadow_framebuffer_ = VK_NULL_HANDLE;
+    VkSampler linear_sampler_ = VK_NULL_HANDLE;
+    VkSampler shadow_sampler_ = VK_NULL_HANDLE;
+    VkSampler texture_sampler_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout frame_set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout material_set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> material_sets_;
+    VkPipelineLayout depth_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout shading_layout_ = VK_NULL_HANDLE;
+    VkPipeline shadow_pipeline_ = VK_NULL_HANDLE;       // the building into a shadow map
+    VkPipeline site_shadow_pipeline_ = VK_NULL_HANDLE;  // the occluder into a shadow map (its own vertex stride)
+    VkPipeline occluder_pipeline_ = VK_NULL_HANDLE;
+    VkPipeline building_pipeline_ = VK_NULL_HANDLE;
+    VkPipeline ground_pipeline_ = VK_NULL_HANDLE;          // quads the building's shadow may reach
+    VkPipeline ground_baked_pipeline_ = VK_NULL_HANDLE;    // quads only its baked light changes: no building shadow
+    VkPipeline ground_sunless_pipeline_ = VK_NULL_HANDLE;  // the same with no sun at all: no shadow-map reads
+    VkCommandPool command_pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+
+    // This frame's CPU-side state, filled by prepareFrame.
+    shader_interface::FrameUniforms uniforms_{};
+    shader_interface::DepthOnlyPushConstants shadow_push_{};  // both shadow maps: the sun's view of this frame's fit
+    shader_interface::DepthOnlyPushConstants occluder_push_{};
+    bool sun_shines_ = false;
+    // The shadow maps hold the sun's direction rounded to options_.shadow_sun_step_deg; they are re-rendered
+    // only when that rounded direction changes (the building and the site are static).
+    glm::dvec3 shadow_sun_direction_{0.0};
+    ShadowFit shadow_fit_;
+    bool building_shadow_valid_ = false;
+    bool site_shadow_valid_ = false;
+    bool render_building_shadow_ = false;
+    bool render_site_shadow_ = false;
+    // The ground quads drawn this frame (selectGroundQuads in ground_quads.h), and the reused host arrays that
+    // choose them. What the ground quads were last chosen for (they are chosen again only when it changes).
+    struct GroundSelectionKey {
+        bool wanted = false;
+        bool include_baked_changes = false;
+        bool sun_shines = false;
+        glm::dvec3 sun{0.0};
+        bool operator==(const GroundSelectionKey&) const = default;
+    };
+    std::optional<GroundSelectionKey> ground_selection_key_;
+    uint32_t ground_index_count_ = 0;         // all quads drawn, times 6
+    uint32_t ground_shadow_index_count_ = 0;  // the first of them, which the building's shadow may reach
+    std::vector<uint8_t> ground_cell_marked_;
+    std::vector<float> ground_shadow_candidate_;  // per cell: 1 where the building's shadow may fall
+    GpuBuffer ground_candidate_buffer_;           // the same as a host-visible vertex stream
+    std::vector<uint32_t> ground_quad_indices_;
+    bool draw_ground_ = false;
+    bool site_shadows_ = false;
+    LabStatistics frame_source_statistics_{};
+    ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;
+    GroundMatchView frame_ground_view_;  // mode kGround: this frame's camera and light
+};
+
+}  // namespace gusuku::runtime_detail

@@ -1,0 +1,167 @@
+// The frame on the GPU, pass by pass (runtime_impl.h; docs/design.md 8): the camera image in, the colour
+// statistics, the sun's shadow maps, the occluder's depth, the building, the ground ratio, the read-back. Each
+// records into a command buffer and submits nothing (runtime_submission.cpp does).
+
+#include "gusuku/gpu/gpu_compute.h"
+#include "runtime_impl.h"
+#include "runtime_material_push.h"
+#include "runtime_pipelines.h"
+
+namespace gusuku::runtime_detail {
+
+using shader_interface::DepthOnlyPushConstants;
+using shader_interface::MaterialPushConstants;
+
+void RuntimeImpl::recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame) {
+    const VkExtent3D extent{options_.frame_width, options_.frame_height, 1};
+    if (frame.camera_image != VK_NULL_HANDLE) {
+        // The app's image into our buffer (for the statistics and the copy below), in its given layout.
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = extent;
+        vkCmdCopyImageToBuffer(cmd, frame.camera_image, frame.camera_image_layout, camera_buffer_.handle(), 1,
+                               &region);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
+                             nullptr, 0, nullptr);
+    }
+    // The previous frame left the composite in TRANSFER_SRC; its content is replaced whole.
+    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
+                                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                VK_PIPELINE_STAGE_TRANSFER_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = extent;
+    vkCmdCopyBufferToImage(cmd, camera_buffer_.handle(), colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           1, &region);
+    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                VK_ACCESS_TRANSFER_WRITE_BIT,
+                                VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+}
+
+void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
+    statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
+    if (frame_colour_mode_ == ColourMatchMode::kGround)
+        statistics_->recordGround(cmd, camera_buffer_, frame_ground_view_);
+    else if (frame_colour_mode_ != ColourMatchMode::kOff)
+        statistics_->record(cmd, camera_buffer_);
+}
+
+void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
+    if (!render_building_shadow_ && !render_site_shadow_) return;
+    const VkDeviceSize offset = 0;
+    auto shadowPass = [&](VkFramebuffer framebuffer, const DepthOnlyPushConstants& push, VkPipeline pipeline,
+                          const GpuBuffer& vertices, const GpuBuffer& indices, uint32_t index_count) {
+        VkClearValue clear{};
+        clear.depthStencil = {1.0f, 0};
+        VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        begin.renderPass = shadow_pass_;
+        begin.framebuffer = framebuffer;
+        begin.renderArea = {{0, 0}, {options_.shadow_map_size, options_.shadow_map_size}};
+        begin.clearValueCount = 1;
+        begin.pClearValues = &clear;
+        vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+        recordViewport(cmd, options_.shadow_map_size, options_.shadow_map_size);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vkCmdPushConstants(cmd, depth_layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+        const VkBuffer vertex_buffer = vertices.handle();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        vkCmdEndRenderPass(cmd);
+    };
+    if (render_building_shadow_) {
+        shadowPass(building_shadow_framebuffer_, shadow_push_, shadow_pipeline_, scene_.building_vertices,
+                   scene_.building_indices, scene_.building_index_count);
+        building_shadow_valid_ = true;
+    }
+    if (render_site_shadow_) {
+        shadowPass(site_shadow_framebuffer_, shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
+                   scene_.occluder_indices, scene_.occluder_index_count);
+        site_shadow_valid_ = true;
+    }
+}
+
+void RuntimeImpl::beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass) {
+    VkClearValue clears[2]{};
+    clears[1].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = render_pass;
+    begin.framebuffer = main_framebuffer_;  // compatible with every variant
+    begin.renderArea = {{0, 0}, {options_.frame_width, options_.frame_height}};
+    begin.clearValueCount = 2;
+    begin.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    recordViewport(cmd, options_.frame_width, options_.frame_height);
+}
+
+void RuntimeImpl::recordOccluder(VkCommandBuffer cmd) {
+    if (scene_.occluder_index_count == 0) return;
+    const VkDeviceSize offset = 0;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, occluder_pipeline_);
+    vkCmdPushConstants(cmd, depth_layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof occluder_push_, &occluder_push_);
+    const VkBuffer vertex_buffer = scene_.occluder_vertices.handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, scene_.occluder_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, scene_.occluder_index_count, 1, 0, 0, 0);
+}
+
+void RuntimeImpl::recordBuilding(VkCommandBuffer cmd) {
+    const VkDeviceSize offset = 0;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, building_pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
+                            0, nullptr);
+    const VkBuffer vertex_buffer = scene_.building_vertices.handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, scene_.building_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    for (const MaterialDraw& draw : scene_.draws) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_MATERIAL_SET, 1,
+                                &material_sets_[draw.material], 0, nullptr);
+        const glm::vec4& factor = scene_.base_colour_factors[draw.material];
+        const MaterialPushConstants push{{{factor.r, factor.g, factor.b, factor.a}}};
+        vkCmdPushConstants(cmd, shading_layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+        vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
+    }
+}
+
+void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
+    if (!draw_ground_) return;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
+                            0, nullptr);
+    const VkBuffer candidates = ground_candidate_buffer_.handle();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &candidates, &offset);
+    vkCmdBindIndexBuffer(cmd, scene_.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    if (ground_shadow_index_count_ > 0) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ground_pipeline_);
+        vkCmdDrawIndexed(cmd, ground_shadow_index_count_, 1, 0, 0, 0);
+    }
+    if (ground_index_count_ > ground_shadow_index_count_) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                          sun_shines_ ? ground_baked_pipeline_ : ground_sunless_pipeline_);
+        vkCmdDrawIndexed(cmd, ground_index_count_ - ground_shadow_index_count_, 1, ground_shadow_index_count_, 0, 0);
+    }
+}
+
+void RuntimeImpl::recordReadback(VkCommandBuffer cmd) {
+    // The main pass left the composite in TRANSFER_SRC_OPTIMAL (its final layout).
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {options_.frame_width, options_.frame_height, 1};
+    vkCmdCopyImageToBuffer(cmd, colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           readback_buffer_.handle(), 1, &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr,
+                         0, nullptr);
+}
+
+
+}  // namespace gusuku::runtime_detail

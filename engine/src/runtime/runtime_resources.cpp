@@ -1,0 +1,247 @@
+// The runtime's device resources made once in open() (runtime_impl.h): the ground selection's host arrays, the
+// frame's targets and shadow maps, the descriptor sets, the command buffer and fence; their release; and what
+// they weigh in device memory.
+
+#include <algorithm>
+#include <vector>
+
+#include "gusuku/gpu/gpu_compute.h"
+#include "runtime_impl.h"
+#include "runtime_pipelines.h"
+
+namespace gusuku::runtime_detail {
+
+using shader_interface::FrameUniforms;
+
+void RuntimeImpl::createGroundSelectionArrays() {
+    ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
+    ground_shadow_candidate_.assign(scene_.ground_cell_state.size(), 0.0f);
+    ground_candidate_buffer_ = GpuBuffer(gpu_, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), 16),
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
+    ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
+}
+
+void RuntimeImpl::createTargets() {
+    const uint32_t width = options_.frame_width, height = options_.frame_height;
+    GpuImageDescription colour;
+    colour.format = kColourFormat;
+    colour.width = width;
+    colour.height = height;
+    colour.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    colour_target_ = GpuImage(gpu_, colour);
+    GpuImageDescription depth;
+    depth.format = kDepthFormat;
+    depth.width = width;
+    depth.height = height;
+    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    depth_target_ = GpuImage(gpu_, depth);
+    GpuImageDescription shadow = depth;
+    shadow.width = shadow.height = options_.shadow_map_size;
+    shadow.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    building_shadow_ = GpuImage(gpu_, shadow);
+    site_shadow_ = GpuImage(gpu_, shadow);
+
+    const size_t frame_bytes = size_t(width) * height * 4;
+    camera_buffer_ = GpuBuffer(gpu_, frame_bytes,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    readback_buffer_ = GpuBuffer(gpu_, frame_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    uniform_buffer_ = GpuBuffer(gpu_, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+
+    const VkDevice device = gpu_.device;
+    main_passes_[0] = createMainRenderPass(device, MainPassVariant::kWhole);
+    main_passes_[1] = createMainRenderPass(device, MainPassVariant::kFirst);
+    main_passes_[2] = createMainRenderPass(device, MainPassVariant::kMiddle);
+    main_passes_[3] = createMainRenderPass(device, MainPassVariant::kLast);
+    shadow_pass_ = createShadowRenderPass(device);
+    main_framebuffer_ =
+        createFramebuffer(device, main_passes_[0], {colour_target_.view(), depth_target_.view()}, width, height);
+    building_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {building_shadow_.view()},
+                                                     options_.shadow_map_size, options_.shadow_map_size);
+    site_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {site_shadow_.view()},
+                                                 options_.shadow_map_size, options_.shadow_map_size);
+
+    // Shadow maps start in the layout the frame set's descriptors name, so a frame that skips them reads a
+    // defined (cleared) map.
+    GpuSubmitter submitter(gpu_);
+    submitter.submitAndWait([&](VkCommandBuffer cmd) {
+        for (const GpuImage* map : {&building_shadow_, &site_shadow_})
+            recordImageLayoutTransition(cmd, map->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT,
+                                        VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
+}
+
+void RuntimeImpl::createDescriptors() {
+    const VkDevice device = gpu_.device;
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = VK_FILTER_LINEAR;
+    sampler.minFilter = VK_FILTER_LINEAR;
+    sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    sampler.maxLod = 0.0f;
+    checkVk(vkCreateSampler(device, &sampler, nullptr, &linear_sampler_), "vkCreateSampler");
+    VkSamplerCreateInfo texture = sampler;
+    texture.addressModeU = texture.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    checkVk(vkCreateSampler(device, &texture, nullptr, &texture_sampler_), "vkCreateSampler");
+    VkSamplerCreateInfo shadow = sampler;
+    shadow.compareEnable = VK_TRUE;
+    shadow.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit when the receiver is no deeper than the stored caster
+    shadow.addressModeU = shadow.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+    shadow.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+    checkVk(vkCreateSampler(device, &shadow, nullptr, &shadow_sampler_), "vkCreateSampler");
+
+    const VkShaderStageFlags graphics = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const VkDescriptorSetLayoutBinding frame_bindings[RUNTIME_FRAME_BINDING_COUNT] = {
+        {RUNTIME_FRAME_UNIFORMS_BINDING, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, graphics, nullptr},
+        {RUNTIME_BUILDING_SHADOW_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_SITE_SHADOW_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_LIGHTMAP_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_GROUND_IRRADIANCE_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_GROUND_GEOMETRY_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
+        {RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+    };
+    VkDescriptorSetLayoutCreateInfo frame_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    frame_layout.bindingCount = RUNTIME_FRAME_BINDING_COUNT;
+    frame_layout.pBindings = frame_bindings;
+    checkVk(vkCreateDescriptorSetLayout(device, &frame_layout, nullptr, &frame_set_layout_),
+            "vkCreateDescriptorSetLayout");
+    const VkDescriptorSetLayoutBinding material_binding = {
+        RUNTIME_BASE_COLOUR_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo material_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    material_layout.bindingCount = 1;
+    material_layout.pBindings = &material_binding;
+    checkVk(vkCreateDescriptorSetLayout(device, &material_layout, nullptr, &material_set_layout_),
+            "vkCreateDescriptorSetLayout");
+
+    const uint32_t material_count = uint32_t(scene_.base_colour_factors.size());
+    const VkDescriptorPoolSize pool_sizes[3] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 + material_count},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+    };
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = 1 + material_count;
+    pool.poolSizeCount = 3;
+    pool.pPoolSizes = pool_sizes;
+    checkVk(vkCreateDescriptorPool(device, &pool, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
+
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = descriptor_pool_;
+    allocate.descriptorSetCount = 1;
+    allocate.pSetLayouts = &frame_set_layout_;
+    checkVk(vkAllocateDescriptorSets(device, &allocate, &frame_set_), "vkAllocateDescriptorSets");
+    material_sets_.resize(material_count);
+    std::vector<VkDescriptorSetLayout> material_layouts(material_count, material_set_layout_);
+    allocate.descriptorSetCount = material_count;
+    allocate.pSetLayouts = material_layouts.data();
+    checkVk(vkAllocateDescriptorSets(device, &allocate, material_sets_.data()), "vkAllocateDescriptorSets");
+
+    const VkDescriptorBufferInfo uniforms{uniform_buffer_.handle(), 0, sizeof(FrameUniforms)};
+    const VkDescriptorBufferInfo colour_state{statistics_->stateBuffer().handle(), 0, VK_WHOLE_SIZE};
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const VkDescriptorImageInfo images[5] = {
+        {shadow_sampler_, building_shadow_.view(), read},
+        {shadow_sampler_, site_shadow_.view(), read},
+        {linear_sampler_, scene_.lightmaps.view(), read},
+        {linear_sampler_, scene_.ground_irradiance.view(), read},
+        {linear_sampler_, scene_.ground_geometry.view(), read},
+    };
+    std::vector<VkWriteDescriptorSet> writes;
+    auto write = [&](VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
+        VkWriteDescriptorSet entry{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        entry.dstSet = set;
+        entry.dstBinding = binding;
+        entry.descriptorCount = 1;
+        entry.descriptorType = type;
+        writes.push_back(entry);
+        return &writes.back();
+    };
+    writes.reserve(8 + material_count);
+    write(frame_set_, RUNTIME_FRAME_UNIFORMS_BINDING, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)->pBufferInfo = &uniforms;
+    const uint32_t image_bindings[5] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
+                                        RUNTIME_LIGHTMAP_BINDING, RUNTIME_GROUND_IRRADIANCE_BINDING,
+                                        RUNTIME_GROUND_GEOMETRY_BINDING};
+    for (int index = 0; index < 5; ++index)
+        write(frame_set_, image_bindings[index], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[index];
+    write(frame_set_, RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)->pBufferInfo = &colour_state;
+    std::vector<VkDescriptorImageInfo> material_images(material_count);
+    for (uint32_t material = 0; material < material_count; ++material) {
+        const int texture = scene_.material_texture[material];
+        const GpuImage& image = texture >= 0 && size_t(texture) < scene_.textures.size()
+                                    ? scene_.textures[size_t(texture)]
+                                    : scene_.white_texture;
+        material_images[material] = {texture_sampler_, image.view(), read};
+        write(material_sets_[material], RUNTIME_BASE_COLOUR_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+            ->pImageInfo = &material_images[material];
+    }
+    vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void RuntimeImpl::createCommands() {
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = gpu_.queue_family_index;
+    checkVk(vkCreateCommandPool(gpu_.device, &pool_info, nullptr, &command_pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocate_info.commandPool = command_pool_;
+    allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocate_info.commandBufferCount = 1;
+    checkVk(vkAllocateCommandBuffers(gpu_.device, &allocate_info, &command_buffer_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    checkVk(vkCreateFence(gpu_.device, &fence_info, nullptr, &fence_), "vkCreateFence");
+}
+
+void RuntimeImpl::destroy() noexcept {
+    VkDevice device = gpu_.device;
+    if (device == VK_NULL_HANDLE) return;
+    vkDeviceWaitIdle(device);
+    if (fence_) vkDestroyFence(device, fence_, nullptr);
+    if (command_pool_) vkDestroyCommandPool(device, command_pool_, nullptr);
+    for (VkPipeline pipeline :
+         {shadow_pipeline_, site_shadow_pipeline_, occluder_pipeline_, building_pipeline_, ground_pipeline_,
+          ground_baked_pipeline_, ground_sunless_pipeline_})
+        if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+    for (VkPipelineLayout layout : {depth_layout_, shading_layout_})
+        if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
+    if (descriptor_pool_) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    for (VkDescriptorSetLayout layout : {frame_set_layout_, material_set_layout_})
+        if (layout) vkDestroyDescriptorSetLayout(device, layout, nullptr);
+    for (VkSampler sampler : {linear_sampler_, shadow_sampler_, texture_sampler_})
+        if (sampler) vkDestroySampler(device, sampler, nullptr);
+    for (VkFramebuffer framebuffer : {main_framebuffer_, building_shadow_framebuffer_, site_shadow_framebuffer_})
+        if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);
+    for (VkRenderPass render_pass : main_passes_)
+        if (render_pass) vkDestroyRenderPass(device, render_pass, nullptr);
+    if (shadow_pass_) vkDestroyRenderPass(device, shadow_pass_, nullptr);
+    fence_ = VK_NULL_HANDLE;
+    command_pool_ = VK_NULL_HANDLE;
+    shadow_pipeline_ = site_shadow_pipeline_ = occluder_pipeline_ = building_pipeline_ = ground_pipeline_ =
+        ground_baked_pipeline_ = ground_sunless_pipeline_ = VK_NULL_HANDLE;
+    depth_layout_ = shading_layout_ = VK_NULL_HANDLE;
+    descriptor_pool_ = VK_NULL_HANDLE;
+    frame_set_layout_ = material_set_layout_ = VK_NULL_HANDLE;
+    linear_sampler_ = shadow_sampler_ = texture_sampler_ = VK_NULL_HANDLE;
+    main_framebuffer_ = building_shadow_framebuffer_ = site_shadow_framebuffer_ = VK_NULL_HANDLE;
+    for (VkRenderPass& render_pass : main_passes_) render_pass = VK_NULL_HANDLE;
+    shadow_pass_ = VK_NULL_HANDLE;
+    // Buffers, images and the statistics pass release themselves.
+}
+
+uint64_t RuntimeImpl::deviceMemoryBytes() const {
+    uint64_t bytes = 0;
+    for (const GpuImage* image : {&colour_target_, &depth_target_, &building_shadow_, &site_shadow_,
+                                  &scene_.lightmaps, &scene_.ground_irradiance, &scene_.ground_geometry,
+                                  &scene_.white_texture})
+        bytes += image->memoryBytes();
+    for (const GpuImage& texture : scene_.textures) bytes += texture.memoryBytes();
+    for (const GpuBuffer* buffer : {&scene_.building_vertices, &scene_.building_indices, &scene_.occluder_vertices,
+                                    &scene_.occluder_indices, &scene_.ground_indices, &camera_buffer_,
+                                    &readback_buffer_, &ground_candidate_buffer_, &uniform_buffer_, &statistics_->stateBuffer()})
+        bytes += buffer->size();
+    return bytes;
+}
+
+}  // namespace gusuku::runtime_detail
