@@ -230,6 +230,91 @@ std::vector<const BakeSlot*> slotsToTrace(const SiteConfig& site, const std::str
     return chosen;
 }
 
+/// Every slot of the site lit (a partial bake lights them all too: it is cheap, no tracing, so its ground grid
+/// and warnings are the whole bake's); their warnings join the report's. The slots point into sunny and overcast.
+std::vector<SlotLighting> lightEverySlot(const SiteConfig& site, const PreparedSky& sunny,
+                                         const std::optional<PreparedSky>& overcast, BakeReport& report) {
+    std::vector<SlotLighting> slots;
+    for (const BakeSlot& slot : site.bake.slots) {
+        slots.push_back(lightSlot(site, slot, sunny, overcast ? &*overcast : nullptr));
+        for (const std::string& warning : slots.back().warnings) report.warnings.push_back(warning);
+    }
+    return slots;
+}
+
+/// The bake's geometry, refused (before any file is written) when the building has no texel or a device buffer
+/// would pass the device's limit; a site with no ground cell over the ground gets a warning instead.
+BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& site, const std::vector<SlotSun>& suns,
+                                    const PreparedSky& sunny, const std::optional<PreparedSky>& overcast,
+                                    const BakeOptions& options) {
+    // The lowest baked sun sizes the ground grid.
+    BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size);
+    refuseBuildingWithoutTexels(site, geometry);
+    std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
+    if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
+    const std::vector<InputError> too_large = deviceLimitProblems(
+        site, bakeDeviceBuffers(site, geometry, skies, options.max_texture_size),
+        storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange));
+    if (!too_large.empty()) throw too_large.front();
+    const std::string no_ground = emptyGroundReason(site, geometry);
+    if (!no_ground.empty()) geometry.warnings.push_back(no_ground);
+    return geometry;
+}
+
+/// The sets every slot traces: the building's footprint points (adaptively once a texel has the samples for a
+/// pilot), the ground's cells with the building and without it.
+std::vector<PointSet> bakePointSets(const LightmapFootprint& footprint, const BakeGeometry& geometry,
+                                    uint32_t samples_per_slot, bool adaptive_building) {
+    return {
+        {"building", buildingQueryPoints(footprint), 0u, samples_per_slot, adaptive_building},
+        {"ground_with", groundQueryPoints(geometry), 0u},
+        {"ground_without", groundQueryPoints(geometry), kTriangleFlagBuilding},
+    };
+}
+
+/// The point-samples the whole run traces, for the progress line: every set over every traced slot.
+double totalTraceWork(const std::vector<PointSet>& sets, uint32_t samples, size_t traced_slot_count) {
+    double total_work = 0.0;
+    for (const PointSet& set : sets)
+        total_work += double(set.points.size()) * set.samples(samples) * double(traced_slot_count);
+    return total_work;
+}
+
+TracePass slotTracePass(const SiteConfig& site, const SlotLighting& lighting) {
+    TracePass pass;
+    pass.max_bounces = uint32_t(site.bake.max_bounces);
+    pass.seed = site.bake.seed;
+    pass.sun = lighting.sun;
+    return pass;
+}
+
+/// One slot's sets traced in order, each with its own skip flags; nothing when stopped.
+std::optional<std::vector<SetTracer::Sums>> traceSlotSets(SetTracer& set_tracer, const SlotLighting& lighting,
+                                                          const std::vector<PointSet>& sets,
+                                                          const LightmapFootprint& footprint, TracePass pass,
+                                                          uint32_t samples, size_t max_trace_points) {
+    std::vector<SetTracer::Sums> sums;
+    for (const PointSet& set : sets) {
+        pass.skip_flags = set.skip_flags;
+        auto set_sums = set.adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
+                                                       set.samples(samples), max_trace_points)
+                                     : set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
+        if (!set_sums) return std::nullopt;
+        sums.push_back(std::move(*set_sums));
+    }
+    return sums;
+}
+
+/// The run's tracing statistics into the report, whether it finished or was stopped.
+void recordTraceStatistics(BakeReport& report, BakeProgress& progress, const SetTracer& set_tracer,
+                           Clock::time_point wall_start) {
+    progress.finish();
+    report.rays_traced = progress.raysTraced();
+    report.trace_seconds = set_tracer.traceSeconds();
+    report.wall_seconds = secondsSince(wall_start);
+    report.resumed_fraction = progress.resumedFraction();
+}
+
 }  // namespace
 
 void requireSiteSlot(const SiteConfig& site, const std::string& slot) {
@@ -263,28 +348,13 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     }
 
     // Everything that can refuse the bake comes before the first file is replaced. Light first: the lowest
-    // baked sun sizes the ground grid. A partial bake lights every slot too (it is cheap: no tracing), so its
-    // ground grid and warnings are the whole bake's.
+    // baked sun sizes the ground grid.
     const std::vector<SlotSun> suns = slotSunPositions(site);
     const PreparedSky sunny = prepareSky(site.sunny_sky);
     std::optional<PreparedSky> overcast;
     if (site.overcast_sky) overcast = prepareSky(*site.overcast_sky);
-    std::vector<SlotLighting> slots;
-    for (const BakeSlot& slot : site.bake.slots) {
-        slots.push_back(lightSlot(site, slot, sunny, overcast ? &*overcast : nullptr));
-        for (const std::string& warning : slots.back().warnings) report.warnings.push_back(warning);
-    }
-
-    BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size);
-    refuseBuildingWithoutTexels(site, geometry);
-    std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
-    if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
-    const std::vector<InputError> too_large = deviceLimitProblems(
-        site, bakeDeviceBuffers(site, geometry, skies, options.max_texture_size),
-        storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange));
-    if (!too_large.empty()) throw too_large.front();
-    const std::string no_ground = emptyGroundReason(site, geometry);
-    if (!no_ground.empty()) geometry.warnings.push_back(no_ground);
+    const std::vector<SlotLighting> slots = lightEverySlot(site, sunny, overcast, report);
+    const BakeGeometry geometry = prepareCheckedGeometry(context, site, suns, sunny, overcast, options);
     report.warnings.insert(report.warnings.end(), geometry.warnings.begin(), geometry.warnings.end());
     report.lightmap_resolution = geometry.lightmap_resolution;
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "gusuku-bake: warning: %s\n", warning.c_str());
@@ -297,19 +367,12 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         geometry.building, geometry.lightmap_resolution, geometry.texels,
         footprintGridSide(samples, geometry.texels.size(), max_trace_points), site.bake.seed);
     const uint32_t samples_per_slot = samples / uint32_t(footprint.pointsPerTexel());
-    const std::vector<PointSet> sets = {
-        // The building adaptively once a texel has the samples for a pilot; the ground's cells alike.
-        {"building", buildingQueryPoints(footprint), 0u, samples_per_slot,
-         options.adaptive_sampling && samples >= kMinAdaptiveSamples},
-        {"ground_with", groundQueryPoints(geometry), 0u},
-        {"ground_without", groundQueryPoints(geometry), kTriangleFlagBuilding},
-    };
+    const std::vector<PointSet> sets = bakePointSets(footprint, geometry, samples_per_slot,
+                                                     options.adaptive_sampling && samples >= kMinAdaptiveSamples);
     report.building_texels = geometry.texels.size();
     report.ground_cells = sets[1].points.size();
 
-    double total_work = 0.0;
-    for (const PointSet& set : sets) total_work += double(set.points.size()) * set.samples(samples) * double(traced_slots.size());
-    BakeProgress progress(total_work, options.show_progress);
+    BakeProgress progress(totalTraceWork(sets, samples, traced_slots.size()), options.show_progress);
     // The old manifest goes before the first file of this bake replaces one of its files: a bake set with a
     // manifest is then always the complete, matching one, even if this bake is interrupted or fails.
     std::filesystem::remove(report.manifest_path);
@@ -323,37 +386,20 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     for (const SlotLighting& lighting : slots) {
         if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);
-        TracePass pass;
-        pass.max_bounces = uint32_t(site.bake.max_bounces);
-        pass.seed = site.bake.seed;
-        pass.sun = lighting.sun;
-        std::vector<SetTracer::Sums> sums;
-        for (const PointSet& set : sets) {
-            pass.skip_flags = set.skip_flags;
-            auto set_sums = set.adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
-                                                       set.samples(samples), max_trace_points)
-                                     : set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
-            if (!set_sums) {
-                progress.finish();
-                report.rays_traced = progress.raysTraced();
-                report.trace_seconds = set_tracer.traceSeconds();
-                report.wall_seconds = secondsSince(wall_start);
-                report.resumed_fraction = progress.resumedFraction();
-                return report;  // completed = false: checkpoints hold everything done so far
-            }
-            sums.push_back(std::move(*set_sums));
+        const std::optional<std::vector<SetTracer::Sums>> sums = traceSlotSets(
+            set_tracer, lighting, sets, footprint, slotTracePass(site, lighting), samples, max_trace_points);
+        if (!sums) {
+            recordTraceStatistics(report, progress, set_tracer, wall_start);
+            return report;  // completed = false: checkpoints hold everything done so far
         }
+        const SetTracer::Sums& building = (*sums)[0];
         writer.writeSlot(lighting,
-                         texelSumsFromFootprint(footprint, sums[0].sums, samples_per_slot, kMaxBackfaceFraction),
-                         texelLuminanceVarianceFromFootprint(footprint, sums[0].sums, sums[0].luminance_square_sums,
+                         texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction),
+                         texelLuminanceVarianceFromFootprint(footprint, building.sums, building.luminance_square_sums,
                                                              samples_per_slot, kMaxBackfaceFraction),
-                         sums[1].sums, sums[2].sums);
+                         (*sums)[1].sums, (*sums)[2].sums);
     }
-    progress.finish();
-    report.rays_traced = progress.raysTraced();
-    report.trace_seconds = set_tracer.traceSeconds();
-    report.wall_seconds = secondsSince(wall_start);
-    report.resumed_fraction = progress.resumedFraction();
+    recordTraceStatistics(report, progress, set_tracer, wall_start);
     std::optional<BakeSetPartial> partial;
     if (!options.slot.empty()) {
         partial = BakeSetPartial{options.slot, {}, writer.slotIndependentHash()};
