@@ -15,6 +15,20 @@
 #include "gusuku/maths/weather_estimate.h"
 
 namespace gusuku {
+namespace {
+
+// lookingAt: a target nearer than this to the position gives no direction to look in.
+constexpr double kMinLookDistanceM = 1e-6;
+// lookingAt: a view this close to straight up or down (|forward . up| above it) takes north as its up instead, so
+// the right axis, forward x up, stays well defined.
+constexpr double kNearlyVertical = 0.999;
+// A pose's rotation counts as orthonormal when R^T R is this close to the identity, element by element: loose
+// enough for a rotation built in float from sensor quaternions.
+constexpr double kRotationTolerance = 1e-3;
+// A GPS fix's height above the ellipsoid is refused beyond 100 km either way (no site on the ground lies there).
+constexpr double kMaxFixHeightM = 1e5;
+
+}  // namespace
 
 Weather Weather::estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height) {
     return {estimateCloudCover(camera_rgba8, width, height).cloud_cover};
@@ -27,9 +41,10 @@ CameraIntrinsics CameraIntrinsics::fromFieldOfView(uint32_t width, uint32_t heig
 
 CameraPose CameraPose::lookingAt(const glm::dvec3& position_enu, const glm::dvec3& target_enu) {
     const glm::dvec3 offset = target_enu - position_enu;
-    if (!(glm::length(offset) > 1e-6)) throw std::invalid_argument("CameraPose::lookingAt: the target is the position");
+    if (!(glm::length(offset) > kMinLookDistanceM))
+        throw std::invalid_argument("CameraPose::lookingAt: the target is the position");
     const glm::dvec3 forward = glm::normalize(offset);
-    const glm::dvec3 world_up = std::abs(forward.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    const glm::dvec3 world_up = std::abs(forward.z) > kNearlyVertical ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
     CameraPose pose;
     pose.position_enu = position_enu;
@@ -88,11 +103,11 @@ std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t wi
     for (int column = 0; column < 3; ++column)
         for (int row = 0; row < 3; ++row)
             if (!finite(rotation[column][row])) return "pose.camera_to_enu: not finite";
-    // Orthonormal within a loose tolerance: a rotation built in float from sensor quaternions passes.
+    // Orthonormal within kRotationTolerance.
     const glm::dmat3 should_be_identity = glm::transpose(rotation) * rotation;
     for (int column = 0; column < 3; ++column)
         for (int row = 0; row < 3; ++row)
-            if (std::abs(should_be_identity[column][row] - (column == row ? 1.0 : 0.0)) > 1e-3)
+            if (std::abs(should_be_identity[column][row] - (column == row ? 1.0 : 0.0)) > kRotationTolerance)
                 return "pose.camera_to_enu: not a rotation (its columns are not orthonormal)";
     if (glm::determinant(rotation) < 0.0) return "pose.camera_to_enu: a reflection, not a rotation";
     if (!finite(frame.utc_unix_seconds)) return "utc_unix_seconds: not finite";
@@ -113,7 +128,7 @@ std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t wi
         const GeoPosition& fix = *frame.position;
         if (!(std::abs(fix.latitude_deg) <= 90.0)) return "position.latitude_deg: must be in [-90, 90]";
         if (!(std::abs(fix.longitude_deg) <= 180.0)) return "position.longitude_deg: must be in [-180, 180]";
-        if (!(std::abs(fix.height_m) <= 1e5)) return "position.height_m: must be in [-100000, 100000]";
+        if (!(std::abs(fix.height_m) <= kMaxFixHeightM)) return "position.height_m: must be in [-100000, 100000]";
     }
     return std::nullopt;
 }

@@ -16,8 +16,9 @@ using shader_interface::FrameUniforms;
 void RuntimeImpl::createGroundSelectionArrays() {
     ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
     ground_shadow_candidate_.assign(scene_.ground_cell_state.size(), 0.0f);
-    ground_candidate_buffer_ = GpuBuffer(gpu_, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), 16),
-                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
+    ground_candidate_buffer_ =
+        GpuBuffer(gpu_, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), kMinBufferBytes),
+                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
     ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
 }
 

@@ -23,7 +23,8 @@ constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
 
 template <typename T>
 GpuBuffer deviceBuffer(const GpuDevice& gpu, const std::vector<T>& values, VkBufferUsageFlags usage) {
-    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), 16), usage, GpuMemory::kDeviceLocal);
+    GpuBuffer buffer(gpu, std::max<size_t>(values.size() * sizeof(T), kMinBufferBytes), usage,
+                     GpuMemory::kDeviceLocal);
     if (!values.empty()) buffer.upload(values.data(), values.size() * sizeof(T));
     return buffer;
 }
@@ -277,8 +278,9 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
     // Room for the ground grid's triangles, two per square of four neighbouring cell centres; each frame
     // writes the quads it draws.
     scene.ground_quad_capacity = has_ground ? (columns - 1) * (rows - 1) : 0;
-    scene.ground_indices = GpuBuffer(gpu, std::max<size_t>(size_t(scene.ground_quad_capacity) * 6 * 4, 16),
-                                     kIndexUsage, GpuMemory::kHostVisible);
+    const size_t ground_index_bytes = size_t(scene.ground_quad_capacity) * 6 * sizeof(uint32_t);
+    scene.ground_indices =
+        GpuBuffer(gpu, std::max(ground_index_bytes, kMinBufferBytes), kIndexUsage, GpuMemory::kHostVisible);
     boundReceivers(bake_set, columns, rows, has_ground, scene);
     glm::dvec3 all_min = glm::min(scene.receivers_min, scene.casters_min);
     glm::dvec3 all_max = glm::max(scene.receivers_max, scene.casters_max);

@@ -2,6 +2,7 @@
 // The bake set on the GPU: what gusuku_runtime uploads once when it opens (the building's vertices by material,
 // its textures, the lightmaps and ground terms as texture arrays, the occluder). Private to gusuku_runtime.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +13,10 @@
 #include "gusuku/gpu/gpu_image.h"
 
 namespace gusuku::runtime_detail {
+
+/// The smallest buffer made: Vulkan buffers may not be empty, so an empty array (no occluder, no ground) still
+/// gets a valid buffer to bind, of one vec4.
+constexpr size_t kMinBufferBytes = 16;
 
 /// The building's vertex layout (runtime_frame_pipelines.cpp's vertex input): position, normal, base colour uv, lightmap uv.
 struct BuildingVertex {
