@@ -20,6 +20,7 @@
 #include "bakeset_site.h"
 #include "camera_view.h"
 #include "frame_spread.h"
+#include "render_outputs.h"
 #include "render_request.h"
 #include "sample_camera.h"
 
@@ -43,6 +44,10 @@ double frameInstant(const RenderRequest& request, const BakeSetManifest& manifes
 
 int run(const RenderRequest& request) {
     const BakeSetData bake_set = loadBakeSet(request.bake_set);
+    const std::string sample_site_json =
+        request.camera == "sample" ? bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json)
+                                   : std::string();
+    refuseOutputsThatAreInputs(request, renderInputFiles(request, sample_site_json));
     const double utc_seconds = frameInstant(request, bake_set.manifest);
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-render: device %s\n", context.deviceDescription().c_str());
@@ -56,7 +61,7 @@ int run(const RenderRequest& request) {
         const Clock::time_point start = Clock::now();
         const bench::BenchView view{request.position_enu, request.look_at_enu, request.horizontal_fov_deg};
         SampleCameraFrame frame = renderSampleCameraFrame(
-            context, bench_common::siteJsonOf(request.bake_set, bake_set.manifest, request.site_json), view, width,
+            context, sample_site_json, view, width,
             height, {utc_seconds, request.cloud_cover}, request.camera_samples, request.exposure.value_or(0.0f));
         std::printf("camera frame:    path-traced and denoised, %u spp, %.1f s\n", request.camera_samples,
                     millisecondsSince(start) / 1000.0);

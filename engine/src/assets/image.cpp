@@ -100,7 +100,16 @@ void writePngRgba8(const std::string& path, int width, int height, const std::ve
                                     std::to_string(width) + " x " + std::to_string(height) + " RGBA8 image");
     OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    writeWithOiio(path, spec, rgba8.data());
+    // Encoded in memory, then written through writeBytesAtomically, which checks every write and the flush: the
+    // PNG writer does not report a full disk, and a 0-byte file would be renamed into place as if it were done.
+    std::vector<unsigned char> png;
+    OIIO::Filesystem::IOVecOutput writer(png);
+    const std::string name = "memory.png";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(name, &writer);
+    if (!output) throw std::runtime_error(path + ": cannot create a PNG writer: " + OIIO::geterror());
+    if (!output->open(name, spec) || !output->write_image(spec.format, rgba8.data()) || !output->close())
+        throw std::runtime_error(path + ": cannot encode PNG: " + output->geterror());
+    writeBytesAtomically(path, png.data(), png.size());
 }
 
 std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha) {
