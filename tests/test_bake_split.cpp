@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/assets/image.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
@@ -32,6 +35,10 @@ namespace gusuku::bake {
 namespace {
 
 namespace fs = std::filesystem;
+using gusuku::ImageEncoding;
+using gusuku::ImageRGBA;
+using gusuku::readImage;
+using gusuku::writeExr;
 using gusuku::testing::CommandResult;
 using gusuku::testing::GpuTest;
 using gusuku::testing::readTextFile;
@@ -268,6 +275,43 @@ TEST_F(BakeSplitTest, MergeRefusesMissingAndRepeatedSlotsOtherInputsAndChangedSh
     EXPECT_EQ(into_partial.stderr_text.rfind("gusuku-bake: error: " + first + ": -o: is the partial set", 0), 0u)
         << into_partial.stderr_text;
     EXPECT_TRUE(readBakeSetManifest(first + "/manifest.json").partial.has_value()) << "the partial set is untouched";
+}
+
+// Each slot's own files are read and checked as the loader reads a bake set before anything is merged: a
+// truncated, empty, resized or NaN lightmap used to merge with exit 0 into a set that then failed to load.
+TEST_F(BakeSplitTest, MergeRefusesSlotFilesTheLoaderWouldRefuse) {
+    const SplitBakes& bakes = splitBakes();
+    const std::string& first = bakes.partials.at(0);
+    const std::string& second = bakes.partials.at(1);
+    const std::string lightmap = readBakeSetManifest(second + "/manifest.json").slots.at(0).building_irradiance;
+    int variant = 0;
+    // A copy of the second partial set with its lightmap changed by `change`; the merge must name that file.
+    auto expectLightmapRefused = [&](const std::function<void(const std::string& path)>& change,
+                                     const std::string& problem_part) {
+        const std::string broken = scratch_ + "/broken" + std::to_string(variant++);
+        fs::copy(second, broken);
+        change(broken + "/" + lightmap);
+        expectRefused({first, broken}, broken + "/" + lightmap, "", problem_part);
+    };
+    expectLightmapRefused([](const std::string& path) { fs::resize_file(path, fs::file_size(path) / 2); }, "");
+    expectLightmapRefused([](const std::string& path) { fs::resize_file(path, 0); }, "");
+    expectLightmapRefused(
+        [](const std::string& path) {
+            ImageRGBA image = readImage(path, ImageEncoding::Linear);
+            image.texel(1, 2)[0] = std::numeric_limits<float>::quiet_NaN();
+            writeExr(path, image, true);
+        },
+        "NaN");
+    expectLightmapRefused(
+        [](const std::string& path) {
+            ImageRGBA image = readImage(path, ImageEncoding::Linear);
+            ImageRGBA smaller;
+            smaller.width = image.width - 1;
+            smaller.height = image.height;
+            smaller.texels.assign(size_t(smaller.width) * size_t(smaller.height) * 4, 1.0f);
+            writeExr(path, smaller, true);
+        },
+        "texels");
 }
 
 TEST_F(BakeSplitTest, SlotOptionNamesASlotOfTheSiteAndAFinishedPartialIsUpToDate) {

@@ -149,6 +149,10 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
                                  hex(shared_hash) + ": the partial bakes disagree on the building's charts, the "
                                  "ground grid or the occluder");
     }
+    // Every file is read and checked as the loader would read the merged set (sizes, finite texels, irradiance
+    // >= 0), so a truncated, empty, resized or NaN slot file is refused here, not by the first render after. One
+    // set at a time: only the verdict is kept.
+    for (const PartialSet& set : sets) loadPartialBakeSet(set.folder);
     std::map<std::string, size_t> set_of_slot;
     for (size_t i = 0; i < sets.size(); ++i) {
         const std::string& slot = sets[i].manifest.partial->slot;

@@ -154,22 +154,22 @@ std::string bakeSetRelativeInputPath(const std::string& folder, const std::strin
     return relative.empty() ? input.string() : relative.generic_string();
 }
 
-BakeSetData loadBakeSet(const std::string& folder) {
-    const std::string manifest_path = folder + "/manifest.json";
+namespace {
+
+BakeSetManifest readManifestOf(const std::string& manifest_path) {
     std::error_code error;
     if (!std::filesystem::exists(manifest_path, error))
         throw InputError(manifest_path, "",
                          "file not found: not a bake set folder, or its bake has not finished (the manifest is "
                          "written last)");
-    BakeSetData data;
-    data.manifest = readBakeSetManifest(manifest_path);
-    const BakeSetManifest& manifest = data.manifest;
-    if (manifest.partial)
-        throw InputError(manifest_path, "/partial",
-                         "a partial bake set (slot \"" + manifest.partial->slot + "\" of " +
-                             std::to_string(manifest.partial->site_slots.size()) +
-                             "): join the partial sets with gusuku-bake merge first");
+    return readBakeSetManifest(manifest_path);
+}
 
+// Every file the manifest names, read and checked as the runtime needs them; whole and partial sets alike.
+BakeSetData loadNamedFiles(const std::string& folder, const std::string& manifest_path, BakeSetManifest manifest_read) {
+    BakeSetData data;
+    data.manifest = std::move(manifest_read);
+    const BakeSetManifest& manifest = data.manifest;
     // Every named file must be there before anything large is read.
     const std::string building_path = bakeSetFile(folder, manifest_path, {"/building/mesh", manifest.building.mesh});
     std::string occluder_path;
@@ -213,6 +213,28 @@ BakeSetData loadBakeSet(const std::string& folder) {
                          colon == std::string::npos ? "" : problem->substr(colon + 2));
     }
     return data;
+}
+
+}  // namespace
+
+BakeSetData loadBakeSet(const std::string& folder) {
+    const std::string manifest_path = folder + "/manifest.json";
+    BakeSetManifest manifest = readManifestOf(manifest_path);
+    if (manifest.partial)
+        throw InputError(manifest_path, "/partial",
+                         "a partial bake set (slot \"" + manifest.partial->slot + "\" of " +
+                             std::to_string(manifest.partial->site_slots.size()) +
+                             "): join the partial sets with gusuku-bake merge first");
+    return loadNamedFiles(folder, manifest_path, std::move(manifest));
+}
+
+BakeSetData loadPartialBakeSet(const std::string& folder) {
+    const std::string manifest_path = folder + "/manifest.json";
+    BakeSetManifest manifest = readManifestOf(manifest_path);
+    if (!manifest.partial)
+        throw InputError(manifest_path, "/partial",
+                         "missing: this is a whole bake set, not one slot's partial set (bake with --slot NAME)");
+    return loadNamedFiles(folder, manifest_path, std::move(manifest));
 }
 
 }  // namespace gusuku

@@ -30,6 +30,11 @@ namespace gusuku {
 /// resolve them with resolveBakeSetInputPath.
 BakeSetData loadBakeSet(const std::string& folder);
 
+/// A partial set (one slot of a split bake, for `gusuku-bake merge`), read and checked exactly as loadBakeSet
+/// reads a whole one: every file the manifest names, at the manifest's sizes, every texel finite and every
+/// irradiance >= 0. A manifest without "partial" is refused as "FOLDER/manifest.json: /partial: missing ...".
+BakeSetData loadPartialBakeSet(const std::string& folder);
+
 /// An input path of `manifest` (BakeSetInput::path, BakeSetSlot::sky_map), read from `folder`, as a path to
 /// open: an absolute path as it is; a relative one joined to the folder (symbolic links in the folder's path
 /// resolved first, so ".." climbs from where the files are) and made lexically normal; in an older manifest
