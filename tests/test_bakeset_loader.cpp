@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include "bake_process.h"
 #include "gpu_test_support.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -240,6 +242,40 @@ TEST_F(BakeSetLoaderTest, NanInfiniteAndNegativeTexelsAreNamed) {
     corrupt("ground_cloudy_with.exr", 2, 1, 0, 0.5f);
     corrupt("ground_geometry.exr", 0, 0, 3, std::numeric_limits<float>::infinity());
     EXPECT_EQ(loadError(folder), folder + "/ground_geometry.exr: texel (0, 0) channel A: infinite value");
+}
+
+// A bake set's images are OpenEXR with 4 float32 channels (docs/bakeset.md): what the file holds decides, so a
+// half or 3-channel EXR, or a PNG renamed .exr, is refused naming the file, and so is a texel whose irradiance
+// would overflow the runtime's sums.
+TEST_F(BakeSetLoaderTest, ImagesMustBeFloatRgbaExrWithinTheIrradianceLimit) {
+    const std::string folder = copyOfBake("layout");
+    const std::string path = folder + "/building_noon.exr";
+    const ImageRGBA original = readImage(path, ImageEncoding::Linear);
+    const auto rewrite = [&](const std::string& written_as, int channels, OIIO::TypeDesc format) {
+        OIIO::ImageSpec spec(original.width, original.height, channels, format);
+        std::vector<float> values;
+        for (size_t i = 0; i < original.texels.size(); ++i)
+            if (int(i % 4) < channels) values.push_back(original.texels[i]);
+        auto output = OIIO::ImageOutput::create(written_as);
+        ASSERT_TRUE(output && output->open(written_as, spec));
+        ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, values.data()) && output->close());
+        if (written_as != path) std::filesystem::rename(written_as, path);
+    };
+    rewrite(path, 4, OIIO::TypeDesc::HALF);
+    EXPECT_EQ(loadError(folder), path + ": holds openexr data with 4 channels of half: expected OpenEXR with 4 "
+                                        "float32 channels (RGBA)");
+    rewrite(path, 3, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(loadError(folder), path + ": holds openexr data with 3 channels of float: expected OpenEXR with 4 "
+                                        "float32 channels (RGBA)");
+    rewrite(folder + "/renamed.png", 4, OIIO::TypeDesc::UINT8);
+    EXPECT_EQ(loadError(folder), path + ": holds png data with 4 channels of uint8: expected OpenEXR with 4 "
+                                        "float32 channels (RGBA)");
+    ImageRGBA huge = original;
+    huge.texel(3, 5)[0] = 3e38f;
+    writeExr(path, huge, true);
+    EXPECT_EQ(loadError(folder).rfind(path + ": texel (3, 5) channel R: irradiance 3e+38 above the limit 1e+18", 0),
+              0u)
+        << loadError(folder);
 }
 
 TEST_F(BakeSetLoaderTest, SlotWithAMissingFile) {

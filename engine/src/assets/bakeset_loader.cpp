@@ -101,11 +101,16 @@ BakeSetOccluder loadOccluder(const std::string& path, uint64_t expected_triangle
     return occluder;
 }
 
-/// An EXR of the manifest's size (`size_source` says which field sets it), every value finite and, for
-/// irradiance, RGB >= 0. The first bad texel is named.
+/// The largest irradiance a bake set's texel may hold: pi times the brightest radiance a sky may have
+/// (kMaxRadiance) with a thousandfold margin for bounces, far enough below float's 3.4e38 that the runtime's
+/// sums over a lightmap stay finite.
+constexpr float kMaxBakedIrradiance = 1e18f;
+
+/// An EXR of 4 float32 channels at the manifest's size (`size_source` says which field sets it), every value
+/// finite and, for irradiance, RGB >= 0 and at most kMaxBakedIrradiance. The first bad texel is named.
 BakeSetImage loadExr(const std::string& path, int width, int height, const std::string& size_source,
                      bool irradiance) {
-    ImageRGBA image = readImage(path, ImageEncoding::Linear);
+    ImageRGBA image = readFloatRgbaExr(path);
     if (image.width != width || image.height != height)
         throw InputError(path, "image size",
                          std::to_string(image.width) + " x " + std::to_string(image.height) + " texels, expected " +
@@ -116,7 +121,8 @@ BakeSetImage loadExr(const std::string& path, int width, int height, const std::
         const float value = image.texels[i];
         const int channel = int(i % 4);
         const bool negative = irradiance && channel < 3 && value < 0.0f;
-        if (std::isfinite(value) && !negative) continue;
+        const bool too_large = irradiance && channel < 3 && value > kMaxBakedIrradiance;
+        if (std::isfinite(value) && !negative && !too_large) continue;
         const size_t texel = i / 4;
         std::ostringstream field, problem;
         field << "texel (" << texel % size_t(width) << ", " << texel / size_t(width) << ") channel " << kChannel[channel];
@@ -124,6 +130,8 @@ BakeSetImage loadExr(const std::string& path, int width, int height, const std::
             problem << "NaN " << quantity;
         else if (std::isinf(value))
             problem << "infinite " << quantity;
+        else if (too_large)
+            problem << quantity << " " << value << " above the limit " << kMaxBakedIrradiance;
         else
             problem << "negative " << quantity << " " << value;
         throw InputError(path, field.str(), problem.str());

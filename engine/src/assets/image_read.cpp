@@ -330,6 +330,21 @@ ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigne
     return readOpenedImage(name, *input, encoding, max_side, capture);
 }
 
+ImageRGBA readFloatRgbaExr(const std::string& path, int max_side) {
+    StderrCapture capture;
+    std::unique_ptr<OIIO::ImageInput> input = openFile(path, capture);
+    // What the file holds decides, not its name: OpenImageIO opens a PNG renamed .exr as a PNG.
+    const std::string format = input->format_name();
+    const OIIO::ImageSpec& spec = input->spec();
+    bool every_channel_float = spec.format == OIIO::TypeDesc::FLOAT;
+    for (const OIIO::TypeDesc& channel : spec.channelformats) every_channel_float &= channel == OIIO::TypeDesc::FLOAT;
+    if (format != "openexr" || spec.nchannels != 4 || !every_channel_float)
+        throw InputError(path, "", "holds " + format + " data with " + std::to_string(spec.nchannels) + " channel" +
+                                       (spec.nchannels == 1 ? "" : "s") + " of " + spec.format.c_str() +
+                                       ": expected OpenEXR with 4 float32 channels (RGBA)");
+    return readOpenedImage(path, *input, ImageEncoding::Linear, max_side, capture);
+}
+
 ImageRGBA readRadianceMap(const std::string& path) {
     const std::string extension = lowerCaseExtension(path);
     if (extension != ".hdr" && extension != ".exr")

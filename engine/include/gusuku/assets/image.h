@@ -43,6 +43,11 @@ ImageRGBA readImage(const std::string& path, ImageEncoding encoding = ImageEncod
 ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                               ImageEncoding encoding = ImageEncoding::Auto, int max_side = kMaxImageSide);
 
+/// Reads an OpenEXR file that must hold exactly 4 float32 channels (RGBA), as a bake set's images do. What the
+/// file holds decides, not its name: a PNG renamed .exr, a half or 8-bit file, or 1, 3 or 6 channels is an
+/// InputError(path, "", "holds ... : expected OpenEXR with 4 float32 channels (RGBA)"). Values are linear.
+ImageRGBA readFloatRgbaExr(const std::string& path, int max_side = kMaxImageSide);
+
 /// Reads a radiance map and checks it: the data must be Radiance RGBE (.hdr) or OpenEXR with half or float
 /// channels (an 8-bit PNG or JPEG, even renamed .hdr, is refused), and every RGB texel finite, >= 0 and at most
 /// kMaxRadiance. A NaN, an infinity (a value beyond float range stored in the file), a negative or a too large
