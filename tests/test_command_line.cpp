@@ -33,10 +33,34 @@ TEST(CommandLine, ReadsValuesInEveryForm) {
     EXPECT_NO_THROW(line.finish());
 }
 
-TEST(CommandLine, LastValueWinsAndAliasesCount) {
-    CommandLine line("tool", {"-o", "first", "--output", "second"});
-    EXPECT_EQ(line.text("--output", "-o"), "second");
-    EXPECT_NO_THROW(line.finish());
+TEST(CommandLine, AnOptionGivenTwiceInAnyFormIsRefused) {
+    EXPECT_EQ(usageMessage([] { CommandLine("t", {"-o", "first", "--output", "second"}).text("--output", "-o"); }),
+              "t: --output: given 2 times ('first', 'second'); give it once");
+    EXPECT_EQ(usageMessage([] { CommandLine("t", {"--samples=8", "--samples", "8"}).integer("--samples", 1, 9); }),
+              "t: --samples: given 2 times ('8', '8'); give it once");
+    EXPECT_EQ(usageMessage([] { CommandLine("t", {"--force", "--force"}).flag("--force"); }),
+              "t: --force: given twice; give it once");
+    CommandLine alias_once("t", {"-o", "only"});
+    EXPECT_EQ(alias_once.text("--output", "-o"), "only");
+}
+
+TEST(CommandLine, NumbersAreDecimalOnly) {
+    for (const char* decimal : {"1", "-70.5", "+0.25", ".5", "5.", "1e-3", "2.5E+2"})
+        EXPECT_TRUE(gusuku::parseDecimal(decimal).has_value()) << decimal;
+    EXPECT_DOUBLE_EQ(*gusuku::parseDecimal("2.5E+2"), 250.0);
+    for (const char* not_decimal : {"0x1", "0X1p3", "inf", "-infinity", "nan", " 1", "1 ", "", ".", "-", "1e",
+                                    "1e+", "1.2.3", "1e400"})
+        EXPECT_FALSE(gusuku::parseDecimal(not_decimal).has_value()) << not_decimal;
+    EXPECT_EQ(usageMessage([] { CommandLine("t", {"--cover", "0x1"}).number("--cover", 0, 1); }),
+              "t: --cover: '0x1' is not a finite number in [0, 1]");
+}
+
+TEST(CommandLine, LongValuesAreCutInMessages) {
+    const std::string long_value(100000, '9');
+    const std::string message =
+        usageMessage([&] { CommandLine("t", {"--mode", long_value}).choice("--mode", {"a", "b"}); });
+    EXPECT_EQ(message, "t: --mode: '" + long_value.substr(0, 60) + "...' (100000 characters) is not a or b");
+    EXPECT_EQ(gusuku::quotedForMessage(std::string(80, 'x')), "'" + std::string(80, 'x') + "'");
 }
 
 TEST(CommandLine, HelpIsAFlag) {

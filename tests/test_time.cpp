@@ -67,6 +67,20 @@ TEST(Iso8601, RejectsBadText) {
     }
 }
 
+TEST(Iso8601, AHugeTextIsCutInTheMessage) {
+    const std::string huge = "2026-06-21T" + std::string(100000, '9');
+    try {
+        parseIso8601Utc(huge);
+        ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& error) {
+        const std::string message = error.what();
+        EXPECT_LT(message.size(), 200u) << message.substr(0, 300);
+        EXPECT_EQ(message.rfind("'" + huge.substr(0, 60) + "...' (100011 characters) is not an ISO 8601 time: ", 0),
+                  0u)
+            << message;
+    }
+}
+
 TEST(Iso8601, MissingOffsetMessageSaysWhatIsWrong) {
     try {
         parseIso8601Utc("2026-06-21T09:00:00");

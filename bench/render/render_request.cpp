@@ -86,11 +86,11 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
         } else if (*weather == "overcast") {
             request.cloud_cover = 1.0f;
         } else {
-            char* end = nullptr;
-            const double cover = std::strtod(weather->c_str(), &end);
-            if (end == weather->c_str() || *end != '\0' || !(cover >= 0.0 && cover <= 1.0))
-                line.failValue("--weather", "'" + *weather + "' is not sunny, overcast or a cloud cover in [0, 1]");
-            request.cloud_cover = float(cover);
+            const std::optional<double> cover = parseDecimal(*weather);  // decimal only: "0x1" is no cover
+            if (!cover || !(*cover >= 0.0 && *cover <= 1.0))
+                line.failValue("--weather", quotedForMessage(*weather) +
+                                                " is not sunny, overcast or a cloud cover in [0, 1]");
+            request.cloud_cover = float(*cover);
         }
     }
     if (const auto mode = line.choice("--colour-match", {"off", "paper", "preserve", "ground"})) {

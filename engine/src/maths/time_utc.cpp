@@ -59,7 +59,12 @@ public:
     explicit IsoReader(const std::string& text) : text_(text) {}
 
     [[noreturn]] void fail(const std::string& problem) const {
-        throw std::invalid_argument("'" + text_ + "' is not an ISO 8601 time: " + problem);
+        // A long text is cut in the message (a 100 KB argument is a mistake, not a time to echo back).
+        constexpr size_t kLongestQuoted = 80, kShownOfLong = 60;
+        const std::string quoted = text_.size() <= kLongestQuoted ? "'" + text_ + "'"
+                                   : "'" + text_.substr(0, kShownOfLong) + "...' (" +
+                                         std::to_string(text_.size()) + " characters)";
+        throw std::invalid_argument(quoted + " is not an ISO 8601 time: " + problem);
     }
 
     bool atEnd() const { return position_ >= text_.size(); }

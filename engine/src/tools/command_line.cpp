@@ -11,6 +11,38 @@
 
 namespace gusuku {
 
+std::optional<double> parseDecimal(const std::string& text) {
+    size_t position = 0;
+    const auto digits = [&] {
+        const size_t start = position;
+        while (position < text.size() && std::isdigit(static_cast<unsigned char>(text[position]))) ++position;
+        return position - start;
+    };
+    if (position < text.size() && (text[position] == '+' || text[position] == '-')) ++position;
+    size_t mantissa_digits = digits();
+    if (position < text.size() && text[position] == '.') {
+        ++position;
+        mantissa_digits += digits();
+    }
+    if (mantissa_digits == 0) return std::nullopt;
+    if (position < text.size() && (text[position] == 'e' || text[position] == 'E')) {
+        ++position;
+        if (position < text.size() && (text[position] == '+' || text[position] == '-')) ++position;
+        if (digits() == 0) return std::nullopt;
+    }
+    if (position != text.size()) return std::nullopt;
+    errno = 0;
+    const double value = std::strtod(text.c_str(), nullptr);
+    if (errno == ERANGE && !std::isfinite(value)) return std::nullopt;
+    return value;
+}
+
+std::string quotedForMessage(const std::string& text) {
+    constexpr size_t kLongestQuoted = 80, kShownOfLong = 60;
+    if (text.size() <= kLongestQuoted) return "'" + text + "'";
+    return "'" + text.substr(0, kShownOfLong) + "...' (" + std::to_string(text.size()) + " characters)";
+}
+
 CommandLine::CommandLine(std::string program, std::vector<std::string> arguments)
     : program_(std::move(program)), arguments_(std::move(arguments)) {}
 
@@ -41,7 +73,8 @@ bool CommandLine::helpRequested() { return flag("--help", "-h"); }
 bool CommandLine::flag(const std::string& name, const std::string& alias) {
     bool present = false;
     while (const auto found = find(name, alias)) {
-        if (found->second) fail(name + ": takes no value, got '" + *found->second + "'");
+        if (found->second) fail(name + ": takes no value, got " + quotedForMessage(*found->second));
+        if (present) fail(name + ": given twice; give it once");
         arguments_.erase(arguments_.begin() + std::ptrdiff_t(found->first));
         present = true;
     }
@@ -50,7 +83,7 @@ bool CommandLine::flag(const std::string& name, const std::string& alias) {
 
 std::optional<std::string> CommandLine::text(const std::string& name, const std::string& alias) {
     std::optional<std::string> value;
-    // Take every occurrence so none is left for finish() to call unknown; the last one wins.
+    // Take every occurrence, then refuse more than one: a repeated option is a mistake the user should see.
     std::vector<std::string> values;
     for (size_t index = 0; index < arguments_.size();) {
         const std::string& argument = arguments_[index];
@@ -78,6 +111,9 @@ std::optional<std::string> CommandLine::text(const std::string& name, const std:
         values.push_back(arguments_[index + 1]);
         arguments_.erase(arguments_.begin() + std::ptrdiff_t(index), arguments_.begin() + std::ptrdiff_t(index) + 2);
     }
+    if (values.size() > 1)
+        fail(name + ": given " + std::to_string(values.size()) + " times (" + quotedForMessage(values[0]) + ", " +
+             quotedForMessage(values[1]) + (values.size() > 2 ? ", ..." : "") + "); give it once");
     if (!values.empty()) value = values.back();
     return value;
 }
@@ -91,7 +127,7 @@ std::optional<int64_t> CommandLine::integer(const std::string& name, int64_t min
     const long long parsed = std::strtoll(value->c_str(), &end, 10);
     const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
     if (value->empty() || end == value->c_str() || *end != '\0' || errno == ERANGE)
-        failValue(name, "'" + *value + "' is not an integer in " + range);
+        failValue(name, quotedForMessage(*value) + " is not an integer in " + range);
     if (parsed < minimum || parsed > maximum) failValue(name, *value + " is outside " + range);
     return int64_t(parsed);
 }
@@ -100,8 +136,8 @@ std::optional<double> CommandLine::number(const std::string& name, double minimu
                                           const std::string& alias) {
     const std::optional<std::string> value = text(name, alias);
     if (!value) return std::nullopt;
-    char* end = nullptr;
-    const double parsed = std::strtod(value->c_str(), &end);
+    const std::optional<double> decimal = parseDecimal(*value);
+    const double parsed = decimal.value_or(0.0);
     auto format = [](double bound) {
         std::string text = std::to_string(bound);
         // "90.000000" -> "90": ranges read as the user would write them.
@@ -113,8 +149,8 @@ std::optional<double> CommandLine::number(const std::string& name, double minimu
         return text;
     };
     const std::string range = "[" + format(minimum) + ", " + format(maximum) + "]";
-    if (value->empty() || end == value->c_str() || *end != '\0' || !std::isfinite(parsed))
-        failValue(name, "'" + *value + "' is not a finite number in " + range);
+    if (!decimal || !std::isfinite(parsed))
+        failValue(name, quotedForMessage(*value) + " is not a finite number in " + range);
     if (parsed < minimum || parsed > maximum) failValue(name, *value + " is outside " + range);
     return parsed;
 }
@@ -130,7 +166,7 @@ std::optional<size_t> CommandLine::choice(const std::string& name, std::initiali
         listed += (index == 0 ? "" : index + 1 == choices.size() ? " or " : ", ") + std::string(candidate);
         ++index;
     }
-    failValue(name, "'" + *value + "' is not " + listed);
+    failValue(name, quotedForMessage(*value) + " is not " + listed);
 }
 
 std::vector<std::string> CommandLine::positionals() {
@@ -152,8 +188,8 @@ std::vector<std::string> CommandLine::positionals() {
 
 void CommandLine::finish() const {
     for (const std::string& argument : arguments_) {
-        if (!argument.empty() && argument[0] == '-') fail("unknown option '" + argument + "' (see --help)");
-        fail("unexpected argument '" + argument + "' (see --help)");
+        if (!argument.empty() && argument[0] == '-') fail("unknown option " + quotedForMessage(argument) + " (see --help)");
+        fail("unexpected argument " + quotedForMessage(argument) + " (see --help)");
     }
 }
 

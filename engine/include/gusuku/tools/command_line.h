@@ -6,7 +6,8 @@
 // "<program>: <option>: <problem>", and the caller prints it and exits 2.
 //
 // Use: construct, take every option the tool knows (flag, text, integer, number, choice), then positionals(),
-// then finish(), which refuses anything left over (unknown options, a value given twice is the last one).
+// then finish(), which refuses anything left over (unknown options). An option given twice is refused: a
+// command line that says two things says neither.
 
 #include <cstdint>
 #include <functional>
@@ -18,6 +19,15 @@
 #include <vector>
 
 namespace gusuku {
+
+/// A number in plain decimal notation: an optional sign, digits with an optional fraction, an optional exponent
+/// ("-70.5", "1e-3", ".5"). Nothing else: not hexadecimal ("0x1", which strtod reads as 1), "inf", "nan", nor
+/// leading or trailing spaces. nullopt when the text is not one, or is beyond double's range.
+std::optional<double> parseDecimal(const std::string& text);
+
+/// `text` quoted for a one-line message: whole when short, else its first 60 characters, "...", and its length,
+/// so that a 100 KB argument never floods the terminal.
+std::string quotedForMessage(const std::string& text);
 
 /// A bad command line: an unknown option, a missing value, an unexpected argument. Conventionally exit 2.
 class UsageError : public std::runtime_error {
@@ -40,18 +50,20 @@ public:
     /// True when --help or -h was given (removed from the arguments).
     bool helpRequested();
 
-    /// True when the flag (`--name`, or its `-a` alias) is present; removes it. `--name=...` is a UsageError.
+    /// True when the flag (`--name`, or its `-a` alias) is present; removes it. `--name=...` or the flag given twice
+    /// is a UsageError.
     bool flag(const std::string& name, const std::string& alias = "");
 
-    /// The value of `--name VALUE` / `--name=VALUE` / `-a VALUE`, removed; nullopt when absent. Given twice:
-    /// the last one wins. A missing value (end of line, or the next word an option) is a UsageError.
+    /// The value of `--name VALUE` / `--name=VALUE` / `-a VALUE`, removed; nullopt when absent. A missing value
+    /// (end of line, or the next word an option) or the option given twice (in any form) is a UsageError.
     std::optional<std::string> text(const std::string& name, const std::string& alias = "");
 
     /// An integer option in [minimum, maximum]; a UsageError names the option, the text and the range.
     std::optional<int64_t> integer(const std::string& name, int64_t minimum, int64_t maximum,
                                    const std::string& alias = "");
 
-    /// A finite real option in [minimum, maximum] (strtod syntax); NaN, inf and trailing text are refused.
+    /// A finite real option in [minimum, maximum], in decimal notation (parseDecimal); hexadecimal ("0x1"), NaN,
+    /// inf, spaces and trailing text are refused.
     std::optional<double> number(const std::string& name, double minimum, double maximum,
                                  const std::string& alias = "");
 
