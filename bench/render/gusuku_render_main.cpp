@@ -18,6 +18,7 @@
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/gpu/vulkan_context.h"
 #include "bakeset_site.h"
+#include "camera_image.h"
 #include "camera_view.h"
 #include "frame_spread.h"
 #include "render_outputs.h"
@@ -68,14 +69,10 @@ int run(const RenderRequest& request) {
         camera = std::move(frame.rgba8);
         exposure = frame.exposure;
     } else {
-        const ImageRGBA image = readImage(request.camera, ImageEncoding::Srgb);
-        width = uint32_t(image.width);
-        height = uint32_t(image.height);
-        camera.resize(size_t(width) * height * 4);
-        for (size_t index = 0; index < camera.size(); ++index) {
-            const float value = index % 4 == 3 ? image.texels[index] : srgbEncode(image.texels[index]);
-            camera[index] = uint8_t(std::clamp(value, 0.0f, 1.0f) * 255.0f + 0.5f);
-        }
+        CameraImage image = readCameraImage(request.camera);
+        width = image.width;
+        height = image.height;
+        camera = std::move(image.srgb_rgba8);
     }
     if (request.camera_png) writePngRgba8(*request.camera_png, int(width), int(height), camera);
 

@@ -15,7 +15,7 @@ namespace gusuku::render_cli {
 struct RenderRequest {
     std::string bake_set;                   ///< the bake set folder
     std::string output_png;                 ///< the composite
-    std::string camera = "sample";          ///< "sample" (path-traced from the site) or an 8-bit sRGB image
+    std::string camera = "sample";          ///< "sample" (path-traced from the site) or an image (any bit depth)
     std::optional<std::string> site_json;   ///< for --camera sample; default: the site the manifest names
     uint32_t width = 1280, height = 720;
     glm::dvec3 position_enu{0.0, -25.0, 6.0};

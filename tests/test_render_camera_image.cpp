@@ -1,0 +1,58 @@
+// gusuku-render's camera frame from a file (bench/render/camera_image.h): whatever the file's bit depth, the
+// runtime gets the sRGB bytes of the same picture. Expected bytes come from the sRGB curve (IEC 61966-2-1).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+
+#include "camera_image.h"
+#include "gpu_test_support.h"
+#include "gusuku/maths/colour.h"
+
+namespace {
+
+// Writes a 4 x 2 image of `channels` channels with the given values per texel (the same for every texel).
+void writeImage(const std::string& path, int channels, OIIO::TypeDesc format, const std::vector<float>& texel) {
+    OIIO::ImageSpec spec(4, 2, channels, format);
+    std::vector<float> values;
+    for (int i = 0; i < 8; ++i) values.insert(values.end(), texel.begin(), texel.end());
+    auto output = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(output && output->open(path, spec)) << OIIO::geterror();
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, values.data()) && output->close());
+}
+
+uint8_t srgbByteOfLinear(float linear) { return uint8_t(std::lround(gusuku::srgbEncode(linear) * 255.0f)); }
+
+TEST(RenderCameraImage, EveryBitDepthGivesTheSameSrgbBytes) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_camera_image");
+    // The picture: linear (0.2140, 0.0500, 0.8000), which sRGB-encodes to about (128, 63, 231).
+    const std::vector<float> linear = {0.2140f, 0.05f, 0.8f};
+    std::vector<float> encoded;
+    for (float value : linear) encoded.push_back(std::round(gusuku::srgbEncode(value) * 255.0f) / 255.0f);
+    const uint8_t expected[3] = {srgbByteOfLinear(linear[0]), srgbByteOfLinear(linear[1]), srgbByteOfLinear(linear[2])};
+
+    writeImage(dir + "/camera8.png", 3, OIIO::TypeDesc::UINT8, encoded);
+    writeImage(dir + "/camera16.png", 3, OIIO::TypeDesc::UINT16, encoded);
+    writeImage(dir + "/camera_float.exr", 3, OIIO::TypeDesc::FLOAT, linear);  // linear data, as EXR holds
+    writeImage(dir + "/camera_half.exr", 4, OIIO::TypeDesc::HALF, {linear[0], linear[1], linear[2], 1.0f});
+    for (const char* name : {"camera8.png", "camera16.png", "camera_float.exr", "camera_half.exr"}) {
+        SCOPED_TRACE(name);
+        const gusuku::render_cli::CameraImage camera = gusuku::render_cli::readCameraImage(dir + "/" + name);
+        ASSERT_EQ(camera.width, 4u);
+        ASSERT_EQ(camera.height, 2u);
+        ASSERT_EQ(camera.srgb_rgba8.size(), 4u * 2u * 4u);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(int(camera.srgb_rgba8[size_t(c)]), int(expected[c]), 1) << c;
+        EXPECT_EQ(camera.srgb_rgba8[3], 255);  // no alpha in the file, or alpha 1: opaque
+    }
+}
+
+TEST(RenderCameraImage, GreyExpandsToRgb) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_camera_image");
+    writeImage(dir + "/grey.exr", 1, OIIO::TypeDesc::FLOAT, {0.2140f});
+    const gusuku::render_cli::CameraImage camera = gusuku::render_cli::readCameraImage(dir + "/grey.exr");
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(camera.srgb_rgba8[size_t(c)], srgbByteOfLinear(0.2140f)) << c;
+}
+
+}  // namespace
