@@ -97,6 +97,41 @@ TEST(AtomicFileTest, FailedWriteLeavesOldFileAndNoTemporary) {
     EXPECT_EQ(file_count, 1u) << "the temporary file was left behind";
 }
 
+// The rename onto the final name would replace what is there: an output onto a device (as root, -o /dev/full
+// once replaced the device with a PNG), a FIFO or a folder is refused before anything is written.
+TEST(AtomicFileTest, OutputOntoADeviceFifoOrFolderIsRefused) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_atomic");
+    fs::create_symlink("/dev/null", dir + "/null.png");
+    ASSERT_TRUE(gusuku::testing::makeFifo(dir + "/pipe.png"));
+    fs::create_directory(dir + "/folder.png");
+    const std::vector<uint8_t> rgba8(4 * 4, 128);
+    for (const auto& [name, type] : {std::pair{"null.png", "a character device"}, {"pipe.png", "a FIFO (named pipe)"},
+                                     {"folder.png", "a directory"}}) {
+        const std::string path = dir + "/" + name;
+        try {
+            gusuku::writePngRgba8(path, 2, 2, rgba8);
+            ADD_FAILURE() << name << " was written";
+        } catch (const std::runtime_error& error) {
+            EXPECT_EQ(std::string(error.what()), path + ": is " + type + "; an output must be a regular file or a new name");
+        }
+    }
+    EXPECT_TRUE(fs::is_symlink(dir + "/null.png"));
+    EXPECT_TRUE(fs::is_fifo(dir + "/pipe.png"));
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    size_t file_count = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++file_count;
+    EXPECT_EQ(file_count, 3u) << "a temporary file was left behind";
+}
+
+TEST(AtomicFileTest, ALoopOfLinksIsNamedAsOne) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_atomic");
+    fs::create_symlink(dir + "/b", dir + "/a");
+    fs::create_symlink(dir + "/a", dir + "/b");
+    EXPECT_EQ(expectInputError([&] { gusuku::readWholeFile(dir + "/a"); }),
+              dir + "/a: is a loop of symbolic links; not read");
+    EXPECT_EQ(expectInputError([&] { gusuku::readImage(dir + "/a"); }), dir + "/a: is a loop of symbolic links; not read");
+}
+
 TEST(AtomicFileTest, ReadingMissingFileNamesIt) {
     const std::string message = expectInputError([] { gusuku::readWholeFile("/nonexistent/gusuku.txt"); });
     EXPECT_NE(message.find("/nonexistent/gusuku.txt"), std::string::npos) << message;

@@ -36,6 +36,13 @@ std::string temporaryPathFor(const std::string& final_path, bool keep_extension)
 
 void writeThroughTemporary(const std::string& final_path, const std::string& temporary_path,
                            const std::function<void(const std::string&)>& write) {
+    // The rename would replace whatever the name holds: a device (/dev/full, /dev/null, as root), a FIFO or a
+    // folder is refused before anything is written, so an output only ever replaces a regular file.
+    std::error_code status_error;
+    const fs::file_status status = fs::status(final_path, status_error);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw std::runtime_error(final_path + ": is " + describeFileType(status.type()) +
+                                 "; an output must be a regular file or a new name");
     const fs::path parent = fs::path(final_path).parent_path();
     if (!parent.empty()) {
         std::error_code error;

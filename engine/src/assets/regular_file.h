@@ -27,6 +27,7 @@ inline std::string regularFileProblem(const std::string& path) {
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(path, error);
     if (status.type() == std::filesystem::file_type::regular) return "";
+    if (error == std::errc::too_many_symbolic_link_levels) return "is a loop of symbolic links; not read";
     if (!std::filesystem::exists(status)) return "file not found";
     return "is " + describeFileType(status.type()) + ", not a regular file; not read";
 }
