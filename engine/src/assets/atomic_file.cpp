@@ -81,10 +81,11 @@ void writeFileAtomicallyKeepingExtension(const std::string& final_path,
 void writeBytesAtomically(const std::string& final_path, const void* bytes, size_t byte_count) {
     writeFileAtomically(final_path, [&](const std::string& temporary_path) {
         std::ofstream out(temporary_path, std::ios::binary | std::ios::trunc);
-        if (!out) throw std::runtime_error(temporary_path + ": cannot open for writing: " + std::strerror(errno));
+        // Messages name the output the user asked for; the temporary name is an implementation detail.
+        if (!out) throw std::runtime_error(final_path + ": cannot open for writing: " + std::strerror(errno));
         out.write(static_cast<const char*>(bytes), std::streamsize(byte_count));
         out.flush();
-        if (!out) throw std::runtime_error(temporary_path + ": write failed: " + std::strerror(errno));
+        if (!out) throw std::runtime_error(final_path + ": write failed: " + std::strerror(errno));
     });
 }
 
