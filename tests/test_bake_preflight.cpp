@@ -5,6 +5,7 @@
 // field; `check` says the same.
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -134,6 +135,40 @@ TEST(BakePreflight, BuildingSoFarAwayThatFloatsCollapseItIsRefused) {
     const BakeRun bake = runBake(dir, {"bake", site_path, "-o", dir + "/out", "--quiet"});
     ASSERT_NE(bake.exit_code, gusuku::testing::kTimedOut);
     expectRefusedBeforeWriting(bake, dir + "/out", "site.json: /building/path: ");
+}
+
+// A building no bake can hold is refused before any chart is cut, naming the field: charts were cut and packed at
+// the requested density first, so a 1.6 km building or 1000 texels/m on a large one ran for minutes in packing
+// (and building.scale 1e6 ran out of memory) before the density was lowered or the bake refused.
+TEST(BakePreflight, BuildingTooLargeOrTooDenseIsRefusedBeforeItsChartsAreMade) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-huge-building");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    const nlohmann::json original = nlohmann::json::parse(readTextFile(site_path));
+    const auto refusal = [&](const std::function<void(nlohmann::json&)>& change) {
+        nlohmann::json site = original;
+        change(site);
+        std::ofstream(site_path) << site.dump(2);
+        const BakeRun check = runBake(dir, {"check", site_path}, 30.0);
+        EXPECT_NE(check.exit_code, gusuku::testing::kTimedOut) << "check ran past 30 s";
+        EXPECT_EQ(check.exit_code, 1) << check.err;
+        const BakeRun bake = runBake(dir, {"bake", site_path, "-o", dir + "/out", "--quiet"}, 30.0);
+        EXPECT_FALSE(fs::exists(dir + "/out/manifest.json"));
+        EXPECT_EQ(bake.exit_code, 1) << bake.err;
+        // The bake refuses with check's own line.
+        const std::string check_line = check.err.substr(check.err.find("site.json"));
+        EXPECT_TRUE(contains(bake.err, check_line.substr(0, check_line.find('\n')))) << bake.err << check.err;
+        return check.err;
+    };
+    const std::string huge = refusal([](nlohmann::json& site) { site["building"]["scale"] = 1e6; });
+    EXPECT_TRUE(contains(huge, "site.json: /building/scale: the building spans")) << huge;
+    EXPECT_TRUE(contains(huge, "more than 1e+04 m")) << huge;
+    // 200 times the mini house at 1000 texels/m: far more texels than the largest lightmap can take.
+    const std::string dense = refusal([](nlohmann::json& site) {
+        site["building"]["scale"] = 40;
+        site["bake"]["texels_per_metre"] = 1000;
+    });
+    EXPECT_TRUE(contains(dense, "site.json: /bake/texels_per_metre: 1000 texels/m on the building's")) << dense;
+    EXPECT_TRUE(contains(dense, "more than the limit 2.684e+08 (16 x 4096^2): at most")) << dense;
 }
 
 TEST(BakePreflight, BuffersOverTheDeviceLimitAreRefusedNamingTheField) {

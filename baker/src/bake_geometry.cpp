@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <memory>
 
 #include "gusuku/assets/gltf_loader.h"
@@ -12,6 +14,50 @@ namespace gusuku::bake {
 namespace {
 
 constexpr int kMaxLightmapResolution = 4096;
+// A building larger than this is a unit or scale mistake (a glTF in millimetres, building.scale 1e6): a lost
+// building is tens of metres across, a whole castle a few hundred.
+constexpr double kMaxBuildingExtentM = 10000.0;
+// The lightmap texels a site may ask for before the charts are made: the density is lowered to fit the largest
+// lightmap, but charts are first cut and packed at the requested density, whose cost grows with the texel count;
+// past 16 times the largest lightmap (a fourfold density cut) the request is a mistake, refused before that work.
+constexpr double kMaxRequestedLightmapTexels = 16.0 * double(kMaxLightmapResolution) * kMaxLightmapResolution;
+
+std::string formatNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+}
+
+// Refuses, before any chart is cut, a building whose size or requested texel count no bake can hold, naming the
+// site.json field to change.
+void requireBakeableBuilding(const SiteConfig& site, const TriangleMesh& building) {
+    const Bounds3 bounds = meshBounds(building);
+    const glm::dvec3 extent = glm::dvec3(bounds.max) - glm::dvec3(bounds.min);
+    const double largest_extent = std::max({extent.x, extent.y, extent.z});
+    if (!std::isfinite(largest_extent) || largest_extent > kMaxBuildingExtentM)
+        throw InputError(site.file, "/building/scale",
+                         "the building spans " + formatNumber(largest_extent) + " m once placed (scale " +
+                             formatNumber(site.building.scale) + "), more than " + formatNumber(kMaxBuildingExtentM) +
+                             " m: check building.scale and the glTF's units (metres)");
+    double area_m2 = 0.0;
+    for (size_t triangle = 0; triangle < building.triangleCount(); ++triangle) {
+        const glm::dvec3 p0(building.positions[building.indices[triangle * 3 + 0]]);
+        const glm::dvec3 p1(building.positions[building.indices[triangle * 3 + 1]]);
+        const glm::dvec3 p2(building.positions[building.indices[triangle * 3 + 2]]);
+        const double double_area = glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (std::isfinite(double_area)) area_m2 += 0.5 * double_area;
+    }
+    const double texels_per_metre = site.bake.texels_per_metre;
+    const double requested_texels = area_m2 * texels_per_metre * texels_per_metre;
+    if (requested_texels > kMaxRequestedLightmapTexels)
+        throw InputError(site.file, "/bake/texels_per_metre",
+                         formatNumber(texels_per_metre) + " texels/m on the building's " + formatNumber(area_m2) +
+                             " m^2 of surface asks for " + formatNumber(requested_texels) +
+                             " lightmap texels, more than the limit " + formatNumber(kMaxRequestedLightmapTexels) +
+                             " (16 x " + std::to_string(kMaxLightmapResolution) + "^2): at most " +
+                             formatNumber(std::sqrt(kMaxRequestedLightmapTexels / area_m2)) +
+                             " texels/m for this building");
+}
 
 // Lightmap UVs: the glTF's own when they pass the check at the chosen resolution, else our charts.
 void chooseLightmapUvs(BakeGeometry& geometry, const TriangleMesh& loaded, double texels_per_metre) {
@@ -63,6 +109,7 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
     building_options.enu_from_model = site.building.enuFromModel(site.site.reference);
     building_options.max_texture_size = max_texture_size;
     const TriangleMesh building = loadGltf(site.building.path, building_options, &geometry.warnings);
+    requireBakeableBuilding(site, building);
     chooseLightmapUvs(geometry, building, site.bake.texels_per_metre);
     geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
     const std::vector<uint32_t> triangle_chart = lightmapUvCharts(geometry.building);
