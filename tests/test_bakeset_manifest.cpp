@@ -4,6 +4,7 @@
 // small bake reads back, with the bytes the baker wrote reproduced by the shared writer.
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/maths/bakeset_manifest.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/bakeset_ranges.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
@@ -26,6 +28,13 @@ namespace {
 using gusuku::BakeSetManifest;
 using gusuku::BakeSetSky;
 using nlohmann::json;
+
+/// The ENU unit vector towards a sun at azimuth (east of north) and elevation, degrees (docs/design.md 2).
+glm::dvec3 sunDirection(double azimuth_deg, double elevation_deg) {
+    const double degree = std::acos(-1.0) / 180.0;
+    const double e = elevation_deg * degree, a = azimuth_deg * degree;
+    return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
+}
 
 /// A manifest using every part of the format: three kinds of slot (sun measured, sun below the horizon,
 /// overcast), one without colour statistics, every input role, warnings, awkward numbers.
@@ -57,9 +66,7 @@ BakeSetManifest exampleManifest() {
     sunny.utc = "2026-06-21T00:00:00Z";
     sunny.sun.present = true;
     sunny.sun.irradiance_source = "sky map sun disc (measured at 40.000000 deg elevation, carried by the clear-sky model)";
-    sunny.sun.position = gusuku::BakeSetSunPosition{83.25, 40.125, {0.76, 0.089, 0.644}};
-    const double length = std::sqrt(0.76 * 0.76 + 0.089 * 0.089 + 0.644 * 0.644);
-    sunny.sun.position->direction_enu /= length;
+    sunny.sun.position = gusuku::BakeSetSunPosition{83.25, 40.125, sunDirection(83.25, 40.125)};
     sunny.sun.irradiance_rgb = {31.4159, 30.0, 1e-7};
     sunny.sun.angular_radius_deg = 0.2675;
     sunny.sky_sampling_method = "cosine + map (MIS)";
@@ -77,7 +84,7 @@ BakeSetManifest exampleManifest() {
     night.utc = "2026-06-21T12:00:00Z";
     night.sun.present = false;
     night.sun.irradiance_source = "none: sun below the horizon";
-    night.sun.position = gusuku::BakeSetSunPosition{300.0, -12.5, {-0.8473, 0.4892, -0.2079}};
+    night.sun.position = gusuku::BakeSetSunPosition{300.0, -12.5, sunDirection(300.0, -12.5)};
     night.sun.position->direction_enu /= glm::length(night.sun.position->direction_enu);
     night.sun.irradiance_rgb = glm::dvec3(0.0);
     night.sun.angular_radius_deg = 0.0;
@@ -197,6 +204,21 @@ std::vector<BadManifest> badManifests() {
         without("no latitude", "/site", "latitude_deg"),
         without("no slots", "", "slots"),
         withValue("an empty slot list", "/slots", json::array(), "empty: a bake set holds at least one slot"),
+        withValue("a ground cell of 1e308 m", "/ground_grid/cell_m", 1e308, "is outside [0.001, 100]"),
+        withValue("a ground cell of 1e-300 m", "/ground_grid/cell_m", 1e-300, "is outside [0.001, 100]"),
+        withValue("a grid origin 1e30 m away", "/ground_grid/origin_enu_m/0", 1e30, "is outside [-100000, 100000]"),
+        withValue("a sun of 1e300", "/slots/0/sun/irradiance_rgb/1", 1e300, "is outside [0, 1e+18]"),
+        withValue("a sun direction that is not its angles", "/slots/0/sun/direction_enu",
+                  json::array({0.0, 0.0, 1.0}), "degrees from the direction azimuth_deg and apparent_elevation_deg give"),
+        withValue("local time 25:00", "/slots/0/local_time", "25:00", "is not a time of day HH:MM"),
+        withValue("a utc that is no time", "/slots/0/utc", "yesterday", "is not an ISO 8601 time"),
+        withValue("1e12 invalid texels", "/slots/0/invalid_texels", 1e12, "is outside [0, 67108864]"),
+        [] {
+            json document = exampleJson();  // the night slot (-12.5 degrees) claiming its sun shines
+            document["slots"][1]["sun"]["present"] = true;
+            return BadManifest{"a sun below the horizon marked present", document.dump(2),
+                               "/slots/1/sun/apparent_elevation_deg", "is below the horizon, yet present is true"};
+        }(),
         without("no sun in a slot", "/slots/0", "sun"),
         without("sunny slot without utc", "/slots/0", "utc"),
         without("sunny slot without sun position", "/slots/1/sun", "direction_enu"),
@@ -212,12 +234,12 @@ std::vector<BadManifest> badManifests() {
         withValue("texels not whole", "/building/texels", 1.5, "1.5 is not a whole number"),
         withValue("negative count", "/statistics/rays_traced", -5, "-5 is negative"),
         withValue("irradiance channel as text", "/slots/0/sun/irradiance_rgb/1", "x", "expected a number, found a string"),
-        withValue("negative irradiance", "/slots/0/sun/irradiance_rgb/2", -1.0, "-1 is outside [0, inf]"),
+        withValue("negative irradiance", "/slots/0/sun/irradiance_rgb/2", -1.0, "-1 is outside [0, 1e+18]"),
         withValue("irradiance of two channels", "/slots/0/sun/irradiance_rgb", json::array({1.0, 2.0}),
                   "expected 3 numbers, found 2"),
         withValue("direction not unit", "/slots/0/sun/direction_enu", json::array({1.0, 1.0, 0.0}),
                   "is not a unit vector"),
-        withValue("zero cell", "/ground_grid/cell_m", 0.0, "0 is outside (0, inf]"),
+        withValue("zero cell", "/ground_grid/cell_m", 0.0, "0 is outside [0.001, 100]"),
         withValue("columns as float", "/ground_grid/columns", 4.5, "4.5 is not a whole number"),
         withValue("origin of one number", "/ground_grid/origin_enu_m", json::array({1.0}), "expected 2 numbers, found 1"),
         withValue("row 0 south", "/ground_grid/row_0", "south edge", "expected \"north edge\""),
@@ -268,6 +290,22 @@ TEST(BakeSetManifest, EveryReaderErrorNamesTheFileAndTheField) {
             EXPECT_EQ(std::string(error.what()).rfind(prefix, 0), 0u) << error.what();
         }
     }
+}
+
+// docs/bakeset.md's table of ranges lists exactly the ranges the reader and writer use (bakeset_ranges.h).
+TEST(BakeSetManifest, TheDocumentedRangesAreTheReadersRanges) {
+    std::ifstream docs(std::string(GUSUKU_GOLDEN_DIR) + "/../../docs/bakeset.md");
+    ASSERT_TRUE(docs) << "docs/bakeset.md not found";
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(docs, line);)
+        if (line.rfind("| `", 0) == 0 && line.find("] |") != std::string::npos) rows.push_back(line);
+    std::vector<std::string> expected;
+    for (const gusuku::BakeSetRange& range : gusuku::kBakeSetRanges) {
+        char row[256];
+        std::snprintf(row, sizeof row, "| `%s` | [%g, %g] | %s |", range.field, range.minimum, range.maximum, range.unit);
+        expected.push_back(row);
+    }
+    EXPECT_EQ(rows, expected);
 }
 
 // ------------------------------------------------------------------------------------------------------------

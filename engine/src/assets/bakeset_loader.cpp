@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/bakeset_ranges.h"
 #include "gusuku/maths/bakeset_validate.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/assets/gltf_loader.h"
@@ -101,10 +102,8 @@ BakeSetOccluder loadOccluder(const std::string& path, uint64_t expected_triangle
     return occluder;
 }
 
-/// The largest irradiance a bake set's texel may hold: pi times the brightest radiance a sky may have
-/// (kMaxRadiance) with a thousandfold margin for bounces, far enough below float's 3.4e38 that the runtime's
-/// sums over a lightmap stay finite.
-constexpr float kMaxBakedIrradiance = 1e18f;
+/// The largest irradiance a bake set's texel may hold (gusuku/maths/bakeset_ranges.h says why).
+constexpr float kMaxBakedIrradiance = float(kBakeSetIrradiance.maximum);
 
 /// An EXR of 4 float32 channels at the manifest's size (`size_source` says which field sets it), every value
 /// finite and, for irradiance, RGB >= 0 and at most kMaxBakedIrradiance. The first bad texel is named.
@@ -204,6 +203,18 @@ BakeSetData loadNamedFiles(const std::string& folder, const std::string& manifes
     const GroundGrid& grid = manifest.ground_grid.grid;
     const std::string grid_size = "the manifest's /ground_grid/columns x rows";
     data.ground_geometry = loadExr(geometry_path, grid.columns, grid.rows, grid_size, false);
+    // RGB is the ground's unit normal (docs/bakeset.md): the ratio's sun term is its cosine, so a zero or
+    // unnormalised normal would darken or brighten the camera's ground with no building there.
+    for (size_t texel = 0; texel * 4 < data.ground_geometry.rgba.size(); ++texel) {
+        const float* normal = data.ground_geometry.rgba.data() + texel * 4;
+        const double length = std::sqrt(double(normal[0]) * normal[0] + double(normal[1]) * normal[1] +
+                                        double(normal[2]) * normal[2]);
+        if (std::fabs(length - 1.0) > kBakeSetGroundNormalLengthTolerance)
+            throw InputError(geometry_path,
+                             "texel (" + std::to_string(texel % size_t(grid.columns)) + ", " +
+                                 std::to_string(texel / size_t(grid.columns)) + ")",
+                             "the ground normal's length is " + std::to_string(length) + ", not 1");
+    }
     // Albedo is non-negative like irradiance: the same check.
     if (!albedo_path.empty()) data.ground_albedo = loadExr(albedo_path, grid.columns, grid.rows, grid_size, true);
     const int resolution = manifest.building.lightmap_resolution;

@@ -6,6 +6,7 @@
 #include "gusuku/assets/bakeset_manifest_json.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "gusuku/assets/atomic_file.h"
+#include "gusuku/maths/bakeset_ranges.h"
+#include "gusuku/maths/time_utc.h"
 #include "gusuku/maths/input_error.h"
 #include "site_json_reader.h"
 
@@ -119,6 +122,26 @@ json slotJson(const BakeSetSlot& slot, size_t index) {
 const NumberRange kAnyFinite{-kInfinity, kInfinity};
 const NumberRange kNonNegative{0.0, kInfinity};
 
+NumberRange rangeOf(const BakeSetRange& range) { return {range.minimum, range.maximum}; }
+
+/// "HH:MM", the slot's time on the site's clock, 00:00 to 23:59.
+void requireClockTime(const ObjectReader& reader, const std::string& name, const std::string& text) {
+    // An ISO 8601 time with its offset names the same instant on the site's clock (older writers used it).
+    if (text.size() > 5) {
+        try {
+            parseIso8601Utc(text);
+            return;
+        } catch (const std::invalid_argument& error) {
+            reader.fail(name, "\"" + text + "\" is neither a time of day HH:MM nor an ISO 8601 time: " + error.what());
+        }
+    }
+    const bool shaped = text.size() == 5 && text[2] == ':' && std::isdigit((unsigned char)text[0]) &&
+                        std::isdigit((unsigned char)text[1]) && std::isdigit((unsigned char)text[3]) &&
+                        std::isdigit((unsigned char)text[4]);
+    if (!shaped || std::stoi(text.substr(0, 2)) > 23 || std::stoi(text.substr(3, 2)) > 59)
+        reader.fail(name, "\"" + text + "\" is not a time of day HH:MM (00:00 to 23:59)");
+}
+
 /// A whole number within [min, max], stored as JSON integer (what the writer writes) or as a whole float.
 /// Integers are taken as they are, so counts above 2^53 keep every digit.
 uint64_t readUnsigned(const ObjectReader& reader, const std::string& name, uint64_t min, uint64_t max) {
@@ -206,13 +229,29 @@ BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
         const glm::dvec3& d = position.direction_enu;
         if (std::fabs(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - 1.0) > 1e-6)
             reader.fail("direction_enu", "is not a unit vector");
+        // The direction must be the one azimuth and elevation give (docs/design.md 2): the runtime lights by
+        // the direction and picks slots by the angles, so two that disagree light one sun and choose another.
+        const double degree = std::acos(-1.0) / 180.0;
+        const double elevation = position.apparent_elevation_deg * degree, azimuth = position.azimuth_deg * degree;
+        const glm::dvec3 from_angles(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
+                                     std::sin(elevation));
+        const double apart_deg =
+            std::acos(std::clamp(d.x * from_angles.x + d.y * from_angles.y + d.z * from_angles.z, -1.0, 1.0)) / degree;
+        if (apart_deg > kBakeSetSunDirectionToleranceDeg)
+            reader.fail("direction_enu", "is " + json_reader::formatNumber(apart_deg) +
+                                             " degrees from the direction azimuth_deg and apparent_elevation_deg give");
         sun.position = position;
     } else {
         for (const char* name : {"azimuth_deg", "apparent_elevation_deg", "direction_enu"})
             if (reader.has(name)) reader.fail(name, "only a sunny slot has a sun position");
     }
     if (sun.present) {
-        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", kNonNegative);
+        if (sun.position && !rangeOf(kBakeSetPresentSunElevationDeg).contains(sun.position->apparent_elevation_deg))
+            reader.fail("apparent_elevation_deg",
+                        json_reader::formatNumber(sun.position->apparent_elevation_deg) +
+                            " is below the horizon, yet present is true (a present sun is at " +
+                            rangeOf(kBakeSetPresentSunElevationDeg).describe() + " degrees)");
+        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", rangeOf(kBakeSetIrradiance));
         sun.angular_radius_deg = reader.number("angular_radius_deg", {0.0, 90.0});
     } else {
         for (const char* name : {"irradiance_rgb", "angular_radius_deg"})
@@ -232,7 +271,13 @@ BakeSetSlot readSlot(const ObjectReader& reader) {
     slot.sky_map = readNonEmptyString(reader, "sky_map");
     if (sunny) {
         slot.local_time = readNonEmptyString(reader, "local_time");
+        requireClockTime(reader, "local_time", slot.local_time);
         slot.utc = readNonEmptyString(reader, "utc");
+        try {
+            parseIso8601Utc(slot.utc);
+        } catch (const std::invalid_argument& error) {
+            reader.fail("utc", error.what());
+        }
     } else {
         for (const char* name : {"local_time", "utc"})
             if (reader.has(name)) reader.fail(name, "only a sunny slot has a time");
@@ -245,7 +290,7 @@ BakeSetSlot readSlot(const ObjectReader& reader) {
     slot.building_irradiance = readNonEmptyString(reader, "building_irradiance");
     slot.ground_irradiance_with_building = readNonEmptyString(reader, "ground_irradiance_with_building");
     slot.ground_irradiance_without_building = readNonEmptyString(reader, "ground_irradiance_without_building");
-    slot.invalid_texels = readUnsigned(reader, "invalid_texels", 0, UINT64_MAX);
+    slot.invalid_texels = readUnsigned(reader, "invalid_texels", 0, uint64_t(kBakeSetInvalidTexels.maximum));
     if (const auto colour = reader.optionalObject("colour_statistics", {"space", "lab_mean", "lab_sigma", "texels"})) {
         readFixedText(*colour, "space", kColourSpace);
         BakeSetColourStatistics statistics;
@@ -324,9 +369,9 @@ BakeSetManifest readManifest(const ObjectReader& root) {
                                     "row_0", "ground_source", "irradiance_alpha", "albedo", "albedo_channels"});
     manifest.ground_grid.geometry = readNonEmptyString(ground, "geometry");
     readFixedText(ground, "geometry_channels", kGeometryChannels);
-    const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, kAnyFinite);
+    const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, rangeOf(kBakeSetGroundOriginM));
     manifest.ground_grid.grid.origin_enu_m = {origin[0], origin[1]};
-    manifest.ground_grid.grid.cell_m = ground.number("cell_m", {0.0, kInfinity, true, false});
+    manifest.ground_grid.grid.cell_m = ground.number("cell_m", rangeOf(kBakeSetGroundCellM));
     manifest.ground_grid.grid.columns = readInt(ground, "columns", 1, 1 << 20);
     manifest.ground_grid.grid.rows = readInt(ground, "rows", 1, 1 << 20);
     readFixedText(ground, "row_0", kRow0);
@@ -362,6 +407,12 @@ BakeSetManifest readManifest(const ObjectReader& root) {
                            "ground_irradiance_with_building", "ground_irradiance_without_building", "invalid_texels",
                            "colour_statistics"});
         manifest.slots.push_back(readSlot(slot));
+        const uint64_t lightmap_texels = uint64_t(manifest.building.lightmap_resolution) *
+                                         uint64_t(manifest.building.lightmap_resolution);
+        if (manifest.slots.back().invalid_texels > lightmap_texels)
+            slot.fail("invalid_texels", std::to_string(manifest.slots.back().invalid_texels) +
+                                            " is more than the lightmap's " + std::to_string(lightmap_texels) +
+                                            " texels");
         for (size_t j = 0; j < i; ++j)
             if (manifest.slots[j].name == manifest.slots[i].name)
                 slot.fail("name", "\"" + manifest.slots[i].name + "\" is already the name of /slots/" +
@@ -450,7 +501,14 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
         document["ground_grid"]["albedo_channels"] = kGroundAlbedoChannels;
     }
     requireFiniteNumbers(document, "");
-    return document.dump(2) + "\n";
+    std::string text = document.dump(2) + "\n";
+    // The writer refuses what the reader would refuse, by reading back what it wrote: one set of checks.
+    try {
+        parseBakeSetManifest("the manifest being written", text);
+    } catch (const InputError& error) {
+        throw std::invalid_argument(std::string("bake set manifest: ") + error.what());
+    }
+    return text;
 }
 
 void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manifest) {
