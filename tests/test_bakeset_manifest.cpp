@@ -213,6 +213,9 @@ std::vector<BadManifest> badManifests() {
         withValue("local time 25:00", "/slots/0/local_time", "25:00", "is not a time of day HH:MM"),
         withValue("a utc that is no time", "/slots/0/utc", "yesterday", "is not an ISO 8601 time"),
         withValue("1e12 invalid texels", "/slots/0/invalid_texels", 1e12, "is outside [0, 67108864]"),
+        withValue("a site input that is not a site.json", "/inputs/0/path", "/etc/passwd",
+                  "\"/etc/passwd\" is not a .json file, as the site input is"),
+        withValue("a sky input that is no sky", "/inputs/3/path", "sky.png", "is not a .hdr or .exr file"),
         [] {
             json document = exampleJson();  // the night slot (-12.5 degrees) claiming its sun shines
             document["slots"][1]["sun"]["present"] = true;

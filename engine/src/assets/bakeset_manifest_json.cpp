@@ -124,6 +124,31 @@ const NumberRange kNonNegative{0.0, kInfinity};
 
 NumberRange rangeOf(const BakeSetRange& range) { return {range.minimum, range.maximum}; }
 
+/// Each input role names a file of its kind (a tool that follows the manifest to site.json must not be led to
+/// read /etc/passwd as one): site .json, building and sfm_mesh .glb or .gltf, skies .hdr or .exr. Roles this
+/// reader does not know are kept as they are.
+void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
+    const auto ends_with = [&](const char* extension) {
+        std::string lower = input.path;
+        for (char& c : lower) c = char(std::tolower((unsigned char)c));
+        const std::string suffix = extension;
+        return lower.size() > suffix.size() && lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    const char* expected = nullptr;
+    bool matches = true;
+    if (input.role == "site") {
+        expected = "a .json file";
+        matches = ends_with(".json");
+    } else if (input.role == "building" || input.role == "sfm_mesh") {
+        expected = "a .glb or .gltf file";
+        matches = ends_with(".glb") || ends_with(".gltf");
+    } else if (input.role == "sunny_sky" || input.role == "overcast_sky") {
+        expected = "a .hdr or .exr file";
+        matches = ends_with(".hdr") || ends_with(".exr");
+    }
+    if (!matches) reader.fail("path", "\"" + input.path + "\" is not " + expected + ", as the " + input.role + " input is");
+}
+
 /// "HH:MM", the slot's time on the site's clock, 00:00 to 23:59.
 void requireClockTime(const ObjectReader& reader, const std::string& name, const std::string& text) {
     // An ISO 8601 time with its offset names the same instant on the site's clock (older writers used it).
@@ -333,6 +358,7 @@ BakeSetManifest readManifest(const ObjectReader& root) {
         BakeSetInput entry;
         entry.role = readNonEmptyString(input, "role");
         entry.path = readNonEmptyString(input, "path");
+        requireInputKind(input, entry);
         parseHex64(input, "fnv1a64");
         entry.fnv1a64 = input.string("fnv1a64");
         manifest.inputs.push_back(entry);
