@@ -314,6 +314,19 @@ TEST_F(BakeSplitTest, MergeRefusesSlotFilesTheLoaderWouldRefuse) {
         "texels");
 }
 
+// An output folder that cannot be made (here under a regular file; a read-only file system alike) is one line
+// naming it and the reason, not the library's "filesystem error: cannot create directories".
+TEST_F(BakeSplitTest, MergeIntoAFolderThatCannotBeMadeSaysWhy) {
+    const SplitBakes& bakes = splitBakes();
+    const std::string file = scratch_ + "/a_file";
+    std::ofstream(file) << "not a folder";
+    std::vector<std::string> partials = bakes.partials;
+    const CommandResult result = merge(partials, file + "/merged");
+    EXPECT_EQ(result.exit_code, 1) << result.stderr_text;
+    EXPECT_EQ(result.stderr_text,
+              "gusuku-bake: error: " + file + "/merged: -o: cannot create the folder: Not a directory\n");
+}
+
 TEST_F(BakeSplitTest, SlotOptionNamesASlotOfTheSiteAndAFinishedPartialIsUpToDate) {
     const SplitBakes& bakes = splitBakes();
     const std::string out = scratch_ + "/unknown";

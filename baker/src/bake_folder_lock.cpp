@@ -14,7 +14,12 @@
 namespace gusuku::bake {
 
 BakeFolderLock::BakeFolderLock(const std::string& output_dir) {
-    std::filesystem::create_directories(output_dir);
+    // The folder is the first thing a bake or merge writes: a read-only or full file system is named here, as
+    // one line for the user, not as the library's "filesystem error: cannot create directories".
+    std::error_code create_error;
+    std::filesystem::create_directories(output_dir, create_error);
+    if (create_error)
+        throw InputError(output_dir, "-o", "cannot create the folder: " + create_error.message());
     const std::string path = output_dir + "/.lock";
     descriptor_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (descriptor_ < 0) throw std::runtime_error(path + ": cannot create the bake lock: " + std::strerror(errno));

@@ -103,10 +103,11 @@ bool sameFolder(const std::string& a, const std::string& b) {
     return fs::exists(a, error) && fs::exists(b, error) && fs::equivalent(a, b, error);
 }
 
+// Read whole and written through writeBytesAtomically, whose checked writes name a full disk as "No space left
+// on device" (std::filesystem::copy_file's kernel copy reported it as "Input/output error").
 void copyAtomically(const std::string& from, const std::string& to) {
-    writeFileAtomically(to, [&](const std::string& temporary) {
-        fs::copy_file(from, temporary, fs::copy_options::overwrite_existing);
-    });
+    const std::string bytes = readWholeFile(from);
+    writeBytesAtomically(to, bytes.data(), bytes.size());
 }
 
 /// A slot's sky map in the merged manifest: the merged path of the input it is (the sets agree on their inputs'
