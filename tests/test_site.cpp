@@ -335,7 +335,16 @@ TEST_F(SiteJson, ZeroScale) {
     document_["building"]["scale"] = 0;
     const gusuku::InputError error = loadError();
     EXPECT_EQ(error.field(), "/building/scale");
-    EXPECT_EQ(error.problem(), "0 is outside (0, 1000000]");
+    EXPECT_EQ(error.problem(), "0 is outside [1e-06, 1000000]");
+}
+
+// A scale near 0 collapses the mesh onto a point; it is named as the scale, not blamed on a node transform.
+TEST_F(SiteJson, SfmScaleNearZeroIsNamed) {
+    document_["sfm_mesh"] = {{"path", "building.glb"}, {"scale", 1e-300}, {"rotation_wxyz", {1, 0, 0, 0}},
+                             {"translation_enu_m", {0, 0, 0}}};
+    const gusuku::InputError error = loadError();
+    EXPECT_EQ(error.field(), "/sfm_mesh/scale");
+    EXPECT_EQ(error.problem(), "1e-300 is outside [1e-06, 1000000]");
 }
 
 TEST_F(SiteJson, HeadingOutOfRange) {

@@ -34,7 +34,9 @@ constexpr NumberRange kHeight{kSiteHeightRangeM.minimum, kSiteHeightRangeM.maxim
 constexpr NumberRange kPressure{kSitePressureRangeMbar.minimum, kSitePressureRangeMbar.maximum};
 constexpr NumberRange kTemperature{kSiteTemperatureRangeC.minimum, kSiteTemperatureRangeC.maximum};
 constexpr NumberRange kEnuMetres{-100000.0, 100000.0};
-constexpr NumberRange kScale{0.0, 1e6, true, false};
+// Metres per model unit: from a micrometre (a model in anything finer is a mistake, and scales near 0 collapse
+// every vertex onto one point, which the glTF transform check then blames on the node) to 1000 km.
+constexpr NumberRange kScale{1e-6, 1e6};
 constexpr NumberRange kQuaternionComponent{-1.01, 1.01};
 constexpr NumberRange kHeading{-360.0, 360.0};
 constexpr NumberRange kNorthAzimuth{0.0, 360.0, false, true};
