@@ -23,8 +23,8 @@ cmake -S tests/fuzz -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMA
   "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"${GUSUKU_FUZZ_JOBS:-2}"
 
-names=(site_json gltf glb)
-dictionaries=(site_json gltf gltf)
+names=(site_json gltf glb bakeset_manifest bakeset_exr)
+dictionaries=(site_json gltf gltf bakeset_manifest "")
 share=$((total_seconds / ${#names[@]}))
 mkdir -p "$build/findings"
 for i in "${!names[@]}"; do
@@ -32,8 +32,11 @@ for i in "${!names[@]}"; do
   mkdir -p "$build/corpus/$name"
   echo "fuzz: fuzz_$name for ${share} s"
   # -timeout: one input taking over 10 s is a finding (a hang); -rss_limit_mb: so is using over 2.5 GB.
-  "$build/fuzz_$name" -max_total_time="$share" -timeout=10 -rss_limit_mb=2560 -max_len=8192 \
-    -dict="tests/fuzz/${dictionaries[$i]}.dict" -artifact_prefix="$build/findings/${name}-" \
+  dictionary=()
+  if [ -n "${dictionaries[$i]}" ]; then dictionary=(-dict="tests/fuzz/${dictionaries[$i]}.dict"); fi
+  # A bake set manifest is about 9 KB: room for one whole, and more.
+  "$build/fuzz_$name" -max_total_time="$share" -timeout=10 -rss_limit_mb=2560 -max_len=16384 \
+    "${dictionary[@]}" -artifact_prefix="$build/findings/${name}-" \
     -print_final_stats=1 "$build/corpus/$name" "tests/fuzz/corpus/$name" 2>"$build/fuzz_$name.log" \
     || { tail -60 "$build/fuzz_$name.log" >&2; echo "fuzz: fuzz_$name found a problem; input in $build/findings/" >&2; exit 1; }
   grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "$build/fuzz_$name.log" | sed "s/^/  /"
