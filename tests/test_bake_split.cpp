@@ -314,6 +314,24 @@ TEST_F(BakeSplitTest, MergeRefusesSlotFilesTheLoaderWouldRefuse) {
         "texels");
 }
 
+// A partial set records the hash of its own slot (its manifest entry and files): an edited sun irradiance, which
+// every reader accepts as a value, is refused because it is not what the bake wrote.
+TEST_F(BakeSplitTest, MergeRefusesAnEditedSlotEntry) {
+    const SplitBakes& bakes = splitBakes();
+    const std::string& first = bakes.partials.at(0);
+    const std::string& second = bakes.partials.at(1);
+    const std::string edited = scratch_ + "/edited";
+    fs::copy(second, edited);
+    BakeSetManifest manifest = readBakeSetManifest(edited + "/manifest.json");
+    ASSERT_TRUE(manifest.partial && manifest.partial->slot_hash) << "a partial set records its slot's hash";
+    EXPECT_EQ(*manifest.partial->slot_hash, slotHash(second, manifest.slots.front()));
+    manifest.slots.front().sun.present = manifest.slots.front().sky == gusuku::BakeSetSky::Sunny;
+    manifest.slots.front().sun.irradiance_rgb = glm::dvec3(1e6);
+    if (!manifest.slots.front().sun.present) manifest.slots.front().invalid_texels += 1;  // an overcast slot
+    writeBakeSetManifest(edited + "/manifest.json", manifest);
+    expectRefused({first, edited}, edited + "/manifest.json", "/partial/slot_hash", "it changed after the bake");
+}
+
 // An output folder that cannot be made (here under a regular file; a read-only file system alike) is one line
 // naming it and the reason, not the library's "filesystem error: cannot create directories".
 TEST_F(BakeSplitTest, MergeIntoAFolderThatCannotBeMadeSaysWhy) {

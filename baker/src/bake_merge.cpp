@@ -134,6 +134,15 @@ uint64_t slotIndependentFilesHash(const std::string& folder, const BakeSetManife
     return hash.value();
 }
 
+uint64_t slotHash(const std::string& folder, const BakeSetSlot& slot) {
+    ContentHash hash;
+    hash.addString(bakeSetSlotJson(slot));
+    for (const std::string* file :
+         {&slot.building_irradiance, &slot.ground_irradiance_with_building, &slot.ground_irradiance_without_building})
+        hash.addString(*file).addFile(folder + "/" + *file);
+    return hash.value();
+}
+
 MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders, const std::string& output_dir) {
     if (partial_folders.empty()) throw InputError(output_dir, "PARTIAL", "no partial sets to merge");
     // ---- Read and check everything; nothing is created or written until all of it passes.
@@ -154,6 +163,20 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
     // >= 0), so a truncated, empty, resized or NaN slot file is refused here, not by the first render after. One
     // set at a time: only the verdict is kept.
     for (const PartialSet& set : sets) loadPartialBakeSet(set.folder);
+    // Each set's own slot must be what its bake wrote: the manifest entry (an edited sun irradiance) and its
+    // three files, hashed together, against the hash the partial recorded.
+    for (const PartialSet& set : sets) {
+        const std::optional<uint64_t>& recorded = set.manifest.partial->slot_hash;
+        if (!recorded)
+            throw InputError(set.manifest_path, "/partial/slot_hash",
+                             "missing: a partial set from an older gusuku-bake, whose slot cannot be checked; bake "
+                             "its slot again");
+        const uint64_t actual = slotHash(set.folder, set.manifest.slots.front());
+        if (actual != *recorded)
+            throw InputError(set.manifest_path, "/partial/slot_hash",
+                             "the slot \"" + set.manifest.partial->slot + "\" (its manifest entry and files) hashes to " +
+                                 hex(actual) + ", not the recorded " + hex(*recorded) + ": it changed after the bake");
+    }
     std::map<std::string, size_t> set_of_slot;
     for (size_t i = 0; i < sets.size(); ++i) {
         const std::string& slot = sets[i].manifest.partial->slot;

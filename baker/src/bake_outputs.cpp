@@ -209,6 +209,9 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
                            report.wall_seconds};
     manifest.warnings = report.warnings;
     manifest.partial = partial;
+    // A partial set holds one slot, written by now: its hash lets merge refuse an edited entry or file.
+    if (manifest.partial && manifest.slots.size() == 1)
+        manifest.partial->slot_hash = slotHash(output_dir_, manifest.slots.front());
     writeBakeSetManifest(output_dir_ + "/manifest.json", manifest);
 }
 

@@ -17,6 +17,11 @@ namespace gusuku::bake {
 /// cannot be read.
 uint64_t slotIndependentFilesHash(const std::string& folder, const BakeSetManifest& manifest);
 
+/// FNV-1a 64 over one slot of a set in `folder`: its manifest entry as the writer writes it (bakeSetSlotJson),
+/// then its building, ground-with and ground-without files, each as its name then its bytes. A partial set
+/// records it (partial.slot_hash) and merge recomputes it. Throws InputError naming a file that cannot be read.
+uint64_t slotHash(const std::string& folder, const BakeSetSlot& slot);
+
 struct MergeReport {
     std::string manifest_path;
     size_t slots = 0;

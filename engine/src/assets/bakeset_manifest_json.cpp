@@ -344,6 +344,7 @@ BakeSetPartial readPartial(const ObjectReader& reader, const BakeSetManifest& ma
     if (manifest.slots.size() != 1 || manifest.slots.front().name != partial.slot)
         reader.fail("slot", "a partial set holds exactly its own slot, \"" + partial.slot + "\", in /slots");
     partial.slot_independent_hash = parseHex64(reader, "slot_independent_hash");
+    if (reader.has("slot_hash")) partial.slot_hash = parseHex64(reader, "slot_hash");
     return partial;
 }
 
@@ -457,12 +458,14 @@ BakeSetManifest readManifest(const ObjectReader& root) {
         manifest.warnings.push_back(json_reader::checkedString(
             root.file(), root.fieldPointer("warnings") + "/" + std::to_string(i), warnings[i]));
 
-    if (const auto partial = root.optionalObject("partial", {"slot", "site_slots", "slot_independent_hash"}))
+    if (const auto partial = root.optionalObject("partial", {"slot", "site_slots", "slot_independent_hash", "slot_hash"}))
         manifest.partial = readPartial(*partial, manifest);
     return manifest;
 }
 
 }  // namespace
+
+std::string bakeSetSlotJson(const BakeSetSlot& slot) { return slotJson(slot, 0).dump(); }
 
 std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
     json inputs = json::array();
@@ -515,6 +518,8 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
         document["partial"] = {{"slot", manifest.partial->slot},
                                {"site_slots", manifest.partial->site_slots},
                                {"slot_independent_hash", hex64(manifest.partial->slot_independent_hash)}};
+    if (manifest.partial && manifest.partial->slot_hash)
+        document["partial"]["slot_hash"] = hex64(*manifest.partial->slot_hash);
     if (manifest.occluder)  // absent without an SfM mesh: such manifests keep their bytes
         document["occluder"] = {{"mesh", manifest.occluder->mesh},
                                 {"mesh_frame", kMeshFrame},

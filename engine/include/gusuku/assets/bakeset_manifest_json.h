@@ -16,6 +16,10 @@ namespace gusuku {
 /// position, a local time or a UTC time.
 std::string bakeSetManifestJson(const BakeSetManifest& manifest);
 
+/// One slot's manifest entry, exactly as bakeSetManifestJson writes it inside "slots" (compact, keys sorted): what
+/// a partial set's slot_hash covers besides the slot's files.
+std::string bakeSetSlotJson(const BakeSetSlot& slot);
+
 /// Writes bakeSetManifestJson(manifest) to path atomically (gusuku/assets/atomic_file.h).
 void writeBakeSetManifest(const std::string& path, const BakeSetManifest& manifest);
 

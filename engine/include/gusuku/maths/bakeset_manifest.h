@@ -160,6 +160,10 @@ struct BakeSetPartial {
     /// FNV-1a 64 of the files every slot shares (building.glb, ground_geometry.exr, occluder.glb when present),
     /// in that order, each name then its bytes: partials of one site must agree on it, and merge recomputes it.
     uint64_t slot_independent_hash = 0;
+    /// FNV-1a 64 of the set's own slot: its manifest entry as the writer writes it, then each of its three files
+    /// (name, then bytes). Merge recomputes it, so an edited sun or a replaced lightmap is refused. Absent in
+    /// partial sets of older bakes, which merge refuses.
+    std::optional<uint64_t> slot_hash;
     bool operator==(const BakeSetPartial&) const = default;
 };
 
