@@ -4,9 +4,8 @@
 // 2009, "Spatial Splits in Bounding Volume Hierarchies"): where the best object split leaves two boxes that
 // overlap, planes through the node's box are tried too, a triangle crossing the plane going to both sides with
 // the box of its piece on each. Why: a timber building's beams, rafters and roof planes are long thin triangles
-// whose boxes are mostly empty and overlap everything near them; on the shrine spatial splits cut the inner
-// nodes and triangles a bake ray visits by about 20 % and 37 %. The tree is built with float boxes,
-// then written in the GPU layout of bvh.h: each inner node holding its two children's boxes quantised to 16
+// whose boxes are mostly empty and overlap everything near them; spatial splits cut the inner nodes and
+// triangles a bake ray visits there. The tree is built with float boxes, then written in the GPU layout of bvh.h: each inner node holding its two children's boxes quantised to 16
 // bits on its own grid.
 
 #include <algorithm>
@@ -31,8 +30,8 @@ constexpr int kSpatialBinCount = 16;  // spatial split bins (the node's box)
 // Spatial splits are tried only where the best object split's two boxes overlap by more than this fraction of
 // the root's area (SBVH's alpha: below it the overlap costs little, and the search would only add references).
 constexpr float kSpatialSplitOverlap = 1e-5f;
-// Spatial splits stop adding references once there are this many per triangle (the shrine uses 1.5, a
-// heightfield ground 1.4; the cap bounds memory and the depth argument below).
+// Spatial splits stop adding references once there are this many per triangle (the cap bounds memory and the
+// depth argument below).
 constexpr double kMaxReferencesPerTriangle = 2.0;
 // SAH costs in units of one ray/triangle test. A node visit on lavapipe (two child boxes fetched and tested)
 // costs about as much as one triangle test.
@@ -471,9 +470,15 @@ uint32_t writeQuantisedTree(const std::vector<FloatNode>& tree, std::vector<BvhN
     return deepest;
 }
 
-}  // namespace
+// The mesh's triangles a BVH can hold (finite, with a non-zero normal), in mesh order: their GPU records and
+// the builder's view of each.
+struct UsableTriangles {
+    std::vector<BvhTriangleGpu> gpu;
+    std::vector<Primitive> primitives;
+    size_t dropped = 0;  ///< zero-area or non-finite triangles left out
+};
 
-Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags) {
+void requireBvhInput(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags) {
     const size_t triangle_count = mesh.triangleCount();
     if (mesh.indices.size() % 3 != 0)
         throw InputError("mesh", "indices", "index count " + std::to_string(mesh.indices.size()) +
@@ -482,12 +487,14 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         throw InputError("mesh", "triangle flags",
                          std::to_string(triangle_flags.size()) + " flags for " + std::to_string(triangle_count) +
                              " triangles");
+}
 
-    Bvh bvh;
-    std::vector<BvhTriangleGpu> usable_triangles;
-    std::vector<Primitive> primitives;
-    usable_triangles.reserve(triangle_count);
-    primitives.reserve(triangle_count);
+// Throws InputError on a vertex index out of range.
+UsableTriangles usableTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags) {
+    const size_t triangle_count = mesh.triangleCount();
+    UsableTriangles usable;
+    usable.gpu.reserve(triangle_count);
+    usable.primitives.reserve(triangle_count);
     for (size_t triangle = 0; triangle < triangle_count; ++triangle) {
         glm::vec3 corner[3];
         for (int k = 0; k < 3; ++k) {
@@ -501,10 +508,10 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         const glm::vec3 edge1 = corner[1] - corner[0];
         const glm::vec3 edge2 = corner[2] - corner[0];
         const glm::vec3 normal = glm::cross(edge1, edge2);
-        const bool usable = finite(corner[0]) && finite(corner[1]) && finite(corner[2]) && finite(normal) &&
-                            (normal.x != 0.0f || normal.y != 0.0f || normal.z != 0.0f);
-        if (!usable) {
-            ++bvh.dropped_triangle_count;
+        const bool usable_triangle = finite(corner[0]) && finite(corner[1]) && finite(corner[2]) && finite(normal) &&
+                                     (normal.x != 0.0f || normal.y != 0.0f || normal.z != 0.0f);
+        if (!usable_triangle) {
+            ++usable.dropped;
             continue;
         }
         BvhTriangleGpu gpu{};
@@ -515,7 +522,7 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
         }
         gpu.triangle_index = static_cast<uint32_t>(triangle);
         gpu.flags = triangle_flags.empty() ? 0u : triangle_flags[triangle];
-        usable_triangles.push_back(gpu);
+        usable.gpu.push_back(gpu);
         Primitive primitive;
         float largest = 0.0f;
         for (int k = 0; k < 3; ++k) {
@@ -523,150 +530,207 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
             largest = std::max({largest, std::fabs(corner[k].x), std::fabs(corner[k].y), std::fabs(corner[k].z)});
         }
         primitive.pad = largest * (1.0f / 1048576.0f) + 1e-30f;  // as paddedBox, but from the whole triangle
-        primitives.push_back(primitive);
+        usable.primitives.push_back(primitive);
+    }
+    return usable;
+}
+
+// A BVH of no usable triangle. The slab test is symmetric in min and max, so "inverted" bounds would still be
+// hit; instead the root is a leaf holding one placeholder whose zero edges make Moller-Trumbore's determinant
+// zero.
+void writePlaceholderTree(Bvh& bvh) {
+    BvhTriangleGpu placeholder{};
+    placeholder.triangle_index = kBvhNoTriangle;
+    bvh.triangles.push_back(placeholder);
+    FloatNode leaf;
+    leaf.bounds.extend(glm::vec3(0.0f));
+    leaf.bounds = paddedBox(leaf.bounds);
+    leaf.triangle_count = 1;
+    leaf.leaf = true;
+    bvh.depth = writeQuantisedTree({leaf}, bvh.nodes);
+}
+
+// The tree as built in float boxes, and the primitive of every leaf slot in leaf order.
+struct FloatTree {
+    std::vector<FloatNode> nodes;
+    std::vector<uint32_t> leaf_primitives;
+};
+
+// Top-down build: each task's references become a leaf, or are split (spatially, by object bins, or at the
+// centroid median) into two child tasks. Tasks are a stack whose left child is popped first, so leaves come out
+// in left-to-right order.
+class FloatTreeBuilder {
+public:
+    explicit FloatTreeBuilder(const std::vector<Primitive>& primitives) : primitives_(primitives) {}
+
+    FloatTree build() {
+        const uint32_t primitive_count = static_cast<uint32_t>(primitives_.size());
+        Box root_bounds;
+        std::vector<Reference> root_references = rootReferences(root_bounds);
+        overlap_threshold_ = kSpatialSplitOverlap * root_bounds.halfArea();
+        reference_budget_ = static_cast<size_t>(kMaxReferencesPerTriangle * primitive_count);
+        reference_count_ = primitive_count;
+        tree_.nodes.reserve(2 * primitive_count);
+        tree_.nodes.emplace_back();
+        tree_.leaf_primitives.reserve(primitive_count);
+        tasks_.push_back({0, std::move(root_references), 1});
+        while (!tasks_.empty()) {
+            BuildTask task = std::move(tasks_.back());
+            tasks_.pop_back();
+            buildNode(task);
+        }
+        return std::move(tree_);
     }
 
-    if (usable_triangles.empty()) {
-        // The slab test is symmetric in min and max, so "inverted" bounds would still be hit; instead the
-        // root is a leaf holding one placeholder whose zero edges make Moller-Trumbore's determinant zero.
-        BvhTriangleGpu placeholder{};
-        placeholder.triangle_index = kBvhNoTriangle;
-        bvh.triangles.push_back(placeholder);
-        FloatNode leaf;
-        leaf.bounds.extend(glm::vec3(0.0f));
-        leaf.bounds = paddedBox(leaf.bounds);
-        leaf.triangle_count = 1;
-        leaf.leaf = true;
-        bvh.depth = writeQuantisedTree({leaf}, bvh.nodes);
-        return bvh;
+private:
+    // One reference per primitive, boxing the whole triangle with its padding; root_bounds encloses them all.
+    std::vector<Reference> rootReferences(Box& root_bounds) const {
+        const uint32_t primitive_count = static_cast<uint32_t>(primitives_.size());
+        std::vector<Reference> references(primitive_count);
+        for (uint32_t i = 0; i < primitive_count; ++i) {
+            Box box;
+            for (const glm::vec3& p : primitives_[i].corner) box.extend(p);
+            box.min -= glm::vec3(primitives_[i].pad);
+            box.max += glm::vec3(primitives_[i].pad);
+            references[i] = {box, i};
+            root_bounds.extend(box);
+        }
+        return references;
     }
 
-    if (primitives.size() > kBvhMaxTriangles)
-        throw InputError("mesh", "triangles",
-                         std::to_string(primitives.size()) + " triangles, above the BVH's limit of " +
-                             std::to_string(kBvhMaxTriangles));
-    const uint32_t primitive_count = static_cast<uint32_t>(primitives.size());
-    std::vector<Reference> root_references(primitive_count);
-    Box root_bounds;
-    for (uint32_t i = 0; i < primitive_count; ++i) {
-        Box box;
-        for (const glm::vec3& p : primitives[i].corner) box.extend(p);
-        box.min -= glm::vec3(primitives[i].pad);
-        box.max += glm::vec3(primitives[i].pad);
-        root_references[i] = {box, i};
-        root_bounds.extend(box);
-    }
-    const float overlap_threshold = kSpatialSplitOverlap * root_bounds.halfArea();
-    const size_t reference_budget = static_cast<size_t>(kMaxReferencesPerTriangle * primitive_count);
-    size_t reference_count = primitive_count;
-
-    std::vector<FloatNode> tree;
-    tree.reserve(2 * primitive_count);
-    tree.emplace_back();
-    std::vector<uint32_t> leaf_primitives;  // the triangle of every leaf slot, in leaf order
-    leaf_primitives.reserve(primitive_count);
-    std::vector<BuildTask> tasks;
-    tasks.push_back({0, std::move(root_references), 1});
-    std::vector<Reference> left, right;
-    while (!tasks.empty()) {
-        BuildTask task = std::move(tasks.back());
-        tasks.pop_back();
+    void buildNode(BuildTask& task) {
         std::vector<Reference>& references = task.references;
-
         Box bounds, centroid_bounds;
         for (const Reference& reference : references) {
             bounds.extend(reference.bounds);
             centroid_bounds.extend(0.5f * (reference.bounds.min + reference.bounds.max));
         }
-        tree[task.node].bounds = paddedBox(bounds);
+        tree_.nodes[task.node].bounds = paddedBox(bounds);
         const uint32_t count = static_cast<uint32_t>(references.size());
-
-        auto makeLeaf = [&] {
-            tree[task.node].left_or_first = static_cast<uint32_t>(leaf_primitives.size());
-            tree[task.node].triangle_count = count;
-            tree[task.node].leaf = true;
-            for (const Reference& reference : references) leaf_primitives.push_back(reference.primitive);
-        };
         if (count == 1) {
-            makeLeaf();
-            continue;
+            makeLeaf(task.node, references);
+            return;
         }
-
         const bool sah = task.depth < kMedianSplitDepth;
         const ObjectSplit object = sah ? findObjectSplit(references, centroid_bounds) : ObjectSplit{};
-        // A spatial split can add up to `count` references: only within the budget, only where the object
-        // split's children overlap enough for it to pay, and not in nodes small enough to be a leaf (on the
-        // shrine that search cost 40 % of the build time for no fewer nodes or triangles visited per ray).
-        SpatialSplit spatial;
-        if (sah && count > kBvhMaxLeafTriangles && reference_count + count <= reference_budget) {
-            Box overlap;
-            overlap.min = glm::max(object.left.min, object.right.min);
-            overlap.max = glm::min(object.left.max, object.right.max);
-            const bool overlapping = object.axis < 0 || (overlap.min.x <= overlap.max.x &&
-                                                         overlap.min.y <= overlap.max.y &&
-                                                         overlap.min.z <= overlap.max.z);
-            if (overlapping && (object.axis < 0 || overlap.halfArea() > overlap_threshold))
-                spatial = findSpatialSplit(references, primitives, bounds);
-        }
+        const SpatialSplit spatial = sah ? spatialSplitWherePays(references, object, bounds) : SpatialSplit{};
         const float best_cost = std::min(object.cost, spatial.cost);
         const float leaf_cost = kTriangleCost * static_cast<float>(count);
         const float split_cost = kTraversalCost + kTriangleCost * best_cost / std::max(bounds.halfArea(), 1e-30f);
         if (count <= kBvhMaxLeafTriangles && (!(best_cost < std::numeric_limits<float>::infinity()) ||
                                               leaf_cost <= split_cost)) {
-            makeLeaf();
-            continue;
+            makeLeaf(task.node, references);
+            return;
         }
-
+        std::vector<Reference> left, right;
         bool split_done = false;
         if (spatial.cost < object.cost) {
-            split_done = applySpatialSplit(spatial, primitives, bounds, references, left, right);
-            if (split_done) reference_count += left.size() + right.size() - count;
+            split_done = applySpatialSplit(spatial, primitives_, bounds, references, left, right);
+            if (split_done) reference_count_ += left.size() + right.size() - count;
         }
-        if (!split_done && object.axis >= 0) {
-            const int axis = object.axis;
-            const float axis_min = centroid_bounds.min[axis];
-            const float bin_scale = kBinCount / (centroid_bounds.max[axis] - axis_min);
-            const auto middle = std::partition(references.begin(), references.end(), [&](const Reference& r) {
-                return binOf(r.centroid(axis), axis_min, bin_scale) <= object.bin;
-            });
-            if (middle != references.begin() && middle != references.end()) {
-                left.assign(references.begin(), middle);
-                right.assign(middle, references.end());
-                split_done = true;
-            }
-        }
-        if (!split_done) {
-            // No SAH split (too deep, or all centroids coincide): halve at the median of the widest axis,
-            // which bounds the depth and still makes progress when every centroid is the same point.
-            const glm::vec3 extent = centroid_bounds.max - centroid_bounds.min;
-            const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-            const auto middle = references.begin() + count / 2;
-            std::nth_element(references.begin(), middle, references.end(),
-                             [&](const Reference& a, const Reference& b) {
-                                 return a.centroid(axis) < b.centroid(axis);
-                             });
-            left.assign(references.begin(), middle);
-            right.assign(middle, references.end());
-        }
-
-        const uint32_t left_child = static_cast<uint32_t>(tree.size());
-        tree.emplace_back();
-        tree.emplace_back();
-        tree[task.node].left_or_first = left_child;
-        tree[task.node].triangle_count = 0;
-        // The left child is popped first, so leaves come out in left-to-right order.
-        tasks.push_back({left_child + 1, std::move(right), task.depth + 1});
-        tasks.push_back({left_child, std::move(left), task.depth + 1});
-        left = {};
-        right = {};
+        // The object split partitions `references` in place even when a side comes out empty; the median split
+        // then works on that order.
+        if (!split_done && object.axis >= 0) split_done = applyObjectSplit(object, centroid_bounds, references, left, right);
+        if (!split_done) applyMedianSplit(centroid_bounds, references, left, right);
+        pushChildren(task, std::move(left), std::move(right));
     }
 
-    bvh.depth = writeQuantisedTree(tree, bvh.nodes);
-    bvh.triangles.resize(leaf_primitives.size());
-    for (size_t i = 0; i < leaf_primitives.size(); ++i) bvh.triangles[i] = usable_triangles[leaf_primitives[i]];
+    void makeLeaf(uint32_t node, const std::vector<Reference>& references) {
+        tree_.nodes[node].left_or_first = static_cast<uint32_t>(tree_.leaf_primitives.size());
+        tree_.nodes[node].triangle_count = static_cast<uint32_t>(references.size());
+        tree_.nodes[node].leaf = true;
+        for (const Reference& reference : references) tree_.leaf_primitives.push_back(reference.primitive);
+    }
+
+    // A spatial split can add up to `count` references: it is searched only within the budget, only where the
+    // object split's children overlap enough for it to pay, and not in nodes small enough to be a leaf (there
+    // the search costs build time without fewer nodes or triangles visited per ray). No split (infinite cost)
+    // otherwise.
+    SpatialSplit spatialSplitWherePays(const std::vector<Reference>& references, const ObjectSplit& object,
+                                       const Box& bounds) const {
+        const size_t count = references.size();
+        if (!(count > kBvhMaxLeafTriangles && reference_count_ + count <= reference_budget_)) return {};
+        Box overlap;
+        overlap.min = glm::max(object.left.min, object.right.min);
+        overlap.max = glm::min(object.left.max, object.right.max);
+        const bool overlapping = object.axis < 0 || (overlap.min.x <= overlap.max.x &&
+                                                     overlap.min.y <= overlap.max.y &&
+                                                     overlap.min.z <= overlap.max.z);
+        if (overlapping && (object.axis < 0 || overlap.halfArea() > overlap_threshold_))
+            return findSpatialSplit(references, primitives_, bounds);
+        return {};
+    }
+
+    // Partitions the references by the object split's bin; false when a side came out empty.
+    static bool applyObjectSplit(const ObjectSplit& object, const Box& centroid_bounds,
+                                 std::vector<Reference>& references, std::vector<Reference>& left,
+                                 std::vector<Reference>& right) {
+        const int axis = object.axis;
+        const float axis_min = centroid_bounds.min[axis];
+        const float bin_scale = kBinCount / (centroid_bounds.max[axis] - axis_min);
+        const auto middle = std::partition(references.begin(), references.end(), [&](const Reference& r) {
+            return binOf(r.centroid(axis), axis_min, bin_scale) <= object.bin;
+        });
+        if (middle == references.begin() || middle == references.end()) return false;
+        left.assign(references.begin(), middle);
+        right.assign(middle, references.end());
+        return true;
+    }
+
+    // No SAH split (too deep, or all centroids coincide): halve at the median of the widest axis, which bounds
+    // the depth and still makes progress when every centroid is the same point.
+    static void applyMedianSplit(const Box& centroid_bounds, std::vector<Reference>& references,
+                                 std::vector<Reference>& left, std::vector<Reference>& right) {
+        const glm::vec3 extent = centroid_bounds.max - centroid_bounds.min;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const auto middle = references.begin() + references.size() / 2;
+        std::nth_element(references.begin(), middle, references.end(),
+                         [&](const Reference& a, const Reference& b) { return a.centroid(axis) < b.centroid(axis); });
+        left.assign(references.begin(), middle);
+        right.assign(middle, references.end());
+    }
+
+    void pushChildren(const BuildTask& task, std::vector<Reference> left, std::vector<Reference> right) {
+        const uint32_t left_child = static_cast<uint32_t>(tree_.nodes.size());
+        tree_.nodes.emplace_back();
+        tree_.nodes.emplace_back();
+        tree_.nodes[task.node].left_or_first = left_child;
+        tree_.nodes[task.node].triangle_count = 0;
+        // The left child is popped first, so leaves come out in left-to-right order.
+        tasks_.push_back({left_child + 1, std::move(right), task.depth + 1});
+        tasks_.push_back({left_child, std::move(left), task.depth + 1});
+    }
+
+    const std::vector<Primitive>& primitives_;
+    float overlap_threshold_ = 0.0f;  // spatial splits only where the object split's overlap is above this
+    size_t reference_budget_ = 0;     // kMaxReferencesPerTriangle per primitive
+    size_t reference_count_ = 0;      // references in the tree so far (spatial splits add some)
+    FloatTree tree_;
+    std::vector<BuildTask> tasks_;
+};
+
+}  // namespace
+
+Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags) {
+    requireBvhInput(mesh, triangle_flags);
+    const UsableTriangles usable = usableTriangles(mesh, triangle_flags);
+    Bvh bvh;
+    bvh.dropped_triangle_count = usable.dropped;
+    if (usable.primitives.empty()) {
+        writePlaceholderTree(bvh);
+        return bvh;
+    }
+    if (usable.primitives.size() > kBvhMaxTriangles)
+        throw InputError("mesh", "triangles",
+                         std::to_string(usable.primitives.size()) + " triangles, above the BVH's limit of " +
+                             std::to_string(kBvhMaxTriangles));
+    const FloatTree tree = FloatTreeBuilder(usable.primitives).build();
+    bvh.depth = writeQuantisedTree(tree.nodes, bvh.nodes);
+    bvh.triangles.resize(tree.leaf_primitives.size());
+    for (size_t i = 0; i < tree.leaf_primitives.size(); ++i) bvh.triangles[i] = usable.gpu[tree.leaf_primitives[i]];
     if (bvh.dropped_triangle_count > 0)
         std::fprintf(stderr, "bvh: dropped %zu zero-area or non-finite triangles of %zu\n",
-                     bvh.dropped_triangle_count, triangle_count);
+                     bvh.dropped_triangle_count, mesh.triangleCount());
     return bvh;
 }
 

@@ -25,10 +25,10 @@ namespace {
 constexpr double kMaxNormalDeviationDeg = 40.0;  // beyond this, projection stretches a texel by over 1/cos(40)
 constexpr double kMaxUnfoldAngleDeg = 90.0;      // charts meeting at up to this are unfolded into one (phase 5)
 // ... when that saves at least this share of the smaller chart's padded texels: big charts joined for a few gutter
-// texels make long strips that pack worse than their parts (the sample's walls: 65 % fill became 56 %).
+// texels make long strips that pack worse than their parts.
 constexpr double kMinUnfoldSaving = 0.25;
 // ... and the joined chart takes at most this share of all the charts' padded texels: a piece that big leaves the
-// packer little room (the sample's walls joined to their 3-texel tops packed into 164^2 instead of 160^2).
+// packer little room.
 constexpr double kMaxUnfoldedShare = 1.0 / 16.0;
 constexpr double kWeldToleranceOfDiagonal = 1e-6;
 constexpr int kRotationSteps = 18;  // 5 degree steps over a quarter turn: a rectangle repeats after 90 degrees
@@ -364,6 +364,69 @@ MeshAnalysis analyseMesh(const TriangleMesh& mesh, double texels_per_metre) {
     return analysis;
 }
 
+// Where a chart has put each welded vertex (more than one place where the chart is cut through it).
+using PlacedCorners = std::unordered_map<uint32_t, std::vector<glm::dvec2>>;
+
+glm::dvec3 meshCorner(const TriangleMesh& mesh, uint32_t triangle, int i) {
+    return glm::dvec3(mesh.positions[mesh.indices[size_t(triangle) * 3 + size_t(i)]]);
+}
+
+// Completes a flattened triangle whose corners are set: its welded vertices and bounds.
+void finishFlatTriangle(FlatTriangle& flat, const TriangleInfo& info) {
+    flat.min = glm::dvec2(INFINITY);
+    flat.max = glm::dvec2(-INFINITY);
+    for (int i = 0; i < 3; ++i) {
+        flat.welded[i] = info.welded[i];
+        flat.min = glm::min(flat.min, flat.corner[i]);
+        flat.max = glm::max(flat.max, flat.corner[i]);
+    }
+}
+
+void placeCorners(PlacedCorners& placed, const FlatTriangle& flat) {
+    for (int i = 0; i < 3; ++i) {
+        std::vector<glm::dvec2>& at = placed[flat.welded[i]];
+        if (std::find(at.begin(), at.end(), flat.corner[i]) == at.end()) at.push_back(flat.corner[i]);
+    }
+}
+
+// Triangle `next` unfolded about the edge it shares with `parent` (parent's edge parent_edge), its lengths and
+// angles kept: a developable surface, a pillar's facets or a bent sheet, lies flat at the density.
+FlatTriangle unfoldAboutEdge(const TriangleMesh& mesh, const std::vector<TriangleInfo>& triangles,
+                             const PlacedCorners& placed, double snap_tolerance, const FlatTriangle& parent,
+                             int parent_edge, uint32_t next) {
+    const uint32_t a = parent.welded[parent_edge], b = parent.welded[(parent_edge + 1) % 3];
+    int at_a = 0, at_b = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (triangles[next].welded[i] == a) at_a = i;
+        if (triangles[next].welded[i] == b) at_b = i;
+    }
+    const int at_c = 3 - at_a - at_b;
+    const glm::dvec2 pa = parent.corner[parent_edge], pb = parent.corner[(parent_edge + 1) % 3];
+    const glm::dvec3 edge3 = meshCorner(mesh, next, at_b) - meshCorner(mesh, next, at_a);
+    const glm::dvec3 to_c = meshCorner(mesh, next, at_c) - meshCorner(mesh, next, at_a);
+    const double length3 = std::max(glm::length(edge3), 1e-300);
+    const glm::dvec2 edge2 = pb - pa;
+    const double length2 = std::max(glm::length(edge2), 1e-300);
+    const double along = glm::dot(to_c, edge3) / length3 * (length2 / length3);
+    const double across = glm::length(glm::cross(to_c, edge3)) / length3;
+    const glm::dvec2 direction = edge2 / length2, left(-direction.y, direction.x);
+    FlatTriangle flat;
+    flat.corner[at_a] = pa;
+    flat.corner[at_b] = pb;
+    flat.corner[at_c] = pa + along * direction + across * left;
+    if (cross2(flat.corner[1] - flat.corner[0], flat.corner[2] - flat.corner[0]) < 0.0)
+        flat.corner[at_c] = pa + along * direction - across * left;
+    // A corner the chart already has within the snap tolerance is that point (a fan closing round a vertex).
+    if (auto it = placed.find(triangles[next].welded[at_c]); it != placed.end())
+        for (const glm::dvec2& point : it->second)
+            if (glm::length(point - flat.corner[at_c]) <= snap_tolerance) {
+                flat.corner[at_c] = point;
+                break;
+            }
+    finishFlatTriangle(flat, triangles[next]);
+    return flat;
+}
+
 // Phase 3: grow charts from the largest triangles first, so big flat walls seed big charts. A neighbour joins
 // when its normal is within kMaxNormalDeviationDeg of the seed's and its unfolded shape overlaps nothing in
 // the chart. chart_of[triangle] is set for every non-degenerate triangle.
@@ -381,7 +444,7 @@ std::vector<Chart> growCharts(const TriangleMesh& mesh, const MeshAnalysis& anal
     chart_of.assign(triangle_count, -1);
     std::vector<int64_t> rejected_by_chart(triangle_count, -1);
     std::vector<FlatTriangle> flat_of(triangle_count);  // of the triangles that joined a chart
-    std::unordered_map<uint32_t, std::vector<glm::dvec2>> placed;
+    PlacedCorners placed;
     std::vector<Chart> charts;
     for (uint32_t seed : seed_order) {
         if (chart_of[seed] >= 0 || triangles[seed].degenerate) continue;
@@ -389,71 +452,18 @@ std::vector<Chart> growCharts(const TriangleMesh& mesh, const MeshAnalysis& anal
         Chart chart;
         const glm::dvec3 seed_normal = triangles[seed].normal;
         planeBasis(seed_normal, &chart.tangent, &chart.bitangent);
-        // Where the chart has put each welded vertex (more than one place where the chart is cut through it).
         placed.clear();
-        auto corner3d = [&](uint32_t triangle, int i) {
-            return glm::dvec3(mesh.positions[mesh.indices[size_t(triangle) * 3 + size_t(i)]]);
-        };
-        auto finish = [&](FlatTriangle& flat, uint32_t triangle) {
-            flat.min = glm::dvec2(INFINITY);
-            flat.max = glm::dvec2(-INFINITY);
-            for (int i = 0; i < 3; ++i) {
-                flat.welded[i] = triangles[triangle].welded[i];
-                flat.min = glm::min(flat.min, flat.corner[i]);
-                flat.max = glm::max(flat.max, flat.corner[i]);
-            }
-        };
-        auto place = [&](const FlatTriangle& flat) {
-            for (int i = 0; i < 3; ++i) {
-                std::vector<glm::dvec2>& at = placed[flat.welded[i]];
-                if (std::find(at.begin(), at.end(), flat.corner[i]) == at.end()) at.push_back(flat.corner[i]);
-            }
-        };
-        // The seed onto its own plane; every other triangle unfolded about the edge it joins across (its lengths
-        // and angles kept: a developable surface, a pillar's facets or a bent sheet, lies flat at the density).
-        auto unfold = [&](const FlatTriangle& parent, int parent_edge, uint32_t next) {
-            const uint32_t a = parent.welded[parent_edge], b = parent.welded[(parent_edge + 1) % 3];
-            int at_a = 0, at_b = 0;
-            for (int i = 0; i < 3; ++i) {
-                if (triangles[next].welded[i] == a) at_a = i;
-                if (triangles[next].welded[i] == b) at_b = i;
-            }
-            const int at_c = 3 - at_a - at_b;
-            const glm::dvec2 pa = parent.corner[parent_edge], pb = parent.corner[(parent_edge + 1) % 3];
-            const glm::dvec3 edge3 = corner3d(next, at_b) - corner3d(next, at_a);
-            const glm::dvec3 to_c = corner3d(next, at_c) - corner3d(next, at_a);
-            const double length3 = std::max(glm::length(edge3), 1e-300);
-            const glm::dvec2 edge2 = pb - pa;
-            const double length2 = std::max(glm::length(edge2), 1e-300);
-            const double along = glm::dot(to_c, edge3) / length3 * (length2 / length3);
-            const double across = glm::length(glm::cross(to_c, edge3)) / length3;
-            const glm::dvec2 direction = edge2 / length2, left(-direction.y, direction.x);
-            FlatTriangle flat;
-            flat.corner[at_a] = pa;
-            flat.corner[at_b] = pb;
-            flat.corner[at_c] = pa + along * direction + across * left;
-            if (cross2(flat.corner[1] - flat.corner[0], flat.corner[2] - flat.corner[0]) < 0.0)
-                flat.corner[at_c] = pa + along * direction - across * left;
-            // A corner the chart already has within the snap tolerance is that point (a fan closing round a vertex).
-            if (auto it = placed.find(triangles[next].welded[at_c]); it != placed.end())
-                for (const glm::dvec2& point : it->second)
-                    if (glm::length(point - flat.corner[at_c]) <= snap_tolerance) {
-                        flat.corner[at_c] = point;
-                        break;
-                    }
-            finish(flat, next);
-            return flat;
-        };
         FlatChartIndex index(4.0 * analysis.typical_edge, analysis.overlap_tolerance, snap_tolerance);
         std::deque<uint32_t> frontier{seed};
         chart_of[seed] = chart_index;
+        // The seed onto its own plane; every other triangle unfolded about the edge it joins across.
         for (int i = 0; i < 3; ++i) {
-            const glm::dvec3 position = corner3d(seed, i);
+            const glm::dvec3 position = meshCorner(mesh, seed, i);
             flat_of[seed].corner[i] = glm::dvec2(glm::dot(position, chart.tangent), glm::dot(position, chart.bitangent));
         }
-        finish(flat_of[seed], seed);
+        finishFlatTriangle(flat_of[seed], triangles[seed]);
         index.add(flat_of[seed]);
-        place(flat_of[seed]);
+        placeCorners(placed, flat_of[seed]);
         while (!frontier.empty()) {
             const uint32_t triangle = frontier.front();
             frontier.pop_front();
@@ -471,14 +481,15 @@ std::vector<Chart> growCharts(const TriangleMesh& mesh, const MeshAnalysis& anal
                         rejected_by_chart[next] = chart_index;
                         continue;
                     }
-                    const FlatTriangle flat = unfold(flat_of[triangle], edge, next);
+                    const FlatTriangle flat =
+                        unfoldAboutEdge(mesh, triangles, placed, snap_tolerance, flat_of[triangle], edge, next);
                     if (index.overlapsAny(flat)) {
                         rejected_by_chart[next] = chart_index;
                         continue;
                     }
                     chart_of[next] = chart_index;
                     index.add(flat);
-                    place(flat);
+                    placeCorners(placed, flat);
                     flat_of[next] = flat;
                     frontier.push_back(next);
                 }
@@ -579,21 +590,24 @@ double paddedTexelArea(const RectangleFit& fit, double texels_per_metre, int pad
 // saves at least kMinUnfoldSaving of the smaller chart's padded rectangle, and stays under kMaxUnfoldedShare of all
 // the charts' padded texels. Seams are tried longest first, again after every round that joined something (a strip
 // grows a face at a time); a pair refused is tried again only once one of its charts has grown.
-void unfoldAcrossSharpEdges(const MeshAnalysis& analysis, std::vector<int64_t>& chart_of, std::vector<Chart>& charts,
-                            double texels_per_metre, int padding, double snap_tolerance) {
+// A triangle edge whose neighbour across it lies in another chart, at most the unfold angle away.
+struct Seam {
+    uint32_t triangle[2];
+    uint32_t welded[2];  // the edge's welded vertices
+};
+// The seams two charts share; length: the seams' total flattened length, which orders the joins.
+struct ChartPair {
+    double length = 0.0;
+    std::vector<Seam> seams;
+};
+// Keyed by (lower chart << 32 | higher chart).
+using ChartPairs = std::unordered_map<uint64_t, ChartPair>;
+
+ChartPairs findSeams(const MeshAnalysis& analysis, const std::vector<int64_t>& chart_of) {
     const std::vector<TriangleInfo>& triangles = analysis.triangles;
     const EdgeNeighbours& adjacency = analysis.adjacency;
     const double min_normal_dot = std::cos(kMaxUnfoldAngleDeg * std::numbers::pi / 180.0) - 1e-3;
-    // Seams: a triangle edge whose neighbour across it lies in another chart, at most the unfold angle away.
-    struct Seam {
-        uint32_t triangle[2];
-        uint32_t welded[2];
-    };
-    struct ChartPair {
-        double length = 0.0;
-        std::vector<Seam> seams;
-    };
-    std::unordered_map<uint64_t, ChartPair> pairs;
+    ChartPairs pairs;
     for (uint32_t triangle = 0; triangle < triangles.size(); ++triangle) {
         if (triangles[triangle].degenerate) continue;
         for (int edge = 0; edge < 3; ++edge) {
@@ -609,146 +623,215 @@ void unfoldAcrossSharpEdges(const MeshAnalysis& analysis, std::vector<int64_t>& 
             }
         }
     }
-    // Where each triangle's corners are: its chart's list, at slot_of[triangle] * 3.
-    std::vector<uint32_t> slot_of(triangles.size(), 0);
-    for (const Chart& chart : charts)
-        for (uint32_t slot = 0; slot < chart.triangles.size(); ++slot) slot_of[chart.triangles[slot]] = slot;
-    auto cornerOf = [&](uint32_t triangle, uint32_t welded) {
-        const Chart& chart = charts[size_t(chart_of[triangle])];
-        for (int i = 0; i < 3; ++i)
-            if (triangles[triangle].welded[i] == welded) return chart.corners[size_t(slot_of[triangle]) * 3 + size_t(i)];
-        return chart.corners[size_t(slot_of[triangle]) * 3];
-    };
-    std::vector<std::pair<double, uint64_t>> order;
-    for (auto& [key, pair] : pairs) {
-        pair.length = 0.0;
-        for (const Seam& seam : pair.seams)
-            pair.length += glm::length(cornerOf(seam.triangle[0], seam.welded[1]) - cornerOf(seam.triangle[0], seam.welded[0]));
-        order.emplace_back(pair.length, key);
-    }
-    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
+    return pairs;
+}
 
-    std::vector<double> padded_area(charts.size());
-    for (size_t chart = 0; chart < charts.size(); ++chart)
-        padded_area[chart] = paddedTexelArea(smallestRectangle(charts[chart].corners), texels_per_metre, padding);
-    const double total_padded_area = std::accumulate(padded_area.begin(), padded_area.end(), 0.0);
-    std::vector<int64_t> root(charts.size());  // the chart each chart was joined into (itself while whole)
-    std::iota(root.begin(), root.end(), int64_t(0));
-    auto find = [&](int64_t chart) {
-        while (root[size_t(chart)] != chart) chart = root[size_t(chart)] = root[size_t(root[size_t(chart)])];
-        return chart;
-    };
-    std::vector<uint32_t> version(charts.size(), 0);  // bumped when a chart grows: a refused pair may now join
-    std::unordered_map<uint64_t, uint64_t> tried;     // pair key -> both charts' versions when last refused
-    std::vector<glm::dvec2> moved, joined;
-    std::unordered_map<uint32_t, glm::dvec2> seam_target;  // welded vertex -> where the kept chart has it
-    for (bool joined_any = true; joined_any;) {
-        joined_any = false;
-        for (const auto& [length, key] : order) {
-            const ChartPair& pair = pairs.at(key);
-            int64_t keep = find(int64_t(key >> 32)), move = find(int64_t(key & 0xffffffffu));
-            if (keep == move) continue;
-            if (charts[size_t(keep)].triangles.size() < charts[size_t(move)].triangles.size()) std::swap(keep, move);
-            const uint64_t versions = uint64_t(version[size_t(keep)]) << 32 | version[size_t(move)];
-            const uint64_t pair_key = uint64_t(keep) << 32 | uint64_t(move);
-            if (auto it = tried.find(pair_key); it != tried.end() && it->second == versions) continue;
-            tried[pair_key] = versions;
-            // The rigid move (rotation, then shift) unfolding the moved chart about the seam's longest edge: both
-            // charts keep their lengths, so that edge lands exactly. The seam's other corners that land within the
-            // snap tolerance become one with their partners; those that do not (a beam's strip closing on its first
-            // face, a curved roof's seam) stay cut, which the overlap test below allows only where nothing overlaps.
-            const Seam* anchor = nullptr;
-            double anchor_length = -1.0;
-            for (const Seam& seam : pair.seams) {
-                const double seam_length = glm::length(cornerOf(seam.triangle[0], seam.welded[1]) - cornerOf(seam.triangle[0], seam.welded[0]));
-                if (seam_length > anchor_length) {
-                    anchor_length = seam_length;
-                    anchor = &seam;
-                }
-            }
-            const bool anchor_first_kept = find(chart_of[anchor->triangle[0]]) == keep;
-            const uint32_t anchor_kept = anchor->triangle[anchor_first_kept ? 0 : 1];
-            const uint32_t anchor_moved = anchor->triangle[anchor_first_kept ? 1 : 0];
-            const glm::dvec2 from0 = cornerOf(anchor_moved, anchor->welded[0]), from1 = cornerOf(anchor_moved, anchor->welded[1]);
-            const glm::dvec2 to0 = cornerOf(anchor_kept, anchor->welded[0]), to1 = cornerOf(anchor_kept, anchor->welded[1]);
-            const double angle = std::atan2(cross2(from1 - from0, to1 - to0), glm::dot(from1 - from0, to1 - to0));
-            const double c = std::cos(angle), s = std::sin(angle);
-            const glm::dvec2 moved_centre = 0.5 * (from0 + from1), kept_centre = 0.5 * (to0 + to1);
-            auto place = [&](const glm::dvec2& point) {  // counter-clockwise by `angle` about the anchor's middle
-                const glm::dvec2 offset = point - moved_centre;
-                return kept_centre + glm::dvec2(c * offset.x - s * offset.y, s * offset.x + c * offset.y);
-            };
-            Chart& kept = charts[size_t(keep)];
-            const Chart& mover = charts[size_t(move)];
-            moved.clear();
-            for (const glm::dvec2& corner : mover.corners) moved.push_back(place(corner));
-            // The seam's corners that land onto their partners (the two sides then share their uv1 exactly).
-            seam_target.clear();
-            for (const Seam& seam : pair.seams) {
-                const bool first_kept = find(chart_of[seam.triangle[0]]) == keep;
-                for (uint32_t welded : seam.welded)
-                    seam_target.emplace(welded, cornerOf(seam.triangle[first_kept ? 0 : 1], welded));
-            }
-            for (size_t slot = 0; slot < mover.triangles.size(); ++slot)
-                for (int i = 0; i < 3; ++i) {
-                    auto it = seam_target.find(triangles[mover.triangles[slot]].welded[i]);
-                    glm::dvec2& corner = moved[slot * 3 + size_t(i)];
-                    if (it != seam_target.end() && glm::length(corner - it->second) <= snap_tolerance) corner = it->second;
-                }
-            joined = kept.corners;
-            joined.insert(joined.end(), moved.begin(), moved.end());
-            const double joined_area = paddedTexelArea(smallestRectangle(joined), texels_per_metre, padding);
-            const double saved = padded_area[size_t(keep)] + padded_area[size_t(move)] - joined_area;
-            if (joined_area > kMaxUnfoldedShare * total_padded_area ||
-                saved < kMinUnfoldSaving * std::min(padded_area[size_t(keep)], padded_area[size_t(move)]))
-                continue;
-            // The moved triangles against the kept ones (each chart overlaps nothing of itself already).
-            FlatChartIndex index(4.0 * analysis.typical_edge, analysis.overlap_tolerance, snap_tolerance);
-            auto flatAt = [&](const std::vector<glm::dvec2>& corners, size_t slot, uint32_t triangle) {
-                FlatTriangle flat;
-                flat.min = glm::dvec2(INFINITY);
-                flat.max = glm::dvec2(-INFINITY);
-                for (int i = 0; i < 3; ++i) {
-                    flat.corner[i] = corners[slot * 3 + size_t(i)];
-                    flat.welded[i] = triangles[triangle].welded[i];
-                    flat.min = glm::min(flat.min, flat.corner[i]);
-                    flat.max = glm::max(flat.max, flat.corner[i]);
-                }
-                return flat;
-            };
-            for (size_t slot = 0; slot < kept.triangles.size(); ++slot)
-                index.add(flatAt(kept.corners, slot, kept.triangles[slot]));
-            bool overlaps = false;
-            for (size_t slot = 0; slot < mover.triangles.size() && !overlaps; ++slot)
-                overlaps = index.overlapsAny(flatAt(moved, slot, mover.triangles[slot]));
-            if (overlaps) continue;
-            // Join: the moved chart's triangles follow the kept chart's, its corners unfolded.
-            const uint32_t first_slot = uint32_t(kept.triangles.size());
-            for (size_t slot = 0; slot < mover.triangles.size(); ++slot) slot_of[mover.triangles[slot]] = first_slot + uint32_t(slot);
-            kept.triangles.insert(kept.triangles.end(), mover.triangles.begin(), mover.triangles.end());
-            kept.corners = std::move(joined);
-            joined.clear();
-            for (uint32_t triangle : mover.triangles) chart_of[triangle] = keep;
-            charts[size_t(move)].triangles.clear();
-            charts[size_t(move)].corners.clear();
-            root[size_t(move)] = keep;
-            padded_area[size_t(keep)] = joined_area;
-            ++version[size_t(keep)];
-            joined_any = true;
+// A flattened triangle from a chart's corner list (3 per slot) and its welded vertices.
+FlatTriangle flatTriangleAt(const std::vector<glm::dvec2>& corners, size_t slot, const TriangleInfo& info) {
+    FlatTriangle flat;
+    flat.min = glm::dvec2(INFINITY);
+    flat.max = glm::dvec2(-INFINITY);
+    for (int i = 0; i < 3; ++i) {
+        flat.corner[i] = corners[slot * 3 + size_t(i)];
+        flat.welded[i] = info.welded[i];
+        flat.min = glm::min(flat.min, flat.corner[i]);
+        flat.max = glm::max(flat.max, flat.corner[i]);
+    }
+    return flat;
+}
+
+// Phase 5 (unfoldAcrossSharpEdges below) as rounds over the chart pairs, longest seams first. Charts joined into
+// another are emptied and point to it through root (a union-find); renumber() drops them at the end.
+class ChartUnfolder {
+public:
+    ChartUnfolder(const MeshAnalysis& analysis, std::vector<int64_t>& chart_of, std::vector<Chart>& charts,
+                  double texels_per_metre, int padding, double snap_tolerance)
+        : analysis_(analysis), triangles_(analysis.triangles), chart_of_(chart_of), charts_(charts),
+          texels_per_metre_(texels_per_metre), padding_(padding), snap_tolerance_(snap_tolerance),
+          slot_of_(triangles_.size(), 0), padded_area_(charts.size()), root_(charts.size()),
+          version_(charts.size(), 0) {
+        for (const Chart& chart : charts_)
+            for (uint32_t slot = 0; slot < chart.triangles.size(); ++slot) slot_of_[chart.triangles[slot]] = slot;
+        for (size_t chart = 0; chart < charts_.size(); ++chart)
+            padded_area_[chart] = paddedTexelArea(smallestRectangle(charts_[chart].corners), texels_per_metre_, padding_);
+        total_padded_area_ = std::accumulate(padded_area_.begin(), padded_area_.end(), 0.0);
+        std::iota(root_.begin(), root_.end(), int64_t(0));
+    }
+
+    // Rounds until one joins nothing: a strip grows a face at a time, so a pair may only pay after another join.
+    void joinAll(ChartPairs& pairs) {
+        const std::vector<std::pair<double, uint64_t>> order = seamOrder(pairs);
+        for (bool joined_any = true; joined_any;) {
+            joined_any = false;
+            for (const auto& [length, key] : order) joined_any = tryJoin(key, pairs.at(key)) || joined_any;
         }
     }
+
     // Drop the emptied charts; renumber.
-    std::vector<int64_t> renumbered(charts.size(), -1);
-    std::vector<Chart> kept_charts;
-    for (size_t chart = 0; chart < charts.size(); ++chart) {
-        if (root[chart] != int64_t(chart)) continue;
-        renumbered[chart] = int64_t(kept_charts.size());
-        kept_charts.push_back(std::move(charts[chart]));
+    void renumber() {
+        std::vector<int64_t> renumbered(charts_.size(), -1);
+        std::vector<Chart> kept_charts;
+        for (size_t chart = 0; chart < charts_.size(); ++chart) {
+            if (root_[chart] != int64_t(chart)) continue;
+            renumbered[chart] = int64_t(kept_charts.size());
+            kept_charts.push_back(std::move(charts_[chart]));
+        }
+        for (int64_t& chart : chart_of_) chart = renumbered[size_t(chart)];
+        charts_ = std::move(kept_charts);
     }
-    for (int64_t& chart : chart_of) chart = renumbered[size_t(chart)];
-    charts = std::move(kept_charts);
+
+private:
+    // Where a triangle's corner of this welded vertex lies in its chart (its chart's list, at slot_of * 3).
+    glm::dvec2 cornerOf(uint32_t triangle, uint32_t welded) const {
+        const Chart& chart = charts_[size_t(chart_of_[triangle])];
+        for (int i = 0; i < 3; ++i)
+            if (triangles_[triangle].welded[i] == welded) return chart.corners[size_t(slot_of_[triangle]) * 3 + size_t(i)];
+        return chart.corners[size_t(slot_of_[triangle]) * 3];
+    }
+
+    double seamLength(const Seam& seam) const {
+        return glm::length(cornerOf(seam.triangle[0], seam.welded[1]) - cornerOf(seam.triangle[0], seam.welded[0]));
+    }
+
+    // The pairs by their seams' total length, longest first (ties by key, so the order is the same every run).
+    std::vector<std::pair<double, uint64_t>> seamOrder(ChartPairs& pairs) const {
+        std::vector<std::pair<double, uint64_t>> order;
+        for (auto& [key, pair] : pairs) {
+            pair.length = 0.0;
+            for (const Seam& seam : pair.seams) pair.length += seamLength(seam);
+            order.emplace_back(pair.length, key);
+        }
+        std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
+            return x.first != y.first ? x.first > y.first : x.second < y.second;
+        });
+        return order;
+    }
+
+    // The chart each chart was joined into (itself while whole), halving the path on the way.
+    int64_t find(int64_t chart) {
+        while (root_[size_t(chart)] != chart) chart = root_[size_t(chart)] = root_[size_t(root_[size_t(chart)])];
+        return chart;
+    }
+
+    // Joins the pair's charts as they are now (the smaller moved onto the larger) when that pays and overlaps
+    // nothing; a pair refused is tried again only once one of its charts has grown.
+    bool tryJoin(uint64_t key, const ChartPair& pair) {
+        int64_t keep = find(int64_t(key >> 32)), move = find(int64_t(key & 0xffffffffu));
+        if (keep == move) return false;
+        if (charts_[size_t(keep)].triangles.size() < charts_[size_t(move)].triangles.size()) std::swap(keep, move);
+        const uint64_t versions = uint64_t(version_[size_t(keep)]) << 32 | version_[size_t(move)];
+        const uint64_t pair_key = uint64_t(keep) << 32 | uint64_t(move);
+        if (auto it = tried_.find(pair_key); it != tried_.end() && it->second == versions) return false;
+        tried_[pair_key] = versions;
+        unfoldMover(pair, keep, move);
+        const Chart& kept = charts_[size_t(keep)];
+        joined_ = kept.corners;
+        joined_.insert(joined_.end(), moved_.begin(), moved_.end());
+        const double joined_area = paddedTexelArea(smallestRectangle(joined_), texels_per_metre_, padding_);
+        const double saved = padded_area_[size_t(keep)] + padded_area_[size_t(move)] - joined_area;
+        if (joined_area > kMaxUnfoldedShare * total_padded_area_ ||
+            saved < kMinUnfoldSaving * std::min(padded_area_[size_t(keep)], padded_area_[size_t(move)]))
+            return false;
+        if (movedOverlapsKept(kept, charts_[size_t(move)])) return false;
+        join(keep, move, joined_area);
+        return true;
+    }
+
+    // moved_: the moved chart's corners after the rigid move (rotation, then shift) unfolding it about the seam's
+    // longest edge: both charts keep their lengths, so that edge lands exactly. The seam's other corners that land
+    // within the snap tolerance become one with their partners (the two sides then share their uv1 exactly); those
+    // that do not (a beam's strip closing on its first face, a curved roof's seam) stay cut, which the overlap
+    // test allows only where nothing overlaps.
+    void unfoldMover(const ChartPair& pair, int64_t keep, int64_t move) {
+        const Seam* anchor = nullptr;
+        double anchor_length = -1.0;
+        for (const Seam& seam : pair.seams) {
+            const double seam_length = seamLength(seam);
+            if (seam_length > anchor_length) {
+                anchor_length = seam_length;
+                anchor = &seam;
+            }
+        }
+        const bool anchor_first_kept = find(chart_of_[anchor->triangle[0]]) == keep;
+        const uint32_t anchor_kept = anchor->triangle[anchor_first_kept ? 0 : 1];
+        const uint32_t anchor_moved = anchor->triangle[anchor_first_kept ? 1 : 0];
+        const glm::dvec2 from0 = cornerOf(anchor_moved, anchor->welded[0]), from1 = cornerOf(anchor_moved, anchor->welded[1]);
+        const glm::dvec2 to0 = cornerOf(anchor_kept, anchor->welded[0]), to1 = cornerOf(anchor_kept, anchor->welded[1]);
+        const double angle = std::atan2(cross2(from1 - from0, to1 - to0), glm::dot(from1 - from0, to1 - to0));
+        const double c = std::cos(angle), s = std::sin(angle);
+        const glm::dvec2 moved_centre = 0.5 * (from0 + from1), kept_centre = 0.5 * (to0 + to1);
+        auto place = [&](const glm::dvec2& point) {  // counter-clockwise by `angle` about the anchor's middle
+            const glm::dvec2 offset = point - moved_centre;
+            return kept_centre + glm::dvec2(c * offset.x - s * offset.y, s * offset.x + c * offset.y);
+        };
+        const Chart& mover = charts_[size_t(move)];
+        moved_.clear();
+        for (const glm::dvec2& corner : mover.corners) moved_.push_back(place(corner));
+        seam_target_.clear();
+        for (const Seam& seam : pair.seams) {
+            const bool first_kept = find(chart_of_[seam.triangle[0]]) == keep;
+            for (uint32_t welded : seam.welded)
+                seam_target_.emplace(welded, cornerOf(seam.triangle[first_kept ? 0 : 1], welded));
+        }
+        for (size_t slot = 0; slot < mover.triangles.size(); ++slot)
+            for (int i = 0; i < 3; ++i) {
+                auto it = seam_target_.find(triangles_[mover.triangles[slot]].welded[i]);
+                glm::dvec2& corner = moved_[slot * 3 + size_t(i)];
+                if (it != seam_target_.end() && glm::length(corner - it->second) <= snap_tolerance_) corner = it->second;
+            }
+    }
+
+    // The moved triangles against the kept ones (each chart overlaps nothing of itself already).
+    bool movedOverlapsKept(const Chart& kept, const Chart& mover) const {
+        FlatChartIndex index(4.0 * analysis_.typical_edge, analysis_.overlap_tolerance, snap_tolerance_);
+        for (size_t slot = 0; slot < kept.triangles.size(); ++slot)
+            index.add(flatTriangleAt(kept.corners, slot, triangles_[kept.triangles[slot]]));
+        bool overlaps = false;
+        for (size_t slot = 0; slot < mover.triangles.size() && !overlaps; ++slot)
+            overlaps = index.overlapsAny(flatTriangleAt(moved_, slot, triangles_[mover.triangles[slot]]));
+        return overlaps;
+    }
+
+    // Join: the moved chart's triangles follow the kept chart's, its corners unfolded; the moved chart empties.
+    void join(int64_t keep, int64_t move, double joined_area) {
+        Chart& kept = charts_[size_t(keep)];
+        Chart& mover = charts_[size_t(move)];
+        const uint32_t first_slot = uint32_t(kept.triangles.size());
+        for (size_t slot = 0; slot < mover.triangles.size(); ++slot) slot_of_[mover.triangles[slot]] = first_slot + uint32_t(slot);
+        kept.triangles.insert(kept.triangles.end(), mover.triangles.begin(), mover.triangles.end());
+        kept.corners = std::move(joined_);
+        joined_.clear();
+        for (uint32_t triangle : mover.triangles) chart_of_[triangle] = keep;
+        mover.triangles.clear();
+        mover.corners.clear();
+        root_[size_t(move)] = keep;
+        padded_area_[size_t(keep)] = joined_area;
+        ++version_[size_t(keep)];
+    }
+
+    const MeshAnalysis& analysis_;
+    const std::vector<TriangleInfo>& triangles_;
+    std::vector<int64_t>& chart_of_;
+    std::vector<Chart>& charts_;
+    const double texels_per_metre_;
+    const int padding_;
+    const double snap_tolerance_;
+    std::vector<uint32_t> slot_of_;    // a triangle's slot in its chart's triangle list
+    std::vector<double> padded_area_;  // each chart's padded texels (paddedTexelArea) as it is now
+    double total_padded_area_ = 0.0;   // of all charts before joining
+    std::vector<int64_t> root_;        // the chart each chart was joined into (itself while whole)
+    std::vector<uint32_t> version_;    // bumped when a chart grows: a refused pair may now join
+    std::unordered_map<uint64_t, uint64_t> tried_;  // pair key -> both charts' versions when last refused
+    std::vector<glm::dvec2> moved_, joined_;        // the moved chart's corners unfolded; the kept ones then those
+    std::unordered_map<uint32_t, glm::dvec2> seam_target_;  // welded vertex -> where the kept chart has it
+};
+
+void unfoldAcrossSharpEdges(const MeshAnalysis& analysis, std::vector<int64_t>& chart_of, std::vector<Chart>& charts,
+                            double texels_per_metre, int padding, double snap_tolerance) {
+    ChartPairs pairs = findSeams(analysis, chart_of);
+    ChartUnfolder unfolder(analysis, chart_of, charts, texels_per_metre, padding, snap_tolerance);
+    unfolder.joinAll(pairs);
+    unfolder.renumber();
 }
 
 // Phase 6: turn each chart in its plane to its smallest bounding rectangle (fewer wasted texels), after making
