@@ -154,6 +154,7 @@ private:
     GpuBuffer ground_candidate_buffer_;           // the same as a host-visible vertex stream
     std::vector<uint32_t> ground_quad_indices_;
     bool draw_ground_ = false;
+    bool frame_set_bound_ = false;  // the frame set is bound in the command buffer being recorded
     bool site_shadows_ = false;
     LabStatistics frame_source_statistics_{};
     ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;

@@ -117,6 +117,7 @@ void RuntimeImpl::recordBuilding(VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, building_pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
                             0, nullptr);
+    frame_set_bound_ = true;
     const VkBuffer vertex_buffer = scene_.building_vertices.handle();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
     vkCmdBindIndexBuffer(cmd, scene_.building_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
@@ -132,8 +133,17 @@ void RuntimeImpl::recordBuilding(VkCommandBuffer cmd) {
 
 void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
     if (!draw_ground_) return;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1, &frame_set_,
-                            0, nullptr);
+    // The frame set is bound once per command buffer (by the building, which always draws first in the whole
+    // frame), never again here. On lavapipe (Mesa 22.3) each vkCmdBindDescriptorSets makes new gallium sampler
+    // views for the set's images, and when the next draw's vertex shader samples them (the ground's reads the
+    // ground geometry and irradiance) the driver keeps what it made for that vertex-stage sampling until the
+    // device is destroyed: a rebind right before the ground draw grew resident memory by ~280 KB every frame,
+    // on the driver's thread, with the validation layer silent (vertex sampling of views already bound and used
+    // by the building's draw keeps nothing). Rebinding the same set was redundant anyway: the building's
+    // pipeline layout is the ground's, so the binding stays valid across the pipeline change.
+    if (!frame_set_bound_)
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1,
+                                &frame_set_, 0, nullptr);
     const VkBuffer candidates = ground_candidate_buffer_.handle();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &candidates, &offset);

@@ -13,6 +13,7 @@ void RuntimeImpl::beginCommands() {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(command_buffer_, &begin), "vkBeginCommandBuffer");
+    frame_set_bound_ = false;
 }
 
 void RuntimeImpl::submitCommandsAndWait() {
