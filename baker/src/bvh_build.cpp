@@ -728,9 +728,8 @@ Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_fla
     bvh.depth = writeQuantisedTree(tree.nodes, bvh.nodes);
     bvh.triangles.resize(tree.leaf_primitives.size());
     for (size_t i = 0; i < tree.leaf_primitives.size(); ++i) bvh.triangles[i] = usable.gpu[tree.leaf_primitives[i]];
-    if (bvh.dropped_triangle_count > 0)
-        std::fprintf(stderr, "bvh: dropped %zu zero-area or non-finite triangles of %zu\n",
-                     bvh.dropped_triangle_count, mesh.triangleCount());
+    // Dropped triangles are the caller's to report (the bake adds a warning to the manifest); printing here put
+    // a stray line before the one-line error of a bake that is then refused.
     return bvh;
 }
 
