@@ -347,6 +347,27 @@ TEST_F(RuntimeTest, HardFramesGiveNoNaNAndNoFlash) {
     }
 }
 
+// A frame smaller than the colour statistics' stride is named as the frame size it is (a 1x1 camera used to be
+// refused by the statistics pass's own check of statistics_stride, an option the app never set).
+TEST_F(RuntimeTest, AFrameSmallerThanTheStatisticsStrideIsNamedAsTheFrame) {
+    RuntimeOptions options = smallOptions();
+    options.frame_width = 1;
+    options.frame_height = 1;
+    try {
+        Runtime::open(context(), makeSyntheticBakeSet({}), options);
+        ADD_FAILURE() << "a 1 x 1 frame with statistics_stride 8 was accepted";
+    } catch (const RuntimeError& error) {
+        EXPECT_EQ(error.code(), RuntimeErrorCode::kInvalidFrame);
+        EXPECT_EQ(std::string(error.what()).rfind("options.frame_width/height: 1 x 1 is smaller than "
+                                                  "options.statistics_stride (8) on a side",
+                                                  0),
+                  0u)
+            << error.what();
+    }
+    options.statistics_stride = 1;  // a 1 x 1 frame with a stride it can hold opens
+    EXPECT_NO_THROW(Runtime::open(context(), makeSyntheticBakeSet({}), options));
+}
+
 TEST_F(RuntimeTest, BadFrameInputIsRefusedWithAReason) {
     std::unique_ptr<Runtime> runtime = open();
     const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);

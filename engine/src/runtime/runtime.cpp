@@ -1,6 +1,7 @@
 // gusuku_runtime's Runtime (runtime.h; docs/design.md 8): the options' checks, open() and the headless wrapper.
 // The rest of RuntimeImpl lives in the files runtime_impl.h lists, one job each.
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +22,15 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     if (options.frame_width == 0 || options.frame_height == 0 || options.frame_width > kMaxFrameSide ||
         options.frame_height > kMaxFrameSide)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.frame_width/height: must be in [1, 8192]");
+    // The colour statistics sample every stride-th pixel each way, so a frame must hold one stride at least; said
+    // here in the frame's terms rather than by the statistics pass's own check of its stride.
+    const uint32_t smaller_side = std::min(options.frame_width, options.frame_height);
+    if (options.statistics_stride == 0 || options.statistics_stride > smaller_side)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.frame_width/height: " + std::to_string(options.frame_width) + " x " +
+                               std::to_string(options.frame_height) + " is smaller than options.statistics_stride (" +
+                               std::to_string(options.statistics_stride) + ") on a side: a frame must be at least " +
+                               "that many pixels each way (or lower statistics_stride, at least 1)");
     if (options.shadow_map_size < kMinShadowMapSize || options.shadow_map_size > kMaxShadowMapSize)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_map_size: must be in [64, 8192]");
     if (options.shadow_pcf_radius > kMaxShadowPcfRadius)
