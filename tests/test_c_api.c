@@ -256,6 +256,35 @@ static void testRendersAndRefusesBadFrames(void) {
     options.frame_width = kWidth;
     options.frame_height = kHeight;
     options.shadow_map_size = 256;
+    {
+        /* Every option out of range (NaN included) is refused at open, naming it; its edge values open. */
+        struct {
+            float* field;
+            float bad;
+            const char* name;
+        } bad_options[] = {
+            {&options.shadow_bias_texels, NAN, "options.shadow_bias_texels"},
+            {&options.shadow_bias_texels, -1.0f, "options.shadow_bias_texels"},
+            {&options.statistics_smoothing_frames, 0.5f, "options.statistics_smoothing_frames"},
+            {&options.statistics_smoothing_frames, INFINITY, "options.statistics_smoothing_frames"},
+            {&options.colour_gain_limit, NAN, "options.colour_gain_limit"},
+            {&options.colour_gain_limit, -2.0f, "options.colour_gain_limit"},
+            {&options.direct_only_ambient_fraction, NAN, "options.direct_only_ambient_fraction"},
+            {&options.direct_only_shadow_darkening, 2.0f, "options.direct_only_shadow_darkening"},
+            {&options.direct_only_shadow_darkening, NAN, "options.direct_only_shadow_darkening"},
+        };
+        size_t b;
+        for (b = 0; b < sizeof bad_options / sizeof bad_options[0]; ++b) {
+            const float kept = *bad_options[b].field;
+            gusuku_runtime* refused = NULL;
+            *bad_options[b].field = bad_options[b].bad;
+            CHECK_RESULT(gusuku_runtime_open_headless(bake_set, &options, &refused), GUSUKU_ERROR_INVALID_FRAME);
+            CHECK(refused == NULL);
+            CHECK_MESSAGE_HAS(gusuku_last_error_message(), bad_options[b].name);
+            *bad_options[b].field = kept;
+        }
+        options.statistics_smoothing_frames = 1.0f; /* the edge itself is in range */
+    }
     CHECK_RESULT(gusuku_runtime_open_headless(bake_set, &options, &runtime), GUSUKU_OK);
     CHECK_RESULT(gusuku_bakeset_free(bake_set), GUSUKU_OK); /* the runtime keeps no pointer into it */
     if (runtime == NULL) {

@@ -18,6 +18,24 @@ constexpr uint32_t kMaxFrameSide = 8192;
 constexpr uint32_t kMinShadowMapSize = 64, kMaxShadowMapSize = 8192;
 constexpr uint32_t kMaxShadowPcfRadius = 3;
 
+// The float options' ranges, as runtime.h documents them: a bound is where a value stops meaning anything
+// (a gain limit below 1 inverts the clamp, a darkening above 1 brightens, a smoothing below one frame is none).
+struct RealOptionRange {
+    const char* name;
+    float RuntimeOptions::*member;
+    float minimum, maximum;
+    const char* bounds;
+};
+constexpr RealOptionRange kRealOptionRanges[] = {
+    {"shadow_bias_texels", &RuntimeOptions::shadow_bias_texels, 0.0f, 64.0f, "0, 64"},
+    {"shadow_sun_step_deg", &RuntimeOptions::shadow_sun_step_deg, 0.0f, 10.0f, "0, 10"},
+    {"statistics_smoothing_frames", &RuntimeOptions::statistics_smoothing_frames, 1.0f, 1e6f, "1, 1e6"},
+    {"colour_gain_limit", &RuntimeOptions::colour_gain_limit, 1.0f, 100.0f, "1, 100"},
+    {"ground_change_threshold", &RuntimeOptions::ground_change_threshold, 0.0f, 1.0f, "0, 1"},
+    {"direct_only_ambient_fraction", &RuntimeOptions::direct_only_ambient_fraction, 0.0f, 100.0f, "0, 100"},
+    {"direct_only_shadow_darkening", &RuntimeOptions::direct_only_shadow_darkening, 0.0f, 1.0f, "0, 1"},
+};
+
 void checkRuntimeOptions(const RuntimeOptions& options) {
     if (options.frame_width == 0 || options.frame_height == 0 || options.frame_width > kMaxFrameSide ||
         options.frame_height > kMaxFrameSide)
@@ -35,6 +53,14 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_map_size: must be in [64, 8192]");
     if (options.shadow_pcf_radius > kMaxShadowPcfRadius)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_pcf_radius: must be in [0, 3]");
+    // Every float option in its documented range (runtime.h), NaN refused by the same test (!(x >= min)).
+    for (const RealOptionRange& range : kRealOptionRanges) {
+        const float value = options.*(range.member);
+        if (!(value >= range.minimum && value <= range.maximum))
+            throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                               std::string("options.") + range.name + ": " + std::to_string(value) +
+                                   " is outside [" + range.bounds + "]");
+    }
 }
 
 namespace {

@@ -178,18 +178,19 @@ typedef struct gusuku_vulkan_device {
     uint32_t queue_family_index;
 } gusuku_vulkan_device;
 
-/* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h. */
+/* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h. Every field
+   is range-checked at open (NaN refused): GUSUKU_ERROR_INVALID_FRAME, the message naming "options.FIELD". */
 typedef struct gusuku_runtime_options {
     uint32_t frame_width;                 /* every frame's images are this size, [1, 8192]; default 1280 x 720 */
     uint32_t frame_height;
     uint32_t shadow_map_size;             /* texels per side, [64, 8192]; default 1024 */
-    float shadow_bias_texels;             /* default 1.5 */
+    float shadow_bias_texels;             /* [0, 64]; default 1.5 */
     uint32_t shadow_pcf_radius;           /* [0, 3]; default 1 */
     uint32_t statistics_stride;           /* colour statistics on every n-th pixel; default 8 */
-    float statistics_smoothing_frames;    /* >= 1; default 8 */
-    float colour_gain_limit;              /* default 2 */
-    float direct_only_ambient_fraction;   /* of the slots' mean baked E_ind over the building; default 1 */
-    float direct_only_shadow_darkening;   /* default 0.6 */
+    float statistics_smoothing_frames;    /* [1, 1e6]; default 8 */
+    float colour_gain_limit;              /* [1, 100]; default 2 */
+    float direct_only_ambient_fraction;   /* of the slots' mean baked E_ind over the building, [0, 100]; default 1 */
+    float direct_only_shadow_darkening;   /* [0, 1]; default 0.6 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;

@@ -112,36 +112,38 @@ enum class RenderMode {
 };
 
 /// Options fixed when the runtime opens.
+/// Every option is range-checked when the runtime opens: one outside its range (NaN included) is a RuntimeError
+/// kInvalidFrame naming it, "options.NAME: VALUE is outside [MIN, MAX]".
 struct RuntimeOptions {
     uint32_t frame_width = 1280;   ///< every frame's images must have this size
     uint32_t frame_height = 720;
     /// Shadow map side, texels. Fitted to the building (and the ground it can shade) as seen from the sun, so
     /// 1024 gives about bounds / 1024 per texel. Cost grows with its area (docs/design.md 5).
     uint32_t shadow_map_size = 1024;
-    /// Depth bias of the shadow test, in shadow-map texels (slope-scaled by the receiver's normal).
+    /// Depth bias of the shadow test, in shadow-map texels (slope-scaled by the receiver's normal). [0, 64].
     float shadow_bias_texels = 1.5f;
     /// PCF kernel: (2 r + 1)^2 taps of the hardware 2x2 compare filter. 0 gives one bilinear compare tap.
     uint32_t shadow_pcf_radius = 1;
     /// The shadow maps are drawn for the sun's azimuth and elevation rounded to this step (degrees) and redrawn
     /// only when the rounded sun moves: every 12 s or so at 0.05 degrees, which shifts a 10 m shadow by 9 mm.
-    /// The building and the site are static, so nothing else can change them. 0: redraw every frame.
+    /// The building and the site are static, so nothing else can change them. 0: redraw every frame. [0, 10].
     float shadow_sun_step_deg = 0.05f;
     /// Colour statistics are gathered on every n-th pixel in x and y of the camera frame (docs/design.md 5).
     uint32_t statistics_stride = 8;
-    /// Frames for the exponential smoothing of the camera's colour statistics (time constant), >= 1.
+    /// Frames for the exponential smoothing of the camera's colour statistics (time constant), [1, 1e6].
     float statistics_smoothing_frames = 8.0f;
-    /// Per-channel gain limit of the colour transfer (sigma_target / sigma_source clamped to [1/g, g]).
+    /// Per-channel gain limit of the colour transfer (sigma_target / sigma_source clamped to [1/g, g]), [1, 100].
     float colour_gain_limit = 2.0f;
     /// Ground cells whose baked irradiance with the building differs from without it by more than this
     /// (relative, any channel of any slot) get the ratio pass even where the building casts no shadow this frame;
     /// below it the building's bounce and sky occlusion are taken as no change and the camera pixel is left.
-    /// 1/255 moves the brightest pixel by under one 8-bit step.
+    /// 1/255 moves the brightest pixel by under one 8-bit step. [0, 1].
     float ground_change_threshold = 1.0f / 255.0f;
     /// Direct-only mode: the constant ambient irradiance, as a fraction of the mean baked E_ind over the
     /// building of the frame's slots (one colour for the whole building: what an AR platform's ambient light
-    /// estimate gives an app today).
+    /// estimate gives an app today). [0, 100].
     float direct_only_ambient_fraction = 1.0f;
-    /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this.
+    /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this. [0, 1].
     float direct_only_shadow_darkening = 0.6f;
 };
 
