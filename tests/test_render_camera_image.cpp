@@ -10,6 +10,7 @@
 #include "camera_image.h"
 #include "gpu_test_support.h"
 #include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
 
 namespace {
 
@@ -53,6 +54,23 @@ TEST(RenderCameraImage, GreyExpandsToRgb) {
     writeImage(dir + "/grey.exr", 1, OIIO::TypeDesc::FLOAT, {0.2140f});
     const gusuku::render_cli::CameraImage camera = gusuku::render_cli::readCameraImage(dir + "/grey.exr");
     for (int c = 0; c < 3; ++c) EXPECT_EQ(camera.srgb_rgba8[size_t(c)], srgbByteOfLinear(0.2140f)) << c;
+}
+
+TEST(RenderCameraImage, AFrameLargerThanTheRuntimeTakesIsRefusedFromItsHeader) {
+    // A 16384 x 16 PNG: refused by its declared size, not downsampled, and not after a GPU buffer fails.
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_camera_image");
+    OIIO::ImageSpec spec(16384, 16, 3, OIIO::TypeDesc::UINT8);
+    const std::vector<unsigned char> black(size_t(16384) * 16 * 3, 0);
+    auto output = OIIO::ImageOutput::create(dir + "/wide.png");
+    ASSERT_TRUE(output && output->open(dir + "/wide.png", spec));
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, black.data()) && output->close());
+    try {
+        gusuku::render_cli::readCameraImage(dir + "/wide.png");
+        ADD_FAILURE() << "a 16384-pixel-wide camera frame was accepted";
+    } catch (const gusuku::InputError& error) {
+        EXPECT_EQ(std::string(error.what()), dir + "/wide.png: image size: 16384 x 16 pixels: a camera frame is at "
+                                                   "most 8192 on a side (the runtime's frame limit)");
+    }
 }
 
 }  // namespace

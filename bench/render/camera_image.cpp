@@ -4,10 +4,19 @@
 
 #include "gusuku/assets/image.h"
 #include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
 
 namespace gusuku::render_cli {
 
 CameraImage readCameraImage(const std::string& path) {
+    // A camera frame is the runtime's frame: never downsampled to fit (readImage would), so one larger than the
+    // runtime takes is refused from its header, before it is decoded.
+    const ImageSize size = readImageSize(path);
+    if (size.width > kMaxCameraSide || size.height > kMaxCameraSide)
+        throw InputError(path, "image size",
+                         std::to_string(size.width) + " x " + std::to_string(size.height) +
+                             " pixels: a camera frame is at most " + std::to_string(kMaxCameraSide) +
+                             " on a side (the runtime's frame limit)");
     const ImageRGBA image = readImage(path, ImageEncoding::Auto);  // by format: integer sRGB, float linear
     CameraImage camera;
     camera.width = uint32_t(image.width);

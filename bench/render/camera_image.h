@@ -8,6 +8,9 @@
 
 namespace gusuku::render_cli {
 
+/// The largest camera frame side: the runtime's (RuntimeOptions::frame_width/height, [1, 8192]).
+inline constexpr int kMaxCameraSide = 8192;
+
 struct CameraImage {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> srgb_rgba8;  ///< width * height * 4 bytes, sRGB-encoded colour, linear alpha
@@ -15,7 +18,8 @@ struct CameraImage {
 
 /// Reads `path` as a camera frame: 8- and 16-bit integer files are taken as sRGB-encoded, float files (OpenEXR,
 /// Radiance HDR) as linear (encoded to sRGB here; reading them as sRGB would darken them twice), grey as RGB,
-/// a missing alpha as opaque; values are clamped to [0, 1]. InputError (gusuku/assets/image.h's) on a bad file.
+/// a missing alpha as opaque; values are clamped to [0, 1]. InputError (gusuku/assets/image.h's) on a bad file,
+/// and on one larger than kMaxCameraSide on a side, refused from its header before it is decoded.
 CameraImage readCameraImage(const std::string& path);
 
 }  // namespace gusuku::render_cli

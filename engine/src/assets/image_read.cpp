@@ -330,6 +330,12 @@ ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigne
     return readOpenedImage(name, *input, encoding, max_side, capture);
 }
 
+ImageSize readImageSize(const std::string& path) {
+    StderrCapture capture;
+    std::unique_ptr<OIIO::ImageInput> input = openFile(path, capture);
+    return {input->spec().width, input->spec().height};
+}
+
 ImageRGBA readFloatRgbaExr(const std::string& path, int max_side) {
     StderrCapture capture;
     std::unique_ptr<OIIO::ImageInput> input = openFile(path, capture);

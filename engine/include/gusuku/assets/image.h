@@ -43,6 +43,12 @@ ImageRGBA readImage(const std::string& path, ImageEncoding encoding = ImageEncod
 ImageRGBA readImageFromMemory(const std::string& name, const std::vector<unsigned char>& bytes,
                               ImageEncoding encoding = ImageEncoding::Auto, int max_side = kMaxImageSide);
 
+/// An image file's size as its header declares it, nothing decoded (the checks and errors of readImage's open).
+struct ImageSize {
+    int width = 0, height = 0;
+};
+ImageSize readImageSize(const std::string& path);
+
 /// Reads an OpenEXR file that must hold exactly 4 float32 channels (RGBA), as a bake set's images do. What the
 /// file holds decides, not its name: a PNG renamed .exr, a half or 8-bit file, or 1, 3 or 6 channels is an
 /// InputError(path, "", "holds ... : expected OpenEXR with 4 float32 channels (RGBA)"). Values are linear.
