@@ -39,14 +39,7 @@ void requireBakeableBuilding(const SiteConfig& site, const TriangleMesh& buildin
                          "the building spans " + formatNumber(largest_extent) + " m once placed (scale " +
                              formatNumber(site.building.scale) + "), more than " + formatNumber(kMaxBuildingExtentM) +
                              " m: check building.scale and the glTF's units (metres)");
-    double area_m2 = 0.0;
-    for (size_t triangle = 0; triangle < building.triangleCount(); ++triangle) {
-        const glm::dvec3 p0(building.positions[building.indices[triangle * 3 + 0]]);
-        const glm::dvec3 p1(building.positions[building.indices[triangle * 3 + 1]]);
-        const glm::dvec3 p2(building.positions[building.indices[triangle * 3 + 2]]);
-        const double double_area = glm::length(glm::cross(p1 - p0, p2 - p0));
-        if (std::isfinite(double_area)) area_m2 += 0.5 * double_area;
-    }
+    const double area_m2 = meshSurfaceAreaM2(building);
     const double texels_per_metre = site.bake.texels_per_metre;
     const double requested_texels = area_m2 * texels_per_metre * texels_per_metre;
     if (requested_texels > kMaxRequestedLightmapTexels)

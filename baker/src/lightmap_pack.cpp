@@ -408,6 +408,18 @@ int smallestFittingResolution(const std::vector<ChartShape>& shapes, int max_res
 
 }  // namespace detail
 
+double meshSurfaceAreaM2(const TriangleMesh& mesh) {
+    double area_m2 = 0.0;
+    for (size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
+        const glm::dvec3 p0(mesh.positions[mesh.indices[triangle * 3 + 0]]);
+        const glm::dvec3 p1(mesh.positions[mesh.indices[triangle * 3 + 1]]);
+        const glm::dvec3 p2(mesh.positions[mesh.indices[triangle * 3 + 2]]);
+        const double double_area = glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (std::isfinite(double_area)) area_m2 += 0.5 * double_area;
+    }
+    return area_m2;
+}
+
 int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, int max_resolution) {
     if (!(texels_per_metre > 0.0) || !std::isfinite(texels_per_metre))
         throw InputError("lightmap", "texels_per_metre",
@@ -417,14 +429,7 @@ int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, 
     for (uint32_t index : mesh.indices)
         if (index >= mesh.positions.size())
             throw InputError("lightmap", "mesh indices", "index " + std::to_string(index) + " is out of range");
-    double area_m2 = 0.0;
-    for (size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
-        const glm::dvec3 p0(mesh.positions[mesh.indices[triangle * 3 + 0]]);
-        const glm::dvec3 p1(mesh.positions[mesh.indices[triangle * 3 + 1]]);
-        const glm::dvec3 p2(mesh.positions[mesh.indices[triangle * 3 + 2]]);
-        const double double_area = glm::length(glm::cross(p1 - p0, p2 - p0));
-        if (std::isfinite(double_area)) area_m2 += 0.5 * double_area;
-    }
+    const double area_m2 = meshSurfaceAreaM2(mesh);
     const double side = std::ceil(std::sqrt(area_m2 * texels_per_metre * texels_per_metre * kLightmapPackingOverhead));
     const int capped_maximum = max_resolution / 4 * 4;
     if (!(side < double(capped_maximum))) return capped_maximum;

@@ -35,6 +35,10 @@ namespace gusuku::bake {
 inline constexpr double kLightmapPackingOverhead = 2.0;
 int chooseLightmapResolution(const TriangleMesh& mesh, double texels_per_metre, int max_resolution = 2048);
 
+/// The mesh's surface area, m^2 (its positions in metres): the sum of its triangles' areas, skipping any that is
+/// not finite. O(triangles). Indices must be in range.
+double meshSurfaceAreaM2(const TriangleMesh& mesh);
+
 /// What checkLightmapUvs found. Counts are of triangles unless named texels.
 struct UvCheckReport {
     int resolution = 0;
