@@ -44,17 +44,14 @@ inline constexpr uint32_t kMinAdaptiveSamples = 32;
 inline constexpr uint32_t kMinAdaptivePilotSamples = 16;
 
 /// Texel t is planned toward n_t proportional to sigma_t^kAdaptiveNoiseExponent (see the top of this file for
-/// why not 1). Measured (`converge`'s study points against a 1024-sample reference, its noise taken out),
-/// error^2 x rays of the plan before (a pilot of half, exponent 1) over this one (a quarter, 0.6), at 64 / 128
-/// samples: shrine overcast 1.33 / 1.40x, shrine sunny_1200 1.24 / 1.32x, sample overcast 1.30 / 1.27x, sample
-/// sunny_1200 1.14 / 1.04x. Exponent 0.5 gained 2-3 % more on the shrine and 3 % less on the sample's sunny
-/// slot, 0.65 and 0.8 less on the shrine (0.8: 1.19 / 1.35x on its overcast).
+/// why not 1): a pilot's sigma is itself noisy and the Sobol draws' error falls faster than 1/sqrt(n), so the
+/// plan leans less on it. 0.6 gave the least error^2 x rays over the exponents tried on two sites
+/// (docs/measurements.md, "Figures from code comments").
 inline constexpr double kAdaptiveNoiseExponent = 0.6;
 
 /// A texel's pilot for `samples_per_texel` samples: a quarter of them, at least kMinAdaptivePilotSamples, at
-/// most half. Measured on the shrine's overcast slot (exponent 1), against a pilot of half: a quarter 1.07x /
-/// 1.19x less error^2 x rays at 64 / 128 samples; an eighth (8 samples at 64) 1.17x more at 64; with exponent
-/// 0.8, three eighths 1.11x more than a quarter at 128. Only meaningful from kMinAdaptiveSamples on.
+/// most half. A smaller pilot leaves more samples to place but plans from a noisier sigma; a quarter was the
+/// best of the fractions tried (docs/measurements.md). Only meaningful from kMinAdaptiveSamples on.
 uint32_t adaptivePilotSamples(uint32_t samples_per_texel);
 
 /// The pilot per trace point of a texel's footprint (points_per_texel points sharing its samples):

@@ -7,8 +7,7 @@
 // Layout contract (std430, shared with bvh_layout.glsl, which reads both arrays as RGBA32UI texels). Why this
 // shape: the traversal's cost on lavapipe is mostly the number of load instructions per node and per triangle
 // (a storage-buffer load of a divergent address ran as an 8-iteration loop of scalar loads, whatever its width
-// up to 16 bytes; a texel fetch gathers the lanes in vector code, 1.4x faster per CPU second on the sample
-// bake). Both children's boxes, quantised to 16 bits on the parent's grid, and the child references fit in
+// up to 16 bytes; a texel fetch gathers the lanes in vector code). Both children's boxes, quantised to 16 bits on the parent's grid, and the child references fit in
 // three 16-byte texels per node visit (the float layout of one box per node took six); a triangle is three.
 // - nodes[0] is the root. Every node is an inner node with two children, each given by a child reference
 //   (kBvhChildLeaf set: a leaf of bvhLeafCount(ref) triangles from bvhLeafFirst(ref), 0..kBvhMaxLeafTriangles;
