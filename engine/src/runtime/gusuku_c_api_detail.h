@@ -4,6 +4,7 @@
 // Not a public header: not installed.
 
 #include <exception>
+#include <string>
 
 #include "gusuku/maths/bakeset_data.h"
 #include "gusuku/runtime/gusuku.h"
@@ -29,5 +30,16 @@ gusuku_result fail(gusuku_result code, const char* message, MessageBuffer* handl
 /// with `context` ("gusuku_runtime_open: ..."): RuntimeError by its code, InputError as an invalid bake set,
 /// std::bad_alloc as out of memory, any other exception as internal.
 gusuku_result failFromCurrentException(const char* context, MessageBuffer* handle_message = nullptr) noexcept;
+
+/// The first problem with a desc: its code and "FIELD: PROBLEM" (no message: none).
+struct DescProblem {
+    gusuku_result code = GUSUKU_OK;
+    std::string message;
+    explicit operator bool() const { return !message.empty(); }
+};
+
+/// The desc into `data` (gusuku_c_api_bakeset.cpp): arrays, site, building and slots copied and checked; the
+/// first problem found, or none. findBakeSetProblem then checks the whole as for any bake set.
+DescProblem convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& data);
 
 }  // namespace gusuku::c_api_detail
