@@ -1,0 +1,29 @@
+// traceCondition: the truth and camera frames of one condition, which every accuracy section starts from.
+#include "bench_run.h"
+
+#include "gusuku_bake/camera_frame.h"
+
+namespace gusuku::bench {
+
+ConditionFrames traceCondition(TruthRenderer& renderer, const BenchView& view, uint32_t width, uint32_t height,
+                               const BenchCondition& condition, uint32_t samples) {
+    TracedFrameRequest request;
+    request.view = view;
+    request.width = width;
+    request.height = height;
+    request.condition = condition;
+    request.samples_per_pixel = samples;
+    request.seed = 1;
+    request.include_building = true;
+    ConditionFrames frames;
+    TracedFrame truth = renderer.render(request);
+    request.include_building = false;
+    TracedFrame camera = renderer.render(request);
+    frames.trace_seconds = truth.trace_seconds + camera.trace_seconds;
+    frames.truth = std::move(truth.linear);
+    frames.camera = std::move(camera.linear);
+    frames.exposure = bake::middleGreyExposure(frames.camera);
+    return frames;
+}
+
+}  // namespace gusuku::bench
