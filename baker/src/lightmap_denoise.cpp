@@ -20,7 +20,7 @@ constexpr float kDenoiseNoiseMultiple = 2.0f;
 
 // The stop with measured variance, |Y_p - Y_q| at which the weight is e^-1/2 in units of sqrt(var_p + var_q):
 // 2 below 32 samples, 1.5 from there on. The measured variance is that of independent samples, and the scrambled
-// Sobol draws' error falls faster than that (samples^-0.7, not ^-0.5), so the measure overstates the noise more
+// Sobol draws' error falls faster than that (faster than samples^-0.5), so the measure overstates the noise more
 // as samples grow and the stop narrows in its units. Chosen with `gusuku-bake converge` on the sample site and
 // the shrine among 1, 1.5, 2 and 3: 2 at few samples, 1.5 from kManySamples on; 3 blurs more, 1 smooths too
 // little at few samples.

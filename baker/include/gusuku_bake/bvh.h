@@ -7,8 +7,7 @@
 // Layout contract (std430, shared with bvh_layout.glsl, which reads both arrays as RGBA32UI texels). Why this
 // shape: the traversal's cost on lavapipe is mostly the number of load instructions per node and per triangle
 // (a storage-buffer load of a divergent address ran as an 8-iteration loop of scalar loads, whatever its width
-// up to 16 bytes; a texel fetch gathers the lanes in vector code, 1.4x faster per CPU second on the sample
-// bake). Both children's boxes, quantised to 16 bits on the parent's grid, and the child references fit in
+// up to 16 bytes; a texel fetch gathers the lanes in vector code). Both children's boxes, quantised to 16 bits on the parent's grid, and the child references fit in
 // three 16-byte texels per node visit (the float layout of one box per node took six); a triangle is three.
 // - nodes[0] is the root. Every node is an inner node with two children, each given by a child reference
 //   (kBvhChildLeaf set: a leaf of bvhLeafCount(ref) triangles from bvhLeafFirst(ref), 0..kBvhMaxLeafTriangles;
@@ -107,8 +106,7 @@ struct Bvh {
 /// a device's maxTexelBufferElements may cap lower, and the triangle buffer holds up to 2 slots a triangle).
 /// triangle_flags: one per triangle, or empty for all zero. Triangles with a zero-area cross product or a
 /// non-finite vertex are dropped (counted in dropped_triangle_count). Deterministic (the same mesh gives the
-/// same bytes). Cost: O(n log n), ~0.3-0.6 CPU s per 100k triangles on one core (spatial split search is most
-/// of it; a plain binned SAH took ~0.1 s). Throws InputError("mesh", ...) for a vertex index out of range or a
+/// same bytes). Cost: O(n log n) on one core; the spatial split search is most of it. Throws InputError("mesh", ...) for a vertex index out of range or a
 /// flag count that does not match the triangle count.
 Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags);
 

@@ -80,12 +80,11 @@ struct TracePass {
 
 /// Sky next-event rays at the query point when a pass has no sun and samples the map (TracePass::sky_rays_at_point
 /// 0). Without a sun, a lit texel's noise is the sky it sees itself: on the shrine's overcast slot (photographed
-/// sky, map sampled) a texel's estimate with no bounce at all had the variance of the whole path (2.57 against
-/// 2.50 per sample on its brightest quarter, which holds 81 % of the squared error), so more map rays there cost
-/// one ray each where a whole sample costs 2.5-3.9. Measured (converge's study, adaptive, 1024-sample reference),
-/// error^2 x rays at 64 / 128 samples against 1 ray: 4 rays 1.93 / 1.77x less, 8 rays 2.32 / 1.97x, 16 rays
-/// 2.15 / 1.76x (the plan's exponent, retried with 8 rays: 0.45 to 1 within 1.17x, 0.6 among the best). With a sun
-/// the noise is sunlight bounced off lit surfaces: 4 rays were level on the shrine's sunny_1200 (1.00 / 0.95x).
+/// sky, map sampled) a texel's estimate with no bounce at all had about the variance of the whole path on its
+/// brightest texels, which hold most of the squared error, so more map rays there cost one ray each where a
+/// whole sample costs several. Of 1, 4, 8 and 16 rays (converge's study, adaptive, error^2 x rays), 8 was best.
+/// With a sun the noise is sunlight bounced off lit surfaces, which more sky rays do not reach: they gained
+/// nothing on the shrine's sunny_1200.
 inline constexpr uint32_t kSkyRaysAtPointWithoutSun = 8;
 
 /// Running sums for one set of query points, resident on the GPU.
@@ -108,7 +107,7 @@ uint64_t tracerCodeHash();
 class IrradianceTracer {
 public:
     /// Builds the BVH over scene.mesh and uploads everything. `sky` is the sky with the sun disc removed
-    /// (its sampling tables). Cost: BVH build ~0.1 s per 100k triangles plus the upload.
+    /// (its sampling tables). Cost: the BVH build (O(n log n), bvh.h) plus the upload.
     IrradianceTracer(VulkanContext& context, const TraceScene& scene, const SkySamplingTables& sky,
                      int max_texture_size = 512);
     ~IrradianceTracer();

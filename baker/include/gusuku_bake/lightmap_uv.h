@@ -105,8 +105,7 @@ struct LightmapCharts {
 ///   separate two charts. Inside its rectangle a chart is offset so its edges stay clear of rows of texel
 ///   centres (coverage is then stable under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres). If the rectangles do not fit, the
 ///   density is lowered uniformly (bisection) until they do; texels_per_metre reports it.
-/// About linear in triangles (hash maps for welding, adjacency and overlap tests): a 65k-triangle sphere
-/// takes about 0.1-0.4 s on this machine. Throws InputError for a mesh without triangles, an index out of range, a position
+/// About linear in triangles (hash maps for welding, adjacency and overlap tests). Throws InputError for a mesh without triangles, an index out of range, a position
 /// that is not finite, a bad density, resolution or padding, or when even a one-texel footprint per chart
 /// cannot fit.
 LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_per_metre, int resolution,
@@ -114,9 +113,7 @@ LightmapCharts generateLightmapCharts(const TriangleMesh& mesh, double texels_pe
 
 /// generateLightmapCharts in the smallest square lightmap that holds the charts at the full density: the side
 /// is a multiple of 4 (at most max_resolution, rounded down to 4) within 1.6 % of the smallest at which they
-/// pack, found by growing from the touched area's bound and bisecting (under ten packings: 1.6-3.6 s for the
-/// shrine's 902 charts at 488^2, 4-10 s for the house's 1133 at 1172^2 on this 2-core machine while others used
-/// it); only when max_resolution cannot hold them is the density lowered. LightmapCharts::resolution says the
+/// pack, found by growing from the touched area's bound and bisecting (under ten packings); only when max_resolution cannot hold them is the density lowered. LightmapCharts::resolution says the
 /// side chosen. Throws as generateLightmapCharts.
 LightmapCharts generateLightmapChartsInSmallestLightmap(const TriangleMesh& mesh, double texels_per_metre,
                                                         int max_resolution,
