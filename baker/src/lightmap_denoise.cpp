@@ -14,19 +14,16 @@
 namespace gusuku::bake {
 
 namespace {
-// Edge-stop width in units of 1/sqrt(samples), for the filter without measured variance. Measured with
-// `gusuku-bake converge` on the sample site (1-sample relative RMS 0.88) for multiples 0.5, 1 and 2: 2 gave the
-// lowest error from 8 to 256 samples (5.0 % against 10.8 % raw at 64 samples).
+// Edge-stop width in units of 1/sqrt(samples), for the filter without measured variance: of the multiples tried
+// with `gusuku-bake converge` on the sample site (0.5, 1 and 2), 2 gave the lowest error at every sample count.
 constexpr float kDenoiseNoiseMultiple = 2.0f;
 
 // The stop with measured variance, |Y_p - Y_q| at which the weight is e^-1/2 in units of sqrt(var_p + var_q):
 // 2 below 32 samples, 1.5 from there on. The measured variance is that of independent samples, and the scrambled
-// Sobol draws' error falls faster than that (samples^-0.7, not ^-0.5), so the measure overstates the noise more
-// as samples grow and the stop narrows in its units. Measured with `gusuku-bake converge` (--max-samples 256
-// --reference-samples 1024 on the sample site, 64 / 256 on the shrine) for 1, 1.5, 2 and 3: 2 was best or within
-// 0.1 % absolute of the best up to 16 samples on the sample site's overcast and sunny_1200 slots; from 32 on, 1.5
-// was better on sunny_1200 (1.85 against 1.96 % at 64) and the shrine (5.7 against 6.0 % at 64) and within
-// 0.05 % on overcast; 3 was 10-25 % worse from 32 samples on (more blur), 1 worse at 16 and fewer (less smoothing).
+// Sobol draws' error falls faster than that (faster than samples^-0.5), so the measure overstates the noise more
+// as samples grow and the stop narrows in its units. Chosen with `gusuku-bake converge` on the sample site and
+// the shrine among 1, 1.5, 2 and 3: 2 at few samples, 1.5 from kManySamples on; 3 blurs more, 1 smooths too
+// little at few samples.
 constexpr float kLuminanceNoiseSigmasFew = 2.0f;
 constexpr float kLuminanceNoiseSigmasMany = 1.5f;
 constexpr uint32_t kManySamples = 32;
@@ -34,28 +31,23 @@ constexpr uint32_t kManySamples = 32;
 // least kDetailMinChartEdgeFraction of the texels on the chart's edge: a rectangle under about 7-13 texels
 // across), from kManySamples on: a position weight of one texel at 8 texels per metre and a stop of
 // kDetailNoiseSigmasAt32 * (samples / 32)^-kDetailNoiseSigmasFall measured sigmas, at most
-// kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow (its square by
-// 3.5x at 32 samples, 6.4x at 128, 9.2x at 256 on the shrine's overcast slot; 7.5x to 15x on the sample site's),
-// so the stop narrows at about half that rate. Chosen by running variants on the lightmaps `gusuku-bake converge`
-// filters (dumped: shrine overcast and sunny_1200, sample overcast and sunny_1200, 8 to 256 samples) against the
-// same study at 1024 samples: position widths 0.125/0.1875/0.25 m, stops 1.2-2 at 32 falling as samples^0/
-// -0.225/-0.35; per-texel choices among the passes (SURE, intersection of confidence intervals), non-local
-// means, a first-order regression and a stop on a self-calibrated variance gained less. Even a stop on the
-// reference's own irradiance (an oracle) lowers the shrine's error^2 only 1.76x at 128 samples: its light
-// changes by 40 % on average between neighbouring texels of a flat face. On the sample site, whose light is
-// smooth, these settings are 1.5-2.5x worse than the wide filter, which it keeps: its overcast slot's roughness
-// is 0.06-0.20 from 8 samples on, the shrine's 0.34-0.79. The sample site's sunny_1200 slot is rough too
-// (0.22-0.43 from 32 samples on): its broad charts keep the wide filter, its thin ones lose a few % in error^2
-// at 32-64 samples (charts by size, under 512 texels, lost more; edge fractions of 0.4-0.7 lose less there but
-// keep half of the shrine's gain or less).
+// kLuminanceNoiseSigmasFew. The measured variance overstates the true error more as samples grow, so the stop
+// narrows with samples. Chosen by running variants (position widths, stops and their fall with samples; per-texel
+// choices among the passes, non-local means, a first-order regression, a stop on a self-calibrated variance) on
+// the lightmaps `gusuku-bake converge` filters on the shrine and the sample site against a converged study: the
+// others gained less. Even a stop on the reference's own irradiance (an oracle) gains little on the shrine,
+// whose light changes strongly between neighbouring texels of a flat face. On the sample site, whose light is
+// smooth, these settings lose to the wide filter, which its roughness (below kDetailRoughness on its overcast
+// slot) keeps; its sunny_1200 slot is rough too, and there the edge fraction keeps the wide filter on its broad
+// charts (a rule by chart size, or a higher edge fraction, kept less of the shrine's gain).
 constexpr float kDetailRoughness = 0.25f;
 constexpr float kDetailMinChartEdgeFraction = 0.3f;
 constexpr float kDetailPositionSigmaM = 0.125f;
 constexpr float kDetailNoiseSigmasAt32 = 1.5f;
 constexpr float kDetailNoiseSigmasFall = 0.35f;
 // Passes with measured variance: the stop tightens by itself as each pass lowers the variance it carries, so the
-// passes need not fall with samples. Past 3 they change the sample site's error by under 0.01 % at 0.25 m
-// position width; 5 reach 64 texels for denser lightmaps.
+// passes need not fall with samples. Past 3 they barely change the sample site's error; 5 reach 64 texels for
+// denser lightmaps.
 constexpr int kVarianceGuidedIterations = 5;
 
 // B3-spline taps of the a-trous scheme.

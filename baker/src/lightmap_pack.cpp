@@ -5,10 +5,10 @@
 // first of its columns meets the skyline, judged by the shape of the texels it touches (grown by the padding),
 // not by its bounding rectangle, so a gable's triangle and the next one turned upside down lock into a
 // parallelogram. Two placement rules (PlacementRule) are tried and the first that fits wins: neither is best on
-// every model (measured on the sample, the shared shrine and the shared house, whose fills they swap by up to 6
-// points). The texels left under an overhang are kept as holes, per column runs of empty rows; a small chart
-// (kHoleFillMaxTexels) goes into the lowest hole that holds it before it is dropped on the skyline (the shrine's
-// beam ends and short pieces: 55.6 % fill at 512^2 without, 61.2 % at 488^2 with; the house 68.7 % and 73.0 %).
+// every model (on the sample, the shared shrine and the shared house each wins somewhere). The texels left under
+// an overhang are kept as holes, per column runs of empty rows; a small chart (kHoleFillMaxTexels) goes into the
+// lowest hole that holds it before it is dropped on the skyline (the shrine's beam ends and short pieces fill
+// the holes, so the same charts fit a smaller lightmap).
 
 #include <algorithm>
 #include <climits>

@@ -20,8 +20,7 @@ namespace gusuku::bench {
 glm::dvec3 labOfSrgb8(uint8_t red, uint8_t green, uint8_t blue);
 
 /// CIEDE2000 of each pixel of two RGBA8 frames of the same size (std::invalid_argument otherwise): one value
-/// per pixel, row-major. Colours repeat a lot in 8-bit frames, but the per-pixel cost is small beside the
-/// frames it compares: no cache.
+/// per pixel, row-major. Colours repeat a lot in 8-bit frames, but a frame is quick enough without a cache.
 std::vector<double> ciede2000PerPixel(const std::vector<uint8_t>& frame, const std::vector<uint8_t>& truth);
 
 /// Percentiles: gusuku/maths/percentile.h, shared with the runtime's weather estimate.

@@ -5,8 +5,8 @@
 //
 // Why one sample per invocation: llvmpipe (lavapipe) guards shader loops with an iteration limiter that counts
 // every iteration of the loops nested inside an outermost loop; an invocation looping over hundreds of samples
-// (each with BVH traversal loops inside) silently hit it and lost samples (measured: a 256-sample dispatch on the
-// sample site traced 16 % fewer rays than four 64-sample ones). One path per invocation stays far below it.
+// (each with BVH traversal loops inside) silently hit it and lost samples (a long dispatch traced fewer rays
+// than the same samples split into shorter ones). One path per invocation stays far below it.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require

@@ -1,25 +1,23 @@
 #pragma once
 // Adaptive sampling: spend a bake's samples where its error is. A lightmap's error (relative RMS over its
 // texels, what `gusuku-bake converge` and the comparison with Cycles measure) is dominated by few texels: on
-// the sample site and on the shared shrine the noisiest 10 % of texels hold 59-70 % of the squared error after
-// any number of uniform samples, and the noisiest 30 % hold 88-95 %. For a fixed number of samples in all, the
-// sum of the texels' variances sigma_t^2 / n_t is smallest when each texel gets n_t proportional to its own
-// sample standard deviation sigma_t (Lagrange); uniform sampling wastes (mean sigma^2) / (mean sigma)^2 of the
-// rays, about 2x there.
+// the sample site and on the shared shrine a small share of the noisiest texels holds most of the squared error
+// after any number of uniform samples. For a fixed number of samples in all, the sum of the texels' variances
+// sigma_t^2 / n_t is smallest when each texel gets n_t proportional to its own sample standard deviation sigma_t
+// (Lagrange); uniform sampling wastes (mean sigma^2) / (mean sigma)^2 of the rays.
 //
 // The bake traces a pilot (a quarter of the samples, at least 16 a texel, every texel alike), estimates each
 // texel's sigma from its sums of luminance and squared luminance, and plans the rest per texel; the extra samples
 // are one more point set (copies of the noisy texels' points) for the existing tracer and checkpoints. The plan
 // follows from the pilot's sums alone, so a resumed bake plans the same set.
 //
-// Two measured departures from n_t proportional to sigma_t (issue 11.1, the shrine site, `converge` against a
-// 1024-sample reference, error^2 x rays): a pilot of a quarter instead of half (41 % of the shrine's texels get
-// under 0.15 of the mean irradiance, under its eaves and inside, and hold 1 % of the squared error at 64 uniform
-// samples, with the longest paths: 3.9 rays a sample against 2.5 on its bright walls), and n_t proportional to
+// Two departures from n_t proportional to sigma_t, chosen with `converge` (issue 11.1, error^2 x rays): a pilot
+// of a quarter instead of half (many of the shrine's texels, under its eaves and inside, are dim, hold little of
+// the squared error and have the longest paths, so a large pilot spends rays there), and n_t proportional to
 // sigma_t^0.6 instead of sigma_t. The allocation n ~ sigma is optimal for exact sigmas and independent samples,
 // but a 16-sample pilot's sigma is itself noisy (a rare bright path in the pilot makes a texel look far noisier
 // than it is, and draw that many more samples), and the scrambled Sobol draws' error falls faster than
-// 1/sqrt(n) (error^2 ~ n^-1.4 makes the optimum sigma^0.83 even for exact sigmas). Both flatten the plan.
+// 1/sqrt(n), which moves the optimum below sigma^1 even for exact sigmas. Both flatten the plan.
 
 #include <cstddef>
 #include <cstdint>
@@ -33,25 +31,23 @@
 namespace gusuku::bake {
 
 /// Below this many samples per texel a bake (and a converge study point) samples every texel alike: a pilot of
-/// fewer than 16 samples says too little about a texel's noise. Measured on the sample site (converge, error^2 x
-/// rays against uniform, after the variance-guided filter): from pilots of 4 and 8 samples adaptive sampling
-/// lost (overcast filtered error 4.3 % against 3.1 % at 8 samples, 2.4 % against 2.1 % at 16; sunny_1200 1.16x
-/// worse at 16), from 16 on it is level to 1.4x better (32 samples: overcast level, sunny 1.3x; 128: 1.19x and
-/// 1.40x).
+/// fewer than 16 samples says too little about a texel's noise: with smaller pilots adaptive sampling lost to
+/// uniform sampling on the sample site (converge, error^2 x rays, after the variance-guided filter), from pilots
+/// of 16 on it is level or better.
 inline constexpr uint32_t kMinAdaptiveSamples = 32;
 
 /// The fewest pilot samples a texel gets (the pilot at kMinAdaptiveSamples): fewer judged the noise too poorly.
 inline constexpr uint32_t kMinAdaptivePilotSamples = 16;
 
 /// Texel t is planned toward n_t proportional to sigma_t^kAdaptiveNoiseExponent (see the top of this file for
-/// why not 1): a pilot's sigma is itself noisy and the Sobol draws' error falls faster than 1/sqrt(n), so the
-/// plan leans less on it. 0.6 gave the least error^2 x rays over the exponents tried on two sites
-/// (docs/measurements.md, "Figures from code comments").
+/// why not 1), chosen with `converge`'s study points against a converged reference (its noise taken out) on
+/// the shrine's and the sample's overcast and sunny_1200 slots: with a pilot of a quarter it beat the plan
+/// before (a pilot of half, exponent 1) on all four, and neighbouring exponents were no better on both sites.
 inline constexpr double kAdaptiveNoiseExponent = 0.6;
 
 /// A texel's pilot for `samples_per_texel` samples: a quarter of them, at least kMinAdaptivePilotSamples, at
-/// most half. A smaller pilot leaves more samples to place but plans from a noisier sigma; a quarter was the
-/// best of the fractions tried (docs/measurements.md). Only meaningful from kMinAdaptiveSamples on.
+/// most half: on the shrine's overcast slot a quarter gave less error^2 x rays than a half, an eighth or three
+/// eighths. Only meaningful from kMinAdaptiveSamples on.
 uint32_t adaptivePilotSamples(uint32_t samples_per_texel);
 
 /// The pilot per trace point of a texel's footprint (points_per_texel points sharing its samples):

@@ -106,8 +106,7 @@ struct Bvh {
 /// a device's maxTexelBufferElements may cap lower, and the triangle buffer holds up to 2 slots a triangle).
 /// triangle_flags: one per triangle, or empty for all zero. Triangles with a zero-area cross product or a
 /// non-finite vertex are dropped (counted in dropped_triangle_count). Deterministic (the same mesh gives the
-/// same bytes). Cost: O(n log n), ~0.3-0.6 CPU s per 100k triangles on one core (spatial split search is most
-/// of it; a plain binned SAH took ~0.1 s). Throws InputError("mesh", ...) for a vertex index out of range or a
+/// same bytes). Cost: O(n log n) on one core; the spatial split search is most of it. Throws InputError("mesh", ...) for a vertex index out of range or a
 /// flag count that does not match the triangle count.
 Bvh buildBvh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangle_flags);
 

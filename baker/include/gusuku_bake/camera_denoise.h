@@ -32,7 +32,7 @@ struct CameraDenoiseOptions {
 CameraDenoiseOptions cameraDenoiseOptionsForSamples(uint32_t samples_per_pixel);
 
 /// The filtered copy of render.radiance (intrinsics and pose: those it was rendered with, to place each pixel's
-/// hit in the world). O(iterations x 25 x pixels), on the CPU.
+/// hit in the world). O(iterations x 25 x pixels), on one core.
 ImageRGBA denoiseCameraFrame(const CameraRender& render, const CameraIntrinsics& intrinsics, const CameraPose& pose,
                              const CameraDenoiseOptions& options);
 

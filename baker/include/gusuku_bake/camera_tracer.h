@@ -11,7 +11,7 @@
 // y down, z forward; u = fx X / Z + cx, v = fy Y / Z + cy; pixel (0, 0)'s centre at (0.5, 0.5)).
 //
 // Cost: the camera ray, then the bake's path from its hit (a sun ray and a bounce ray per vertex, one more where
-// the sky is uneven), about 2 to 3 rays per sample; the guides add one ray per pixel, and up to 8 more when the sun shines (a 2 x 2 grid of camera and
+// the sky is uneven); the guides add one ray per pixel, and up to 8 more when the sun shines (a 2 x 2 grid of camera and
 // shadow rays). A render is deterministic: the same scene, light, view, options and seed give the same bits,
 // however the samples were split into dispatches.
 
@@ -78,7 +78,7 @@ public:
     /// Builds the BVH over scene.mesh and uploads it with the scene's materials and textures, each texture
     /// box-downsampled to at most max_texture_size (a camera sees the detail a bake does not need: the default
     /// keeps 2048; the whole texture buffer must fit the device's maxStorageBufferRange, 128 MiB on lavapipe).
-    /// `gpu` must outlive the tracer. Cost: the BVH build (O(n log n) in the triangles), plus the upload.
+    /// `gpu` must outlive the tracer. Cost: the BVH build (O(n log n), bvh.h), plus the upload.
     CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size = 2048);
     ~CameraTracer();
     CameraTracer(const CameraTracer&) = delete;

@@ -27,10 +27,9 @@ inline constexpr const char* kBakeDate = "2026-06-21";
 /// The clock time at which the sunny sky photo's sun is placed (SPA position at the site on the bake date).
 inline constexpr const char* kSunnyPhotoLocalTime = "12:00";
 
-// Bake settings sized for a bake of about a minute: 16,779 lightmap texels at 8 texels/m plus 2,450 ground
-// cells, 512 samples, up to 3 bounces, four slots: ~120 M rays at the measured ~1.9 M rays/s on this project's
-// 2-core lavapipe machine. `gusuku-bake converge` on this site measured a relative RMS error of about 3 % raw and
-// 2.5 % after the edge-keeping filter at 512 samples (10.8 % and 5.0 % at 64).
+// Bake settings sized for a bake of about a minute on this project's 2-core lavapipe machine: lightmap texels
+// at 8 texels/m plus the ground cells, 512 samples, up to 3 bounces, four slots (docs/measurements.md has the
+// sample's rays, ray rate and `gusuku-bake converge` errors).
 inline constexpr double kTexelsPerMetre = 8.0;
 inline constexpr int kSamplesPerTexel = 512;
 inline constexpr int kMaxBounces = 3;

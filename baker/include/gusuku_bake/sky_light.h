@@ -144,10 +144,9 @@ double skyCosineRelativeVariance(const ImageRGBA& sky_without_sun, double north_
 
 /// Above this cosine relative variance the tracer also samples the sky map by importance at every path
 /// vertex (one more shadow ray each, weighted against the cosine lobe by MIS); at or below it the cosine
-/// lobe alone gathers the sky. Measured as error^2 x trace time on the sample house (gusuku-bake converge
-/// --sky-sampling): the sample's analytic skies (0.16 sunny, 0.46 overcast) do 1.3x better with the cosine
-/// lobe alone; the shared photographed skies (rooitou_park 4.9, potsdamer_platz 2.6) do 1.6x and 1.8x better
-/// with the map sampled too.
+/// lobe alone gathers the sky. Set between the skies measured as error^2 x trace time on the sample house
+/// (gusuku-bake converge --sky-sampling): the sample's analytic skies, below it, do better with the cosine lobe
+/// alone; the shared photographed skies, above it, do better with the map sampled too.
 inline constexpr double kSkyNextEventRelativeVarianceThreshold = 1.0;
 
 /// A direction drawn from the sky's tables with its density.
