@@ -80,24 +80,31 @@ struct GroundMatchCellGpu {
     vec4 normal_height;  // xyz: unit normal (ENU), w: height (ENU z, m)
 };
 
-// The frame's camera and light for the ground kernel, written by the host before each submission.
+// The frame's camera and light for the ground kernel, written by the host before each submission. Each vec3 is
+// followed by the scalar that fills its last 4 bytes (interface_types.h's rules).
 struct GroundMatchFrame {
-    vec4 ray_x;            // ENU direction of the ray through pixel point (u, v): u ray_x + v ray_y + ray_z
-    vec4 ray_y;
-    vec4 ray_z;
-    vec4 camera_position;  // xyz ENU, w: the first plane's height (mean ground height)
-    vec4 sun_direction;    // xyz unit towards the sun, w: 1 when the sun shines
-    vec4 sun_irradiance;   // rgb: E_sun after cloud cover (bake set units), w: exposure
-    vec4 slot_weights;     // xyz: blend weights (0 for a missing slot)
-    vec4 ground_grid;      // x, y: south-west corner (ENU m), z: cell size (m), w unused
-    uint slot_index0;      // slot per blend term (0 when its weight is 0)
+    vec3 ray_x;                   // ENU direction of the ray through pixel point (u, v): u ray_x + v ray_y + ray_z
+    float first_plane_height_m;   // the height (ENU z) of the first plane a ray meets: the mean ground height
+    vec3 ray_y;
+    uint sun_shines;              // 1 when the sun shines this frame, else 0
+    vec3 ray_z;
+    float exposure;               // linear radiance times this is the display value (FrameInput::exposure)
+    vec3 camera_position;         // ENU metres
+    float ground_origin_east_m;   // the ground grid's south-west corner (ENU m)
+    vec3 sun_direction;           // unit towards the sun (ENU)
+    float ground_origin_north_m;
+    vec3 sun_irradiance;          // E_sun after cloud cover (bake set units)
+    float ground_cell_m;          // the ground grid's cell size (m)
+    vec3 slot_weights;            // blend weights (0 for a missing slot)
+    uint slot_count;              // slots with irradiance in GROUND_MATCH_IRRADIANCE_BINDING
+    uint slot_index0;             // slot per blend term (0 when its weight is 0)
     uint slot_index1;
     uint slot_index2;
-    uint cell_count;       // columns x rows
+    uint cell_count;              // columns x rows
     uint columns;
     uint rows;
-    uint slot_count;       // slots with irradiance in GROUND_MATCH_IRRADIANCE_BINDING
-    uint frame_reserved0;
+    uint size_padding0;           // std430 rounds the struct's size up to 16 bytes (its vec3s' alignment):
+    uint size_padding1;           //   these two make the C++ struct that size too
 };
 
 // One subgroup's share of a frame, written by colour_statistics.comp and read by colour_statistics_reduce.comp:

@@ -26,7 +26,8 @@ float luminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
 
 // The cell whose square holds p (column 0 west, row 0 north), or -1 outside the grid.
 int cellAt(vec2 p) {
-    vec2 index = floor((p - view.ground_grid.xy) / view.ground_grid.z);
+    vec2 origin = vec2(view.ground_origin_east_m, view.ground_origin_north_m);
+    vec2 index = floor((p - origin) / view.ground_cell_m);
     if (!(index.x >= 0.0 && index.x < float(view.columns) && index.y >= 0.0 && index.y < float(view.rows))) return -1;
     int row = int(view.rows) - 1 - int(index.y);
     return row * int(view.columns) + int(index.x);
@@ -35,10 +36,10 @@ int cellAt(vec2 p) {
 // The ground cell under pixel centre `pixel`, or -1 (colour_match.h: groundMatchCellOfPixel).
 int groundCellOfPixel(uvec2 pixel) {
     vec2 point = vec2(pixel) + 0.5;
-    vec3 direction = point.x * view.ray_x.xyz + point.y * view.ray_y.xyz + view.ray_z.xyz;
-    vec3 origin = view.camera_position.xyz;
+    vec3 direction = point.x * view.ray_x + point.y * view.ray_y + view.ray_z;
+    vec3 origin = view.camera_position;
     if (!(direction.z < -1e-6)) return -1;
-    float height = view.camera_position.w;
+    float height = view.first_plane_height_m;
     int cell = -1;
     int previous = -1;
     for (int step = 0; step <= GROUND_MATCH_HEIGHT_ITERATIONS; ++step) {
@@ -61,10 +62,10 @@ vec3 predictedRadiance(int cell) {
     vec3 irradiance = slotWithout(view.slot_index0, view.slot_weights.x, cell) +
                       slotWithout(view.slot_index1, view.slot_weights.y, cell) +
                       slotWithout(view.slot_index2, view.slot_weights.z, cell);
-    if (view.sun_direction.w > 0.0)
-        irradiance += view.sun_irradiance.rgb *
-                      max(0.0, dot(cells[cell].normal_height.xyz, view.sun_direction.xyz));
-    return view.sun_irradiance.w * cells[cell].albedo_ground.rgb / kPi * irradiance;
+    if (view.sun_shines != 0u)
+        irradiance += view.sun_irradiance *
+                      max(0.0, dot(cells[cell].normal_height.xyz, view.sun_direction));
+    return view.exposure * cells[cell].albedo_ground.rgb / kPi * irradiance;
 }
 
 void main() {

@@ -22,6 +22,7 @@ using shader_interface::ColourStatisticsPushConstants;
 using shader_interface::GroundMatchCellGpu;
 using shader_interface::GroundMatchFrame;
 using shader_interface::GroundMatchSample;
+using shader_interface::vec3;
 using shader_interface::vec4;
 
 // std430 and C++ must agree on every offset (interface_types.h's rules).
@@ -44,9 +45,22 @@ static_assert(offsetof(ColourMatchState, frame_ground_accepted) == 228);
 static_assert(sizeof(ColourMatchState) == 240);
 static_assert(sizeof(GroundMatchSample) == 32);
 static_assert(sizeof(GroundMatchCellGpu) == 32);
-static_assert(offsetof(GroundMatchFrame, ground_grid) == 112);
-static_assert(offsetof(GroundMatchFrame, slot_index0) == 128);
-static_assert(sizeof(GroundMatchFrame) == 160);
+static_assert(offsetof(GroundMatchFrame, first_plane_height_m) == 12);
+static_assert(offsetof(GroundMatchFrame, ray_y) == 16);
+static_assert(offsetof(GroundMatchFrame, sun_shines) == 28);
+static_assert(offsetof(GroundMatchFrame, ray_z) == 32);
+static_assert(offsetof(GroundMatchFrame, exposure) == 44);
+static_assert(offsetof(GroundMatchFrame, camera_position) == 48);
+static_assert(offsetof(GroundMatchFrame, ground_origin_east_m) == 60);
+static_assert(offsetof(GroundMatchFrame, sun_direction) == 64);
+static_assert(offsetof(GroundMatchFrame, ground_origin_north_m) == 76);
+static_assert(offsetof(GroundMatchFrame, sun_irradiance) == 80);
+static_assert(offsetof(GroundMatchFrame, ground_cell_m) == 92);
+static_assert(offsetof(GroundMatchFrame, slot_weights) == 96);
+static_assert(offsetof(GroundMatchFrame, slot_count) == 108);
+static_assert(offsetof(GroundMatchFrame, slot_index0) == 112);
+static_assert(offsetof(GroundMatchFrame, rows) == 132);
+static_assert(sizeof(GroundMatchFrame) == 144);
 static_assert(uint32_t(ColourMatchMode::kGround) == COLOUR_MATCH_MODE_GROUND);
 static_assert(GROUND_MATCH_BINS == kGroundMatchBins);
 static_assert(GROUND_MATCH_WINDOW_BINS == kGroundMatchWindowBins);
@@ -145,6 +159,8 @@ bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v
 
 vec4 toVec4(const glm::dvec3& v, double w) { return {{float(v.x), float(v.y), float(v.z), float(w)}}; }
 
+vec3 toVec3(const glm::dvec3& v) { return {{float(v.x), float(v.y), float(v.z)}}; }
+
 std::vector<GroundMatchCellGpu> groundCellsFor(const GroundMatchScene& scene) {
     std::vector<GroundMatchCellGpu> cells(scene.cells.size());
     for (size_t i = 0; i < cells.size(); ++i) {
@@ -241,20 +257,24 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     // The ray through pixel point (u, v): R ((u - cx) / fx, (v - cy) / fy, 1) = u ray_x + v ray_y + ray_z.
     GroundMatchFrame frame{};
     const glm::dvec3 axis_x = view.camera_to_enu[0] / view.fx, axis_y = view.camera_to_enu[1] / view.fy;
-    frame.ray_x = toVec4(axis_x, 0.0);
-    frame.ray_y = toVec4(axis_y, 0.0);
-    frame.ray_z = toVec4(view.camera_to_enu[2] - view.cx * axis_x - view.cy * axis_y, 0.0);
-    frame.camera_position = toVec4(view.camera_position_enu, ground_start_height_m_);
-    frame.sun_direction = toVec4(view.sun_direction_enu, view.sun_shines ? 1.0 : 0.0);
-    frame.sun_irradiance = toVec4(view.sun_irradiance_rgb, view.exposure);
+    frame.ray_x = toVec3(axis_x);
+    frame.ray_y = toVec3(axis_y);
+    frame.ray_z = toVec3(view.camera_to_enu[2] - view.cx * axis_x - view.cy * axis_y);
+    frame.first_plane_height_m = ground_start_height_m_;
+    frame.camera_position = toVec3(view.camera_position_enu);
+    frame.sun_direction = toVec3(view.sun_direction_enu);
+    frame.sun_shines = view.sun_shines ? 1u : 0u;
+    frame.sun_irradiance = toVec3(view.sun_irradiance_rgb);
+    frame.exposure = float(view.exposure);
     uint32_t* const slot_indices[3] = {&frame.slot_index0, &frame.slot_index1, &frame.slot_index2};
     for (int k = 0; k < 3; ++k) {
         const bool used = view.slots[k] >= 0 && uint32_t(view.slots[k]) < ground_slot_count_ && view.weights[k] > 0.0f;
         frame.slot_weights[k] = used ? view.weights[k] : 0.0f;
         *slot_indices[k] = used ? uint32_t(view.slots[k]) : 0u;
     }
-    frame.ground_grid = {{float(ground_grid_.origin_enu_m.x), float(ground_grid_.origin_enu_m.y),
-                          float(ground_grid_.cell_m), 0.0f}};
+    frame.ground_origin_east_m = float(ground_grid_.origin_enu_m.x);
+    frame.ground_origin_north_m = float(ground_grid_.origin_enu_m.y);
+    frame.ground_cell_m = float(ground_grid_.cell_m);
     frame.cell_count = uint32_t(ground_grid_.cellCount());
     frame.columns = uint32_t(ground_grid_.columns);
     frame.rows = uint32_t(ground_grid_.rows);
