@@ -42,6 +42,7 @@ const uint32_t kStride = groundMatchStride(kWidth, kHeight, kStatisticsStride);
 const dvec3 kSkyLinear(0.35, 0.45, 0.8);
 
 dvec3 toDvec3(const shader_interface::vec4& v) { return dvec3(v[0], v[1], v[2]); }
+dvec3 toDvec3(const shader_interface::vec3& v) { return dvec3(v[0], v[1], v[2]); }
 
 // The synthetic bake set (flat ground at z = 0, E_without 2 grey) with a ground albedo of two colours in a
 // checker of 1 m squares, so cells differ.
@@ -314,7 +315,7 @@ TEST_F(GroundMatchGpu, EstimateMatchesTheCpuReferenceOnANoisyFrameWithShadowAndC
     EXPECT_NEAR(double(state.frame_ground_samples), double(expected.ground_samples), 3.0);
     EXPECT_NEAR(double(state.frame_ground_kept), double(expected.kept_samples), 3.0);
     EXPECT_NEAR(double(state.frame_ground_clipped), double(expected.clipped_samples), 3.0);
-    EXPECT_EQ(int(state.frame_ground_gain[3]), expected.median_bin);
+    EXPECT_EQ(int(state.frame_ground_median_bin), expected.median_bin);
     EXPECT_EQ(state.frame_ground_accepted, 1u);
     EXPECT_EQ(state.ground_valid, 1u);
     // A few samples of ~1/kept weight each, and float sums: 0.5 % of the gain.

@@ -54,7 +54,8 @@ struct ColourMatchState {
     uint gpu_reserved1;
     // ---- written by colour_statistics_ground_reduce.comp (bytes 144..239), mode GROUND ----
     vec4 ground_gain;             // xyz: smoothed von Kries gain (observed / predicted), valid when ground_valid
-    vec4 frame_ground_gain;       // xyz: this frame's clamped gain (1 when not accepted), w: median bin (-1 none)
+    vec3 frame_ground_gain;       // this frame's clamped gain (1 when not accepted)
+    float frame_ground_median_bin;  // this frame's median log-ratio bin (-1 none)
     vec4 frame_ground_observed;   // xyz: sum of observed linear RGB over the kept samples
     vec4 frame_ground_predicted;  // xyz: sum of predicted linear RGB over the same
     uint ground_valid;            // 1 once a frame was accepted since construction or reset
@@ -70,14 +71,18 @@ struct ColourMatchState {
 // One sample of the ground kernel's grid, written by colour_statistics_ground.comp (sample j samples_x + i) and
 // read by colour_statistics_ground_reduce.comp.
 struct GroundMatchSample {
-    vec4 observed_bin;       // xyz: observed linear RGB, w: log-ratio bin, -1 when the sample is not counted
-    vec4 predicted_clipped;  // xyz: predicted linear RGB, w: 1 when a ground sample was left out as clipped
+    vec3 observed;   // observed linear RGB
+    float bin;       // log-ratio bin, -1 when the sample is not counted
+    vec3 predicted;  // predicted linear RGB
+    float clipped;   // 1 when a ground sample was left out as clipped, else 0
 };
 
 // One ground-grid cell (texel order), uploaded once.
 struct GroundMatchCellGpu {
-    vec4 albedo_ground;  // rgb: linear albedo, w: 1 ground with albedo, 0 none
-    vec4 normal_height;  // xyz: unit normal (ENU), w: height (ENU z, m)
+    vec3 albedo;     // linear albedo
+    float ground;    // 1: ground with albedo, 0: none
+    vec3 normal;     // unit normal (ENU)
+    float height_m;  // ENU z
 };
 
 // The frame's camera and light for the ground kernel, written by the host before each submission. Each vec3 is
@@ -111,8 +116,10 @@ struct GroundMatchFrame {
 // the valid samples' count, mean and sum of squared deviations from that mean (M2), so that partials combine
 // without the cancellation of sum(x^2) - n mean^2 (Chan, Golub and LeVeque's pairwise update).
 struct ColourStatisticsPartial {
-    vec4 lab_mean_count;  // xyz: mean of the valid samples (0 when none), w: their count
-    vec4 lab_m2_clipped;  // xyz: sum of squared deviations from the mean, w: clipped samples
+    vec3 lab_mean;           // mean of the valid samples (0 when none)
+    float valid_count;       // the valid samples
+    vec3 lab_m2;             // sum of squared deviations from the mean
+    float clipped_count;     // the clipped samples
 };
 
 #ifdef __cplusplus

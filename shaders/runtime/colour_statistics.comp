@@ -48,7 +48,9 @@ void main() {
         uint partial = workgroup * pc.partials_per_workgroup + gl_SubgroupID;
         // Member by member: one access chain per store, which synchronization validation (layer 1.3.239)
         // follows; a whole-struct store compiles to a chain of chains that it misses.
-        partials[partial].lab_mean_count = vec4(mean, count);
-        partials[partial].lab_m2_clipped = vec4(m2, clipped_count);
+        partials[partial].lab_mean = mean;
+        partials[partial].valid_count = count;
+        partials[partial].lab_m2 = m2;
+        partials[partial].clipped_count = clipped_count;
     }
 }

@@ -47,8 +47,8 @@ int groundCellOfPixel(uvec2 pixel) {
         if (!(t > 0.0)) return -1;
         previous = cell;
         cell = cellAt(origin.xy + t * direction.xy);
-        if (cell < 0 || cells[cell].albedo_ground.w < 0.5) return -1;
-        height = cells[cell].normal_height.w;
+        if (cell < 0 || cells[cell].ground < 0.5) return -1;
+        height = cells[cell].height_m;
     }
     return cell == previous ? cell : -1;
 }
@@ -64,8 +64,8 @@ vec3 predictedRadiance(int cell) {
                       slotWithout(view.slot_index2, view.slot_weights.z, cell);
     if (view.sun_shines != 0u)
         irradiance += view.sun_irradiance *
-                      max(0.0, dot(cells[cell].normal_height.xyz, view.sun_direction));
-    return view.exposure * cells[cell].albedo_ground.rgb / kPi * irradiance;
+                      max(0.0, dot(cells[cell].normal, view.sun_direction));
+    return view.exposure * cells[cell].albedo / kPi * irradiance;
 }
 
 void main() {
@@ -94,6 +94,8 @@ void main() {
     }
     uint index = sample_index.y * pc.samples_x + sample_index.x;
     // Member by member (see colour_statistics.comp: synchronization validation follows single access chains).
-    samples[index].observed_bin = vec4(observed, bin);
-    samples[index].predicted_clipped = vec4(predicted, clipped);
+    samples[index].observed = observed;
+    samples[index].bin = bin;
+    samples[index].predicted = predicted;
+    samples[index].clipped = clipped;
 }

@@ -36,9 +36,9 @@ void main() {
     for (uint b = 0u; b < GROUND_MATCH_BINS; ++b) counts[b] = 0u;
     float clipped = 0.0;
     for (uint s = lane; s < pc.partial_count; s += GROUND_MATCH_BINS) {
-        float bin = samples[s].observed_bin.w;
+        float bin = samples[s].bin;
         if (bin >= 0.0) counts[uint(bin)] += 1u;
-        clipped += samples[s].predicted_clipped.w;
+        clipped += samples[s].clipped;
     }
     for (uint b = 0u; b < GROUND_MATCH_BINS; ++b) lane_counts[lane][b] = counts[b];
     barrier();
@@ -69,10 +69,10 @@ void main() {
     vec3 predicted = vec3(0.0);
     float kept = 0.0;
     for (uint s = lane; s < pc.partial_count; s += GROUND_MATCH_BINS) {
-        vec4 observed_bin = samples[s].observed_bin;
-        if (observed_bin.w >= first && observed_bin.w <= last) {
-            observed += observed_bin.xyz;
-            predicted += samples[s].predicted_clipped.xyz;
+        float bin = samples[s].bin;
+        if (bin >= first && bin <= last) {
+            observed += samples[s].observed;
+            predicted += samples[s].predicted;
             kept += 1.0;
         }
     }
@@ -104,7 +104,8 @@ void main() {
     bool accepted = median >= 0 && uint(kept_sum) >= pc.min_valid_samples &&
                     all(greaterThan(predicted_sum, vec3(0.0)));
     vec3 gain = accepted ? clamp(observed_sum / predicted_sum, vec3(1.0 / limit), vec3(limit)) : vec3(1.0);
-    state.frame_ground_gain = vec4(gain, float(median));
+    state.frame_ground_gain = gain;
+    state.frame_ground_median_bin = float(median);
     state.frame_ground_observed = vec4(observed_sum, 0.0);
     state.frame_ground_predicted = vec4(predicted_sum, 0.0);
     state.frame_ground_kept = uint(kept_sum);

@@ -46,9 +46,8 @@ void main() {
     float clipped = 0.0;
     for (uint p = lane; p < pc.partial_count; p += COLOUR_REDUCE_WORKGROUP_SIZE) {
         ColourStatisticsPartial partial = partials[p];
-        own = combineMoments(own, Moments(partial.lab_mean_count.w, partial.lab_mean_count.xyz,
-                                          partial.lab_m2_clipped.xyz));
-        clipped += partial.lab_m2_clipped.w;
+        own = combineMoments(own, Moments(partial.valid_count, partial.lab_mean, partial.lab_m2));
+        clipped += partial.clipped_count;
     }
     float count = subgroupAdd(own.count);
     vec3 weighted_mean_sum = subgroupAdd(own.count * own.mean);

@@ -38,12 +38,19 @@ static_assert(offsetof(ColourMatchState, camera_valid) == 112);
 static_assert(offsetof(ColourMatchState, frame_accepted) == 132);
 static_assert(offsetof(ColourMatchState, ground_gain) == 144);
 static_assert(offsetof(ColourMatchState, frame_ground_gain) == 160);
+static_assert(offsetof(ColourMatchState, frame_ground_median_bin) == 172);
 static_assert(offsetof(ColourMatchState, frame_ground_observed) == 176);
 static_assert(offsetof(ColourMatchState, frame_ground_predicted) == 192);
 static_assert(offsetof(ColourMatchState, ground_valid) == 208);
 static_assert(offsetof(ColourMatchState, frame_ground_accepted) == 228);
 static_assert(sizeof(ColourMatchState) == 240);
+static_assert(offsetof(GroundMatchSample, bin) == 12);
+static_assert(offsetof(GroundMatchSample, predicted) == 16);
+static_assert(offsetof(GroundMatchSample, clipped) == 28);
 static_assert(sizeof(GroundMatchSample) == 32);
+static_assert(offsetof(GroundMatchCellGpu, ground) == 12);
+static_assert(offsetof(GroundMatchCellGpu, normal) == 16);
+static_assert(offsetof(GroundMatchCellGpu, height_m) == 28);
 static_assert(sizeof(GroundMatchCellGpu) == 32);
 static_assert(offsetof(GroundMatchFrame, first_plane_height_m) == 12);
 static_assert(offsetof(GroundMatchFrame, ray_y) == 16);
@@ -72,6 +79,9 @@ static_assert(COLOUR_MATCH_MAX_WHITE_BALANCE_SHIFT == kColourMatchMaxWhiteBalanc
 static_assert(COLOUR_MATCH_GAMUT_STEPS == kColourMatchGamutSteps);
 static_assert(COLOUR_MATCH_MAX_LINEAR == kColourMatchMaxLinear);
 static_assert(COLOUR_MATCH_GAMUT_TOLERANCE == kColourMatchGamutTolerance);
+static_assert(offsetof(ColourStatisticsPartial, valid_count) == 12);
+static_assert(offsetof(ColourStatisticsPartial, lab_m2) == 16);
+static_assert(offsetof(ColourStatisticsPartial, clipped_count) == 28);
 static_assert(sizeof(ColourStatisticsPartial) == 32);
 static_assert(uint32_t(ColourMatchMode::kOff) == COLOUR_MATCH_MODE_OFF);
 static_assert(uint32_t(ColourMatchMode::kPaper) == COLOUR_MATCH_MODE_PAPER);
@@ -165,8 +175,10 @@ std::vector<GroundMatchCellGpu> groundCellsFor(const GroundMatchScene& scene) {
     std::vector<GroundMatchCellGpu> cells(scene.cells.size());
     for (size_t i = 0; i < cells.size(); ++i) {
         const GroundMatchCell& cell = scene.cells[i];
-        cells[i].albedo_ground = toVec4(glm::dvec3(cell.albedo), cell.ground ? 1.0 : 0.0);
-        cells[i].normal_height = toVec4(glm::dvec3(cell.normal), cell.height_m);
+        cells[i].albedo = toVec3(glm::dvec3(cell.albedo));
+        cells[i].ground = cell.ground ? 1.0f : 0.0f;
+        cells[i].normal = toVec3(glm::dvec3(cell.normal));
+        cells[i].height_m = float(cell.height_m);
     }
     return cells;
 }
