@@ -130,12 +130,22 @@ void expandToRgba(const T* in, int channels, size_t texel_count, T opaque, T* ou
 // from a scanline file or a tiled one alike. A tiled file (as Nuke, Blender and maketx write OpenEXR) can only be
 // read by whole tiles, and read_scanlines on one fails deep inside the codec, so the tile rows that cover the range
 // are read into `tile_rows` and the wanted rows copied out of them.
-bool readFileRows(OIIO::ImageInput& input, int y_begin, int y_end, int channels, OIIO::TypeDesc format,
-                  void* rows, std::vector<unsigned char>& tile_rows) {
+bool readFileRows(const std::string& name, OIIO::ImageInput& input, int y_begin, int y_end, int channels,
+                  OIIO::TypeDesc format, void* rows, std::vector<unsigned char>& tile_rows) {
     const OIIO::ImageSpec& spec = input.spec();
     if (spec.tile_width <= 0 || spec.tile_height <= 0)
         return input.read_scanlines(0, 0, spec.y + y_begin, spec.y + y_end, 0, 0, channels, format, rows);
     const int tile_height = spec.tile_height;
+    // One row of tiles is held at a time; real files use tiles of 32 to 256 texels, so a header whose row of
+    // tiles alone would take more than kMaxTileRowBytes is refused rather than allocated.
+    constexpr uint64_t kMaxTileRowBytes = uint64_t(256) << 20;
+    const uint64_t tile_row_bytes = uint64_t(spec.width) * uint64_t(std::min(tile_height, spec.height)) *
+                                    uint64_t(channels) * uint64_t(format.size());
+    if (tile_row_bytes > kMaxTileRowBytes)
+        throw InputError(name, "", "tiles of " + std::to_string(spec.tile_width) + " x " +
+                                       std::to_string(spec.tile_height) + " texels: a row of them takes " +
+                                       std::to_string(tile_row_bytes >> 20) + " MiB, more than the " +
+                                       std::to_string(kMaxTileRowBytes >> 20) + " MiB this reader holds");
     const int tiles_begin = (y_begin / tile_height) * tile_height;
     const int tiles_end = std::min(spec.height, ((y_end + tile_height - 1) / tile_height) * tile_height);
     const size_t row_bytes = size_t(spec.width) * size_t(channels) * format.size();
@@ -183,7 +193,7 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
         if (byte_srgb) {
             // 8-bit sRGB (most textures): bytes to RGBA bytes, then one table lookup per channel.
             file_bytes.resize(band_texels * size_t(file_channels));
-            if (!readFileRows(input, y_begin, y_end, file_channels, OIIO::TypeDesc::UINT8, file_bytes.data(),
+            if (!readFileRows(name, input, y_begin, y_end, file_channels, OIIO::TypeDesc::UINT8, file_bytes.data(),
                               tile_rows))
                 throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
             rgba_bytes.resize(band_texels * 4);
@@ -191,7 +201,7 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
             srgbDecodeBytes(rgba_bytes.data(), band_texels, band.texels.data());
         } else {
             file_values.resize(band_texels * size_t(file_channels));
-            if (!readFileRows(input, y_begin, y_end, file_channels, OIIO::TypeDesc::FLOAT, file_values.data(),
+            if (!readFileRows(name, input, y_begin, y_end, file_channels, OIIO::TypeDesc::FLOAT, file_values.data(),
                               tile_rows))
                 throw InputError(name, "", "cannot decode image: " + libraryError(input.geterror(), capture));
             expandToRgba(file_values.data(), file_channels, band_texels, 1.0f, band.texels.data());
