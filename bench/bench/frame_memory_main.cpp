@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gusuku/runtime/runtime.h"
+#include "gusuku/tools/command_line.h"
 #include "synthetic_bakeset.h"
 
 namespace {
@@ -30,29 +31,31 @@ long long residentKilobytes() {
     return -1;
 }
 
-int usage(const char* message) {
-    std::fprintf(stderr, "gusuku-frame-memory: %s\nusage: gusuku-frame-memory [--frames N] [--direct-only]\n", message);
-    return 1;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     using namespace gusuku;
     long frames = 10000;
     RenderMode mode = RenderMode::kProposed;
-    for (int index = 1; index < argc; ++index) {
-        if (std::strcmp(argv[index], "--frames") == 0 && index + 1 < argc) {
-            char* end = nullptr;
-            frames = std::strtol(argv[++index], &end, 10);
-            if (end == nullptr || *end != '\0' || frames < 1) return usage("--frames: a whole number >= 1");
-        } else if (std::strcmp(argv[index], "--direct-only") == 0) {
-            mode = RenderMode::kDirectOnly;
-        } else {
-            return usage((std::string("unknown argument: ") + argv[index]).c_str());
+    try {
+        // The tools' one command-line reader: ranges, repeated options and unknown words handled as everywhere.
+        CommandLine line("gusuku-frame-memory", std::vector<std::string>(argv + 1, argv + argc));
+        if (line.helpRequested()) {
+            std::printf("usage: gusuku-frame-memory [--frames N] [--direct-only]\n");
+            return 0;
         }
+        frames = long(line.integer("--frames", 1, 100000000).value_or(frames));
+        if (line.flag("--direct-only")) mode = RenderMode::kDirectOnly;
+        line.positionals();
+        line.finish();
+    } catch (const UsageError& error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        return 2;
     }
-    if (residentKilobytes() < 0) return usage("no VmRSS in /proc/self/status on this system");
+    if (residentKilobytes() < 0) {
+        std::fprintf(stderr, "gusuku-frame-memory: no VmRSS in /proc/self/status on this system\n");
+        return 1;
+    }
     try {
         RuntimeOptions options;
         options.frame_width = kWidth;

@@ -24,4 +24,13 @@ InputError::InputError(std::string file, std::string field, std::string problem)
       field_(std::move(field)),
       problem_(std::move(problem)) {}
 
+std::string quotedForMessage(const std::string& text) {
+    constexpr size_t kLongestQuoted = 80, kShownOfLong = 60;
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "'" + text + "'".
+    std::string quoted(1, '\'');
+    quoted.append(text, 0, text.size() <= kLongestQuoted ? text.size() : kShownOfLong);
+    if (text.size() <= kLongestQuoted) return quoted.append(1, '\'');
+    return quoted.append("...' (").append(std::to_string(text.size())).append(" characters)");
+}
+
 }  // namespace gusuku

@@ -3,6 +3,8 @@
 // no TZ).
 #include "gusuku/maths/time_utc.h"
 
+#include "gusuku/maths/input_error.h"  // quotedForMessage
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -60,11 +62,7 @@ public:
 
     [[noreturn]] void fail(const std::string& problem) const {
         // A long text is cut in the message (a 100 KB argument is a mistake, not a time to echo back).
-        constexpr size_t kLongestQuoted = 80, kShownOfLong = 60;
-        const std::string quoted = text_.size() <= kLongestQuoted ? "'" + text_ + "'"
-                                   : "'" + text_.substr(0, kShownOfLong) + "...' (" +
-                                         std::to_string(text_.size()) + " characters)";
-        throw std::invalid_argument(quoted + " is not an ISO 8601 time: " + problem);
+        throw std::invalid_argument(quotedForMessage(text_) + " is not an ISO 8601 time: " + problem);
     }
 
     bool atEnd() const { return position_ >= text_.size(); }

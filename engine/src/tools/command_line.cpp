@@ -37,12 +37,6 @@ std::optional<double> parseDecimal(const std::string& text) {
     return value;
 }
 
-std::string quotedForMessage(const std::string& text) {
-    constexpr size_t kLongestQuoted = 80, kShownOfLong = 60;
-    if (text.size() <= kLongestQuoted) return "'" + text + "'";
-    return "'" + text.substr(0, kShownOfLong) + "...' (" + std::to_string(text.size()) + " characters)";
-}
-
 CommandLine::CommandLine(std::string program, std::vector<std::string> arguments)
     : program_(std::move(program)), arguments_(std::move(arguments)) {}
 

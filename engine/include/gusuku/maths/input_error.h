@@ -24,4 +24,8 @@ private:
     std::string problem_;
 };
 
+/// `text` quoted for a one-line message: whole when short, else its first 60 characters, "...", and its length,
+/// so that a 100 KB argument or time string never floods the terminal.
+std::string quotedForMessage(const std::string& text);
+
 }  // namespace gusuku

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "gusuku/maths/input_error.h"  // quotedForMessage
+
 namespace gusuku {
 
 /// A number in plain decimal notation: an optional sign, digits with an optional fraction, an optional exponent
@@ -25,9 +27,7 @@ namespace gusuku {
 /// leading or trailing spaces. nullopt when the text is not one, or is beyond double's range.
 std::optional<double> parseDecimal(const std::string& text);
 
-/// `text` quoted for a one-line message: whole when short, else its first 60 characters, "...", and its length,
-/// so that a 100 KB argument never floods the terminal.
-std::string quotedForMessage(const std::string& text);
+/// quotedForMessage (gusuku/maths/input_error.h) quotes values in its messages.
 
 /// A bad command line: an unknown option, a missing value, an unexpected argument. Conventionally exit 2.
 class UsageError : public std::runtime_error {
