@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <vector>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -32,32 +32,42 @@ FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObs
     lighting.sun = computeSunPosition(observer, utc_seconds);
     const float cover = std::isnan(cloud_cover) ? 0.0f : std::clamp(cloud_cover, 0.0f, 1.0f);
 
-    std::vector<std::pair<double, int>> sunny;  // (angle to the current sun, slot index)
+    // The two sunny slots nearest the current sun, ordered by (angle, slot index): kept as two running bests, not
+    // a sorted list, because a frame allocates nothing (runtime.h) and a bake set has a handful of slots.
+    using SlotByAngle = std::pair<double, int>;  // (angle to the current sun, slot index)
+    SlotByAngle nearest[2];
+    size_t sunny_count = 0;
     for (size_t index = 0; index < manifest.slots.size(); ++index) {
         const BakeSetSlot& slot = manifest.slots[index];
         if (slot.sky == BakeSetSky::Overcast) {
             if (lighting.overcast_slot < 0) lighting.overcast_slot = int(index);
         } else if (slot.sun.present && slot.sun.position) {
-            sunny.emplace_back(angleBetweenDeg(lighting.sun.direction_enu, slot.sun.position->direction_enu),
-                               int(index));
+            const SlotByAngle candidate{angleBetweenDeg(lighting.sun.direction_enu, slot.sun.position->direction_enu),
+                                        int(index)};
+            if (sunny_count == 0 || candidate < nearest[0]) {
+                nearest[1] = nearest[0];
+                nearest[0] = candidate;
+            } else if (sunny_count == 1 || candidate < nearest[1]) {
+                nearest[1] = candidate;
+            }
+            ++sunny_count;
         }
     }
-    std::sort(sunny.begin(), sunny.end());
 
     const double elevation = lighting.sun.apparent_elevation_deg;
     const double twilight = std::clamp(1.0 + elevation / kCivilTwilightDeg, 0.0, 1.0);
-    if (!sunny.empty()) {
-        lighting.slot_a = sunny[0].second;
-        lighting.slot_b = sunny[0].second;
-        if (blend_slots && sunny.size() >= 2) {
-            const double angle_a = sunny[0].first, angle_b = sunny[1].first;
+    if (sunny_count > 0) {
+        lighting.slot_a = nearest[0].second;
+        lighting.slot_b = nearest[0].second;
+        if (blend_slots && sunny_count >= 2) {
+            const double angle_a = nearest[0].first, angle_b = nearest[1].first;
             const double angle_ab =
-                angleBetweenDeg(manifest.slots[size_t(sunny[0].second)].sun.position->direction_enu,
-                                manifest.slots[size_t(sunny[1].second)].sun.position->direction_enu);
+                angleBetweenDeg(manifest.slots[size_t(nearest[0].second)].sun.position->direction_enu,
+                                manifest.slots[size_t(nearest[1].second)].sun.position->direction_enu);
             if (angle_ab > 1e-6) {
                 const double t = (angle_a * angle_a - angle_b * angle_b + angle_ab * angle_ab) /
                                  (2.0 * angle_ab * angle_ab);
-                lighting.slot_b = sunny[1].second;
+                lighting.slot_b = nearest[1].second;
                 lighting.slot_b_weight = float(std::clamp(t, 0.0, 1.0));
             }
         }
