@@ -237,8 +237,11 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
     ground_irradiance_buffer_ = GpuBuffer(gpu, irradiance.size() * sizeof(vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                           GpuMemory::kDeviceLocal);
     ground_irradiance_buffer_.upload(irradiance.data(), irradiance.size() * sizeof(vec4));
-    ground_frame_buffer_ = GpuBuffer(gpu, sizeof(GroundMatchFrame), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                     GpuMemory::kHostVisible);
+    // Written in the command buffer (vkCmdUpdateBuffer), not by the host: with frames in flight a host write
+    // could land while an earlier frame's kernel still reads it.
+    ground_frame_buffer_ = GpuBuffer(gpu, sizeof(GroundMatchFrame),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                     GpuMemory::kDeviceLocal);
     const GroundMatchFrame no_view{};
     ground_frame_buffer_.upload(&no_view, sizeof no_view);
     ground_partial_buffer_ = GpuBuffer(gpu, size_t(sample_grid_ground_.sampleCount()) * sizeof(GroundMatchSample),
@@ -291,7 +294,9 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     frame.columns = uint32_t(ground_grid_.columns);
     frame.rows = uint32_t(ground_grid_.rows);
     frame.slot_count = ground_slot_count_;
-    ground_frame_buffer_.upload(&frame, sizeof frame);  // host-visible: a memcpy, read after the submission
+    // The earlier frames' kernels read the view before this write replaces it (write after read: execution only).
+    recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
+    vkCmdUpdateBuffer(cmd, ground_frame_buffer_.handle(), 0, sizeof frame, &frame);
 
     const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
     recordBeforeStatistics(cmd, fragment);

@@ -5,7 +5,8 @@
 // reference: gusuku/maths/colour_match.h; GPU layout: shaders/include/colour_match_interface.h.
 //
 // Everything is allocated at construction (the state buffer, the partials buffer, two pipelines); recording
-// allocates nothing. Not thread-safe; one frame in flight at a time (the runtime waits on its fence).
+// allocates nothing. Not thread-safe. Every per-frame input is written in the command buffer (vkCmdUpdateBuffer)
+// and ordered by barriers, so several frames may be in flight on one queue.
 
 #include <cstdint>
 #include <memory>
@@ -51,8 +52,8 @@ public:
     void record(VkCommandBuffer cmd, const GpuBuffer& camera_buffer);
 
     /// Mode kGround's statistics (colour_statistics_ground.comp and its reduce) of camera_buffer for this view,
-    /// with the barriers and camera-buffer rules of record(). Writes the view into a host-visible buffer first:
-    /// no earlier submission of this pass may still be running (the runtime waits on its fence each frame).
+    /// with the barriers and camera-buffer rules of record(). Writes the view into its buffer in the command
+    /// buffer, after the earlier frames' kernels have read theirs.
     /// Only when hasGround().
     void recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer, const GroundMatchView& view);
     bool hasGround() const { return ground_statistics_pipeline_ != nullptr; }

@@ -54,6 +54,23 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     if (options.shadow_pcf_radius > kMaxShadowPcfRadius)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.shadow_pcf_radius: must be in [0, 3]");
     // Every float option in its documented range (runtime.h), NaN refused by the same test (!(x >= min)).
+    if (options.frames_in_flight < 1 || options.frames_in_flight > 3)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.frames_in_flight: " + std::to_string(options.frames_in_flight) +
+                               " is outside [1, 3]");
+    const uint32_t camera_format = uint32_t(options.camera_format);
+    if (camera_format > uint32_t(CameraFormat::kNv21))
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.camera_format: " + std::to_string(camera_format) +
+                                                                " is not rgba8, bgra8, nv12 or nv21");
+    if (uint32_t(options.camera_ycbcr_model) > 1u || uint32_t(options.camera_ycbcr_range) > 1u)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.camera_ycbcr_model/range: not bt601/bt709 and narrow/full");
+    const bool yuv = options.camera_format == CameraFormat::kNv12 || options.camera_format == CameraFormat::kNv21;
+    if (yuv && (options.frame_width % 2 != 0 || options.frame_height % 2 != 0))
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.frame_width/height: " + std::to_string(options.frame_width) + " x " +
+                               std::to_string(options.frame_height) +
+                               ": a 4:2:0 camera (nv12, nv21) needs an even width and height");
     for (const RealOptionRange& range : kRealOptionRanges) {
         const float value = options.*(range.member);
         if (!(value >= range.minimum && value <= range.maximum))
@@ -87,17 +104,19 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
     slot_colour_statistics_ = slotColourStatistics(manifest_);
     try {
-        scene_ = uploadScene(gpu, bake_set, options.ground_change_threshold);
+        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold);
         createGroundSelectionArrays();
         createTargets();
         // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
         const std::optional<GroundMatchScene> ground = groundMatchSceneFrom(bake_set);
-        statistics_ = std::make_unique<ColourStatisticsPass>(gpu, options.frame_width, options.frame_height,
+        statistics_ = std::make_unique<ColourStatisticsPass>(gpu_, options.frame_width, options.frame_height,
                                                              options.statistics_stride,
                                                              options.statistics_smoothing_frames,
                                                              ground ? &*ground : nullptr);
+        camera_ = std::make_unique<CameraInput>(gpu_, options_, uint32_t(slots_.size()), true);
         createDescriptors();
         createPipelines();
+        camera_->createDrawPipeline(main_passes_[0]);
         createCommands();
     } catch (const RuntimeError&) {
         destroy();
@@ -129,6 +148,8 @@ public:
         return runtime_.renderFrameProfiled(frame, output_rgba8, timings);
     }
     VkImage compositeImage() const override { return runtime_.compositeImage(); }
+    void waitIdle() override { runtime_.waitIdle(); }
+    void forgetCameraImage(VkImage image) override { runtime_.forgetCameraImage(image); }
     void resetColourStatistics() override { runtime_.resetColourStatistics(); }
     void invalidateShadowMaps() override { runtime_.invalidateShadowMaps(); }
     uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }

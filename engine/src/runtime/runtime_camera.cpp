@@ -122,14 +122,55 @@ std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t wi
                " is not off, paper, preserve or ground";
     if (frame.mode != RenderMode::kProposed && frame.mode != RenderMode::kDirectOnly)
         return "mode: " + std::to_string(int(frame.mode)) + " is not proposed or direct-only";
-    if ((frame.camera_rgba8 == nullptr) == (frame.camera_image == VK_NULL_HANDLE))
-        return "camera: give exactly one of camera_rgba8 and camera_image";
     if (frame.position) {
         const GeoPosition& fix = *frame.position;
         if (!(std::abs(fix.latitude_deg) <= 90.0)) return "position.latitude_deg: must be in [-90, 90]";
         if (!(std::abs(fix.longitude_deg) <= 180.0)) return "position.longitude_deg: must be in [-180, 180]";
         if (!(std::abs(fix.height_m) <= kMaxFixHeightM)) return "position.height_m: must be in [-100000, 100000]";
     }
+    return std::nullopt;
+}
+
+std::optional<std::string> findCameraProblem(const FrameInput& frame, const RuntimeOptions& options) {
+    const bool yuv = options.camera_format == CameraFormat::kNv12 || options.camera_format == CameraFormat::kNv21;
+    const int sources = int(frame.camera_rgba8 != nullptr) + int(frame.camera_luma != nullptr) +
+                        int(frame.camera_image != VK_NULL_HANDLE);
+    if (sources != 1)
+        return "camera: give exactly one of camera_rgba8, camera_luma (with camera_chroma) and camera_image";
+    if (yuv && frame.camera_rgba8 != nullptr)
+        return "camera_rgba8: the runtime was opened for a Y'CbCr camera (options.camera_format): give camera_luma "
+               "and camera_chroma";
+    if (!yuv && frame.camera_luma != nullptr)
+        return "camera_luma: the runtime was opened for a four-byte camera (options.camera_format): give "
+               "camera_rgba8";
+    if (frame.camera_luma != nullptr && frame.camera_chroma == nullptr)
+        return "camera_chroma: null, but camera_luma is set (a Y'CbCr frame needs both planes)";
+    auto rowTooShort = [](uint32_t row_bytes, uint32_t packed) { return row_bytes != 0 && row_bytes < packed; };
+    if (frame.camera_rgba8 != nullptr && rowTooShort(frame.camera_row_bytes, options.frame_width * 4))
+        return "camera_row_bytes: " + std::to_string(frame.camera_row_bytes) + " is less than a row's " +
+               std::to_string(options.frame_width * 4) + " bytes";
+    if (frame.camera_luma != nullptr && rowTooShort(frame.camera_luma_row_bytes, options.frame_width))
+        return "camera_luma_row_bytes: " + std::to_string(frame.camera_luma_row_bytes) + " is less than a row's " +
+               std::to_string(options.frame_width) + " bytes";
+    if (frame.camera_luma != nullptr && rowTooShort(frame.camera_chroma_row_bytes, options.frame_width))
+        return "camera_chroma_row_bytes: " + std::to_string(frame.camera_chroma_row_bytes) +
+               " is less than a row's " + std::to_string(options.frame_width) + " bytes";
+    if (frame.camera_image != VK_NULL_HANDLE && frame.camera_image_layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL &&
+        frame.camera_image_layout != VK_IMAGE_LAYOUT_GENERAL &&
+        frame.camera_image_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)
+        return "camera_image_layout: " + std::to_string(int(frame.camera_image_layout)) +
+               " is not SHADER_READ_ONLY_OPTIMAL, GENERAL or TRANSFER_SRC_OPTIMAL";
+    const FrameSync& sync = frame.sync;
+    if (sync.wait_count > kMaxFrameSemaphores || sync.signal_count > kMaxFrameSemaphores)
+        return "sync: at most " + std::to_string(kMaxFrameSemaphores) + " wait and " +
+               std::to_string(kMaxFrameSemaphores) + " signal semaphores";
+    if ((sync.wait_count > 0 && sync.wait_semaphores == nullptr) ||
+        (sync.signal_count > 0 && sync.signal_semaphores == nullptr))
+        return "sync: a semaphore count without its array";
+    for (uint32_t index = 0; index < sync.wait_count; ++index)
+        if (sync.wait_semaphores[index] == VK_NULL_HANDLE) return "sync.wait_semaphores: a null semaphore";
+    for (uint32_t index = 0; index < sync.signal_count; ++index)
+        if (sync.signal_semaphores[index] == VK_NULL_HANDLE) return "sync.signal_semaphores: a null semaphore";
     return std::nullopt;
 }
 

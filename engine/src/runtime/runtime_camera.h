@@ -16,5 +16,9 @@ glm::dmat4 cameraEnuToClip(const CameraIntrinsics& intrinsics, const CameraPose&
 
 /// "FIELD: PROBLEM" for a frame the runtime cannot render (size, NaN, a non-rotation, ...); nothing when valid.
 std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t width, uint32_t height);
+/// The camera source and the semaphores of a frame for this runtime's options: one source, the one its camera
+/// format takes, and at most kMaxFrameSemaphores of each kind, none null.
+std::optional<std::string> findCameraProblem(const FrameInput& frame, const RuntimeOptions& options);
+constexpr uint32_t kMaxFrameSemaphores = 8;
 
 }  // namespace gusuku::runtime_detail

@@ -11,9 +11,15 @@
 
 namespace gusuku::runtime_detail {
 
+void RuntimeImpl::checkFrame(const FrameInput& frame) const {
+    std::optional<std::string> problem = findFrameProblem(frame, options_.frame_width, options_.frame_height);
+    if (!problem) problem = findCameraProblem(frame, options_);
+    if (problem) throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "frame: " + *problem);
+}
+
+// The frame's checks come first (checkFrame), then the slot (acquireSlot), then this: everything below may
+// write the slot's host-visible buffers, whose previous frame has completed.
 FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
-    if (const std::optional<std::string> problem = findFrameProblem(frame, options_.frame_width, options_.frame_height))
-        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "frame: " + *problem);
     FrameLighting lighting;
     try {
         lighting = computeFrameLighting(manifest_, frameObserverFor(frame, manifest_.site), frame.utc_unix_seconds,
@@ -35,14 +41,12 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     const SlotBlend blend = slotBlendFor(lighting);
     const FrameScene scene{scene_.scene_radius_m, scene_.irradiance_scale, scene_.slot_mean_indirect,
                            manifest_.ground_grid.grid};
-    uniforms_ = frameUniformsFor(frame, lighting, flags, blend, shadow_fit_, options_, scene);
-    uniform_buffer_.upload(&uniforms_, sizeof uniforms_);
+    uniforms_ = frameUniformsFor(frame, lighting, flags, blend, shadow_fit_, options_, scene);  // recordFrameStart
     prepareColourMatch(frame, lighting, blend);
     shadow_push_ = shadowPushFor(shadow_fit_);
     occluder_push_ = occluderPushFor(uniforms_);
-
-    if (frame.camera_rgba8 != nullptr)
-        camera_buffer_.upload(frame.camera_rgba8, size_t(options_.frame_width) * options_.frame_height * 4);
+    uploadGroundSelection(slots_[slot_]);
+    camera_->prepare(slot_, frame);
     return info;
 }
 
@@ -60,8 +64,8 @@ void RuntimeImpl::updateShadowState(const glm::dvec3& shadow_sun) {
 }
 
 // The ground quads to draw: chosen again only when what chooses them changes (the rounded sun, the mode, whether
-// the sun shines); their margin covers the rounding. The chosen quads go to the host-visible index buffer and
-// their cells' shadow flags to the ground pass's vertex stream.
+// the sun shines); their margin covers the rounding. Each slot copies the newest choice into its own buffers
+// (uploadGroundSelection) when it next renders, so no write lands under a frame still in flight.
 void RuntimeImpl::updateGroundSelection(bool wanted, bool include_baked_changes, const glm::dvec3& shadow_sun) {
     const GroundSelectionKey key{wanted, include_baked_changes, sun_shines_, shadow_sun};
     if (ground_selection_key_ != key) {
@@ -75,14 +79,20 @@ void RuntimeImpl::updateGroundSelection(bool wanted, bool include_baked_changes,
                                   ground_quad_indices_);
             ground_index_count_ = selection.index_count;
             ground_shadow_index_count_ = selection.shadow_index_count;
-            if (selection.index_count > 0) {
-                scene_.ground_indices.upload(ground_quad_indices_.data(), selection.index_count * sizeof(uint32_t));
-                ground_candidate_buffer_.upload(ground_shadow_candidate_.data(),
-                                                ground_shadow_candidate_.size() * sizeof(float));
-            }
         }
+        ++ground_generation_;
     }
     draw_ground_ = ground_index_count_ > 0;
+}
+
+// The chosen quads into the slot's host-visible index buffer and their cells' shadow flags into its vertex
+// stream, when the slot holds an older choice.
+void RuntimeImpl::uploadGroundSelection(FrameSlot& slot) {
+    if (slot.ground_generation == ground_generation_) return;
+    slot.ground_generation = ground_generation_;
+    if (ground_index_count_ == 0) return;
+    slot.ground_indices.upload(ground_quad_indices_.data(), ground_index_count_ * sizeof(uint32_t));
+    slot.ground_candidates.upload(ground_shadow_candidate_.data(), ground_shadow_candidate_.size() * sizeof(float));
 }
 
 // The colour match's mode and source this frame, and mode kGround's view.

@@ -5,9 +5,12 @@
 //   runtime_frame_pipelines.cpp  the frame's graphics pipelines
 //   runtime_frame.cpp       the frame on the CPU: frame_preparation.h's pure functions, kept and uploaded
 //   runtime_passes.cpp      the frame on the GPU, pass by pass (recorders only)
-//   runtime_submission.cpp  submission, the fence, read-back and the profiled frame
-// Everything is created in open(); a frame records into one pre-allocated command buffer, submits it and waits
-// on one fence, and allocates nothing. Private to gusuku_runtime.
+//   runtime_submission.cpp  frame slots, submission with the app's semaphores, read-back and the profiled frame
+//   camera_input.cpp        the camera sampled in place, in its own format (camera_input.h)
+// Everything is created in open(); a frame takes the next of frames_in_flight slots (waiting on its fence only
+// when the GPU still works on it), records into its pre-allocated command buffer, submits it and returns;
+// only the host-bytes path waits, to read the composite back. A frame allocates nothing. Private to
+// gusuku_runtime.
 
 #include <exception>
 #include <memory>
@@ -15,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "camera_input.h"
 #include "colour_statistics_pass.h"
 #include "frame_preparation.h"
 #include "gusuku/maths/frame_lighting.h"
@@ -33,6 +37,19 @@ inline RuntimeError deviceError(const std::exception& error) {
 /// Throws RuntimeError(kInvalidFrame) for options out of their documented ranges (runtime.h).
 void checkRuntimeOptions(const RuntimeOptions& options);
 
+/// What one frame in flight owns (RuntimeOptions::frames_in_flight of them).
+struct FrameSlot {
+    GpuImage composite;                           // the frame's colour target, the app's compositeImage()
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;   // composite + the shared depth
+    GpuBuffer readback;                           // host-visible RGBA8, the host-bytes path only
+    GpuBuffer ground_indices;                     // host-visible: the ground quads chosen, 6 indices each
+    GpuBuffer ground_candidates;                  // host-visible vertex stream: per cell, the shadow may fall here
+    uint64_t ground_generation = 0;               // which selection the two hold
+    VkCommandBuffer command_buffer = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    bool in_flight = false;                       // submitted and its fence not yet waited for
+};
+
 class RuntimeImpl final : public Runtime {
 public:
     RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options);
@@ -40,7 +57,9 @@ public:
 
     FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) override;
     FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) override;
-    VkImage compositeImage() const override { return colour_target_.handle(); }
+    VkImage compositeImage() const override { return slots_[last_slot_].composite.handle(); }
+    void waitIdle() override;
+    void forgetCameraImage(VkImage image) override;
     void resetColourStatistics() override { statistics_->reset(); }
     void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
@@ -55,13 +74,15 @@ private:
     void destroy() noexcept;
 
     // runtime_frame.cpp
+    void checkFrame(const FrameInput& frame) const;  // RuntimeError kInvalidFrame naming the field
     FrameInfo prepareFrame(const FrameInput& frame);
     void updateShadowState(const glm::dvec3& shadow_sun);
     void updateGroundSelection(bool wanted, bool include_baked_changes, const glm::dvec3& shadow_sun);
+    void uploadGroundSelection(FrameSlot& slot);
     void prepareColourMatch(const FrameInput& frame, const FrameLighting& lighting, const SlotBlend& blend);
 
     // runtime_passes.cpp
-    void recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame);
+    void recordFrameStart(VkCommandBuffer cmd, const FrameInput& frame);
     void recordStatistics(VkCommandBuffer cmd, const FrameInput& frame);
     void recordShadows(VkCommandBuffer cmd);
     void recordOccluder(VkCommandBuffer cmd);
@@ -71,36 +92,45 @@ private:
     void beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass);
 
     // runtime_submission.cpp
-    // Records `record` into the frame's one command buffer, submits it and waits on the fence. A template, not a
-    // std::function, so a frame allocates nothing even where a standard library would box the lambda.
-    template <typename Record> void submit(const Record& record) {
+    // Records `record` into the current slot's command buffer and submits it (with the frame's semaphores when
+    // given); `wait` then blocks on the slot's fence. A template, not a std::function, so a frame allocates
+    // nothing even where a standard library would box the lambda.
+    template <typename Record> void submit(const Record& record, const FrameSync* sync, bool wait) {
         beginCommands();
-        record(command_buffer_);
-        submitCommandsAndWait();
+        record(slots_[slot_].command_buffer);
+        submitCommands(sync);
+        if (wait) waitForSlot(slots_[slot_]);
     }
+    void acquireSlot(const FrameInput& frame);
     void beginCommands();
-    void submitCommandsAndWait();
+    void submitCommands(const FrameSync* sync);
+    void waitForSlot(FrameSlot& slot);
     void finishOutput(uint8_t* output_rgba8);
 
-    const GpuDevice& gpu_;
+    // A copy, not a reference: GpuDevice is a value (gpu_device.h) and an app may pass a temporary
+    // (Runtime::open(GpuDevice::describe(...), ...)). Every buffer, image and pass below points at this member,
+    // which is declared first so it outlives them.
+    const GpuDevice gpu_;
     RuntimeOptions options_;
     BakeSetManifest manifest_;
     std::vector<LabStatistics> slot_colour_statistics_;  // per slot (zero when the manifest has none)
     GpuScene scene_;
 
-    // Per-frame resources, all made in open().
-    GpuImage colour_target_;
+    // Per-frame resources, all made in open(). What each frame in flight needs of its own (the app may read a
+    // composite while the next frame renders; the host writes the staging and ground buffers) is in a slot;
+    // what only the GPU writes and reads within a frame is shared, ordered by barriers across frames.
+    std::vector<FrameSlot> slots_;
+    uint32_t slot_ = 0;       // the slot being recorded
+    uint32_t last_slot_ = 0;  // the slot of the last frame submitted
     GpuImage depth_target_;
     GpuImage building_shadow_;
     GpuImage site_shadow_;
-    GpuBuffer camera_buffer_;    // host-visible RGBA8 of the camera frame (uploaded, or copied from the app's image)
-    GpuBuffer readback_buffer_;  // host-visible RGBA8 of the composite
-    GpuBuffer uniform_buffer_;   // host-visible FrameUniforms
+    GpuBuffer uniform_buffer_;   // device-local FrameUniforms, written in each frame's command buffer
+    std::unique_ptr<CameraInput> camera_;
     std::unique_ptr<ColourStatisticsPass> statistics_;
 
     VkRenderPass main_passes_[4] = {};  // MainPassVariant order
     VkRenderPass shadow_pass_ = VK_NULL_HANDLE;
-    VkFramebuffer main_framebuffer_ = VK_NULL_HANDLE;
     VkFramebuffer building_shadow_framebuffer_ = VK_NULL_HANDLE;
     VkFramebuffer site_shadow_framebuffer_ = VK_NULL_HANDLE;
     VkSampler linear_sampler_ = VK_NULL_HANDLE;
@@ -121,8 +151,6 @@ private:
     VkPipeline ground_baked_pipeline_ = VK_NULL_HANDLE;    // quads only its baked light changes: no building shadow
     VkPipeline ground_sunless_pipeline_ = VK_NULL_HANDLE;  // the same with no sun at all: no shadow-map reads
     VkCommandPool command_pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
 
     // This frame's CPU-side state, filled by prepareFrame.
     shader_interface::FrameUniforms uniforms_{};
@@ -151,7 +179,7 @@ private:
     uint32_t ground_shadow_index_count_ = 0;  // the first of them, which the building's shadow may reach
     std::vector<uint8_t> ground_cell_marked_;
     std::vector<float> ground_shadow_candidate_;  // per cell: 1 where the building's shadow may fall
-    GpuBuffer ground_candidate_buffer_;           // the same as a host-visible vertex stream
+    uint64_t ground_generation_ = 0;              // counts the selections; each slot uploads the newest
     std::vector<uint32_t> ground_quad_indices_;
     bool draw_ground_ = false;
     bool frame_set_bound_ = false;  // the frame set is bound in the command buffer being recorded

@@ -1,5 +1,5 @@
-// The frame on the GPU, pass by pass (runtime_impl.h; docs/design.md 8): the camera image in, the colour
-// statistics, the sun's shadow maps, the occluder's depth, the building, the ground ratio, the read-back. Each
+// The frame on the GPU, pass by pass (runtime_impl.h; docs/design.md 8): the uniforms and the camera readied, the
+// colour statistics, the sun's shadow maps, the occluder's depth, the building, the ground ratio, the read-back. Each
 // records into a command buffer and submits nothing (runtime_submission.cpp does).
 
 #include "gusuku/gpu/gpu_compute.h"
@@ -12,45 +12,29 @@ namespace gusuku::runtime_detail {
 using shader_interface::DepthOnlyPushConstants;
 using shader_interface::MaterialPushConstants;
 
-void RuntimeImpl::recordCameraIn(VkCommandBuffer cmd, const FrameInput& frame) {
-    const VkExtent3D extent{options_.frame_width, options_.frame_height, 1};
-    if (frame.camera_image != VK_NULL_HANDLE) {
-        // The app's image into our buffer (for the statistics and the copy below), in its given layout.
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = extent;
-        vkCmdCopyImageToBuffer(cmd, frame.camera_image, frame.camera_image_layout, camera_buffer_.handle(), 1,
-                               &region);
-        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
-                             nullptr, 0, nullptr);
-    }
-    // The previous frame left the composite in TRANSFER_SRC; its content is replaced whole.
-    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
-                                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                VK_PIPELINE_STAGE_TRANSFER_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = extent;
-    vkCmdCopyBufferToImage(cmd, camera_buffer_.handle(), colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                           1, &region);
-    recordImageLayoutTransition(cmd, colour_target_.handle(), VK_IMAGE_ASPECT_COLOR_BIT,
-                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                VK_ACCESS_TRANSFER_WRITE_BIT,
-                                VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT);
+// Outside any render pass, before the others: this frame's uniforms into their buffer (in the command buffer,
+// so no host write can land under a frame still in flight), and the camera readied for sampling.
+void RuntimeImpl::recordFrameStart(VkCommandBuffer cmd, const FrameInput& frame) {
+    static_assert(sizeof uniforms_ <= 65536 && sizeof uniforms_ % 4 == 0, "vkCmdUpdateBuffer's limits");
+    const VkPipelineStageFlags uniform_readers =
+        VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};  // the earlier frames' reads first (execution only)
+    vkCmdPipelineBarrier(cmd, uniform_readers, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+    vkCmdUpdateBuffer(cmd, uniform_buffer_.handle(), 0, sizeof uniforms_, &uniforms_);
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, uniform_readers, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+    camera_->recordBeforePasses(cmd, slot_, frame, frame_colour_mode_ != ColourMatchMode::kOff);
 }
 
 void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
     statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
     if (frame_colour_mode_ == ColourMatchMode::kGround)
-        statistics_->recordGround(cmd, camera_buffer_, frame_ground_view_);
+        statistics_->recordGround(cmd, camera_->packedBuffer(), frame_ground_view_);
     else if (frame_colour_mode_ != ColourMatchMode::kOff)
-        statistics_->record(cmd, camera_buffer_);
+        statistics_->record(cmd, camera_->packedBuffer());
 }
 
 void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
@@ -88,17 +72,20 @@ void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
     }
 }
 
+// The variants that start the frame's main pass (kWhole, kFirst) do not load the composite: the camera-in draw
+// writes every pixel of it first.
 void RuntimeImpl::beginMainPass(VkCommandBuffer cmd, VkRenderPass render_pass) {
     VkClearValue clears[2]{};
     clears[1].depthStencil = {1.0f, 0};
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = render_pass;
-    begin.framebuffer = main_framebuffer_;  // compatible with every variant
+    begin.framebuffer = slots_[slot_].framebuffer;  // compatible with every variant
     begin.renderArea = {{0, 0}, {options_.frame_width, options_.frame_height}};
     begin.clearValueCount = 2;
     begin.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     recordViewport(cmd, options_.frame_width, options_.frame_height);
+    if (render_pass == main_passes_[0] || render_pass == main_passes_[1]) camera_->recordDraw(cmd, slot_);
 }
 
 void RuntimeImpl::recordOccluder(VkCommandBuffer cmd) {
@@ -144,10 +131,11 @@ void RuntimeImpl::recordGround(VkCommandBuffer cmd) {
     if (!frame_set_bound_)
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_FRAME_SET, 1,
                                 &frame_set_, 0, nullptr);
-    const VkBuffer candidates = ground_candidate_buffer_.handle();
+    const FrameSlot& slot = slots_[slot_];
+    const VkBuffer candidates = slot.ground_candidates.handle();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &candidates, &offset);
-    vkCmdBindIndexBuffer(cmd, scene_.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdBindIndexBuffer(cmd, slot.ground_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
     if (ground_shadow_index_count_ > 0) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ground_pipeline_);
         vkCmdDrawIndexed(cmd, ground_shadow_index_count_, 1, 0, 0, 0);
@@ -164,8 +152,8 @@ void RuntimeImpl::recordReadback(VkCommandBuffer cmd) {
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {options_.frame_width, options_.frame_height, 1};
-    vkCmdCopyImageToBuffer(cmd, colour_target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           readback_buffer_.handle(), 1, &region);
+    vkCmdCopyImageToBuffer(cmd, slots_[slot_].composite.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           slots_[slot_].readback.handle(), 1, &region);
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;

@@ -7,16 +7,20 @@
 namespace gusuku::runtime_detail {
 
 VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant) {
+    // The later variants continue a frame the earlier ones began (profiling): they load what it drew.
     const bool loads_depth = variant == MainPassVariant::kMiddle || variant == MainPassVariant::kLast;
+    const bool loads_colour = loads_depth;
     const bool ends_frame = variant == MainPassVariant::kWhole || variant == MainPassVariant::kLast;
     VkAttachmentDescription attachments[2]{};
     attachments[0].format = kColourFormat;
     attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
-    attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the camera image is already there
+    // A new frame's composite is not loaded: the camera-in draw writes every pixel first (camera_input.h).
+    attachments[0].loadOp = loads_colour ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    attachments[0].initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    attachments[0].initialLayout =
+        loads_colour ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
     attachments[0].finalLayout =
         ends_frame ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     attachments[1].format = kDepthFormat;
@@ -37,14 +41,16 @@ VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant) {
     subpass.pColorAttachments = &colour_reference;
     subpass.pDepthStencilAttachment = &depth_reference;
 
-    // In: the camera copy (transfer) and the last pass's colour and depth writes, and the shadow maps and colour
-    // state written before (their own barriers make them visible to fragment shaders). Out: the copy to the host.
+    // In: the last pass's colour and depth writes, the earlier reads of this slot's composite (the app's copies
+    // and samplers, the read-back: write after read), and the shadow maps, uniforms and colour state written
+    // before (their own barriers make them visible to fragment shaders). Out: the copy to the host.
     VkSubpassDependency dependencies[2]{};
     dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[0].dstSubpass = 0;
     dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                   VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+                                   VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |

@@ -15,7 +15,7 @@ namespace gusuku::runtime_detail {
 constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;  // the composite: sRGB bytes, blending in linear
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-/// The main pass's attachments: colour (loaded: the camera image) and depth. The variants differ only in load
+/// The main pass's attachments: colour (the composite; the camera-in draw writes it first) and depth. The variants differ only in load
 /// and store operations and layouts, so they are compatible and share pipelines. `whole` = one pass for the
 /// whole frame; `first`, `middle`, `last` split it for the profiling mode.
 enum class MainPassVariant { kWhole, kFirst, kMiddle, kLast };

@@ -16,21 +16,11 @@ using shader_interface::FrameUniforms;
 void RuntimeImpl::createGroundSelectionArrays() {
     ground_cell_marked_.assign(scene_.ground_cell_state.size(), 0);
     ground_shadow_candidate_.assign(scene_.ground_cell_state.size(), 0.0f);
-    ground_candidate_buffer_ =
-        GpuBuffer(gpu_, std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), kMinBufferBytes),
-                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
     ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
 }
 
 void RuntimeImpl::createTargets() {
     const uint32_t width = options_.frame_width, height = options_.frame_height;
-    GpuImageDescription colour;
-    colour.format = kColourFormat;
-    colour.width = width;
-    colour.height = height;
-    colour.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    colour_target_ = GpuImage(gpu_, colour);
     GpuImageDescription depth;
     depth.format = kDepthFormat;
     depth.width = width;
@@ -43,13 +33,9 @@ void RuntimeImpl::createTargets() {
     shadow.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     building_shadow_ = GpuImage(gpu_, shadow);
     site_shadow_ = GpuImage(gpu_, shadow);
-
-    const size_t frame_bytes = size_t(width) * height * 4;
-    camera_buffer_ = GpuBuffer(gpu_, frame_bytes,
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    readback_buffer_ = GpuBuffer(gpu_, frame_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    uniform_buffer_ = GpuBuffer(gpu_, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    uniform_buffer_ = GpuBuffer(gpu_, sizeof(FrameUniforms),
+                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                GpuMemory::kDeviceLocal);
 
     const VkDevice device = gpu_.device;
     main_passes_[0] = createMainRenderPass(device, MainPassVariant::kWhole);
@@ -57,21 +43,42 @@ void RuntimeImpl::createTargets() {
     main_passes_[2] = createMainRenderPass(device, MainPassVariant::kMiddle);
     main_passes_[3] = createMainRenderPass(device, MainPassVariant::kLast);
     shadow_pass_ = createShadowRenderPass(device);
-    main_framebuffer_ =
-        createFramebuffer(device, main_passes_[0], {colour_target_.view(), depth_target_.view()}, width, height);
     building_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {building_shadow_.view()},
                                                      options_.shadow_map_size, options_.shadow_map_size);
     site_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {site_shadow_.view()},
                                                  options_.shadow_map_size, options_.shadow_map_size);
 
+    GpuImageDescription colour;
+    colour.format = kColourFormat;
+    colour.width = width;
+    colour.height = height;
+    colour.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    const size_t index_bytes = std::max<size_t>(size_t(scene_.ground_quad_capacity) * 6 * sizeof(uint32_t),
+                                                kMinBufferBytes);
+    const size_t candidate_bytes = std::max<size_t>(ground_shadow_candidate_.size() * sizeof(float), kMinBufferBytes);
+    slots_.resize(options_.frames_in_flight);
+    for (FrameSlot& slot : slots_) {
+        slot.composite = GpuImage(gpu_, colour);
+        slot.framebuffer = createFramebuffer(device, main_passes_[0], {slot.composite.view(), depth_target_.view()},
+                                             width, height);
+        slot.readback = GpuBuffer(gpu_, size_t(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        slot.ground_indices = GpuBuffer(gpu_, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, GpuMemory::kHostVisible);
+        slot.ground_candidates =
+            GpuBuffer(gpu_, candidate_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, GpuMemory::kHostVisible);
+    }
+
     // Shadow maps start in the layout the frame set's descriptors name, so a frame that skips them reads a
-    // defined (cleared) map.
+    // defined (cleared) map; composites in the layout compositeImage() promises.
     GpuSubmitter submitter(gpu_);
     submitter.submitAndWait([&](VkCommandBuffer cmd) {
         for (const GpuImage* map : {&building_shadow_, &site_shadow_})
             recordImageLayoutTransition(cmd, map->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, VK_ACCESS_SHADER_READ_BIT,
                                         VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+        for (const FrameSlot& slot : slots_)
+            recordImageLayoutTransition(cmd, slot.composite.handle(), VK_IMAGE_ASPECT_COLOR_BIT,
+                                        VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 0,
+                                        VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     });
 }
 
@@ -186,20 +193,29 @@ void RuntimeImpl::createCommands() {
     pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pool_info.queueFamilyIndex = gpu_.queue_family_index;
     checkVk(vkCreateCommandPool(gpu_.device, &pool_info, nullptr, &command_pool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate_info.commandPool = command_pool_;
-    allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocate_info.commandBufferCount = 1;
-    checkVk(vkAllocateCommandBuffers(gpu_.device, &allocate_info, &command_buffer_), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    checkVk(vkCreateFence(gpu_.device, &fence_info, nullptr, &fence_), "vkCreateFence");
+    for (FrameSlot& slot : slots_) {
+        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        allocate_info.commandPool = command_pool_;
+        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        allocate_info.commandBufferCount = 1;
+        checkVk(vkAllocateCommandBuffers(gpu_.device, &allocate_info, &slot.command_buffer),
+                "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        checkVk(vkCreateFence(gpu_.device, &fence_info, nullptr, &slot.fence), "vkCreateFence");
+    }
 }
 
 void RuntimeImpl::destroy() noexcept {
     VkDevice device = gpu_.device;
     if (device == VK_NULL_HANDLE) return;
     vkDeviceWaitIdle(device);
-    if (fence_) vkDestroyFence(device, fence_, nullptr);
+    for (FrameSlot& slot : slots_) {
+        if (slot.fence) vkDestroyFence(device, slot.fence, nullptr);
+        if (slot.framebuffer) vkDestroyFramebuffer(device, slot.framebuffer, nullptr);
+        slot.fence = VK_NULL_HANDLE;
+        slot.framebuffer = VK_NULL_HANDLE;
+    }
+    camera_.reset();
     if (command_pool_) vkDestroyCommandPool(device, command_pool_, nullptr);
     for (VkPipeline pipeline :
          {shadow_pipeline_, site_shadow_pipeline_, occluder_pipeline_, building_pipeline_, ground_pipeline_,
@@ -212,12 +228,11 @@ void RuntimeImpl::destroy() noexcept {
         if (layout) vkDestroyDescriptorSetLayout(device, layout, nullptr);
     for (VkSampler sampler : {linear_sampler_, shadow_sampler_, texture_sampler_})
         if (sampler) vkDestroySampler(device, sampler, nullptr);
-    for (VkFramebuffer framebuffer : {main_framebuffer_, building_shadow_framebuffer_, site_shadow_framebuffer_})
+    for (VkFramebuffer framebuffer : {building_shadow_framebuffer_, site_shadow_framebuffer_})
         if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);
     for (VkRenderPass render_pass : main_passes_)
         if (render_pass) vkDestroyRenderPass(device, render_pass, nullptr);
     if (shadow_pass_) vkDestroyRenderPass(device, shadow_pass_, nullptr);
-    fence_ = VK_NULL_HANDLE;
     command_pool_ = VK_NULL_HANDLE;
     shadow_pipeline_ = site_shadow_pipeline_ = occluder_pipeline_ = building_pipeline_ = ground_pipeline_ =
         ground_baked_pipeline_ = ground_sunless_pipeline_ = VK_NULL_HANDLE;
@@ -225,23 +240,24 @@ void RuntimeImpl::destroy() noexcept {
     descriptor_pool_ = VK_NULL_HANDLE;
     frame_set_layout_ = material_set_layout_ = VK_NULL_HANDLE;
     linear_sampler_ = shadow_sampler_ = texture_sampler_ = VK_NULL_HANDLE;
-    main_framebuffer_ = building_shadow_framebuffer_ = site_shadow_framebuffer_ = VK_NULL_HANDLE;
+    building_shadow_framebuffer_ = site_shadow_framebuffer_ = VK_NULL_HANDLE;
     for (VkRenderPass& render_pass : main_passes_) render_pass = VK_NULL_HANDLE;
     shadow_pass_ = VK_NULL_HANDLE;
     // Buffers, images and the statistics pass release themselves.
 }
 
 uint64_t RuntimeImpl::deviceMemoryBytes() const {
-    uint64_t bytes = 0;
-    for (const GpuImage* image : {&colour_target_, &depth_target_, &building_shadow_, &site_shadow_,
-                                  &scene_.lightmaps, &scene_.ground_irradiance, &scene_.ground_geometry,
-                                  &scene_.white_texture})
+    uint64_t bytes = camera_ ? camera_->memoryBytes() : 0;
+    for (const GpuImage* image : {&depth_target_, &building_shadow_, &site_shadow_, &scene_.lightmaps,
+                                  &scene_.ground_irradiance, &scene_.ground_geometry, &scene_.white_texture})
         bytes += image->memoryBytes();
     for (const GpuImage& texture : scene_.textures) bytes += texture.memoryBytes();
     for (const GpuBuffer* buffer : {&scene_.building_vertices, &scene_.building_indices, &scene_.occluder_vertices,
-                                    &scene_.occluder_indices, &scene_.ground_indices, &camera_buffer_,
-                                    &readback_buffer_, &ground_candidate_buffer_, &uniform_buffer_, &statistics_->stateBuffer()})
+                                    &scene_.occluder_indices, &uniform_buffer_, &statistics_->stateBuffer()})
         bytes += buffer->size();
+    for (const FrameSlot& slot : slots_)
+        bytes += slot.composite.memoryBytes() + slot.readback.size() + slot.ground_indices.size() +
+                 slot.ground_candidates.size();
     return bytes;
 }
 

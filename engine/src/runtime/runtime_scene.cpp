@@ -275,12 +275,9 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
     uploadGroundIrradiance(gpu, bake_set, columns, rows, has_ground, change_threshold, inverse_scale, scene);
     uploadGroundGeometry(gpu, bake_set, columns, rows, has_ground, scene);
 
-    // Room for the ground grid's triangles, two per square of four neighbouring cell centres; each frame
-    // writes the quads it draws.
+    // The ground grid's quads, one per square of four neighbouring cell centres (two triangles): each frame
+    // slot has room for all of them (RuntimeImpl::createTargets) and draws those it chooses.
     scene.ground_quad_capacity = has_ground ? (columns - 1) * (rows - 1) : 0;
-    const size_t ground_index_bytes = size_t(scene.ground_quad_capacity) * 6 * sizeof(uint32_t);
-    scene.ground_indices =
-        GpuBuffer(gpu, std::max(ground_index_bytes, kMinBufferBytes), kIndexUsage, GpuMemory::kHostVisible);
     boundReceivers(bake_set, columns, rows, has_ground, scene);
     glm::dvec3 all_min = glm::min(scene.receivers_min, scene.casters_min);
     glm::dvec3 all_max = glm::max(scene.receivers_max, scene.casters_max);

@@ -46,9 +46,8 @@ struct GpuScene {
     GpuBuffer occluder_vertices;                 ///< vec3, device-local (may hold nothing)
     GpuBuffer occluder_indices;
     uint32_t occluder_index_count = 0;
-    /// The ground's triangles between neighbouring cell centres, chosen per frame (host-visible, room for every
-    /// quad): only quads the building can change are drawn (ground_quads.h, selectGroundQuads).
-    GpuBuffer ground_indices;
+    /// Quads of the ground grid (two triangles between neighbouring cell centres); each frame slot holds the
+    /// indices of those chosen (only quads the building can change are drawn: ground_quads.h).
     uint32_t ground_quad_capacity = 0;
     /// Per cell (texel order): kCellNoGround, kCellGround, or kCellGroundChangedByBuilding (ground_quads.h); and
     /// the ground's height (ENU z). The CPU's copy, for choosing the quads to draw.

@@ -111,6 +111,19 @@ enum class RenderMode {
     kDirectOnly,  ///< what AR apps draw today: albedo x (ambient + shadowed sun), a fixed shadow darkening
 };
 
+/// The camera's pixel format, fixed when the runtime opens (RuntimeOptions::camera_format): what the platform
+/// delivers, taken as it comes (docs/runtime.md, "Camera formats"). R'G'B' is taken as sRGB-encoded.
+enum class CameraFormat {
+    kRgba8 = 0,  ///< 4 bytes a pixel, R G B A (Android's RGBA_8888, most desktop sources)
+    kBgra8 = 1,  ///< 4 bytes a pixel, B G R A (ARKit/AVFoundation's kCVPixelFormatType_32BGRA)
+    kNv12 = 2,   ///< two-plane Y'CbCr 4:2:0: a Y' plane, then interleaved Cb Cr at half size (ARKit's 420f/420v)
+    kNv21 = 3,   ///< the same with Cr Cb interleaved (ARCore's / Android camera's YUV_420_888 as NV21)
+};
+/// Y'CbCr matrix of a kNv12 / kNv21 camera.
+enum class YcbcrModel { kBt601 = 0, kBt709 = 1 };
+/// Y'CbCr range: narrow (studio: Y' 16-235, Cb Cr 16-240) or full (0-255).
+enum class YcbcrRange { kNarrow = 0, kFull = 1 };
+
 /// Options fixed when the runtime opens.
 /// Every option is range-checked when the runtime opens: one outside its range (NaN included) is a RuntimeError
 /// kInvalidFrame naming it, "options.NAME: VALUE is outside [MIN, MAX]".
@@ -145,16 +158,55 @@ struct RuntimeOptions {
     float direct_only_ambient_fraction = 1.0f;
     /// Direct-only mode: the camera pixel in the building's shadow is multiplied by this. [0, 1].
     float direct_only_shadow_darkening = 0.6f;
+    /// The camera's pixel format, for host pixels and the app's VkImage alike. kNv12 / kNv21 need an even
+    /// frame width and height.
+    CameraFormat camera_format = CameraFormat::kRgba8;
+    YcbcrModel camera_ycbcr_model = YcbcrModel::kBt601;  ///< kNv12 / kNv21 only
+    YcbcrRange camera_ycbcr_range = YcbcrRange::kNarrow;  ///< kNv12 / kNv21 only
+    /// Frames the GPU may work on while the app records the next, [1, 3]. Each has its own composite, command
+    /// buffer, fence and host-visible staging; a frame waits only when it would reuse one still in flight.
+    uint32_t frames_in_flight = 2;
 };
 
-/// One frame's input. Exactly one of camera_rgba8 and camera_image is set.
+/// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary
+/// semaphores, or timeline ones with their values (the app enabled timelineSemaphore on its device; a binary
+/// semaphore's value is ignored). The arrays are read during renderFrame only.
+struct FrameSync {
+    uint32_t wait_count = 0;
+    const VkSemaphore* wait_semaphores = nullptr;
+    const uint64_t* wait_values = nullptr;             ///< null: all binary
+    const VkPipelineStageFlags* wait_stages = nullptr;  ///< null: VK_PIPELINE_STAGE_ALL_COMMANDS_BIT each
+    uint32_t signal_count = 0;
+    const VkSemaphore* signal_semaphores = nullptr;
+    const uint64_t* signal_values = nullptr;           ///< null: all binary
+};
+
+/// One frame's input. Exactly one camera source is set: host pixels (camera_rgba8, or camera_luma and
+/// camera_chroma) or the app's VkImage (camera_image), in RuntimeOptions::camera_format.
 struct FrameInput {
-    const uint8_t* camera_rgba8 = nullptr;  ///< host RGBA8 (see the image convention), frame_width x frame_height
-    /// Or the app's VkImage: VK_FORMAT_R8G8B8A8_SRGB or _UNORM holding sRGB bytes, frame size, in
-    /// VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL or TRANSFER_SRC_OPTIMAL (camera_image_layout), usage TRANSFER_SRC.
-    /// The runtime copies it in its own command buffer; the app must have finished writing it.
+    /// Host pixels of a kRgba8 or kBgra8 camera: frame_width x frame_height, 4 bytes a pixel, rows
+    /// camera_row_bytes apart (0: packed, width * 4). Copied into the runtime's staging buffer during the call.
+    const uint8_t* camera_rgba8 = nullptr;
+    uint32_t camera_row_bytes = 0;
+    /// Host planes of a kNv12 / kNv21 camera: Y' (width x height bytes) and the interleaved chroma (width/2 x
+    /// height/2 pairs), rows camera_luma_row_bytes and camera_chroma_row_bytes apart (0: packed). Android's
+    /// YUV_420_888 with a pixel stride of 2 is this layout: pass its Y plane and the V (NV21) or U (NV12) plane.
+    const uint8_t* camera_luma = nullptr;
+    const uint8_t* camera_chroma = nullptr;
+    uint32_t camera_luma_row_bytes = 0;
+    uint32_t camera_chroma_row_bytes = 0;
+    /// Or the app's VkImage, sampled in place (never copied): frame size, one mip level and layer, usage
+    /// SAMPLED, on the runtime's queue family, in camera_image_layout: SHADER_READ_ONLY_OPTIMAL or GENERAL (read
+    /// as they are), or TRANSFER_SRC_OPTIMAL (moved to SHADER_READ_ONLY_OPTIMAL for the frame and back after it).
+    /// camera_image_format: kRgba8 takes R8G8B8A8_UNORM or _SRGB, kBgra8 B8G8R8A8_UNORM or _SRGB (the bytes
+    /// are sRGB either way); a kNv12 / kNv21 camera comes as host planes (docs/platforms.md says why).
+    /// The runtime keeps a view of each image it meets (up to 8, the least recently used let go): call
+    /// Runtime::forgetCameraImage before destroying an image it has seen. The app's writes must be complete
+    /// before the frame reads: a wait semaphore in `sync`, or a submission earlier on the same queue.
     VkImage camera_image = VK_NULL_HANDLE;
-    VkImageLayout camera_image_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkImageLayout camera_image_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkFormat camera_image_format = VK_FORMAT_R8G8B8A8_UNORM;
+    FrameSync sync;
     CameraIntrinsics intrinsics;
     CameraPose pose;
     double utc_unix_seconds = 0.0;           ///< the instant, seconds since 1970-01-01T00:00:00Z
@@ -213,18 +265,32 @@ public:
     static std::unique_ptr<Runtime> openHeadless(const BakeSetData& bake_set, const RuntimeOptions& options = {});
     virtual ~Runtime() = default;
 
-    /// Renders one frame: composited RGBA8 into output_rgba8 (frame_width * frame_height * 4 bytes), when not
-    /// null. Synchronous (waits on a fence). Throws RuntimeError kInvalidFrame for bad input, never writes a NaN
-    /// pixel. A sun below the horizon gives a defined frame: no direct sun, the sunny slots' baked light fading
-    /// to the overcast slot's (twilight) as the sun sets.
+    /// Renders one frame. With output_rgba8 null (the GPU-resident path) it records and submits the frame and
+    /// returns: nothing is read back, and the calling thread blocks only when all frames_in_flight frames are
+    /// still on the GPU (on the oldest one's fence). The composite is then compositeImage(); the app orders its
+    /// use after the frame with a signal semaphore in frame.sync, or a later submission on the same queue. With
+    /// output_rgba8 set (frame_width * frame_height * 4 bytes, the host-bytes path for tools and tests) it also
+    /// reads the composite back and waits for it. Throws RuntimeError kInvalidFrame for bad input, never writes
+    /// a NaN pixel. A sun below the horizon gives a defined frame: no direct sun, the sunny slots' baked light
+    /// fading to the overcast slot's (twilight) as the sun sets.
     virtual FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) = 0;
 
     /// The same frame with each pass submitted and timed alone (slower in total; for the breakdown only).
     virtual FrameInfo renderFrameProfiled(const FrameInput& frame, uint8_t* output_rgba8, PassTimings& timings) = 0;
 
-    /// The composite of the last frame as a VkImage the app may present or sample (R8G8B8A8_SRGB, frame size,
-    /// left in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL); valid until the next frame or the runtime's end.
+    /// The composite of the last frame submitted, as a VkImage the app may present, copy or sample
+    /// (R8G8B8A8_SRGB, frame size, usage TRANSFER_SRC | SAMPLED | COLOR_ATTACHMENT, left in
+    /// VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL). Each frame in flight has its own: this one is rewritten by the
+    /// frame frames_in_flight frames later, which waits for the GPU work submitted before it on the queue (the
+    /// app's reads on the same queue included), but not for work the app submits on another queue.
     virtual VkImage compositeImage() const = 0;
+
+    /// Blocks until every frame submitted has finished on the GPU (then compositeImage() is complete).
+    virtual void waitIdle() = 0;
+
+    /// Lets go of the view the runtime keeps of an app camera image (FrameInput::camera_image), waiting for the
+    /// frames in flight that read it. Call it before destroying or re-creating such an image. Unknown: no-op.
+    virtual void forgetCameraImage(VkImage image) = 0;
 
     /// Forgets the smoothed colour statistics (a cut in the camera feed).
     virtual void resetColourStatistics() = 0;

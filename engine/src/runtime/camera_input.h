@@ -1,0 +1,120 @@
+#pragma once
+// The camera frame into the runtime (docs/design.md 8 step 1; docs/runtime.md, "Camera formats"): whatever its
+// format and wherever it lives, the camera is sampled in place by one draw at the start of the main pass
+// (camera.frag), and, on frames with a colour match, by a packing kernel that gives the statistics their
+// packed RGBA8 words (camera_pack.comp). Both read it through shaders/include/camera_sample.glsl.
+//   - Host pixels go through a per-slot host-visible staging buffer into the runtime's own plane images (one
+//     four-byte plane, or Y' and interleaved chroma planes): the one host copy an app that hands bytes asks for.
+//   - The app's VkImage is read through a view the runtime keeps (a small cache, views made the first time an
+//     image is met), in its own layout; TRANSFER_SRC_OPTIMAL is moved to SHADER_READ_ONLY_OPTIMAL and back.
+// Each frame slot has its own descriptor set, updated only when its source changes. Private to gusuku_runtime.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gusuku/gpu/gpu_compute.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/gpu/gpu_image.h"
+#include "gusuku/runtime/runtime.h"
+
+namespace gusuku::runtime_detail {
+
+/// The VkFormats of a camera format's planes (plane 1 VK_FORMAT_UNDEFINED for a four-byte format).
+struct CameraPlaneFormats {
+    VkFormat plane0 = VK_FORMAT_UNDEFINED;
+    VkFormat plane1 = VK_FORMAT_UNDEFINED;
+};
+CameraPlaneFormats cameraPlaneFormats(CameraFormat format);
+
+class CameraInput {
+public:
+    /// The set layout, sampler, per-slot sets and staging buffers, the runtime's plane images (left in
+    /// SHADER_READ_ONLY_OPTIMAL) and, when `pack` (a colour match is possible), the packed buffer and its kernel.
+    CameraInput(const GpuDevice& gpu, const RuntimeOptions& options, uint32_t slot_count, bool pack);
+    ~CameraInput();
+    CameraInput(const CameraInput&) = delete;
+    CameraInput& operator=(const CameraInput&) = delete;
+
+    /// The camera-in draw's pipeline, for a render pass compatible with the main pass.
+    void createDrawPipeline(VkRenderPass render_pass);
+
+    /// Host side of a frame in `slot`, whose previous frame has completed: host pixels into the slot's staging
+    /// buffer, or the app image's view found or made; the slot's set pointed at the source when it changed.
+    /// With the view cache full, the least recently used view is let go first: the caller must have waited for
+    /// every frame in flight when needsEviction(frame) said so. Throws RuntimeError kInvalidFrame for a bad
+    /// camera_image_format, kDevice when a view cannot be made.
+    void prepare(uint32_t slot, const FrameInput& frame);
+    bool needsEviction(const FrameInput& frame) const;
+
+    /// Before the frame's passes, outside a render pass: the staged pixels into the plane images, the app
+    /// image's layout for sampling, and (pack) the packed words for the statistics, each with its barriers.
+    void recordBeforePasses(VkCommandBuffer cmd, uint32_t slot, const FrameInput& frame, bool pack);
+    /// The camera-in draw, first in the main pass (viewport set by the caller).
+    void recordDraw(VkCommandBuffer cmd, uint32_t slot) const;
+    /// After the frame's passes: the app image back to TRANSFER_SRC_OPTIMAL when it came so.
+    void recordAfterPasses(VkCommandBuffer cmd, const FrameInput& frame) const;
+
+    /// The packed camera (frame_width * frame_height RGBA8 words), written by recordBeforePasses with pack.
+    const GpuBuffer& packedBuffer() const { return packed_buffer_; }
+
+    /// Lets go of an app image's view (the caller waited for the frames that read it); false when unknown.
+    bool forget(VkImage image);
+    uint64_t memoryBytes() const;
+
+private:
+    struct CachedView {
+        VkImage image = VK_NULL_HANDLE;
+        VkFormat format = VK_FORMAT_UNDEFINED;
+        VkImageView view = VK_NULL_HANDLE;
+        uint64_t last_used = 0;
+    };
+    struct SlotSource {
+        VkImageView plane0 = VK_NULL_HANDLE;  // what the slot's set points at now
+        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+        uint32_t view_decodes_srgb = 0;
+    };
+    static constexpr size_t kViewCacheSize = 8;
+
+    void createDescriptors(uint32_t slot_count);
+    void createPackPipeline();
+    const CachedView& viewFor(const FrameInput& frame);
+    void stageHostPixels(uint32_t slot, const FrameInput& frame);
+    void pointSlotAt(uint32_t slot, VkImageView plane0, VkImageView plane1, VkImageLayout layout);
+    void recordUpload(VkCommandBuffer cmd, uint32_t slot) const;
+    void recordPack(VkCommandBuffer cmd, uint32_t slot) const;
+    void releaseView(CachedView& entry);
+    void destroy() noexcept;
+
+    const GpuDevice& gpu_;
+    uint32_t width_, height_;
+    CameraFormat format_;
+    YcbcrModel ycbcr_model_;
+    YcbcrRange ycbcr_range_;
+    CameraPlaneFormats plane_formats_;
+    GpuImage plane0_, plane1_;              // the runtime's own planes, for host pixels
+    std::vector<GpuBuffer> staging_;        // per slot, host-visible: both planes back to back
+    std::vector<SlotSource> slot_sources_;  // per slot
+    std::vector<VkDescriptorSet> slot_sets_;
+    std::array<CachedView, kViewCacheSize> views_{};
+    uint64_t use_counter_ = 0;
+
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout packed_set_layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet packed_set_ = VK_NULL_HANDLE;
+    VkPipelineLayout draw_layout_ = VK_NULL_HANDLE;
+    VkPipeline draw_pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout pack_layout_ = VK_NULL_HANDLE;
+    VkPipeline pack_pipeline_ = VK_NULL_HANDLE;
+    GpuBuffer packed_buffer_;
+    // The four specialisation constants of camera_interface.h, for both stages.
+    std::array<uint32_t, 4> specialisation_values_{};
+    std::array<VkSpecializationMapEntry, 4> specialisation_entries_{};
+    VkSpecializationInfo specialisation_{};
+};
+
+}  // namespace gusuku::runtime_detail

@@ -1,0 +1,21 @@
+#version 450
+// The camera as packed RGBA8 words (R in the low byte, sRGB, row 0 at the top) for the colour statistics
+// kernels, which read the camera that way. Runs only on frames with a colour match on; it reads the camera in
+// place through camera_sample.glsl, so the statistics see what the composite shows.
+#extension GL_GOOGLE_include_directive : require
+#include "camera_interface.h"
+#include "colour.glsl"
+
+layout(local_size_x = CAMERA_PACK_WORKGROUP, local_size_y = CAMERA_PACK_WORKGROUP) in;
+layout(set = 0, binding = CAMERA_PLANE0_BINDING) uniform sampler2D camera_plane0;
+layout(set = 0, binding = CAMERA_PLANE1_BINDING) uniform sampler2D camera_plane1;
+layout(std430, set = 1, binding = CAMERA_PACKED_BINDING) writeonly buffer Packed { uint camera_rgba8[]; };
+
+#include "camera_sample.glsl"
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    const ivec2 size = textureSize(camera_plane0, 0);
+    if (pixel.x >= size.x || pixel.y >= size.y) return;
+    camera_rgba8[pixel.y * int(camera_push.frame_width) + pixel.x] = packUnorm4x8(cameraSrgbPixel(pixel));
+}
