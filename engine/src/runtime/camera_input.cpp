@@ -68,7 +68,7 @@ CameraInput::CameraInput(const GpuDevice& gpu, const RuntimeOptions& options, ui
         plane.height = height_;
         plane.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         plane0_ = GpuImage(gpu_, plane);
-        size_t staging_bytes = size_t(width_) * height_ * bytesPerTexel(plane.format);
+        size_t staging_bytes = size_t(width_) * height_ * (isYuv(format_) ? 1 : 4);  // plane 0's bytes
         if (isYuv(format_)) {
             plane.format = plane_formats_.plane1;
             plane.width = width_ / 2;
