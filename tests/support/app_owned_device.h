@@ -17,12 +17,13 @@ namespace gusuku::testing {
 // The app side: everything here is plain Vulkan, written as an app would, not gusuku code.
 class AppOwnedDevice {
 public:
-    AppOwnedDevice() {
+    /// timeline_semaphores: a Vulkan 1.2 instance and device with the timelineSemaphore feature on.
+    explicit AppOwnedDevice(bool timeline_semaphores = false) {
         const char* layer = "VK_LAYER_KHRONOS_validation";
         const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.pApplicationName = "app-owned device test";
-        app.apiVersion = VK_API_VERSION_1_1;
+        app.apiVersion = timeline_semaphores ? VK_API_VERSION_1_2 : VK_API_VERSION_1_1;
         VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
         messenger_info.messageSeverity =
             VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -70,7 +71,10 @@ public:
         queue_info.queueFamilyIndex = queue_family;
         queue_info.queueCount = 1;
         queue_info.pQueuePriorities = &priority;
+        VkPhysicalDeviceTimelineSemaphoreFeatures timeline{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES};
+        timeline.timelineSemaphore = VK_TRUE;
         VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        if (timeline_semaphores) device_info.pNext = &timeline;
         device_info.queueCreateInfoCount = 1;
         device_info.pQueueCreateInfos = &queue_info;
         if (vkCreateDevice(physical_device, &device_info, nullptr, &device) != VK_SUCCESS)
