@@ -8,6 +8,7 @@
 
 #include "gusuku/gpu/vulkan_context.h"
 #include "gusuku/maths/bakeset_validate.h"
+#include "device_requirements.h"
 #include "runtime_impl.h"
 
 namespace gusuku {
@@ -103,6 +104,7 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     if (const std::optional<std::string> problem = findBakeSetProblem(bake_set))
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
     slot_colour_statistics_ = slotColourStatistics(manifest_);
+    checkDeviceRequirements(gpu_, options_);
     try {
         scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold);
         createGroundSelectionArrays();

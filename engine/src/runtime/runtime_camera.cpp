@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -31,10 +32,21 @@ constexpr double kMaxFixHeightM = 1e5;
 }  // namespace
 
 Weather Weather::estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint32_t height) {
-    return {estimateCloudCover(camera_rgba8, width, height).cloud_cover};
+    try {
+        return {estimateCloudCover(camera_rgba8, width, height).cloud_cover};
+    } catch (const RuntimeError&) {
+        throw;
+    } catch (const std::exception& error) {  // the runtime's one error family (runtime.h)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("Weather::estimatedFrom: ") + error.what());
+    }
 }
 
 CameraIntrinsics CameraIntrinsics::fromFieldOfView(uint32_t width, uint32_t height, double horizontal_fov_deg) {
+    if (width == 0 || height == 0 || !(horizontal_fov_deg > 0.0 && horizontal_fov_deg < 180.0))
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "CameraIntrinsics::fromFieldOfView: needs a non-empty frame and a field of view in (0, "
+                           "180) degrees, got " + std::to_string(width) + " x " + std::to_string(height) + " and " +
+                               std::to_string(horizontal_fov_deg));
     const double focal = 0.5 * double(width) / std::tan(0.5 * horizontal_fov_deg * std::numbers::pi / 180.0);
     return {focal, focal, 0.5 * width, 0.5 * height, width, height};
 }
@@ -42,7 +54,7 @@ CameraIntrinsics CameraIntrinsics::fromFieldOfView(uint32_t width, uint32_t heig
 CameraPose CameraPose::lookingAt(const glm::dvec3& position_enu, const glm::dvec3& target_enu) {
     const glm::dvec3 offset = target_enu - position_enu;
     if (!(glm::length(offset) > kMinLookDistanceM))
-        throw std::invalid_argument("CameraPose::lookingAt: the target is the position");
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "CameraPose::lookingAt: the target is the position");
     const glm::dvec3 forward = glm::normalize(offset);
     const glm::dvec3 world_up = std::abs(forward.z) > kNearlyVertical ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));

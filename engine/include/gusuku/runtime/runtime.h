@@ -3,10 +3,27 @@
 // and its shadow on the real ground, and matches its colour to the camera (docs/design.md 3, 4 and 8).
 //
 // What an AR app links: Vulkan and glm only. It opens on the app's own Vulkan device (GpuDevice, gpu_device.h:
-// the runtime creates nothing global, only its own pools, buffers, images and pipelines on that device) and holds
-// the bake set in GPU memory. Per frame it takes the camera image, intrinsics, pose, UTC time, position and
-// weather, and writes the composited RGBA8 frame. Everything a frame needs is allocated when the runtime opens:
-// a frame allocates nothing, on the host or the device.
+// the runtime copies the description and creates nothing global, only its own pools, buffers, images and
+// pipelines on that device) and holds the bake set in GPU memory. Per frame it takes the camera (host pixels or
+// the app's VkImage, in the platform's format), intrinsics, pose, UTC time, position and weather, and draws the
+// composite on the GPU; it reads the composite back only when the caller asks for bytes. Everything a frame
+// needs is allocated when the runtime opens: a frame allocates nothing on the host or the device
+// (tests/test_runtime_allocations.cpp counts), except a view the first time it meets an app camera image.
+//
+// Device requirements, checked when the runtime opens (RuntimeError kDevice naming what is missing; docs/runtime.md
+// "Device requirements"): Vulkan 1.1; a queue with graphics and compute; subgroup arithmetic in compute shaders
+// (the colour statistics); optimal-tiling R8G8B8A8_SRGB as a blended colour attachment, sampled and a transfer
+// source; D32_SFLOAT as a depth attachment and a sampled image; R16G16B16A16_SFLOAT sampled with linear
+// filtering; the camera format's plane formats sampled (R8G8B8A8_UNORM, B8G8R8A8_UNORM, or R8_UNORM and
+// R8G8_UNORM). Timeline semaphores in FrameSync only if the app enabled them on its device. Nothing else: no
+// extension, no optional feature.
+//
+// Threads and lifetimes: one Runtime is used from one thread at a time (its calls are not synchronised with
+// each other); several runtimes may run on several threads on one device, and share its queue when the
+// GpuDevice names the queue mutex the app holds around its own submissions. The app's instance, device and
+// queue outlive the runtime; destroying the runtime waits for its frames on the GPU. A FrameInput's pointers are
+// read during renderFrame only; compositeImage() belongs to the runtime and is rewritten frames_in_flight frames
+// later. The static helpers (projectToPixel, lookingAt, fromFieldOfView, estimatedFrom) are pure and thread-safe.
 //
 // Conventions, pinned by tests (tests/test_runtime.cpp: RuntimeCamera.ProjectionConventionIsPinned and
 // RuntimeTest.RendersTheBuildingWherePinholeProjectionPutsIt; tests/test_frame_preparation.cpp for the clip matrix):
@@ -18,8 +35,9 @@
 //   - Images: RGBA8, RGB sRGB-encoded, row 0 at the top, width * 4 bytes per row, no padding. Alpha passes
 //     through the camera's, 255 on the building.
 //
-// Errors: the C++ API throws gusuku::RuntimeError (code plus one-line message) on bad input; the C API
-// (gusuku.h) turns every error into a code and a message and never lets an exception out.
+// Errors: every call of this header that can fail throws gusuku::RuntimeError (a code plus a one-line message
+// naming the input and the field), and nothing else: device failures are kDevice, host memory kOutOfMemory. The
+// C API (gusuku.h) turns every error into a code and a message and never lets an exception out.
 
 #include <cstdint>
 #include <memory>
@@ -59,7 +77,7 @@ struct CameraIntrinsics {
     uint32_t width = 0, height = 0;
 
     /// A width x height frame with this horizontal field of view (degrees, (0, 180)), square pixels, the principal
-    /// point at the centre.
+    /// point at the centre. RuntimeError kInvalidFrame for an empty frame or a field of view outside (0, 180).
     static CameraIntrinsics fromFieldOfView(uint32_t width, uint32_t height, double horizontal_fov_deg);
 };
 
@@ -69,7 +87,7 @@ struct CameraPose {
     glm::dmat3 camera_to_enu{1.0};  ///< columns: camera x (right), y (down), z (forward) in ENU; orthonormal
 
     /// A camera at `position_enu` looking at `target_enu`, the image's up towards ENU +z (towards north when it
-    /// looks straight down). std::invalid_argument when the two points coincide.
+    /// looks straight down). RuntimeError kInvalidFrame when the two points coincide.
     static CameraPose lookingAt(const glm::dvec3& position_enu, const glm::dvec3& target_enu);
 };
 

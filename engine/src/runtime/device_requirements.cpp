@@ -1,0 +1,79 @@
+// The runtime's device requirements (device_requirements.h).
+
+#include "device_requirements.h"
+
+#include <string>
+#include <vector>
+
+#include "camera_input.h"
+#include "runtime_pipelines.h"
+
+namespace gusuku::runtime_detail {
+namespace {
+
+struct FormatNeed {
+    VkFormat format;
+    VkFormatFeatureFlags features;
+    const char* name;
+    const char* use;
+};
+
+std::string missingFeatures(VkFormatFeatureFlags missing) {
+    std::string names;
+    auto add = [&](VkFormatFeatureFlags bit, const char* name) {
+        if (missing & bit) names += std::string(names.empty() ? "" : ", ") + name;
+    };
+    add(VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT, "SAMPLED_IMAGE");
+    add(VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT, "SAMPLED_IMAGE_FILTER_LINEAR");
+    add(VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT, "COLOR_ATTACHMENT");
+    add(VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT, "COLOR_ATTACHMENT_BLEND");
+    add(VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "DEPTH_STENCIL_ATTACHMENT");
+    add(VK_FORMAT_FEATURE_TRANSFER_SRC_BIT, "TRANSFER_SRC");
+    add(VK_FORMAT_FEATURE_TRANSFER_DST_BIT, "TRANSFER_DST");
+    return names;
+}
+
+}  // namespace
+
+void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options) {
+    auto fail = [](const std::string& what) {
+        throw RuntimeError(RuntimeErrorCode::kDevice, "gusuku runtime: the device " + what);
+    };
+    const uint32_t version = gpu.properties.apiVersion;
+    if (VK_API_VERSION_MAJOR(version) == 1 && VK_API_VERSION_MINOR(version) < 1)
+        fail("supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(version)) + "." +
+             std::to_string(VK_API_VERSION_MINOR(version)) + "; the runtime needs Vulkan 1.1");
+
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical_device, &family_count, families.data());
+    const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (gpu.queue_family_index >= family_count || (families[gpu.queue_family_index].queueFlags & needed) != needed)
+        fail("queue family " + std::to_string(gpu.queue_family_index) + " lacks graphics and compute");
+
+    const CameraPlaneFormats camera = cameraPlaneFormats(options.camera_format);
+    const VkFormatFeatureFlags sampled = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    std::vector<FormatNeed> needs = {
+        {kColourFormat,
+         VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
+             VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
+         "R8G8B8A8_SRGB", "the composite"},
+        {kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT,
+         "D32_SFLOAT", "depth and the shadow maps"},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, sampled | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+         "R16G16B16A16_SFLOAT", "the lightmaps and the ground's irradiance"},
+        {camera.plane0, sampled, "the camera's first plane format", "the camera"},
+    };
+    if (camera.plane1 != VK_FORMAT_UNDEFINED) needs.push_back({camera.plane1, sampled, "R8G8_UNORM", "the camera's chroma"});
+    for (const FormatNeed& need : needs) {
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(gpu.physical_device, need.format, &properties);
+        const VkFormatFeatureFlags missing = need.features & ~properties.optimalTilingFeatures;
+        if (missing != 0)
+            fail("lacks " + missingFeatures(missing) + " for " + need.name + " (VkFormat " +
+                 std::to_string(int(need.format)) + ", " + need.use + ")");
+    }
+}
+
+}  // namespace gusuku::runtime_detail

@@ -1,0 +1,14 @@
+#pragma once
+// What the runtime needs of the app's device (runtime.h, "Device requirements"), checked when it opens so a
+// device that lacks something fails there, by name, not at the first frame. Private to gusuku_runtime.
+
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/runtime/runtime.h"
+
+namespace gusuku::runtime_detail {
+
+/// Throws RuntimeError kDevice naming the first requirement the device does not meet: the Vulkan version, the
+/// queue family's graphics and compute, and each format's optimal-tiling features.
+void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options);
+
+}  // namespace gusuku::runtime_detail
