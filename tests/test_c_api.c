@@ -200,6 +200,12 @@ static void testNullHandlesNeverCrash(void) {
     CHECK_RESULT(gusuku_runtime_device_memory_bytes(NULL, &bytes), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_composite_image(NULL, &image), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_reset_colour_statistics(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(gusuku_runtime_invalidate_shadow_maps(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_invalidate_shadow_maps: runtime: is NULL");
+    CHECK_RESULT(gusuku_runtime_render_profiled(NULL, &frame, NULL, NULL, NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_render_profiled: runtime: is NULL");
+    CHECK_RESULT(gusuku_runtime_options_fill_defaults(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(gusuku_frame_input_fill_defaults(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_options_default(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_frame_input_default(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK(strcmp(gusuku_runtime_last_error(NULL), "") == 0);
