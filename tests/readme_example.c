@@ -8,11 +8,11 @@ int main(void) { /* A grey 4 m wall facing south, baked irradiance 1, overcast: 
     const uint32_t indices[] = {0, 1, 2, 0, 2, 3}, tri_material[] = {0, 0};
     const gusuku_slot overcast = {GUSUKU_SKY_OVERCAST, .building = {2, 2, one}, .ground_with = {2, 2, one},
                                   .ground_without = {2, 2, one}}; /* 2 x 2 texels of RGBA 1 each */
-    const gusuku_bakeset_desc desc = {.latitude_deg = 26.2856, .longitude_deg = 127.8008, .positions = wall,
-        .normals = south, .uv0 = uv, .uv1 = uv, .vertex_count = 4, .indices = indices, .index_count = 6,
-        .triangle_material = tri_material, .materials = &grey, .material_count = 1, .lightmap_resolution = 2,
-        .ground_origin_enu_m = {-4, -4}, .ground_cell_m = 4, .ground_columns = 2, .ground_rows = 2,
-        .ground_geometry = {2, 2, up}, .slots = &overcast, .slot_count = 1}; /* up: normal +z, height 0 */
+    const gusuku_bakeset_desc desc = {sizeof desc, .latitude_deg = 26.2856, .longitude_deg = 127.8008, /* size first */
+        .positions = wall, .normals = south, .uv0 = uv, .uv1 = uv, .vertex_count = 4, .indices = indices,
+        .index_count = 6, .triangle_material = tri_material, .materials = &grey, .material_count = 1,
+        .lightmap_resolution = 2, .ground_origin_enu_m = {-4, -4}, .ground_cell_m = 4, .ground_columns = 2,
+        .ground_rows = 2, .ground_geometry = {2, 2, up}, .slots = &overcast, .slot_count = 1}; /* up: +z, height 0 */
     gusuku_bakeset* set; gusuku_runtime* rt; gusuku_frame_input frame;
     if (gusuku_bakeset_create(&desc, &set) || gusuku_runtime_open_headless(set, NULL, &rt))
         return puts(gusuku_last_error_message()), 1;

@@ -4,8 +4,11 @@
  *   - under full cloud cover the sun is gone and the overcast slot alone lights the building, so a pixel of its
  *     south face is sRGB(albedo / pi * E_ind_overcast * exposure), with the sRGB curve written out below;
  *   - a sky pixel (above the horizon, beside nothing) comes through bit for bit;
- *   - bad input (NaN pose, zero focal length, a NaN texel, a NULL array) gets the right code and a message naming
- *     the field, the runtime stays usable, and NULL handles never crash. */
+ *   - bad input (NaN pose, zero focal length, a NaN texel, a NULL array, an unset struct_size) gets the right code
+ *     and a message naming the field, the runtime stays usable, and NULL handles never crash;
+ *   - the frame's counters (ground quads: (cells - 1)^2 in the grid, none drawn without sun or change), the
+ *     profiled frame (same bytes, every pass timed) and the ground colour match of a desc with ground albedo;
+ *   - the helpers against values worked out by hand: look-at, field of view, projection, the weather estimate. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,7 +59,7 @@ typedef struct BoxScene {
     gusuku_material material;
     float ground_geometry[kCells * kCells * 4];
     float lightmap_sunny[kLightmap * kLightmap * 4], lightmap_overcast[kLightmap * kLightmap * 4];
-    float ground[kCells * kCells * 4];
+    float ground[kCells * kCells * 4], ground_albedo[kCells * kCells * 4];
     gusuku_slot slots[2];
     gusuku_bakeset_desc desc;
 } BoxScene;
@@ -110,6 +113,7 @@ static void buildBakeSet(BoxScene* scene) {
     fill(scene->lightmap_sunny, kLightmap * kLightmap, kSunnyIndirect, 1.0f);
     fill(scene->lightmap_overcast, kLightmap * kLightmap, kOvercastIndirect, 1.0f);
     fill(scene->ground, kCells * kCells, kGroundIrradiance, 1.0f);
+    fill(scene->ground_albedo, kCells * kCells, 0.3f, 1.0f);
 
     for (s = 0; s < 2; ++s) {
         gusuku_slot* slot = &scene->slots[s];
@@ -129,6 +133,7 @@ static void buildBakeSet(BoxScene* scene) {
         slot->ground_without = slot->ground_with;
     }
 
+    desc->struct_size = sizeof *desc;
     desc->latitude_deg = 26.2856;
     desc->longitude_deg = 127.8008;
     desc->height_m = 160.0;
@@ -150,6 +155,8 @@ static void buildBakeSet(BoxScene* scene) {
     desc->ground_geometry.rgba = scene->ground_geometry;
     desc->slots = scene->slots;
     desc->slot_count = 2;
+    desc->ground_albedo.width = desc->ground_albedo.height = kCells;
+    desc->ground_albedo.rgba = scene->ground_albedo;
 }
 
 /* sRGB encoding (IEC 61966-2-1), written out here rather than taken from gusuku. */
@@ -193,6 +200,12 @@ static void testNullHandlesNeverCrash(void) {
     CHECK_RESULT(gusuku_runtime_device_memory_bytes(NULL, &bytes), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_composite_image(NULL, &image), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_reset_colour_statistics(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(gusuku_runtime_invalidate_shadow_maps(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_invalidate_shadow_maps: runtime: is NULL");
+    CHECK_RESULT(gusuku_runtime_render_profiled(NULL, &frame, NULL, NULL, NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_render_profiled: runtime: is NULL");
+    CHECK_RESULT(gusuku_runtime_options_fill_defaults(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(gusuku_frame_input_fill_defaults(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_runtime_options_default(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(gusuku_frame_input_default(NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
     CHECK(strcmp(gusuku_runtime_last_error(NULL), "") == 0);
@@ -200,6 +213,94 @@ static void testNullHandlesNeverCrash(void) {
     CHECK_RESULT(gusuku_bakeset_free(NULL), GUSUKU_OK);
     CHECK(strcmp(gusuku_result_name(GUSUKU_ERROR_INVALID_FRAME), "GUSUKU_ERROR_INVALID_FRAME") == 0);
     CHECK(strcmp(gusuku_result_name((gusuku_result)99), "GUSUKU_UNKNOWN_RESULT") == 0);
+}
+
+/* Every versioned struct refuses an unset struct_size naming it; fill_defaults fills only what the size names. */
+static void testStructSizesAreChecked(void) {
+    BoxScene* scene = (BoxScene*)malloc(sizeof(BoxScene));
+    gusuku_bakeset* bake_set = (gusuku_bakeset*)&g_failures;
+    gusuku_runtime* runtime = (gusuku_runtime*)&g_failures;
+    gusuku_runtime_options options;
+    gusuku_vulkan_device device;
+    CHECK(gusuku_api_version() == GUSUKU_API_VERSION && GUSUKU_API_VERSION >= 1u);
+    buildBakeSet(scene);
+    scene->desc.struct_size = 0;
+    CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK(bake_set == NULL);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_bakeset_create: desc.struct_size: 0 is not the size of "
+                                                   "any gusuku_bakeset_desc this library knows (");
+    scene->desc.struct_size = sizeof scene->desc;
+    CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_OK);
+    memset(&options, 0, sizeof options);
+    options.struct_size = 3;
+    CHECK_RESULT(gusuku_runtime_options_fill_defaults(&options), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK(options.frame_width == 0); /* untouched */
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "options.struct_size: 3");
+    CHECK_RESULT(gusuku_runtime_open_headless(bake_set, &options, &runtime), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK(runtime == NULL);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_open_headless: options.struct_size: 3");
+    CHECK_RESULT(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    memset(&device, 0, sizeof device); /* struct_size 0 is refused before the NULL handles are */
+    CHECK_RESULT(gusuku_runtime_open(&device, bake_set, &options, &runtime), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_runtime_open: device.struct_size: 0");
+    device.struct_size = sizeof device;
+    CHECK_RESULT(gusuku_runtime_open(&device, bake_set, &options, &runtime), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "device: instance, physical_device, device and queue");
+    CHECK_RESULT(gusuku_bakeset_free(bake_set), GUSUKU_OK);
+    free(scene);
+}
+
+/* The helpers against values worked out here. */
+static void testCameraAndWeatherHelpers(void) {
+    static const double expected_rotation[9] = {1, 0, 0, /**/ 0, 0, 1, /**/ 0, -1, 0};
+    const double position[3] = {0.0, -12.0, 1.5}, target[3] = {0.0, 0.0, 1.5}, ahead[3] = {1.0, 0.0, 0.5};
+    const double behind[3] = {0.0, -20.0, 1.5}, not_finite[3] = {0.0, NAN, 0.0};
+    static uint8_t black[kWidth * kHeight * 4];
+    gusuku_pose pose;
+    gusuku_intrinsics intrinsics;
+    gusuku_weather weather = {0.5f};
+    double pixel[2] = {0.0, 0.0};
+    int32_t in_front = -1;
+    int i;
+    /* Looking north, level: camera x = east, y = down, z = north; the position kept. */
+    CHECK_RESULT(gusuku_pose_looking_at(position, target, &pose), GUSUKU_OK);
+    for (i = 0; i < 9; ++i) CHECK(fabs(pose.camera_to_enu[i] - expected_rotation[i]) < 1e-12);
+    CHECK(pose.position_enu[1] == -12.0 && pose.position_enu[2] == 1.5);
+    CHECK_RESULT(gusuku_pose_looking_at(position, position, &pose), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_pose_looking_at: target_enu: within 1 um");
+    CHECK_RESULT(gusuku_pose_looking_at(not_finite, target, &pose), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "position_enu[1]: not finite");
+    CHECK_RESULT(gusuku_pose_looking_at(position, target, NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    /* 90 degrees across 64 pixels: f = 32 / tan(45 degrees) = 32. */
+    CHECK_RESULT(gusuku_intrinsics_from_field_of_view(kWidth, kHeight, 90.0, &intrinsics), GUSUKU_OK);
+    CHECK(fabs(intrinsics.fx - 32.0) < 1e-12 && fabs(intrinsics.fy - 32.0) < 1e-12);
+    CHECK(intrinsics.cx == 32.0 && intrinsics.cy == 24.0 && intrinsics.width == kWidth && intrinsics.height == kHeight);
+    CHECK_RESULT(gusuku_intrinsics_from_field_of_view(kWidth, kHeight, 180.0, &intrinsics),
+                 GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "horizontal_fov_deg: 180");
+    CHECK_RESULT(gusuku_intrinsics_from_field_of_view(0, kHeight, 60.0, &intrinsics), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "width, height: 0 x 48");
+    /* (1, 0, 0.5) from (0, -12, 1.5) looking north: camera (1, 1, 12), so u = 60 / 12 + 32, v = 60 / 12 + 24. */
+    CHECK_RESULT(gusuku_pose_looking_at(position, target, &pose), GUSUKU_OK);
+    intrinsics.fx = intrinsics.fy = kFocal;
+    CHECK_RESULT(gusuku_project_to_pixel(&intrinsics, &pose, ahead, pixel, &in_front), GUSUKU_OK);
+    CHECK(in_front == 1 && fabs(pixel[0] - 37.0) < 1e-9 && fabs(pixel[1] - 29.0) < 1e-9);
+    CHECK_RESULT(gusuku_project_to_pixel(&intrinsics, &pose, behind, pixel, &in_front), GUSUKU_OK);
+    CHECK(in_front == 0 && isnan(pixel[0]) && isnan(pixel[1]));
+    intrinsics.fy = 0.0;
+    CHECK_RESULT(gusuku_project_to_pixel(&intrinsics, &pose, ahead, pixel, &in_front), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_project_to_pixel: intrinsics: focal lengths");
+    intrinsics.fy = kFocal;
+    pose.camera_to_enu[0] = 2.0;
+    CHECK_RESULT(gusuku_project_to_pixel(&intrinsics, &pose, ahead, pixel, &in_front), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "pose.camera_to_enu: not a rotation");
+    /* An all-black frame reads as overcast (weather_estimate.h's documented fallback). */
+    CHECK_RESULT(gusuku_weather_estimate(black, kWidth, kHeight, &weather), GUSUKU_OK);
+    CHECK(weather.cloud_cover == 1.0f);
+    CHECK_RESULT(gusuku_weather_estimate(NULL, kWidth, kHeight, &weather), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "gusuku_weather_estimate: camera_rgba8: is NULL");
+    CHECK_RESULT(gusuku_weather_estimate(black, 70000, 70000, &weather), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_last_error_message(), "at most 2^28 pixels");
 }
 
 static void testBadBakeSetsAreRefusedNamingTheField(void) {
@@ -235,6 +336,61 @@ static void testBadBakeSetsAreRefusedNamingTheField(void) {
     free(scene);
 }
 
+/* A sunny frame: the box's shadow gets ratio quads, some but not all; profiled, the same bytes and every pass
+ * timed; the ground colour match runs (the desc gave ground albedo); invalidating the shadow maps changes nothing. */
+static void checkSunnyFrameCountersAndProfile(gusuku_runtime* runtime, const gusuku_frame_input* overcast,
+                                              const uint8_t* camera) {
+    gusuku_frame_input frame = *overcast;
+    gusuku_frame_info info, profiled_info;
+    gusuku_pass_timings timings;
+    uint8_t* plain = (uint8_t*)malloc(kWidth * kHeight * 4);
+    uint8_t* profiled = (uint8_t*)malloc(kWidth * kHeight * 4);
+    memset(&info, 0, sizeof info);
+    memset(&profiled_info, 0, sizeof profiled_info);
+    memset(&timings, 0, sizeof timings);
+    info.struct_size = profiled_info.struct_size = sizeof info;
+    timings.struct_size = sizeof timings;
+    frame.camera_rgba8 = camera;
+    frame.weather.cloud_cover = 0.0f;
+    /* 09:00 at the site (the overcast frame's instant): the sun at about 45 degrees, a 3 m shadow to the west. */
+    CHECK_RESULT(gusuku_runtime_render(runtime, &frame, plain, &info), GUSUKU_OK);
+    CHECK(info.sun_above_horizon && info.ground_quads_total == (kCells - 1) * (kCells - 1));
+    CHECK(info.ground_quads_drawn > 0 && info.ground_quads_drawn < info.ground_quads_total);
+    CHECK_RESULT(gusuku_runtime_invalidate_shadow_maps(runtime), GUSUKU_OK);
+    CHECK_RESULT(gusuku_runtime_render_profiled(runtime, &frame, profiled, &profiled_info, &timings), GUSUKU_OK);
+    CHECK(memcmp(plain, profiled, kWidth * kHeight * 4) == 0);
+    CHECK(profiled_info.ground_quads_drawn == info.ground_quads_drawn);
+    CHECK(timings.struct_size == sizeof timings && timings.shadow_ms > 0.0 && timings.building_ms > 0.0);
+    CHECK(timings.total_ms >= timings.shadow_ms + timings.building_ms);
+    printf("sunny frame: %u of %u ground quads drawn; profiled %.2f ms (shadow %.2f, building %.2f)\n",
+           info.ground_quads_drawn, info.ground_quads_total, timings.total_ms, timings.shadow_ms, timings.building_ms);
+    CHECK_RESULT(gusuku_runtime_render_profiled(runtime, &frame, profiled, &profiled_info, NULL),
+                 GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_runtime_last_error(runtime), "gusuku_runtime_render_profiled: timings: is NULL");
+    frame.colour_match = GUSUKU_COLOUR_MATCH_GROUND;
+    CHECK_RESULT(gusuku_runtime_render(runtime, &frame, profiled, NULL), GUSUKU_OK);
+    free(plain);
+    free(profiled);
+}
+
+/* struct_size: unset or larger than this library knows, the frame and the info are refused naming it. */
+static void checkFrameStructSizes(gusuku_runtime* runtime, const gusuku_frame_input* good, uint8_t* output) {
+    gusuku_frame_input frame = *good;
+    gusuku_frame_info info;
+    memset(&info, 0, sizeof info);
+    frame.struct_size = 0;
+    CHECK_RESULT(gusuku_runtime_render(runtime, &frame, output, NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_runtime_last_error(runtime), "gusuku_runtime_render: frame.struct_size: 0 is not the "
+                                                          "size of any gusuku_frame_input this library knows");
+    CHECK_MESSAGE_HAS(gusuku_runtime_last_error(runtime), "set it to sizeof(gusuku_frame_input)");
+    frame.struct_size = sizeof frame + 8;
+    CHECK_RESULT(gusuku_runtime_render(runtime, &frame, output, NULL), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_runtime_last_error(runtime), "built against a newer gusuku.h");
+    frame.struct_size = sizeof frame;
+    CHECK_RESULT(gusuku_runtime_render(runtime, &frame, output, &info), GUSUKU_ERROR_INVALID_ARGUMENT);
+    CHECK_MESSAGE_HAS(gusuku_runtime_last_error(runtime), "info.struct_size: 0");
+}
+
 static void testRendersAndRefusesBadFrames(void) {
     BoxScene* scene = (BoxScene*)malloc(sizeof(BoxScene));
     gusuku_bakeset* bake_set = NULL;
@@ -252,7 +408,9 @@ static void testRendersAndRefusesBadFrames(void) {
     CHECK_RESULT(gusuku_bakeset_create(&scene->desc, &bake_set), GUSUKU_OK);
     free(scene); /* the bake set holds its own copy */
     CHECK_RESULT(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    CHECK(options.struct_size == sizeof options);
     CHECK(options.frame_width == 1280 && options.shadow_map_size == 1024);
+    CHECK(options.shadow_sun_step_deg == 0.05f && options.ground_change_threshold == 1.0f / 255.0f);
     options.frame_width = kWidth;
     options.frame_height = kHeight;
     options.shadow_map_size = 256;
@@ -272,6 +430,10 @@ static void testRendersAndRefusesBadFrames(void) {
             {&options.direct_only_ambient_fraction, NAN, "options.direct_only_ambient_fraction"},
             {&options.direct_only_shadow_darkening, 2.0f, "options.direct_only_shadow_darkening"},
             {&options.direct_only_shadow_darkening, NAN, "options.direct_only_shadow_darkening"},
+            {&options.shadow_sun_step_deg, 11.0f, "options.shadow_sun_step_deg"},
+            {&options.shadow_sun_step_deg, NAN, "options.shadow_sun_step_deg"},
+            {&options.ground_change_threshold, 1.5f, "options.ground_change_threshold"},
+            {&options.ground_change_threshold, -0.1f, "options.ground_change_threshold"},
         };
         size_t b;
         for (b = 0; b < sizeof bad_options / sizeof bad_options[0]; ++b) {
@@ -308,8 +470,12 @@ static void testRendersAndRefusesBadFrames(void) {
     frame.exposure = kExposure;
     frame.colour_match = GUSUKU_COLOUR_MATCH_OFF;
     memset(&info, 0, sizeof info);
+    info.struct_size = sizeof info;
     CHECK_RESULT(gusuku_runtime_render(runtime, &frame, output, &info), GUSUKU_OK);
     CHECK(info.overcast_slot == 1 && info.overcast_weight == 1.0f);
+    /* The grid's cells are its quads' corners; with no sun and ground_with == ground_without nothing changes. */
+    CHECK(info.ground_quads_total == (kCells - 1) * (kCells - 1));
+    CHECK(info.ground_quads_drawn == 0);
     CHECK(info.sun_irradiance_rgb[0] == 0.0); /* full cloud: no direct sun */
     CHECK(fabs(info.sun_direction_enu[0] * info.sun_direction_enu[0] + info.sun_direction_enu[1] *
                info.sun_direction_enu[1] + info.sun_direction_enu[2] * info.sun_direction_enu[2] - 1.0) < 1e-9);
@@ -361,6 +527,8 @@ static void testRendersAndRefusesBadFrames(void) {
         free(again);
         free(first);
     }
+    checkSunnyFrameCountersAndProfile(runtime, &frame, camera);
+    checkFrameStructSizes(runtime, &frame, output);
     CHECK_RESULT(gusuku_runtime_close(runtime), GUSUKU_OK);
     free(camera);
     free(output);
@@ -369,6 +537,8 @@ static void testRendersAndRefusesBadFrames(void) {
 int main(void) {
     printf("gusuku %s, C API test\n", gusuku_version());
     testNullHandlesNeverCrash();
+    testStructSizesAreChecked();
+    testCameraAndWeatherHelpers();
     testBadBakeSetsAreRefusedNamingTheField();
     testRendersAndRefusesBadFrames();
     if (g_failures != 0) {

@@ -45,8 +45,8 @@ protected:
     }
 
     gusuku_vulkan_device device() {
-        return {context().instance(), context().physicalDevice(), context().device(), context().queue(),
-                context().queueFamily()};
+        return {sizeof(gusuku_vulkan_device), context().instance(), context().physicalDevice(), context().device(),
+                context().queue(), context().queueFamily()};
     }
 };
 
@@ -81,6 +81,7 @@ TEST_F(CApiLoaderTest, LoadedBakeSetRendersOnTheAppsDeviceAsTheCppApiDoes) {
     frame.colour_match = GUSUKU_COLOUR_MATCH_OFF;
     std::vector<uint8_t> from_c(camera.size());
     gusuku_frame_info info{};
+    info.struct_size = sizeof info;
     ASSERT_EQ(gusuku_runtime_render(runtime, &frame, from_c.data(), &info), GUSUKU_OK)
         << gusuku_runtime_last_error(runtime);
     EXPECT_TRUE(info.sun_above_horizon);

@@ -40,6 +40,7 @@ int main(void) {
     overcast.ground_without = overcast.ground_with;
 
     memset(&desc, 0, sizeof desc);
+    desc.struct_size = sizeof desc;
     desc.latitude_deg = 26.2856;
     desc.longitude_deg = 127.8008;
     desc.positions = positions;
@@ -87,6 +88,8 @@ int main(void) {
     }
     frame.utc_unix_seconds = 1782000000.0;
     frame.colour_match = GUSUKU_COLOUR_MATCH_OFF;
+    memset(&info, 0, sizeof info);
+    info.struct_size = sizeof info;
     if (gusuku_runtime_render(runtime, &frame, output, &info) != GUSUKU_OK ||
         gusuku_runtime_device_memory_bytes(runtime, &device_bytes) != GUSUKU_OK) {
         fprintf(stderr, "consumer: %s\n", gusuku_runtime_last_error(runtime));

@@ -16,6 +16,8 @@
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/runtime/runtime_version.h"
 #include "gusuku_c_api_detail.h"
+#include "gusuku_c_api_sizes.h"
+#include "gusuku_c_api_structs.h"
 
 /// The runtime handle. The C++ runtime holds a reference to the device view, so the view lives here, beside it,
 /// at an address that never moves.
@@ -89,80 +91,61 @@ using gusuku::c_api_detail::failFromCurrentException;
 using gusuku::c_api_detail::convertDesc;
 using gusuku::c_api_detail::DescProblem;
 using gusuku::c_api_detail::MessageBuffer;
+using gusuku::c_api_detail::readSized;
+using gusuku::c_api_detail::findSizeProblem;
+using gusuku::c_api_detail::writeSized;
+using gusuku::c_api_detail::defaultOptions;
+using gusuku::c_api_detail::defaultFrame;
+using gusuku::c_api_detail::convertOptions;
+using gusuku::c_api_detail::convertFrame;
+using gusuku::c_api_detail::convertInfo;
+using gusuku::c_api_detail::convertTimings;
 
-gusuku_result failArgument(const char* function, const std::string& problem, MessageBuffer* handle = nullptr) {
-    return fail(GUSUKU_ERROR_INVALID_ARGUMENT, (std::string(function) + ": " + problem).c_str(), handle);
+/// "FUNCTION: PROBLEM" as an invalid argument; formats into a local buffer, so never throws.
+gusuku_result failArgument(const char* function, const char* problem, MessageBuffer* handle = nullptr) noexcept {
+    char text[GUSUKU_MESSAGE_CAPACITY];
+    std::snprintf(text, sizeof text, "%s: %s", function, problem);
+    return fail(GUSUKU_ERROR_INVALID_ARGUMENT, text, handle);
 }
 
-// ---------------------------------------------------------------------------------------------------------------
-// Options and frames
-
-gusuku::RuntimeOptions convertOptions(const gusuku_runtime_options* options) {
-    gusuku::RuntimeOptions converted;
-    if (options == nullptr) return converted;
-    converted.frame_width = options->frame_width;
-    converted.frame_height = options->frame_height;
-    converted.shadow_map_size = options->shadow_map_size;
-    converted.shadow_bias_texels = options->shadow_bias_texels;
-    converted.shadow_pcf_radius = options->shadow_pcf_radius;
-    converted.statistics_stride = options->statistics_stride;
-    converted.statistics_smoothing_frames = options->statistics_smoothing_frames;
-    converted.colour_gain_limit = options->colour_gain_limit;
-    converted.direct_only_ambient_fraction = options->direct_only_ambient_fraction;
-    converted.direct_only_shadow_darkening = options->direct_only_shadow_darkening;
-    return converted;
+gusuku_result failArgument(const char* function, const std::string& problem,
+                           MessageBuffer* handle = nullptr) noexcept {
+    return failArgument(function, problem.c_str(), handle);
 }
 
-/// The C frame as the C++ one; "" or the problem with an enum or flag the C++ side cannot see.
-std::string convertFrame(const gusuku_frame_input& frame, gusuku::FrameInput& converted) {
-    converted.camera_rgba8 = frame.camera_rgba8;
-    converted.camera_image = frame.camera_image;
-    converted.camera_image_layout = frame.camera_image_layout;
-    converted.intrinsics = {frame.intrinsics.fx, frame.intrinsics.fy, frame.intrinsics.cx, frame.intrinsics.cy,
-                            frame.intrinsics.width, frame.intrinsics.height};
-    converted.pose.position_enu =
-        glm::dvec3(frame.pose.position_enu[0], frame.pose.position_enu[1], frame.pose.position_enu[2]);
-    for (int row = 0; row < 3; ++row)
-        for (int column = 0; column < 3; ++column)
-            converted.pose.camera_to_enu[column][row] = frame.pose.camera_to_enu[3 * row + column];
-    converted.utc_unix_seconds = frame.utc_unix_seconds;
-    if (frame.has_position)
-        converted.position = gusuku::GeoPosition{frame.position.latitude_deg, frame.position.longitude_deg,
-                                                 frame.position.height_m};
-    converted.weather.cloud_cover = frame.weather.cloud_cover;
-    converted.exposure = frame.exposure;
-    switch (frame.mode) {
-    case GUSUKU_MODE_PROPOSED: converted.mode = gusuku::RenderMode::kProposed; break;
-    case GUSUKU_MODE_DIRECT_ONLY: converted.mode = gusuku::RenderMode::kDirectOnly; break;
-    default: return "mode: " + std::to_string(int(frame.mode)) + " is not a gusuku_render_mode";
-    }
-    switch (frame.colour_match) {
-    case GUSUKU_COLOUR_MATCH_OFF: converted.colour_match = gusuku::ColourMatch::kOff; break;
-    case GUSUKU_COLOUR_MATCH_PAPER: converted.colour_match = gusuku::ColourMatch::kPaper; break;
-    case GUSUKU_COLOUR_MATCH_PRESERVE: converted.colour_match = gusuku::ColourMatch::kPreserve; break;
-    case GUSUKU_COLOUR_MATCH_GROUND: converted.colour_match = gusuku::ColourMatch::kGround; break;
-    default: return "colour_match: " + std::to_string(int(frame.colour_match)) + " is not a gusuku_colour_match";
-    }
-    const uint32_t known = GUSUKU_FRAME_BLEND_SLOTS | GUSUKU_FRAME_GROUND_RATIO;
-    if ((frame.flags & ~known) != 0) return "flags: unknown bits " + std::to_string(frame.flags & ~known);
-    converted.blend_slots = (frame.flags & GUSUKU_FRAME_BLEND_SLOTS) != 0;
-    converted.ground_ratio = (frame.flags & GUSUKU_FRAME_GROUND_RATIO) != 0;
-    return {};
+/// The app's options (NULL: the defaults) over today's defaults; "" or the struct_size problem.
+std::string readOptions(const gusuku_runtime_options* options, gusuku_runtime_options& full) {
+    return options == nullptr ? std::string() : readSized(options, "options", full);
 }
 
-void convertInfo(const gusuku::FrameInfo& info, gusuku_frame_info& out) {
-    out.sun_azimuth_deg = info.sun_azimuth_deg;
-    out.sun_apparent_elevation_deg = info.sun_apparent_elevation_deg;
-    out.sun_above_horizon = info.sun_above_horizon ? 1 : 0;
-    for (int c = 0; c < 3; ++c) {
-        out.sun_direction_enu[c] = info.sun_direction_enu[c];
-        out.sun_irradiance_rgb[c] = info.sun_irradiance_rgb[c];
+/// gusuku_runtime_render(_profiled): the arguments checked (the frame's and info's sizes before any GPU work),
+/// the frame rendered (profiled when timings is given), the results written in the app's layouts.
+gusuku_result renderFrame(const char* function, gusuku_runtime* runtime, const gusuku_frame_input* frame,
+                          uint8_t* output_rgba8, gusuku_frame_info* info, gusuku_pass_timings* timings) {
+    if (runtime == nullptr) return failArgument(function, "runtime: is NULL");
+    MessageBuffer* message = &runtime->last_error;
+    if (frame == nullptr) return failArgument(function, "frame: is NULL", message);
+    try {
+        gusuku_frame_input full_frame = defaultFrame();
+        size_t info_bytes = 0, timings_bytes = 0;
+        std::string problem = readSized(frame, "frame", full_frame);
+        if (problem.empty() && info != nullptr) problem = findSizeProblem(info, "info", info_bytes);
+        if (problem.empty() && timings != nullptr) problem = findSizeProblem(timings, "timings", timings_bytes);
+        if (!problem.empty()) return failArgument(function, problem, message);
+        gusuku::FrameInput converted;
+        if (std::string frame_problem = convertFrame(full_frame, converted); !frame_problem.empty())
+            return fail(GUSUKU_ERROR_INVALID_FRAME, (std::string(function) + ": frame: " + frame_problem).c_str(),
+                        message);
+        gusuku::PassTimings pass_timings;
+        const gusuku::FrameInfo frame_info =
+            timings != nullptr ? runtime->runtime->renderFrameProfiled(converted, output_rgba8, pass_timings)
+                               : runtime->runtime->renderFrame(converted, output_rgba8);
+        if (info != nullptr) writeSized(convertInfo(frame_info), info, info_bytes);
+        if (timings != nullptr) writeSized(convertTimings(pass_timings), timings, timings_bytes);
+        return GUSUKU_OK;
+    } catch (...) {
+        return failFromCurrentException(function, message);
     }
-    out.slot_a = info.slot_a;
-    out.slot_b = info.slot_b;
-    out.slot_b_weight = info.slot_b_weight;
-    out.overcast_slot = info.overcast_slot;
-    out.overcast_weight = info.overcast_weight;
 }
 
 /// Opens with `open` into a new handle; the handle exists first so the device view's address is fixed.
@@ -199,6 +182,8 @@ const char* gusuku_last_error_message(void) { return gusuku::c_api_detail::t_thr
 
 const char* gusuku_version(void) { return gusuku::runtimeVersion(); }
 
+uint32_t gusuku_api_version(void) { return GUSUKU_API_VERSION; }
+
 gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bakeset** out_bake_set) {
     const char* function = "gusuku_bakeset_create";
     if (out_bake_set == nullptr)
@@ -206,8 +191,12 @@ gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bake
     *out_bake_set = nullptr;
     try {
         if (desc == nullptr) return failArgument(function, "desc: is NULL");
+        gusuku_bakeset_desc full_desc;
+        std::memset(&full_desc, 0, sizeof full_desc);  // every desc field's default is zero
+        if (std::string problem = readSized(desc, "desc", full_desc); !problem.empty())
+            return failArgument(function, problem);
         auto bake_set = std::make_unique<gusuku_bakeset>();
-        if (DescProblem problem = convertDesc(*desc, bake_set->data))
+        if (DescProblem problem = convertDesc(full_desc, bake_set->data))
             return fail(problem.code, (std::string(function) + ": " + problem.message).c_str());
         if (std::optional<std::string> problem = gusuku::findBakeSetProblem(bake_set->data))
             return fail(GUSUKU_ERROR_INVALID_BAKE_SET, (std::string(function) + ": bake set: " + *problem).c_str());
@@ -223,36 +212,23 @@ gusuku_result gusuku_bakeset_free(gusuku_bakeset* bake_set) {
     return GUSUKU_OK;
 }
 
-gusuku_result gusuku_runtime_options_default(gusuku_runtime_options* options) {
+gusuku_result gusuku_runtime_options_fill_defaults(gusuku_runtime_options* options) {
     if (options == nullptr)
-        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_options_default: options: is NULL");
-    const gusuku::RuntimeOptions defaults;
-    *options = gusuku_runtime_options{defaults.frame_width,
-                                      defaults.frame_height,
-                                      defaults.shadow_map_size,
-                                      defaults.shadow_bias_texels,
-                                      defaults.shadow_pcf_radius,
-                                      defaults.statistics_stride,
-                                      defaults.statistics_smoothing_frames,
-                                      defaults.colour_gain_limit,
-                                      defaults.direct_only_ambient_fraction,
-                                      defaults.direct_only_shadow_darkening};
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_options_fill_defaults: options: is NULL");
+    size_t field_bytes = 0;
+    if (std::string problem = findSizeProblem(options, "options", field_bytes); !problem.empty())
+        return failArgument("gusuku_runtime_options_fill_defaults", problem);
+    writeSized(defaultOptions(), options, field_bytes);
     return GUSUKU_OK;
 }
 
-gusuku_result gusuku_frame_input_default(gusuku_frame_input* frame) {
-    if (frame == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_frame_input_default: frame: is NULL");
-    const gusuku::FrameInput defaults;
-    std::memset(frame, 0, sizeof *frame);
-    frame->camera_image = VK_NULL_HANDLE;
-    frame->camera_image_layout = defaults.camera_image_layout;
-    for (int i = 0; i < 3; ++i) frame->pose.camera_to_enu[4 * i] = 1.0;
-    frame->weather.cloud_cover = defaults.weather.cloud_cover;
-    frame->exposure = defaults.exposure;
-    frame->mode = GUSUKU_MODE_PROPOSED;
-    frame->colour_match = GUSUKU_COLOUR_MATCH_OFF;
-    frame->flags = (defaults.blend_slots ? GUSUKU_FRAME_BLEND_SLOTS : 0u) |
-                   (defaults.ground_ratio ? GUSUKU_FRAME_GROUND_RATIO : 0u);
+gusuku_result gusuku_frame_input_fill_defaults(gusuku_frame_input* frame) {
+    if (frame == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_frame_input_fill_defaults: frame: is NULL");
+    size_t field_bytes = 0;
+    if (std::string problem = findSizeProblem(frame, "frame", field_bytes); !problem.empty())
+        return failArgument("gusuku_frame_input_fill_defaults", problem);
+    writeSized(defaultFrame(), frame, field_bytes);
     return GUSUKU_OK;
 }
 
@@ -263,14 +239,21 @@ gusuku_result gusuku_runtime_open(const gusuku_vulkan_device* device, const gusu
     *out_runtime = nullptr;
     if (device == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_open: device: is NULL");
     if (bake_set == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_open: bake_set: is NULL");
-    if (device->instance == VK_NULL_HANDLE || device->physical_device == VK_NULL_HANDLE ||
-        device->device == VK_NULL_HANDLE || device->queue == VK_NULL_HANDLE)
+    gusuku_vulkan_device vulkan;
+    std::memset(&vulkan, 0, sizeof vulkan);
+    if (std::string problem = readSized(device, "device", vulkan); !problem.empty())
+        return failArgument(function, problem);
+    if (vulkan.instance == VK_NULL_HANDLE || vulkan.physical_device == VK_NULL_HANDLE ||
+        vulkan.device == VK_NULL_HANDLE || vulkan.queue == VK_NULL_HANDLE)
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT,
                     "gusuku_runtime_open: device: instance, physical_device, device and queue must all be set");
+    gusuku_runtime_options full_options = defaultOptions();
+    if (std::string problem = readOptions(options, full_options); !problem.empty())
+        return failArgument(function, problem);
     return openRuntime(function, out_runtime, [&](gusuku_runtime& handle) {
-        handle.gpu = gusuku::GpuDevice::describe(device->instance, device->physical_device, device->device,
-                                                 device->queue, device->queue_family_index);
-        handle.runtime = gusuku::Runtime::open(handle.gpu, bake_set->data, convertOptions(options));
+        handle.gpu = gusuku::GpuDevice::describe(vulkan.instance, vulkan.physical_device, vulkan.device, vulkan.queue,
+                                                 vulkan.queue_family_index);
+        handle.runtime = gusuku::Runtime::open(handle.gpu, bake_set->data, convertOptions(full_options));
     });
 }
 
@@ -282,28 +265,26 @@ gusuku_result gusuku_runtime_open_headless(const gusuku_bakeset* bake_set, const
     *out_runtime = nullptr;
     if (bake_set == nullptr)
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_open_headless: bake_set: is NULL");
+    gusuku_runtime_options full_options = defaultOptions();
+    if (std::string problem = readOptions(options, full_options); !problem.empty())
+        return failArgument(function, problem);
     return openRuntime(function, out_runtime, [&](gusuku_runtime& handle) {
-        handle.runtime = gusuku::Runtime::openHeadless(bake_set->data, convertOptions(options));
+        handle.runtime = gusuku::Runtime::openHeadless(bake_set->data, convertOptions(full_options));
     });
 }
 
 gusuku_result gusuku_runtime_render(gusuku_runtime* runtime, const gusuku_frame_input* frame, uint8_t* output_rgba8,
                                     gusuku_frame_info* info) {
-    const char* function = "gusuku_runtime_render";
-    if (runtime == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_render: runtime: is NULL");
-    MessageBuffer* message = &runtime->last_error;
-    if (frame == nullptr)
-        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_render: frame: is NULL", message);
-    try {
-        gusuku::FrameInput converted;
-        if (std::string problem = convertFrame(*frame, converted); !problem.empty())
-            return fail(GUSUKU_ERROR_INVALID_FRAME, (std::string(function) + ": frame: " + problem).c_str(), message);
-        const gusuku::FrameInfo frame_info = runtime->runtime->renderFrame(converted, output_rgba8);
-        if (info != nullptr) convertInfo(frame_info, *info);
-        return GUSUKU_OK;
-    } catch (...) {
-        return failFromCurrentException(function, message);
-    }
+    return renderFrame("gusuku_runtime_render", runtime, frame, output_rgba8, info, nullptr);
+}
+
+gusuku_result gusuku_runtime_render_profiled(gusuku_runtime* runtime, const gusuku_frame_input* frame,
+                                             uint8_t* output_rgba8, gusuku_frame_info* info,
+                                             gusuku_pass_timings* timings) {
+    const char* function = "gusuku_runtime_render_profiled";
+    if (runtime != nullptr && timings == nullptr)
+        return failArgument(function, "timings: is NULL", &runtime->last_error);
+    return renderFrame(function, runtime, frame, output_rgba8, info, timings);
 }
 
 gusuku_result gusuku_runtime_composite_image(const gusuku_runtime* runtime, VkImage* out_image) {
@@ -329,6 +310,17 @@ gusuku_result gusuku_runtime_reset_colour_statistics(gusuku_runtime* runtime) {
         return GUSUKU_OK;
     } catch (...) {
         return failFromCurrentException("gusuku_runtime_reset_colour_statistics", &runtime->last_error);
+    }
+}
+
+gusuku_result gusuku_runtime_invalidate_shadow_maps(gusuku_runtime* runtime) {
+    if (runtime == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_invalidate_shadow_maps: runtime: is NULL");
+    try {
+        runtime->runtime->invalidateShadowMaps();
+        return GUSUKU_OK;
+    } catch (...) {
+        return failFromCurrentException("gusuku_runtime_invalidate_shadow_maps", &runtime->last_error);
     }
 }
 

@@ -180,9 +180,9 @@ DescProblem convertSlot(const gusuku_slot& source, uint32_t s, gusuku::BakeSetDa
     return {};
 }
 
-/// The desc's arrays into data, or the first problem found on the way (findBakeSetProblem checks the rest).
 }  // namespace
 
+/// The desc's arrays into data, or the first problem found on the way (findBakeSetProblem checks the rest).
 DescProblem convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& data) {
     if (DescProblem problem = checkDescArrays(desc)) return problem;
     if (DescProblem problem = convertSite(desc, data.manifest)) return problem;
@@ -194,6 +194,10 @@ DescProblem convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& da
         return problem;
     for (uint32_t s = 0; s < desc.slot_count; ++s)
         if (DescProblem problem = convertSlot(desc.slots[s], s, data)) return problem;
+    // API version 1. A bake set with ground albedo names it in its manifest, as a loaded one does.
+    if (DescProblem problem = copyImage(desc.ground_albedo, "desc.ground_albedo", data.ground_albedo))
+        return problem;
+    if (!data.ground_albedo.rgba.empty()) data.manifest.ground_grid.albedo = "gusuku_bakeset_desc";
     return {};
 }
 

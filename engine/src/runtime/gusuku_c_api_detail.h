@@ -38,7 +38,8 @@ struct DescProblem {
     explicit operator bool() const { return !message.empty(); }
 };
 
-/// The desc into `data` (gusuku_c_api_bakeset.cpp): arrays, site, building and slots copied and checked; the
+/// The desc (this library's full layout: gusuku_bakeset_create reads the app's over zeros first) into `data`
+/// (gusuku_c_api_bakeset.cpp): arrays, site, building, slots and ground albedo copied and checked; the
 /// first problem found, or none. findBakeSetProblem then checks the whole as for any bake set.
 DescProblem convertDesc(const gusuku_bakeset_desc& desc, gusuku::BakeSetData& data);
 

@@ -1,5 +1,6 @@
 /* gusuku.h: the C API of gusuku_runtime, for apps (and languages) that do not take C++. C99; include it from C or
- * C++. It wraps gusuku/runtime/runtime.h one to one: read that header for what the runtime draws and how.
+ * C++. It wraps gusuku/runtime/runtime.h one to one (every option, frame field, frame counter and helper): read
+ * that header for what the runtime draws and how.
  *
  * Use:
  *     gusuku_bakeset* set;    gusuku_bakeset_create(&desc, &set)     (or gusuku_bakeset_load, gusuku_loader.h)
@@ -7,6 +8,26 @@
  *     gusuku_bakeset_free(set);                                      (the runtime keeps no pointer into it)
  *     per frame:              gusuku_runtime_render(rt, &frame, output_rgba8, &info)
  *     gusuku_runtime_close(rt);
+ *
+ * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
+ * 1 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
+ * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
+ * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
+ * the defaults; the others are zeroed and given their size (every default there is 0). The rule:
+ *   - new fields are only ever appended (each struct marks what each API version added), never moved, removed or
+ *     retyped, so an app built against an older header keeps working with a newer library;
+ *   - the library reads (for frame_info and pass_timings: writes) only the fields of the layout struct_size names
+ *     and takes today's defaults for the fields after them; bytes past them are never touched;
+ *   - struct_size must be the sizeof of a layout some release published: any other value is refused with
+ *     GUSUKU_ERROR_INVALID_ARGUMENT, "FUNCTION: ARGUMENT.struct_size: N is not ..." listing the sizes accepted.
+ *     That includes 0 (an unset size) and a size larger than this library knows (an app built against a newer
+ *     header: link that version's library). The extra bytes of a larger struct are never read, even when zero.
+ *   - gusuku 0.1.0's structs had no struct_size, so an app built against 0.1.0 is rebuilt once; the smallest
+ *     layout accepted is 0.1.0's fields behind struct_size (tests/test_c_api_versions.cpp freezes each layout).
+ * The small structs held inside these (gusuku_intrinsics, gusuku_pose, gusuku_geo_position, gusuku_weather,
+ * gusuku_image, gusuku_texture, gusuku_material, gusuku_slot) never change: a version that needs more appends a
+ * field to the struct that holds them.
  *
  * Errors: every function that can fail returns a gusuku_result; GUSUKU_OK (0) is success and leaves every output
  * parameter written, any other code leaves them untouched (an out handle is set to NULL). No exception ever
@@ -18,9 +39,28 @@
  *   - gusuku_runtime_last_error(rt): the last failure of a call on that runtime, whichever thread made it.
  * Messages are at most GUSUKU_MESSAGE_CAPACITY - 1 bytes (longer ones are cut); a success does not clear them.
  *
- * Threads: calls on one runtime must not overlap (the app serialises them); different runtimes and bake sets are
- * independent. On the app's device, the app must not submit to the queue it handed in while a gusuku call runs
- * (the C++ API also takes a queue mutex; this one does not).
+ * Threads:
+ *   - A runtime is used from one thread at a time: calls on one gusuku_runtime must not overlap (the app
+ *     serialises them, and may move the runtime between threads). gusuku_runtime_last_error(rt) is such a call.
+ *   - Different runtimes may be called concurrently, except that runtimes opened on one VkQueue must not be: each
+ *     submits to it, and Vulkan requires the queue's submissions to be externally synchronised. Likewise the app
+ *     must not submit to the queue it handed in while a gusuku call on it runs (the C++ API can take the app's
+ *     queue mutex instead; this one cannot).
+ *   - A bake set is read-only once created: several threads may open runtimes from one bake set at once; freeing
+ *     it must not overlap any call that uses it.
+ *   - The functions without a handle (gusuku_result_name, gusuku_version, gusuku_api_version, the *_default
+ *     functions, gusuku_last_error_message, gusuku_pose_looking_at, gusuku_intrinsics_from_field_of_view,
+ *     gusuku_project_to_pixel, gusuku_weather_estimate) may run on any thread at any time.
+ *
+ * Lifetimes, and who frees what:
+ *   - The app's VkInstance, VkPhysicalDevice, VkDevice and VkQueue (gusuku_vulkan_device) must outlive every
+ *     runtime opened on them; gusuku never destroys them. The gusuku_vulkan_device struct itself need not.
+ *   - A bake set need not outlive the runtime: gusuku_runtime_open copies what it draws into the GPU and keeps no
+ *     pointer into it. gusuku_bakeset_free frees it (from either source); the app frees its own desc arrays
+ *     whenever it likes after gusuku_bakeset_create returns.
+ *   - gusuku_runtime_close frees the runtime, everything it created on the device and, for a headless runtime,
+ *     the device itself. The VkImage of gusuku_runtime_composite_image belongs to the runtime.
+ *   - Returned strings (messages, names, the version) belong to gusuku: never free them.
  *
  * Conventions (those of runtime.h, pinned by its tests): world = the site's east-north-up frame, metres; camera x
  * right, y down, z forward (OpenCV); pixel (0, 0) is the top-left corner of the top-left pixel; images RGBA8, RGB
@@ -69,6 +109,14 @@ const char* gusuku_last_error_message(void);
 /* "major.minor.patch" of gusuku_runtime. Static string, O(1). */
 const char* gusuku_version(void);
 
+/* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
+ * fields or functions. */
+#define GUSUKU_API_VERSION 1u
+
+/* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
+ * gusuku_api_version() is N or more. O(1). */
+uint32_t gusuku_api_version(void);
+
 /* ------------------------------------------------------------------------------------------------------------ */
 /* The bake set in memory (mirrors gusuku/maths/bakeset_data.h, keeping only what the runtime draws from)               */
 
@@ -112,8 +160,11 @@ typedef struct gusuku_slot {
     gusuku_image ground_without;
 } gusuku_slot;
 
-/* Everything the runtime needs, as pointers and counts (the app keeps ownership; gusuku_bakeset_create copies). */
+/* Everything the runtime needs, as pointers and counts (the app keeps ownership; gusuku_bakeset_create copies).
+ * Zero it, then set struct_size = sizeof(gusuku_bakeset_desc): every field's default is zero. */
 typedef struct gusuku_bakeset_desc {
+    uint32_t struct_size;             /* sizeof(gusuku_bakeset_desc) as the app's header declares it */
+
     /* The site's reference point: the sun is computed here when a frame has no GPS fix. */
     double latitude_deg;
     double longitude_deg;
@@ -149,6 +200,11 @@ typedef struct gusuku_bakeset_desc {
 
     const gusuku_slot* slots;
     uint32_t slot_count;
+
+    /* API version 1: */
+    /* The ground's linear albedo, columns x rows: RGB albedo, A 1 where there is ground. Needed by
+     * GUSUKU_COLOUR_MATCH_GROUND only; may be empty (0 x 0, rgba NULL): such a bake set refuses that match. */
+    gusuku_image ground_albedo;
 } gusuku_bakeset_desc;
 
 /* A bake set held in host memory, made by gusuku_bakeset_create or gusuku_bakeset_load (gusuku_loader.h). */
@@ -167,10 +223,11 @@ gusuku_result gusuku_bakeset_free(gusuku_bakeset* bake_set);
 /* ------------------------------------------------------------------------------------------------------------ */
 /* The runtime                                                                                                   */
 
-/* The app's Vulkan device (see gpu_device.h's contract): all five outlive the runtime; the device was created on
- * queue_family_index and queue supports graphics and compute. gusuku creates its own pools, fences, buffers,
- * images and pipelines on it, nothing global. */
+/* The app's Vulkan device (see gpu_device.h's contract): the four handles outlive the runtime (this struct need
+ * not); the device was created on queue_family_index and queue supports graphics and compute. gusuku creates its
+ * own pools, fences, buffers, images and pipelines on it, nothing global. Zero it, set struct_size. */
 typedef struct gusuku_vulkan_device {
+    uint32_t struct_size;             /* sizeof(gusuku_vulkan_device) as the app's header declares it */
     VkInstance instance;
     VkPhysicalDevice physical_device;
     VkDevice device;
@@ -178,9 +235,11 @@ typedef struct gusuku_vulkan_device {
     uint32_t queue_family_index;
 } gusuku_vulkan_device;
 
-/* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h. Every field
-   is range-checked at open (NaN refused): GUSUKU_ERROR_INVALID_FRAME, the message naming "options.FIELD". */
+/* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h's
+   RuntimeOptions. Every field is range-checked at open (NaN refused): GUSUKU_ERROR_INVALID_FRAME, the message
+   naming "options.FIELD". */
 typedef struct gusuku_runtime_options {
+    uint32_t struct_size;                 /* sizeof(gusuku_runtime_options) as the app's header declares it */
     uint32_t frame_width;                 /* every frame's images are this size, [1, 8192]; default 1280 x 720 */
     uint32_t frame_height;
     uint32_t shadow_map_size;             /* texels per side, [64, 8192]; default 1024 */
@@ -191,6 +250,12 @@ typedef struct gusuku_runtime_options {
     float colour_gain_limit;              /* [1, 100]; default 2 */
     float direct_only_ambient_fraction;   /* of the slots' mean baked E_ind over the building, [0, 100]; default 1 */
     float direct_only_shadow_darkening;   /* [0, 1]; default 0.6 */
+
+    /* API version 1: */
+    float shadow_sun_step_deg;            /* shadow maps redrawn when the sun moves this far, [0, 10] (0: every
+                                             frame); default 0.05 */
+    float ground_change_threshold;        /* relative change of a ground cell's baked light with the building
+                                             above which it gets the ratio pass, [0, 1]; default 1/255 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
@@ -237,8 +302,11 @@ typedef struct gusuku_weather {
     float cloud_cover;      /* 0 clear (sunny slots, real-time sun) to 1 overcast (overcast slot, no sun) */
 } gusuku_weather;
 
-/* One frame's input; start from gusuku_frame_input_default. Exactly one of camera_rgba8 and camera_image. */
+/* One frame's input; start from gusuku_frame_input_default. Exactly one of camera_rgba8 and camera_image.
+ * Fields appended here start on an 8-byte boundary (after a uint32_t pad where needed): the 0.1 layout ends in
+ * 4 bytes of padding that an older app leaves unset, which the library never reads. */
 typedef struct gusuku_frame_input {
+    uint32_t struct_size;               /* sizeof(gusuku_frame_input) as the app's header declares it */
     const uint8_t* camera_rgba8;        /* host RGBA8, frame_width x frame_height (the image convention) */
     VkImage camera_image;               /* or the app's image: R8G8B8A8 holding sRGB bytes, usage TRANSFER_SRC */
     VkImageLayout camera_image_layout;  /* TRANSFER_SRC_OPTIMAL (default) or SHADER_READ_ONLY_OPTIMAL */
@@ -254,8 +322,10 @@ typedef struct gusuku_frame_input {
     uint32_t flags;                     /* GUSUKU_FRAME_*; default BLEND_SLOTS | GROUND_RATIO */
 } gusuku_frame_input;
 
-/* What the frame computed on the CPU. */
+/* What the frame computed (runtime.h's FrameInfo). Zero it and set struct_size; the library writes the fields of
+ * that layout. */
 typedef struct gusuku_frame_info {
+    uint32_t struct_size;               /* sizeof(gusuku_frame_info) as the app's header declares it */
     double sun_azimuth_deg;             /* east of north */
     double sun_apparent_elevation_deg;  /* refracted */
     int32_t sun_above_horizon;
@@ -265,14 +335,47 @@ typedef struct gusuku_frame_info {
     float slot_b_weight;                /* slot_a has 1 - slot_b_weight */
     int32_t overcast_slot;              /* -1: none */
     float overcast_weight;
+
+    /* API version 1: */
+    uint32_t ground_quads_drawn;        /* ground-grid quads the ratio pass drew (the rest were left untouched) */
+    uint32_t ground_quads_total;        /* quads in the grid */
 } gusuku_frame_info;
 
-/* Fills the defaults above. Never fails for a non-NULL pointer; O(1). */
-gusuku_result gusuku_runtime_options_default(gusuku_runtime_options* options);
+/* Each pass's time in one profiled frame (gusuku_runtime_render_profiled), milliseconds of wall time: each pass
+ * submitted and waited on alone (runtime.h's PassTimings). Zero it and set struct_size.
+ * API version 1 (the first layout). */
+typedef struct gusuku_pass_timings {
+    uint32_t struct_size;               /* sizeof(gusuku_pass_timings) as the app's header declares it */
+    double upload_ms;                   /* the camera image into the frame */
+    double shadow_ms;                   /* shadow maps */
+    double occluder_ms;                 /* the site's mesh into depth */
+    double building_ms;                 /* the building */
+    double ground_ms;                   /* the ground ratio */
+    double statistics_ms;               /* the camera's colour statistics */
+    double readback_ms;                 /* the composite out to the host */
+    double total_ms;
+} gusuku_pass_timings;
 
-/* Fills the defaults above: no camera, zero intrinsics (to be set), identity pose at the origin, time 0, no GPS
- * fix, cloud cover 0. O(1). */
-gusuku_result gusuku_frame_input_default(gusuku_frame_input* frame);
+/* Fills the defaults above for the fields of the layout options->struct_size names (set it first; the inline
+ * gusuku_runtime_options_default below does). A bad struct_size: GUSUKU_ERROR_INVALID_ARGUMENT. O(1). For
+ * bindings that cannot call an inline function. */
+gusuku_result gusuku_runtime_options_fill_defaults(gusuku_runtime_options* options);
+
+/* The same for a frame: no camera, zero intrinsics (to be set), identity pose at the origin, time 0, no GPS fix,
+ * cloud cover 0, exposure 1, PROPOSED, colour match off, flags BLEND_SLOTS | GROUND_RATIO. O(1). */
+gusuku_result gusuku_frame_input_fill_defaults(gusuku_frame_input* frame);
+
+/* Sets struct_size to this header's sizeof and fills the defaults: the way to start options and frames. Inline,
+ * so the size is the one the app was compiled with. NULL: GUSUKU_ERROR_INVALID_ARGUMENT. O(1). */
+static inline gusuku_result gusuku_runtime_options_default(gusuku_runtime_options* options) {
+    if (options != NULL) options->struct_size = (uint32_t)sizeof *options;
+    return gusuku_runtime_options_fill_defaults(options);
+}
+
+static inline gusuku_result gusuku_frame_input_default(gusuku_frame_input* frame) {
+    if (frame != NULL) frame->struct_size = (uint32_t)sizeof *frame;
+    return gusuku_frame_input_fill_defaults(frame);
+}
 
 /* Opens a runtime on the app's device: checks the bake set and options, uploads the bake set, builds pipelines and
  * every per-frame resource (all device memory it will ever use). options NULL: the defaults. Milliseconds to
@@ -291,12 +394,21 @@ gusuku_result gusuku_runtime_open_headless(const gusuku_bakeset* bake_set, const
 gusuku_result gusuku_runtime_render(gusuku_runtime* runtime, const gusuku_frame_input* frame, uint8_t* output_rgba8,
                                     gusuku_frame_info* info);
 
+/* The same frame with each pass submitted and timed alone into timings (required), for the breakdown only: slower
+ * in total. The composite and info are those of gusuku_runtime_render. */
+gusuku_result gusuku_runtime_render_profiled(gusuku_runtime* runtime, const gusuku_frame_input* frame,
+                                             uint8_t* output_rgba8, gusuku_frame_info* info,
+                                             gusuku_pass_timings* timings);
+
 /* The last frame's composite as a VkImage (R8G8B8A8_SRGB, frame size, TRANSFER_SRC_OPTIMAL), valid until the next
  * frame or close. O(1). */
 gusuku_result gusuku_runtime_composite_image(const gusuku_runtime* runtime, VkImage* out_image);
 
 /* Forgets the smoothed colour statistics (a cut in the camera feed). O(1). */
 gusuku_result gusuku_runtime_reset_colour_statistics(gusuku_runtime* runtime);
+
+/* Makes the next frame redraw the shadow maps even if the sun has not moved a step (for profiling). O(1). */
+gusuku_result gusuku_runtime_invalidate_shadow_maps(gusuku_runtime* runtime);
 
 /* Device memory the runtime holds, bytes (buffers and images, all allocated at open). O(1). */
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes);
@@ -306,6 +418,34 @@ const char* gusuku_runtime_last_error(const gusuku_runtime* runtime);
 
 /* Waits for the runtime's GPU work, destroys everything it created (and a headless device). NULL: no-op. */
 gusuku_result gusuku_runtime_close(gusuku_runtime* runtime);
+
+/* ------------------------------------------------------------------------------------------------------------ */
+/* Cameras and weather (pure CPU, no runtime needed; runtime.h's helpers)                                        */
+
+/* The pose of a camera at position_enu looking at target_enu, the image's up towards ENU +z (towards north when
+ * it looks straight up or down): CameraPose::lookingAt. A coordinate not finite, or a target within 1 um of the
+ * position: GUSUKU_ERROR_INVALID_ARGUMENT naming it. O(1). */
+gusuku_result gusuku_pose_looking_at(const double position_enu[3], const double target_enu[3], gusuku_pose* out_pose);
+
+/* Intrinsics of a width x height frame with this horizontal field of view, square pixels, the principal point at
+ * the centre: CameraIntrinsics::fromFieldOfView. width and height in [1, 65536], the angle in (0, 180) degrees,
+ * else GUSUKU_ERROR_INVALID_ARGUMENT naming it. O(1). */
+gusuku_result gusuku_intrinsics_from_field_of_view(uint32_t width, uint32_t height, double horizontal_fov_deg,
+                                                   gusuku_intrinsics* out_intrinsics);
+
+/* Where the ENU point lands in the frame (the pixel convention above): Runtime::projectToPixel. In front of the
+ * camera (camera z > 0): out_pixel = (u, v) and *out_in_front = 1; else out_pixel = (NaN, NaN), *out_in_front 0.
+ * The intrinsics and pose are checked as a frame's are (focal lengths finite and positive, a rotation), their
+ * width and height excepted; a problem is GUSUKU_ERROR_INVALID_ARGUMENT naming the field. O(1). */
+gusuku_result gusuku_project_to_pixel(const gusuku_intrinsics* intrinsics, const gusuku_pose* pose,
+                                      const double point_enu[3], double out_pixel[2], int32_t* out_in_front);
+
+/* The weather read off an RGBA8 camera frame (the image convention, width * height * 4 bytes) when no weather
+ * service answers: Weather::estimatedFrom (hard shadows in the lower half, a blue sky in the top rows; a frame
+ * under 2 x 8 pixels or all black reads as overcast). NULL pixels, a zero side or more than 2^28 pixels:
+ * GUSUKU_ERROR_INVALID_ARGUMENT. Allocates two frame-sized arrays: call it every second or so, not per frame. */
+gusuku_result gusuku_weather_estimate(const uint8_t* camera_rgba8, uint32_t width, uint32_t height,
+                                      gusuku_weather* out_weather);
 
 #ifdef __cplusplus
 }
