@@ -133,14 +133,19 @@ GUSUKU_SAME_OFFSET(FrameInfo01, gusuku_frame_info, overcast_weight);
 
 // API version 1's layouts on LP64 (x86_64, aarch64): the 0.1 prefixes' sizes and the appended fields' offsets.
 #if UINTPTR_MAX == UINT64_MAX
-static_assert(sizeof(RuntimeOptions01) == 44 && sizeof(gusuku_runtime_options) == 52);
+static_assert(sizeof(RuntimeOptions01) == 44 && sizeof(gusuku_runtime_options) == 68);
 static_assert(offsetof(gusuku_runtime_options, shadow_sun_step_deg) == 44);
 static_assert(offsetof(gusuku_runtime_options, ground_change_threshold) == 48);
+static_assert(offsetof(gusuku_runtime_options, camera_format) == 52);
+static_assert(offsetof(gusuku_runtime_options, frames_in_flight) == 64);
 static_assert(sizeof(VulkanDevice01) == 48 && sizeof(gusuku_vulkan_device) == 48);
 static_assert(sizeof(BakeSetDesc01) == 224 && sizeof(gusuku_bakeset_desc) == 240);
 static_assert(offsetof(gusuku_bakeset_desc, ground_albedo) == 224);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
+static_assert(offsetof(gusuku_frame_input, camera_luma) == 232 && sizeof(gusuku_frame_input) == 312);
+static_assert(offsetof(gusuku_frame_input, camera_image_format) == 260 &&
+              offsetof(gusuku_frame_input, signal_values) == 304);
 static_assert(sizeof(FrameInfo01) == 104 && sizeof(gusuku_frame_info) == 112);
 static_assert(offsetof(gusuku_frame_info, ground_quads_drawn) == 100);
 static_assert(offsetof(gusuku_frame_info, ground_quads_total) == 104);

@@ -324,6 +324,27 @@ gusuku_result gusuku_runtime_invalidate_shadow_maps(gusuku_runtime* runtime) {
     }
 }
 
+gusuku_result gusuku_runtime_wait_idle(gusuku_runtime* runtime) {
+    if (runtime == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_wait_idle: runtime: is NULL");
+    try {
+        runtime->runtime->waitIdle();
+        return GUSUKU_OK;
+    } catch (...) {
+        return failFromCurrentException("gusuku_runtime_wait_idle", &runtime->last_error);
+    }
+}
+
+gusuku_result gusuku_runtime_forget_camera_image(gusuku_runtime* runtime, VkImage image) {
+    if (runtime == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_forget_camera_image: runtime: is NULL");
+    try {
+        runtime->runtime->forgetCameraImage(image);
+        return GUSUKU_OK;
+    } catch (...) {
+        return failFromCurrentException("gusuku_runtime_forget_camera_image", &runtime->last_error);
+    }
+}
+
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes) {
     if (runtime == nullptr)
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_device_memory_bytes: runtime: is NULL");

@@ -55,6 +55,10 @@ gusuku_runtime_options defaultOptions() {
     options.direct_only_shadow_darkening = defaults.direct_only_shadow_darkening;
     options.shadow_sun_step_deg = defaults.shadow_sun_step_deg;
     options.ground_change_threshold = defaults.ground_change_threshold;
+    options.camera_format = gusuku_camera_format(defaults.camera_format);
+    options.camera_ycbcr_model = gusuku_ycbcr_model(defaults.camera_ycbcr_model);
+    options.camera_ycbcr_range = gusuku_ycbcr_range(defaults.camera_ycbcr_range);
+    options.frames_in_flight = defaults.frames_in_flight;
     return options;
 }
 
@@ -65,6 +69,7 @@ gusuku_frame_input defaultFrame() {
     frame.struct_size = sizeof frame;
     frame.camera_image = VK_NULL_HANDLE;
     frame.camera_image_layout = defaults.camera_image_layout;
+    frame.camera_image_format = defaults.camera_image_format;
     frame.pose = convertPose(defaults.pose);
     frame.utc_unix_seconds = defaults.utc_unix_seconds;
     frame.weather.cloud_cover = defaults.weather.cloud_cover;
@@ -90,6 +95,11 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.direct_only_shadow_darkening = options.direct_only_shadow_darkening;
     converted.shadow_sun_step_deg = options.shadow_sun_step_deg;
     converted.ground_change_threshold = options.ground_change_threshold;
+    // Out-of-range enum values pass through and are refused, by name, when the runtime checks its options.
+    converted.camera_format = CameraFormat(options.camera_format);
+    converted.camera_ycbcr_model = YcbcrModel(options.camera_ycbcr_model);
+    converted.camera_ycbcr_range = YcbcrRange(options.camera_ycbcr_range);
+    converted.frames_in_flight = options.frames_in_flight;
     return converted;
 }
 
@@ -119,6 +129,19 @@ std::string convertFrame(const gusuku_frame_input& frame, FrameInput& converted)
     converted.camera_rgba8 = frame.camera_rgba8;
     converted.camera_image = frame.camera_image;
     converted.camera_image_layout = frame.camera_image_layout;
+    converted.camera_image_format = frame.camera_image_format;
+    converted.camera_row_bytes = frame.camera_row_bytes;
+    converted.camera_luma = frame.camera_luma;
+    converted.camera_chroma = frame.camera_chroma;
+    converted.camera_luma_row_bytes = frame.camera_luma_row_bytes;
+    converted.camera_chroma_row_bytes = frame.camera_chroma_row_bytes;
+    converted.sync.wait_count = frame.wait_semaphore_count;
+    converted.sync.wait_semaphores = frame.wait_semaphores;
+    converted.sync.wait_values = frame.wait_values;
+    converted.sync.wait_stages = frame.wait_stages;
+    converted.sync.signal_count = frame.signal_semaphore_count;
+    converted.sync.signal_semaphores = frame.signal_semaphores;
+    converted.sync.signal_values = frame.signal_values;
     converted.intrinsics = convertIntrinsics(frame.intrinsics);
     converted.pose = convertPose(frame.pose);
     converted.utc_unix_seconds = frame.utc_unix_seconds;

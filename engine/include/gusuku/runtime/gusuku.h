@@ -238,6 +238,16 @@ typedef struct gusuku_vulkan_device {
 /* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h's
    RuntimeOptions. Every field is range-checked at open (NaN refused): GUSUKU_ERROR_INVALID_FRAME, the message
    naming "options.FIELD". */
+/* The camera's pixel format (runtime.h's CameraFormat), fixed when the runtime opens. */
+typedef enum gusuku_camera_format {
+    GUSUKU_CAMERA_RGBA8 = 0,  /* 4 bytes a pixel, R G B A */
+    GUSUKU_CAMERA_BGRA8 = 1,  /* 4 bytes a pixel, B G R A (kCVPixelFormatType_32BGRA) */
+    GUSUKU_CAMERA_NV12 = 2,   /* Y' plane, then interleaved Cb Cr at half size */
+    GUSUKU_CAMERA_NV21 = 3    /* Y' plane, then interleaved Cr Cb at half size (Android's YUV_420_888) */
+} gusuku_camera_format;
+typedef enum gusuku_ycbcr_model { GUSUKU_YCBCR_BT601 = 0, GUSUKU_YCBCR_BT709 = 1 } gusuku_ycbcr_model;
+typedef enum gusuku_ycbcr_range { GUSUKU_YCBCR_NARROW = 0, GUSUKU_YCBCR_FULL = 1 } gusuku_ycbcr_range;
+
 typedef struct gusuku_runtime_options {
     uint32_t struct_size;                 /* sizeof(gusuku_runtime_options) as the app's header declares it */
     uint32_t frame_width;                 /* every frame's images are this size, [1, 8192]; default 1280 x 720 */
@@ -256,6 +266,11 @@ typedef struct gusuku_runtime_options {
                                              frame); default 0.05 */
     float ground_change_threshold;        /* relative change of a ground cell's baked light with the building
                                              above which it gets the ratio pass, [0, 1]; default 1/255 */
+    gusuku_camera_format camera_format;   /* default GUSUKU_CAMERA_RGBA8; NV12 / NV21 need an even size */
+    gusuku_ycbcr_model camera_ycbcr_model;  /* NV12 / NV21 only; default BT601 */
+    gusuku_ycbcr_range camera_ycbcr_range;  /* NV12 / NV21 only; default NARROW */
+    uint32_t frames_in_flight;            /* frames the GPU may hold while the app records the next, [1, 3];
+                                             default 2 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
@@ -307,9 +322,10 @@ typedef struct gusuku_weather {
  * 4 bytes of padding that an older app leaves unset, which the library never reads. */
 typedef struct gusuku_frame_input {
     uint32_t struct_size;               /* sizeof(gusuku_frame_input) as the app's header declares it */
-    const uint8_t* camera_rgba8;        /* host RGBA8, frame_width x frame_height (the image convention) */
-    VkImage camera_image;               /* or the app's image: R8G8B8A8 holding sRGB bytes, usage TRANSFER_SRC */
-    VkImageLayout camera_image_layout;  /* TRANSFER_SRC_OPTIMAL (default) or SHADER_READ_ONLY_OPTIMAL */
+    const uint8_t* camera_rgba8;        /* host RGBA8 or BGRA8 (options.camera_format), frame_width x frame_height */
+    VkImage camera_image;               /* or the app's image, sampled in place (runtime.h's FrameInput): usage
+                                           SAMPLED, R8G8B8A8 or B8G8R8A8 (camera_image_format) */
+    VkImageLayout camera_image_layout;  /* SHADER_READ_ONLY_OPTIMAL (default), GENERAL or TRANSFER_SRC_OPTIMAL */
     gusuku_intrinsics intrinsics;
     gusuku_pose pose;
     double utc_unix_seconds;            /* the instant, seconds since 1970-01-01T00:00:00Z */
@@ -320,6 +336,21 @@ typedef struct gusuku_frame_input {
     gusuku_render_mode mode;            /* default GUSUKU_MODE_PROPOSED */
     gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_OFF (exposure given) */
     uint32_t flags;                     /* GUSUKU_FRAME_*; default BLEND_SLOTS | GROUND_RATIO */
+
+    /* API version 1 (runtime.h's FrameInput and FrameSync say more): */
+    const uint8_t* camera_luma;         /* or host Y'CbCr planes (NV12 / NV21): Y', frame size */
+    const uint8_t* camera_chroma;       /* the interleaved chroma, half size */
+    uint32_t camera_row_bytes;          /* rows apart in camera_rgba8 (0: packed, width * 4) */
+    uint32_t camera_luma_row_bytes;     /* rows apart in camera_luma (0: packed, width) */
+    uint32_t camera_chroma_row_bytes;   /* rows apart in camera_chroma (0: packed, width) */
+    VkFormat camera_image_format;       /* camera_image's format, _UNORM or _SRGB; default R8G8B8A8_UNORM */
+    uint32_t wait_semaphore_count;      /* semaphores the frame waits on before it reads the camera, <= 8 */
+    uint32_t signal_semaphore_count;    /* semaphores it signals when the composite is written, <= 8 */
+    const VkSemaphore* wait_semaphores;
+    const uint64_t* wait_values;        /* timeline values (NULL: binary semaphores) */
+    const VkPipelineStageFlags* wait_stages;  /* NULL: ALL_COMMANDS each */
+    const VkSemaphore* signal_semaphores;
+    const uint64_t* signal_values;      /* timeline values (NULL: binary semaphores) */
 } gusuku_frame_input;
 
 /* What the frame computed (runtime.h's FrameInfo). Zero it and set struct_size; the library writes the fields of
@@ -388,9 +419,11 @@ gusuku_result gusuku_runtime_open(const gusuku_vulkan_device* device, const gusu
 gusuku_result gusuku_runtime_open_headless(const gusuku_bakeset* bake_set, const gusuku_runtime_options* options,
                                            gusuku_runtime** out_runtime);
 
-/* Renders one frame: the composite, frame_width * frame_height * 4 bytes, into output_rgba8 (NULL: none, e.g.
- * when the app uses gusuku_runtime_composite_image); the CPU-side facts into info (NULL: none). Synchronous (waits
- * on a fence); one frame of GPU work, no allocation. Bad input is GUSUKU_ERROR_INVALID_FRAME naming the field. */
+/* Renders one frame; the CPU-side facts into info (NULL: none). With output_rgba8 NULL (the GPU-resident path)
+ * it submits the frame and returns, blocking only when frames_in_flight frames are all still on the GPU: the app
+ * takes gusuku_runtime_composite_image after the frame's signal semaphores. With output_rgba8 set (frame_width *
+ * frame_height * 4 bytes) it also reads the composite back and waits for it. One frame of GPU work, no
+ * allocation. Bad input is GUSUKU_ERROR_INVALID_FRAME naming the field. */
 gusuku_result gusuku_runtime_render(gusuku_runtime* runtime, const gusuku_frame_input* frame, uint8_t* output_rgba8,
                                     gusuku_frame_info* info);
 
@@ -400,9 +433,15 @@ gusuku_result gusuku_runtime_render_profiled(gusuku_runtime* runtime, const gusu
                                              uint8_t* output_rgba8, gusuku_frame_info* info,
                                              gusuku_pass_timings* timings);
 
-/* The last frame's composite as a VkImage (R8G8B8A8_SRGB, frame size, TRANSFER_SRC_OPTIMAL), valid until the next
- * frame or close. O(1). */
+/* The last frame's composite as a VkImage (R8G8B8A8_SRGB, frame size, TRANSFER_SRC_OPTIMAL), rewritten
+ * frames_in_flight frames later. O(1). */
 gusuku_result gusuku_runtime_composite_image(const gusuku_runtime* runtime, VkImage* out_image);
+
+/* Blocks until every frame submitted has finished on the GPU. */
+gusuku_result gusuku_runtime_wait_idle(gusuku_runtime* runtime);
+
+/* Lets go of the view the runtime keeps of an app camera image; call before destroying the image. */
+gusuku_result gusuku_runtime_forget_camera_image(gusuku_runtime* runtime, VkImage image);
 
 /* Forgets the smoothed colour statistics (a cut in the camera feed). O(1). */
 gusuku_result gusuku_runtime_reset_colour_statistics(gusuku_runtime* runtime);
