@@ -53,8 +53,8 @@ TEST(Exposure, MeteredMeanShowsAsMiddleGreyWithHeadroom) {
     const double average = 4000.0;
     const double ev = gusuku::ev100FromAverageLuminance(average);
     EXPECT_NEAR(ev, std::log2(4000.0 * 100.0 / 12.5), 1e-12);
-    // Saturation-based: the mean lands at 12.5 / 120 of white; SOS: 12.5 / 85.47, about middle grey 0.18 less
-    // the 0.5 stop the meter's K leaves.
+    // Saturation-based: the mean lands at 12.5 / 120 of white; SOS: 12.5 / 85.47 = 0.146, 0.3 stop under middle
+    // grey (0.18): the headroom the meter's K leaves.
     EXPECT_NEAR(average / gusuku::whiteLuminanceFromEv100(ev), 12.5 / 120.0, 1e-12);
     EXPECT_NEAR(average / gusuku::whiteLuminanceFromEv100(ev, CameraSpeedModel::kStandardOutputSensitivity),
                 0.14625, 1e-12);
