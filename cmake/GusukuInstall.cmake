@@ -7,6 +7,9 @@
 #                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
 #                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
 #                      packages, found again by the package config)
+# A runtime-only build (GUSUKU_RUNTIME_ONLY) installs the runtime component alone.
+# Relocatable: every exported link names an imported target that the package config finds again (Vulkan, glm,
+# the loader's I/O stack), never a path on the build machine; install_and_consume checks the installed files.
 # Not installed: the baker, the tools, the embedded SPIR-V and the shader interface headers (shaders/include),
 # which only the runtime's private sources include.
 include(GNUInstallDirs)
@@ -16,8 +19,11 @@ set(GUSUKU_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/gusuku)
 set_target_properties(gusuku_maths PROPERTIES EXPORT_NAME maths)
 set_target_properties(gusuku_gpu PROPERTIES EXPORT_NAME gpu)
 set_target_properties(gusuku_runtime PROPERTIES EXPORT_NAME runtime)
-set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
-set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
+# The installed headers are C++17 (Android NDK and Unity native-plugin code mostly is; the sources may be C++20):
+# a consumer gets at least C++17 from the targets, and tests/consumer compiles every header as C++17.
+foreach(runtime_library gusuku_maths gusuku_gpu gusuku_runtime)
+  target_compile_features(${runtime_library} INTERFACE cxx_std_17)
+endforeach()
 
 install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
@@ -31,14 +37,21 @@ endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
 
-install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(library assets loader)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
-          COMPONENT loader FILES_MATCHING PATTERN "*.h")
-endforeach()
-install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
+if(NOT GUSUKU_RUNTIME_ONLY)
+  set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
+  set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
+  install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
+          INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  foreach(library assets loader)
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library}
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku COMPONENT loader FILES_MATCHING PATTERN "*.h")
+  endforeach()
+  install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
+  # The package config recreates GeographicLib::GeographicLib with it (the exported link names that target).
+  install(FILES ${PROJECT_SOURCE_DIR}/cmake/GusukuGeographicLibTarget.cmake DESTINATION ${GUSUKU_INSTALL_CMAKEDIR}
+          COMPONENT loader)
+endif()
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/gusukuConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/gusukuConfig.cmake INSTALL_DESTINATION ${GUSUKU_INSTALL_CMAKEDIR})

@@ -5,7 +5,8 @@
 #   - Debian 12's OpenColorIO CMake config sits in /usr/share/cmake and computes a wrong prefix ("/include"), so
 #     OpenColorIO is found through pkg-config instead, as OpenColorIO::OpenColorIO.
 # Defines glm::glm, TinyGLTF::TinyGLTF, OpenImageIO::OpenImageIO(_Util), OpenColorIO::OpenColorIO,
-# nlohmann_json::nlohmann_json and GeographicLib_INCLUDE_DIRS / GeographicLib_LIBRARIES.
+# nlohmann_json::nlohmann_json, GeographicLib::GeographicLib (cmake/GusukuGeographicLibTarget.cmake: a target, so
+# that exported links hold no absolute path) and GeographicLib_INCLUDE_DIRS / GeographicLib_LIBRARIES.
 find_package(glm REQUIRED)
 find_package(TinyGLTF REQUIRED)
 find_package(OpenImageIO REQUIRED)
@@ -29,3 +30,7 @@ endif()
 find_package(nlohmann_json 3 REQUIRED)
 list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
 find_package(GeographicLib REQUIRED)
+include(${CMAKE_CURRENT_LIST_DIR}/GusukuGeographicLibTarget.cmake)
+if(NOT TARGET GeographicLib::GeographicLib)
+  message(FATAL_ERROR "GeographicLib: libGeographicLib or GeographicLib/Config.h not found on the search path")
+endif()

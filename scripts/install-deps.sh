@@ -14,6 +14,13 @@ packages=(
 
 # --fuzz: also clang-14 and its compiler runtime (libFuzzer, sanitizers), for scripts/fuzz.sh only.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang-14 libclang-rt-14-dev); fi
+# --cross: also Debian's AArch64 cross compilers and the arm64 Vulkan loader (multiarch: the arm64 architecture is
+# added to dpkg first), for scripts/cross-build-aarch64.sh only.
+cross=false
+if [ "${1:-}" = "--cross" ]; then
+  cross=true
+  packages+=(gcc-aarch64-linux-gnu g++-aarch64-linux-gnu libvulkan-dev:arm64 file)
+fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -29,5 +36,6 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
+if $cross && ! dpkg --print-foreign-architectures | grep -qx arm64; then dpkg --add-architecture arm64; fi
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"

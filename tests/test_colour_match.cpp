@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>

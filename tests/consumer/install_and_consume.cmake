@@ -1,13 +1,23 @@
-# cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DC_COMPILER=... -DCXX_COMPILER=...
-#       -P install_and_consume.cmake
-# Installs the build into WORK_DIR/prefix (both components; the runtime component alone into another prefix, to
-# check the split), configures and builds the consumer against that prefix alone (CMAKE_PREFIX_PATH), and runs its
-# two programs. Any step failing fails the test.
+# cmake -DBUILD_DIR=... -DCONSUMER_SOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... [-DC_COMPILER=... -DCXX_COMPILER=...]
+#       [-DWITH_LOADER=OFF] [-DRUN_CONSUMERS=OFF] [-DTOOLCHAIN_FILE=...] -P install_and_consume.cmake
+# Installs the build into WORK_DIR/staging and moves it to WORK_DIR/prefix (so the package must be relocatable;
+# its CMake files are also checked for absolute paths), installs the runtime component alone into another prefix
+# (to check the split), configures and builds the consumer against WORK_DIR/prefix alone (CMAKE_PREFIX_PATH), and
+# runs its programs. Any step failing fails the test.
+#   WITH_LOADER     ON (default): the build has the loader component; OFF: a runtime-only build (GUSUKU_RUNTIME_ONLY)
+#   RUN_CONSUMERS   ON (default); OFF when the consumers are cross-compiled (scripts/cross-build-aarch64.sh)
+#   TOOLCHAIN_FILE  the consumer's CMAKE_TOOLCHAIN_FILE, for a cross build
 foreach(variable BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "install_and_consume.cmake: ${variable} is not set")
   endif()
 endforeach()
+if(NOT DEFINED WITH_LOADER)
+  set(WITH_LOADER ON)
+endif()
+if(NOT DEFINED RUN_CONSUMERS)
+  set(RUN_CONSUMERS ON)
+endif()
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 
@@ -19,9 +29,21 @@ function(run_step name)
   endif()
 endfunction()
 
-run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(expected include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h include/gusuku/loader/gusuku_loader.h
-        lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
+run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/staging)
+file(RENAME ${WORK_DIR}/staging ${prefix})  # the package is used where it was not installed
+set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h
+                   lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
+if(WITH_LOADER)
+  list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)
+else()
+  foreach(absent lib/libgusuku_assets.a lib/libgusuku_loader.a lib/cmake/gusuku/gusukuLoaderTargets.cmake
+          include/gusuku/assets include/gusuku/loader include/gusuku/tools)
+    if(EXISTS ${prefix}/${absent})
+      message(FATAL_ERROR "install: ${absent} is in the prefix of a runtime-only build")
+    endif()
+  endforeach()
+endif()
+foreach(expected ${expected_files})
   if(NOT EXISTS ${prefix}/${expected})
     message(FATAL_ERROR "install: ${expected} is missing from the prefix")
   endif()
@@ -30,6 +52,29 @@ file(GLOB interface_headers ${prefix}/include/*_interface.h ${prefix}/include/gu
 if(interface_headers)
   message(FATAL_ERROR "install: shader interface headers are private, yet installed: ${interface_headers}")
 endif()
+
+# Relocatable: no absolute path in the package's CMake files (a library path of the build machine, such as
+# /usr/lib/x86_64-linux-gnu/libGeographicLib.so, would break another prefix, machine or architecture). A path
+# is a '/' after a quote, ';', space or '(' and followed by a name; comment lines are skipped.
+file(GLOB package_files ${prefix}/lib/cmake/gusuku/*.cmake)
+set(absolute_paths)
+foreach(package_file ${package_files})
+  # Read whole (file(STRINGS) would split the lines at the ';' of link lists), comment lines removed.
+  file(READ ${package_file} content)
+  string(REGEX REPLACE "(^|\n)[ \t]*#[^\n]*" "\\1" content "${content}")
+  string(REGEX MATCHALL "[\"; (]/[^\"; )\n]+" found "${content}")
+  get_filename_component(file_name ${package_file} NAME)
+  foreach(path ${found})  # a match after ';' comes as its own list item, the ';' gone
+    string(REGEX REPLACE "^[^/]" "" path "${path}")
+    list(APPEND absolute_paths "${file_name}: ${path}")
+  endforeach()
+endforeach()
+if(absolute_paths)
+  list(JOIN absolute_paths "\n  " absolute_paths)
+  message(FATAL_ERROR "install: the package's CMake files hold absolute paths (not relocatable):\n  ${absolute_paths}")
+endif()
+list(LENGTH package_files package_file_count)
+message(STATUS "package files: ${package_file_count}, no absolute path")
 
 # The runtime component alone: the lean libraries and the package, nothing of the loader's I/O stack.
 run_step("install the runtime component" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/runtime_only
@@ -72,9 +117,17 @@ endif()
 if(CXX_COMPILER)
   list(APPEND compilers -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 endif()
+if(TOOLCHAIN_FILE)
+  list(APPEND compilers -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE})
+endif()
 run_step("configure the consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
-         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers}
+         -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} ${compilers} -DGUSUKU_CONSUMER_LOADER=${WITH_LOADER}
          "-DGUSUKU_INSTALLED_HEADERS=${installed_headers_joined}")
 run_step("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
-run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
-run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
+if(RUN_CONSUMERS)
+  run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
+  run_step("run consumer_runtime_cxx17" ${WORK_DIR}/build/consumer_runtime_cxx17)
+  if(WITH_LOADER)
+    run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
+  endif()
+endif()

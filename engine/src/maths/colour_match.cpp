@@ -26,7 +26,7 @@ ColourStatisticsGrid colourStatisticsGrid(uint32_t width, uint32_t height, uint3
     return grid;
 }
 
-CameraColourStatistics measureCameraColourStatistics(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+CameraColourStatistics measureCameraColourStatistics(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
                                                      uint32_t stride) {
     const ColourStatisticsGrid grid = colourStatisticsGrid(width, height, stride);
     if (rgba8.size() < size_t(width) * height * 4)
@@ -92,7 +92,7 @@ SmoothedColourStatistics smoothColourStatistics(const SmoothedColourStatistics& 
     return next;
 }
 
-LabStatistics blendLabStatistics(std::span<const LabStatistics> slots, std::span<const float> weights) {
+LabStatistics blendLabStatistics(ConstSpan<LabStatistics> slots, ConstSpan<float> weights) {
     LabStatistics blended;
     if (slots.empty()) return blended;
     if (weights.size() != slots.size())

@@ -118,7 +118,7 @@ uint32_t groundMatchBin(const glm::dvec3& observed, const glm::dvec3& predicted)
     return uint32_t(std::clamp(bin, 0.0, double(kGroundMatchBins - 1)));
 }
 
-GroundColourEstimate measureGroundColourGain(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+GroundColourEstimate measureGroundColourGain(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
                                              uint32_t stride, const GroundMatchScene& scene,
                                              const GroundMatchView& view, float gain_limit) {
     const ColourStatisticsGrid grid = colourStatisticsGrid(width, height, stride);

@@ -8,7 +8,7 @@
 
 namespace gusuku {
 
-LabStatistics measureLabStatistics(std::span<const glm::vec3> lab_pixels) {
+LabStatistics measureLabStatistics(ConstSpan<glm::vec3> lab_pixels) {
     // Two passes in double: the mean first, then squared deviations from it (no cancellation from sum x^2).
     glm::dvec3 sum(0.0);
     size_t count = 0;

@@ -32,7 +32,8 @@ struct BakeSetInput {
     /// gusuku/assets/bakeset_loader.h's resolveBakeSetInputPath.
     std::string path;
     std::string fnv1a64;
-    bool operator==(const BakeSetInput&) const = default;
+    bool operator==(const BakeSetInput& other) const;  ///< every member equal
+    bool operator!=(const BakeSetInput& other) const { return !(*this == other); }
 };
 
 /// Where the site is (site.json's reference point) and its clock.
@@ -42,7 +43,8 @@ struct BakeSetSite {
     double longitude_deg = 0.0;  ///< east positive
     double height_m = 0.0;       ///< above the WGS84 ellipsoid
     int utc_offset_minutes = 0;  ///< the site's clock, minutes east of UTC
-    bool operator==(const BakeSetSite&) const = default;
+    bool operator==(const BakeSetSite& other) const;  ///< every member equal
+    bool operator!=(const BakeSetSite& other) const { return !(*this == other); }
 };
 
 struct BakeSetSettings {
@@ -50,7 +52,8 @@ struct BakeSetSettings {
     int max_bounces = 0;
     uint32_t seed = 0;
     bool denoised = false;           ///< the building lightmaps went through the edge-keeping filter
-    bool operator==(const BakeSetSettings&) const = default;
+    bool operator==(const BakeSetSettings& other) const;  ///< every member equal
+    bool operator!=(const BakeSetSettings& other) const { return !(*this == other); }
 };
 
 /// The building as baked. Fixed by the format (written, and checked by the reader): the mesh's frame is site
@@ -61,7 +64,8 @@ struct BakeSetBuilding {
     int lightmap_resolution = 0;     ///< lightmaps are lightmap_resolution^2 texels
     double texels_per_metre = 0.0;   ///< the density the charts were laid out with
     uint64_t texels = 0;             ///< lightmap texels that lie on the building
-    bool operator==(const BakeSetBuilding&) const = default;
+    bool operator==(const BakeSetBuilding& other) const;  ///< every member equal
+    bool operator!=(const BakeSetBuilding& other) const { return !(*this == other); }
 };
 
 /// The ground grid: its addressing is gusuku/maths/ground_grid.h (column 0 west, row 0 north).
@@ -73,7 +77,8 @@ struct BakeSetGroundGrid {
     /// the cell has ground. Empty in bake sets made before it existed: they load, and the runtime's ground colour
     /// match (ColourMatch::kGround) then refuses to run (docs/bakeset.md "Ground albedo").
     std::string albedo;
-    bool operator==(const BakeSetGroundGrid&) const = default;
+    bool operator==(const BakeSetGroundGrid& other) const;  ///< every member equal
+    bool operator!=(const BakeSetGroundGrid& other) const { return !(*this == other); }
 };
 
 /// The real site's surfaces for the runtime's depth-only pass (docs/design.md 8, pass 4): the SfM mesh simplified
@@ -86,7 +91,8 @@ struct BakeSetOccluderInfo {
     uint64_t source_triangles = 0;  ///< in the SfM mesh as loaded
     double target_error_m = 0.0;    ///< the simplifier's error bound, metres
     double simplification_error_m = 0.0;  ///< the error it reached (the simplifier's own estimate), metres
-    bool operator==(const BakeSetOccluderInfo&) const = default;
+    bool operator==(const BakeSetOccluderInfo& other) const;  ///< every member equal
+    bool operator!=(const BakeSetOccluderInfo& other) const { return !(*this == other); }
 };
 
 enum class BakeSetSky { Sunny, Overcast };
@@ -96,7 +102,8 @@ struct BakeSetSunPosition {
     double azimuth_deg = 0.0;             ///< east of north, [0, 360)
     double apparent_elevation_deg = 0.0;  ///< refracted
     glm::dvec3 direction_enu{0.0, 0.0, 1.0};  ///< unit, towards the sun: (cos e sin A, cos e cos A, sin e)
-    bool operator==(const BakeSetSunPosition&) const = default;
+    bool operator==(const BakeSetSunPosition& other) const;  ///< every member equal
+    bool operator!=(const BakeSetSunPosition& other) const { return !(*this == other); }
 };
 
 struct BakeSetSun {
@@ -111,7 +118,8 @@ struct BakeSetSun {
     /// gusuku/maths/sun_air_mass.h's carryMeasuredSunRgb (what the baker and the runtime do).
     glm::dvec3 irradiance_rgb{0.0};
     double angular_radius_deg = 0.0;  ///< of the sun disc the tracer samples
-    bool operator==(const BakeSetSun&) const = default;
+    bool operator==(const BakeSetSun& other) const;  ///< every member equal
+    bool operator!=(const BakeSetSun& other) const { return !(*this == other); }
 };
 
 /// CIE Lab (D65) mean and standard deviation of the baked appearance rho/pi (E_ind + V E_sun cos) over the valid
@@ -120,7 +128,8 @@ struct BakeSetColourStatistics {
     glm::dvec3 lab_mean{0.0};
     glm::dvec3 lab_sigma{0.0};
     uint64_t texels = 0;
-    bool operator==(const BakeSetColourStatistics&) const = default;
+    bool operator==(const BakeSetColourStatistics& other) const;  ///< every member equal
+    bool operator!=(const BakeSetColourStatistics& other) const { return !(*this == other); }
 };
 
 struct BakeSetSlot {
@@ -137,7 +146,8 @@ struct BakeSetSlot {
     std::string ground_irradiance_without_building;  ///< ground_<slot>_without.exr
     uint64_t invalid_texels = 0;  ///< texels inside geometry, filled by dilation
     std::optional<BakeSetColourStatistics> colour_statistics;
-    bool operator==(const BakeSetSlot&) const = default;
+    bool operator==(const BakeSetSlot& other) const;  ///< every member equal
+    bool operator!=(const BakeSetSlot& other) const { return !(*this == other); }
 };
 
 /// This bake's own cost (differs between runs of the same inputs). A merged set's (gusuku-bake merge): rays and
@@ -147,7 +157,8 @@ struct BakeSetStatistics {
     double trace_seconds = 0.0;
     double rays_per_second = 0.0;
     double wall_seconds = 0.0;
-    bool operator==(const BakeSetStatistics&) const = default;
+    bool operator==(const BakeSetStatistics& other) const;  ///< every member equal
+    bool operator!=(const BakeSetStatistics& other) const { return !(*this == other); }
 };
 
 /// A partial bake set: one slot of a site, baked alone (`gusuku-bake bake --slot NAME`) so that the slots can be
@@ -164,7 +175,8 @@ struct BakeSetPartial {
     /// (name, then bytes). Merge recomputes it, so an edited sun or a replaced lightmap is refused. Absent in
     /// partial sets of older bakes, which merge refuses.
     std::optional<uint64_t> slot_hash;
-    bool operator==(const BakeSetPartial&) const = default;
+    bool operator==(const BakeSetPartial& other) const;  ///< every member equal
+    bool operator!=(const BakeSetPartial& other) const { return !(*this == other); }
 };
 
 struct BakeSetManifest {
@@ -185,7 +197,8 @@ struct BakeSetManifest {
     BakeSetStatistics statistics;
     std::vector<std::string> warnings;
     std::optional<BakeSetPartial> partial;  ///< only in a partial set
-    bool operator==(const BakeSetManifest&) const = default;
+    bool operator==(const BakeSetManifest& other) const;  ///< every member equal
+    bool operator!=(const BakeSetManifest& other) const { return !(*this == other); }
 };
 
 }  // namespace gusuku

@@ -18,9 +18,10 @@
 // - Hue angles are in radians inside CIEDE2000; nothing here takes or returns degrees.
 
 #include <cstddef>
-#include <span>
 
 #include <glm/vec3.hpp>
+
+#include "gusuku/maths/const_span.h"
 
 namespace gusuku {
 
@@ -113,7 +114,7 @@ struct LabStatistics {
 /// mu and sigma (population standard deviation, divided by the count, as in Reinhard et al. 2001) of the
 /// finite pixels of lab_pixels, accumulated in double. Pixels with a non-finite channel are skipped; no finite
 /// pixel at all gives mean 0 and sigma 0 (which the transfer below then handles by its sigma floor).
-LabStatistics measureLabStatistics(std::span<const glm::vec3> lab_pixels);
+LabStatistics measureLabStatistics(ConstSpan<glm::vec3> lab_pixels);
 
 /// Smallest source sigma the transfer divides by, in Lab units (a hundredth of a just-noticeable difference;
 /// float rounding gives a flat channel a sigma of about 1e-5 at L = 100). Below it the source channel is flat:

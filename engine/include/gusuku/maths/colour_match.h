@@ -88,7 +88,6 @@
 
 #include <cstdint>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -152,7 +151,7 @@ struct CameraColourStatistics {
 /// Reference of colour_statistics.comp + the reduce: rgba8 holds width * height pixels, 4 bytes each, RGB
 /// sRGB-encoded, row 0 at the top. Decodes each sample with srgbDecode and converts with labFromLinearRec709 in
 /// double, two passes (mean, then squared deviations). Cost: 2 Lab conversions per sample.
-CameraColourStatistics measureCameraColourStatistics(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+CameraColourStatistics measureCameraColourStatistics(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
                                                      uint32_t stride);
 
 /// Valid samples a frame of sample_count samples needs to be accepted: max(16, ceil(5 % of them)), at most
@@ -184,7 +183,7 @@ SmoothedColourStatistics smoothColourStatistics(const SmoothedColourStatistics& 
 /// sum to 1; they are normalised; all zero gives the unweighted mean). A blend of sigmas, not of the images:
 /// the statistics of a blend of two lightmaps are not a function of theirs, and this one moves smoothly with
 /// the weights, so a slot switch never pops. Empty input gives mean 0, sigma 0.
-LabStatistics blendLabStatistics(std::span<const LabStatistics> slots, std::span<const float> weights);
+LabStatistics blendLabStatistics(ConstSpan<LabStatistics> slots, ConstSpan<float> weights);
 
 // ------------------------------------------------------------------------------------------------------------
 // Transfer
@@ -263,7 +262,7 @@ struct GroundColourEstimate {
 uint32_t groundMatchBin(const glm::dvec3& observed, const glm::dvec3& predicted);
 
 /// stride: the ground grid's (groundMatchStride); the acceptance threshold is that grid's.
-GroundColourEstimate measureGroundColourGain(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+GroundColourEstimate measureGroundColourGain(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
                                              uint32_t stride, const GroundMatchScene& scene,
                                              const GroundMatchView& view, float gain_limit);
 

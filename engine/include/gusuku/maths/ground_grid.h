@@ -30,14 +30,16 @@ struct GroundGrid {
     int rows = 0;                  ///< cells north to south
 
     size_t cellCount() const { return size_t(columns > 0 ? columns : 0) * size_t(rows > 0 ? rows : 0); }
-    bool operator==(const GroundGrid&) const = default;
+    bool operator==(const GroundGrid& other) const;  ///< every member equal
+    bool operator!=(const GroundGrid& other) const { return !(*this == other); }
 };
 
 /// A cell by column (west to east) and row (north to south).
 struct GroundCellAddress {
     int column = 0;
     int row = 0;
-    bool operator==(const GroundCellAddress&) const = default;
+    bool operator==(const GroundCellAddress& other) const;  ///< every member equal
+    bool operator!=(const GroundCellAddress& other) const { return !(*this == other); }
 };
 
 /// ENU (x, y) of the centre of cell (column, row). Any integers are accepted (cells outside the grid continue
