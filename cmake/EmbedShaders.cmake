@@ -9,8 +9,13 @@
 # written at configure time that includes <cstdint> first. Creates an INTERFACE library <name> whose include
 # path holds the headers. Shared chunks and interface headers live in shaders/include and are tracked as
 # dependencies of every shader.
+#
+# SPIR-V targets Vulkan 1.1 (SPIR-V 1.3). With VULKAN_1_0_WHERE_POSSIBLE, a shader that enables no subgroup
+# extension targets Vulkan 1.0 (SPIR-V 1.0) instead, so the runtime's frame runs on an app's Vulkan 1.0 instance
+# and only the colour statistics (subgroups) need 1.1 (runtime.h, "Device requirements"). The baker's kernels keep
+# 1.1: their SPIR-V is part of a bake's input_hash.
 function(gusuku_embed_shaders)
-  cmake_parse_arguments(ARG "" "TARGET" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "VULKAN_1_0_WHERE_POSSIBLE" "TARGET" "SOURCES" ${ARGN})
   set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/spirv_${ARG_TARGET})
   file(MAKE_DIRECTORY ${out_dir})
   file(GLOB shared_chunks ${PROJECT_SOURCE_DIR}/shaders/include/*.glsl ${PROJECT_SOURCE_DIR}/shaders/include/*.h)
@@ -32,6 +37,13 @@ function(gusuku_embed_shaders)
       string(SUBSTRING ${part} 1 -1 rest)
       string(APPEND camel "${first}${rest}")
     endforeach()
+    set(target_env vulkan1.1)
+    if(ARG_VULKAN_1_0_WHERE_POSSIBLE)
+      file(READ ${CMAKE_CURRENT_SOURCE_DIR}/${src} shader_text)
+      if(NOT shader_text MATCHES "GL_KHR_shader_subgroup")
+        set(target_env vulkan1.0)
+      endif()
+    endif()
     set(header ${out_dir}/${name}_spv.h)
     set(words ${out_dir}/${name}_spv.inc)
     file(CONFIGURE OUTPUT ${header} @ONLY CONTENT "\
@@ -42,7 +54,7 @@ function(gusuku_embed_shaders)
 ")
     add_custom_command(
       OUTPUT ${words}
-      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 -Os
+      COMMAND ${GLSLANG_VALIDATOR} -V --target-env ${target_env} -Os
               -I${PROJECT_SOURCE_DIR}/shaders/include
               --vn k${camel}Spirv -o ${words} ${CMAKE_CURRENT_SOURCE_DIR}/${src}
       DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${src} ${shared_chunks}

@@ -124,7 +124,34 @@ private:
 
 GpuDevice describe(testing::AppOwnedDevice& app) {
     return GpuDevice::describe(app.instance, app.physical_device, app.device, app.queue, app.queue_family,
-                               &app.queue_mutex);
+                               &app.queue_mutex, app.api_version);
+}
+
+// Each mode needs only what it uses: on a Vulkan 1.0 instance (no subgroup query allowed) the runtime opens,
+// the default frame (colour match off) equals the headless one, and a frame asking for a match is refused by name.
+TEST(RuntimeAppDevicePromises, AVulkan10InstanceRendersTheDefaultFrame) {
+    testing::AppOwnedDevice app(VK_API_VERSION_1_0);
+    {
+        const std::vector<uint8_t> camera = noiseImage(3);
+        std::vector<uint8_t> expected(kFrameBytes), composite(kFrameBytes);
+        Runtime::openHeadless(makeSyntheticBakeSet(), smallOptions())->renderFrame(frameNumber(2, camera),
+                                                                                     expected.data());
+        std::unique_ptr<Runtime> runtime = Runtime::open(describe(app), makeSyntheticBakeSet(), smallOptions());
+        runtime->renderFrame(frameNumber(2, camera), composite.data());
+        EXPECT_EQ(composite, expected);
+        FrameInput matched = frameNumber(2, camera);
+        matched.colour_match = ColourMatch::kPaper;
+        try {
+            runtime->renderFrame(matched, composite.data());
+            ADD_FAILURE() << "a colour match on a Vulkan 1.0 instance should be refused";
+        } catch (const RuntimeError& error) {
+            EXPECT_EQ(error.code(), RuntimeErrorCode::kInvalidFrame);
+            EXPECT_NE(std::string(error.what()).find("colour_match: needs subgroup arithmetic"), std::string::npos)
+                << error.what();
+        }
+    }
+    app.destroyDevice();
+    for (const std::string& message : app.messages()) ADD_FAILURE() << "validation: " << message;
 }
 
 TEST(RuntimeAppDevicePromises, ATemporaryGpuDeviceIsCopied) {
@@ -182,7 +209,7 @@ TEST_P(RuntimeInFlight, ResidentFramesWithSemaphoresGiveTheHostPathsComposites) 
 INSTANTIATE_TEST_SUITE_P(FramesInFlight, RuntimeInFlight, ::testing::Values(2u, 3u));
 
 TEST(RuntimeAppDevicePromises, TimelineSemaphoresOrderTheFrame) {
-    testing::AppOwnedDevice app(true);
+    testing::AppOwnedDevice app(VK_API_VERSION_1_2, true);
     {
         const GpuDevice gpu = describe(app);
         const std::vector<uint8_t> camera = noiseImage(6);

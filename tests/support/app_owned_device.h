@@ -17,13 +17,15 @@ namespace gusuku::testing {
 // The app side: everything here is plain Vulkan, written as an app would, not gusuku code.
 class AppOwnedDevice {
 public:
-    /// timeline_semaphores: a Vulkan 1.2 instance and device with the timelineSemaphore feature on.
-    explicit AppOwnedDevice(bool timeline_semaphores = false) {
+    /// api_version: the instance's VkApplicationInfo::apiVersion. timeline_semaphores: the device gets the
+    /// timelineSemaphore feature (needs api_version 1.2).
+    explicit AppOwnedDevice(uint32_t api_version = VK_API_VERSION_1_1, bool timeline_semaphores = false)
+        : api_version(api_version) {
         const char* layer = "VK_LAYER_KHRONOS_validation";
         const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.pApplicationName = "app-owned device test";
-        app.apiVersion = timeline_semaphores ? VK_API_VERSION_1_2 : VK_API_VERSION_1_1;
+        app.apiVersion = api_version;
         VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
         messenger_info.messageSeverity =
             VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -103,6 +105,7 @@ public:
         return validation_messages;
     }
 
+    uint32_t api_version;
     VkInstance instance = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     VkPhysicalDevice physical_device = VK_NULL_HANDLE;

@@ -14,7 +14,8 @@ void checkVk(VkResult result, const char* what) {
 }
 
 GpuDevice GpuDevice::describe(VkInstance instance, VkPhysicalDevice physical_device, VkDevice device,
-                              VkQueue queue, uint32_t queue_family_index, std::mutex* queue_mutex) {
+                              VkQueue queue, uint32_t queue_family_index, std::mutex* queue_mutex,
+                              uint32_t instance_api_version) {
     GpuDevice gpu;
     gpu.instance = instance;
     gpu.physical_device = physical_device;
@@ -22,6 +23,7 @@ GpuDevice GpuDevice::describe(VkInstance instance, VkPhysicalDevice physical_dev
     gpu.queue = queue;
     gpu.queue_family_index = queue_family_index;
     gpu.queue_mutex = queue_mutex;
+    gpu.instance_api_version = instance_api_version;
     if (physical_device != VK_NULL_HANDLE) {
         vkGetPhysicalDeviceProperties(physical_device, &gpu.properties);
         vkGetPhysicalDeviceMemoryProperties(physical_device, &gpu.memory_properties);

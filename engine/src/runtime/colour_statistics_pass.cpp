@@ -115,6 +115,19 @@ VkPhysicalDeviceSubgroupProperties subgroupPropertiesOf(const GpuDevice& gpu) {
     return subgroup;
 }
 
+bool hasSubgroupArithmetic(const GpuDevice& gpu) {
+    // vkGetPhysicalDeviceProperties2 is Vulkan 1.1: an app's 1.0 instance may not call it.
+    if (gpu.instance_api_version < VK_API_VERSION_1_1 ||
+        VK_API_VERSION_MINOR(gpu.properties.apiVersion) < 1 && VK_API_VERSION_MAJOR(gpu.properties.apiVersion) == 1)
+        return false;
+    try {
+        subgroupPropertiesOf(gpu);
+        return true;
+    } catch (const RuntimeError&) {
+        return false;
+    }
+}
+
 bool queueFamilyHasGraphics(const GpuDevice& gpu) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical_device, &count, nullptr);
@@ -193,6 +206,8 @@ std::vector<vec4> groundIrradianceFor(const GroundMatchScene& scene) {
 }
 
 }  // namespace
+
+bool ColourStatisticsPass::deviceSupports(const GpuDevice& gpu) { return hasSubgroupArithmetic(gpu); }
 
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
                                            uint32_t stride, float smoothing_frames, const GroundMatchScene* ground)

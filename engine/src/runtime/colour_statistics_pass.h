@@ -33,6 +33,9 @@ public:
     ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height, uint32_t stride,
                          float smoothing_frames, const GroundMatchScene* ground = nullptr);
     ColourStatisticsPass(const ColourStatisticsPass&) = delete;
+    /// Whether the device has what the pass needs: a Vulkan 1.1 instance (gpu.instance_api_version) for the
+    /// query, and subgroup arithmetic in compute shaders. Without it the runtime opens with no colour match.
+    static bool deviceSupports(const GpuDevice& gpu);
     ColourStatisticsPass& operator=(const ColourStatisticsPass&) = delete;
 
     /// Records a vkCmdUpdateBuffer of the state's host part (source statistics, mode, gain limit) and a barrier

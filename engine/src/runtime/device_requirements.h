@@ -7,8 +7,9 @@
 
 namespace gusuku::runtime_detail {
 
-/// Throws RuntimeError kDevice naming the first requirement the device does not meet: the Vulkan version, the
-/// queue family's graphics and compute, and each format's optimal-tiling features.
+/// Throws RuntimeError kDevice naming the first requirement the device does not meet: the queue family's graphics
+/// and compute, and each format's optimal-tiling features. (Vulkan 1.0 suffices; the colour matches' 1.1
+/// subgroups are optional: ColourStatisticsPass::deviceSupports.)
 void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options);
 
 }  // namespace gusuku::runtime_detail

@@ -252,7 +252,9 @@ gusuku_result gusuku_runtime_open(const gusuku_vulkan_device* device, const gusu
         return failArgument(function, problem);
     return openRuntime(function, out_runtime, [&](gusuku_runtime& handle) {
         handle.gpu = gusuku::GpuDevice::describe(vulkan.instance, vulkan.physical_device, vulkan.device, vulkan.queue,
-                                                 vulkan.queue_family_index);
+                                                 vulkan.queue_family_index, nullptr,
+                                                 vulkan.instance_api_version != 0 ? vulkan.instance_api_version
+                                                                                  : VK_API_VERSION_1_1);
         handle.runtime = gusuku::Runtime::open(handle.gpu, bake_set->data, convertOptions(full_options));
     });
 }

@@ -43,6 +43,7 @@ struct StructLayouts<gusuku_vulkan_device> {
     static constexpr bool library_writes = false;
     static constexpr StructLayout layouts[] = {
         GUSUKU_STRUCT_LAYOUT(gusuku_vulkan_device, instance, queue_family_index),
+        GUSUKU_STRUCT_LAYOUT(gusuku_vulkan_device, instance_api_version, instance_api_version),
     };
 };
 

@@ -111,11 +111,22 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         createTargets();
         // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
         const std::optional<GroundMatchScene> ground = groundMatchSceneFrom(bake_set);
-        statistics_ = std::make_unique<ColourStatisticsPass>(gpu_, options.frame_width, options.frame_height,
-                                                             options.statistics_stride,
-                                                             options.statistics_smoothing_frames,
-                                                             ground ? &*ground : nullptr);
-        camera_ = std::make_unique<CameraInput>(gpu_, options_, uint32_t(slots_.size()), true);
+        // The colour matches need subgroup arithmetic (Vulkan 1.1); the default frame (match off) does not, so a
+        // device without it opens with no statistics pass and refuses frames that ask for a match.
+        if (ColourStatisticsPass::deviceSupports(gpu_))
+            statistics_ = std::make_unique<ColourStatisticsPass>(gpu_, options.frame_width, options.frame_height,
+                                                                 options.statistics_stride,
+                                                                 options.statistics_smoothing_frames,
+                                                                 ground ? &*ground : nullptr);
+        else
+            colour_state_without_match_ =
+                GpuBuffer(gpu_, sizeof(shader_interface::ColourMatchState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          GpuMemory::kDeviceLocal);
+        if (!statistics_) {
+            const shader_interface::ColourMatchState match_off{};  // zeros: mode off, the identity transfer
+            colour_state_without_match_.upload(&match_off, sizeof match_off);
+        }
+        camera_ = std::make_unique<CameraInput>(gpu_, options_, uint32_t(slots_.size()), statistics_ != nullptr);
         createDescriptors();
         createPipelines();
         camera_->createDrawPipeline(main_passes_[0]);

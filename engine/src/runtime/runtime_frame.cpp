@@ -97,6 +97,10 @@ void RuntimeImpl::uploadGroundSelection(FrameSlot& slot) {
 
 // The colour match's mode and source this frame, and mode kGround's view.
 void RuntimeImpl::prepareColourMatch(const FrameInput& frame, const FrameLighting& lighting, const SlotBlend& blend) {
+    if (frame.colour_match != ColourMatchMode::kOff && !statistics_)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "frame: colour_match: needs subgroup arithmetic in compute shaders (a Vulkan 1.1 instance "
+                           "and device), which this device lacks: use colour_match off");
     if (frame.colour_match == ColourMatchMode::kGround && !statistics_->hasGround())
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "frame: colour_match: ground needs the bake set's ground_grid.albedo, which this bake set "

@@ -60,7 +60,9 @@ public:
     VkImage compositeImage() const override { return slots_[last_slot_].composite.handle(); }
     void waitIdle() override;
     void forgetCameraImage(VkImage image) override;
-    void resetColourStatistics() override { statistics_->reset(); }
+    void resetColourStatistics() override {
+        if (statistics_) statistics_->reset();
+    }
     void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
 
@@ -127,7 +129,11 @@ private:
     GpuImage site_shadow_;
     GpuBuffer uniform_buffer_;   // device-local FrameUniforms, written in each frame's command buffer
     std::unique_ptr<CameraInput> camera_;
-    std::unique_ptr<ColourStatisticsPass> statistics_;
+    std::unique_ptr<ColourStatisticsPass> statistics_;  // null on a device without subgroup arithmetic
+    GpuBuffer colour_state_without_match_;              // then the frame set's colour state: zeros, match off
+    const GpuBuffer& colourStateBuffer() const {
+        return statistics_ ? statistics_->stateBuffer() : colour_state_without_match_;
+    }
 
     VkRenderPass main_passes_[4] = {};  // MainPassVariant order
     VkRenderPass shadow_pass_ = VK_NULL_HANDLE;

@@ -30,6 +30,7 @@ void RuntimeImpl::recordFrameStart(VkCommandBuffer cmd, const FrameInput& frame)
 }
 
 void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
+    if (!statistics_) return;  // no colour match on this device (prepareColourMatch refused any other mode)
     statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
     if (frame_colour_mode_ == ColourMatchMode::kGround)
         statistics_->recordGround(cmd, camera_->packedBuffer(), frame_ground_view_);

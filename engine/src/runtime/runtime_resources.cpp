@@ -148,7 +148,7 @@ void RuntimeImpl::createDescriptors() {
     checkVk(vkAllocateDescriptorSets(device, &allocate, material_sets_.data()), "vkAllocateDescriptorSets");
 
     const VkDescriptorBufferInfo uniforms{uniform_buffer_.handle(), 0, sizeof(FrameUniforms)};
-    const VkDescriptorBufferInfo colour_state{statistics_->stateBuffer().handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo colour_state{colourStateBuffer().handle(), 0, VK_WHOLE_SIZE};
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const VkDescriptorImageInfo images[5] = {
         {shadow_sampler_, building_shadow_.view(), read},
@@ -253,7 +253,7 @@ uint64_t RuntimeImpl::deviceMemoryBytes() const {
         bytes += image->memoryBytes();
     for (const GpuImage& texture : scene_.textures) bytes += texture.memoryBytes();
     for (const GpuBuffer* buffer : {&scene_.building_vertices, &scene_.building_indices, &scene_.occluder_vertices,
-                                    &scene_.occluder_indices, &uniform_buffer_, &statistics_->stateBuffer()})
+                                    &scene_.occluder_indices, &uniform_buffer_, &colourStateBuffer()})
         bytes += buffer->size();
     for (const FrameSlot& slot : slots_)
         bytes += slot.composite.memoryBytes() + slot.readback.size() + slot.ground_indices.size() +

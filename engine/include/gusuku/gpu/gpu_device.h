@@ -29,10 +29,14 @@ struct GpuDevice {
     /// threads, it passes the mutex it holds around its own vkQueueSubmit calls, and gusuku holds it around
     /// its own. Null: the owner promises not to submit to `queue` while a gusuku call is submitting.
     std::mutex* queue_mutex = nullptr;
+    /// The apiVersion the owner created `instance` with (VkApplicationInfo::apiVersion). Below 1.1, gusuku makes
+    /// no Vulkan 1.1 query on it, and the runtime opens without its colour matches (they need 1.1's subgroups).
+    uint32_t instance_api_version = VK_API_VERSION_1_1;
 
     /// Fills properties and memory_properties from the physical device (two Vulkan queries, no allocation).
     static GpuDevice describe(VkInstance instance, VkPhysicalDevice physical_device, VkDevice device, VkQueue queue,
-                              uint32_t queue_family_index, std::mutex* queue_mutex = nullptr);
+                              uint32_t queue_family_index, std::mutex* queue_mutex = nullptr,
+                              uint32_t instance_api_version = VK_API_VERSION_1_1);
 
     const VkPhysicalDeviceLimits& limits() const { return properties.limits; }
     /// Index of a memory type allowed by type_bits whose flags include `required`; std::runtime_error if none.

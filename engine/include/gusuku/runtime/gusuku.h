@@ -233,6 +233,12 @@ typedef struct gusuku_vulkan_device {
     VkDevice device;
     VkQueue queue;
     uint32_t queue_family_index;
+
+    /* API version 1: */
+    uint32_t reserved_zero;           /* set 0 (keeps the 0.1 layout's tail padding unused) */
+    uint32_t instance_api_version;    /* VkApplicationInfo::apiVersion the instance was created with; 0: 1.1 or
+                                         later. Below 1.1 the colour matches are off (runtime.h, "Device
+                                         requirements") */
 } gusuku_vulkan_device;
 
 /* Fixed when the runtime opens; start from gusuku_runtime_options_default. Meanings as in runtime.h's

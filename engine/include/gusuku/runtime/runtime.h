@@ -11,12 +11,13 @@
 // (tests/test_runtime_allocations.cpp counts), except a view the first time it meets an app camera image.
 //
 // Device requirements, checked when the runtime opens (RuntimeError kDevice naming what is missing; docs/runtime.md
-// "Device requirements"): Vulkan 1.1; a queue with graphics and compute; subgroup arithmetic in compute shaders
-// (the colour statistics); optimal-tiling R8G8B8A8_SRGB as a blended colour attachment, sampled and a transfer
+// "Device requirements"): Vulkan 1.0; a queue with graphics and compute; optimal-tiling R8G8B8A8_SRGB as a blended colour attachment, sampled and a transfer
 // source; D32_SFLOAT as a depth attachment and a sampled image; R16G16B16A16_SFLOAT sampled with linear
 // filtering; the camera format's plane formats sampled (R8G8B8A8_UNORM, B8G8R8A8_UNORM, or R8_UNORM and
-// R8G8_UNORM). Timeline semaphores in FrameSync only if the app enabled them on its device. Nothing else: no
-// extension, no optional feature.
+// R8G8_UNORM). Timeline semaphores in FrameSync only if the app enabled them on its device. The colour matches
+// (FrameInput::colour_match other than kOff) also need a Vulkan 1.1 instance (GpuDevice::instance_api_version)
+// and subgroup arithmetic in compute shaders; without them the runtime opens and refuses only those frames.
+// Nothing else: no extension, no optional feature.
 //
 // Threads and lifetimes: one Runtime is used from one thread at a time (its calls are not synchronised with
 // each other); several runtimes may run on several threads on one device, and share its queue when the
@@ -232,6 +233,8 @@ struct FrameInput {
     Weather weather;
     /// The camera's exposure: display-linear value per unit of the bake set's radiance. Used when the colour
     /// match is off or has no camera statistics yet (and in direct-only mode); the match replaces it otherwise.
+    /// From EV100 or the platform's light estimate (ARCore, ARKit): gusuku/maths/exposure.h and
+    /// docs/platform-light.md; ColourMatch::kGround estimates it from the frame when the platform gives nothing.
     float exposure = 1.0f;
     RenderMode mode = RenderMode::kProposed;
     /// Off by default: with the camera's exposure known (the platform's light estimate, or a rendered camera)
