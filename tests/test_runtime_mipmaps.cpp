@@ -350,6 +350,20 @@ TEST_F(GrazingCheckerTest, MipmappedPixelsAverageToTheTexturesMeanWithoutSpeckle
     }
 }
 
+TEST_F(GrazingCheckerTest, TheRuntimesTextureMemoryIsAboutFourThirdsOfLevelZero) {
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 256;
+    BakeSetData untextured = checkerQuadBakeSet();
+    untextured.building.textures.clear();
+    untextured.building.materials[0].base_color_texture = -1;
+    const uint64_t with = Runtime::open(context(), checkerQuadBakeSet(), options)->deviceMemoryBytes();
+    const uint64_t without = Runtime::open(context(), untextured, options)->deviceMemoryBytes();
+    const double level_zero = double(kCheckerSide) * kCheckerSide * 4;
+    EXPECT_NEAR(double(with - without) / level_zero, 4.0 / 3.0, 0.03) << with << " - " << without;
+}
+
 TEST(MaxAnisotropyOption, OutsideOneToSixteenIsRefusedByName) {
     for (float bad : {0.5f, 17.0f, std::numeric_limits<float>::quiet_NaN()}) {
         RuntimeOptions options;
