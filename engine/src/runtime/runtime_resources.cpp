@@ -84,6 +84,8 @@ void RuntimeImpl::createTargets() {
 
 void RuntimeImpl::createDescriptors() {
     const VkDevice device = gpu_.device;
+    // Lightmaps and the ground's images: bilinear on their one level (runtime_scene.cpp's uploadLightmaps says
+    // why the lightmaps have no mips).
     VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sampler.magFilter = VK_FILTER_LINEAR;
     sampler.minFilter = VK_FILTER_LINEAR;
