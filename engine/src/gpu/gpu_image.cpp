@@ -1,7 +1,8 @@
-// Device-local images with one view, and their setup uploads (see gpu_image.h).
+// Device-local images with one view, their setup uploads and mip chains (see gpu_image.h).
 
 #include "gusuku/gpu/gpu_image.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -26,8 +27,51 @@ uint32_t bytesPerTexel(VkFormat format) {
     }
 }
 
+namespace {
+
+uint32_t levelSide(uint32_t side, uint32_t level) { return std::max(1u, side >> level); }
+
+// A layout transition of `level_count` levels from `first_level`, every layer.
+void recordLevelsTransition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t first_level,
+                            uint32_t level_count, VkImageLayout old_layout, VkImageLayout new_layout,
+                            VkAccessFlags source_access, VkAccessFlags destination_access,
+                            VkPipelineStageFlags source_stages, VkPipelineStageFlags destination_stages) {
+    VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    barrier.srcAccessMask = source_access;
+    barrier.dstAccessMask = destination_access;
+    barrier.oldLayout = old_layout;
+    barrier.newLayout = new_layout;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image;
+    barrier.subresourceRange = {aspect, first_level, level_count, 0, VK_REMAINING_ARRAY_LAYERS};
+    vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+}
+
+}  // namespace
+
+uint32_t fullMipLevelCount(uint32_t width, uint32_t height) {
+    uint32_t levels = 1;
+    for (uint32_t side = std::max(width, height); side > 1; side >>= 1) ++levels;
+    return levels;
+}
+
+bool canBlitMipChain(const GpuDevice& gpu, VkFormat format) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(gpu.physical_device, format, &properties);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    return (properties.optimalTilingFeatures & needed) == needed;
+}
+
 GpuImage::GpuImage(const GpuDevice& gpu, const GpuImageDescription& description)
     : gpu_(&gpu), description_(description) {
+    const uint32_t most_levels = fullMipLevelCount(description.width, description.height);
+    if (description.mip_levels < 1 || description.mip_levels > most_levels)
+        throw std::invalid_argument("GpuImage: mip_levels " + std::to_string(description.mip_levels) +
+                                    " is outside [1, " + std::to_string(most_levels) + "] for a " +
+                                    std::to_string(description.width) + " x " +
+                                    std::to_string(description.height) + " image");
     VkFormatProperties format_properties;
     vkGetPhysicalDeviceFormatProperties(gpu.physical_device, description.format, &format_properties);
     const VkFormatFeatureFlags features = format_properties.optimalTilingFeatures;
@@ -47,7 +91,7 @@ GpuImage::GpuImage(const GpuDevice& gpu, const GpuImageDescription& description)
         image_info.imageType = VK_IMAGE_TYPE_2D;
         image_info.format = description.format;
         image_info.extent = {description.width, description.height, 1};
-        image_info.mipLevels = 1;
+        image_info.mipLevels = description.mip_levels;
         image_info.arrayLayers = description.layers;
         image_info.samples = VK_SAMPLE_COUNT_1_BIT;
         image_info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -75,7 +119,7 @@ GpuImage::GpuImage(const GpuDevice& gpu, const GpuImageDescription& description)
         view_info.viewType =
             description.layers > 1 || description.array_view ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
         view_info.format = description.format;
-        view_info.subresourceRange = {description.aspect, 0, 1, 0, description.layers};
+        view_info.subresourceRange = {description.aspect, 0, description.mip_levels, 0, description.layers};
         checkVk(vkCreateImageView(device, &view_info, nullptr, &view_), "vkCreateImageView");
     } catch (...) {
         release();
@@ -120,11 +164,17 @@ void GpuImage::release() noexcept {
     memory_bytes_ = 0;
 }
 
-void GpuImage::upload(const void* bytes, size_t byte_count, uint32_t layer, VkImageLayout final_layout) {
-    const size_t expected = size_t(description_.width) * description_.height * bytesPerTexel(description_.format);
+void GpuImage::upload(const void* bytes, size_t byte_count, uint32_t layer, VkImageLayout final_layout,
+                      uint32_t level) {
+    if (level >= description_.mip_levels)
+        throw std::invalid_argument("GpuImage::upload: level " + std::to_string(level) + " of an image with " +
+                                    std::to_string(description_.mip_levels) + " levels");
+    const uint32_t width = levelSide(description_.width, level), height = levelSide(description_.height, level);
+    const size_t expected = size_t(width) * height * bytesPerTexel(description_.format);
     if (expected == 0 || byte_count != expected || layer >= description_.layers)
         throw std::invalid_argument("GpuImage::upload: " + std::to_string(byte_count) + " bytes for layer " +
-                                    std::to_string(layer) + " of an image needing " + std::to_string(expected));
+                                    std::to_string(layer) + " level " + std::to_string(level) +
+                                    " of an image needing " + std::to_string(expected));
     GpuBuffer staging(*gpu_, byte_count, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuMemory::kHostVisible);
     staging.upload(bytes, byte_count);
     GpuSubmitter submitter(*gpu_);
@@ -133,12 +183,54 @@ void GpuImage::upload(const void* bytes, size_t byte_count, uint32_t layer, VkIm
                                     VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkBufferImageCopy region{};
-        region.imageSubresource = {description_.aspect, 0, layer, 1};
-        region.imageExtent = {description_.width, description_.height, 1};
+        region.imageSubresource = {description_.aspect, level, layer, 1};
+        region.imageExtent = {width, height, 1};
         vkCmdCopyBufferToImage(cmd, staging.handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         recordImageLayoutTransition(cmd, image_, description_.aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                     final_layout, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
                                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+    });
+    layout_ = final_layout;
+}
+
+void GpuImage::generateMipChain(VkImageLayout final_layout) {
+    const VkImageUsageFlags transfer = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if ((description_.usage & transfer) != transfer || !canBlitMipChain(*gpu_, description_.format))
+        throw std::runtime_error("GpuImage::generateMipChain: format " + std::to_string(description_.format) +
+                                 " with usage " + std::to_string(description_.usage) +
+                                 " cannot be blitted with linear filtering on " + gpu_->properties.deviceName);
+    const uint32_t levels = description_.mip_levels;
+    const VkImageAspectFlags aspect = description_.aspect;
+    const VkPipelineStageFlags transfer_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    GpuSubmitter submitter(*gpu_);
+    submitter.submitAndWait([&](VkCommandBuffer cmd) {
+        // Every level to TRANSFER_DST (level 0 keeps its texels: its old layout is defined), then each level
+        // in turn becomes the source of the next.
+        recordImageLayoutTransition(cmd, image_, aspect, layout_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, transfer_stage);
+        for (uint32_t level = 1; level < levels; ++level) {
+            recordLevelsTransition(cmd, image_, aspect, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                   VK_ACCESS_TRANSFER_READ_BIT, transfer_stage, transfer_stage);
+            VkImageBlit blit{};
+            blit.srcSubresource = {aspect, level - 1, 0, description_.layers};
+            blit.srcOffsets[1] = {int32_t(levelSide(description_.width, level - 1)),
+                                  int32_t(levelSide(description_.height, level - 1)), 1};
+            blit.dstSubresource = {aspect, level, 0, description_.layers};
+            blit.dstOffsets[1] = {int32_t(levelSide(description_.width, level)),
+                                  int32_t(levelSide(description_.height, level)), 1};
+            vkCmdBlitImage(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        }
+        if (levels > 1)
+            recordLevelsTransition(cmd, image_, aspect, 0, levels - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   final_layout, VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_READ_BIT,
+                                   transfer_stage, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+        recordLevelsTransition(cmd, image_, aspect, levels - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               final_layout, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
+                               transfer_stage, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
     });
     layout_ = final_layout;
 }

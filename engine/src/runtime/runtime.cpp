@@ -35,6 +35,7 @@ constexpr RealOptionRange kRealOptionRanges[] = {
     {"ground_change_threshold", &RuntimeOptions::ground_change_threshold, 0.0f, 1.0f, "0, 1"},
     {"direct_only_ambient_fraction", &RuntimeOptions::direct_only_ambient_fraction, 0.0f, 100.0f, "0, 100"},
     {"direct_only_shadow_darkening", &RuntimeOptions::direct_only_shadow_darkening, 0.0f, 1.0f, "0, 1"},
+    {"max_anisotropy", &RuntimeOptions::max_anisotropy, 1.0f, 16.0f, "1, 16"},
 };
 
 void checkRuntimeOptions(const RuntimeOptions& options) {
@@ -149,11 +150,19 @@ namespace {
 using runtime_detail::deviceError;
 using runtime_detail::RuntimeImpl;
 
+// The options as the headless device can honour them: that device knows whether it enabled samplerAnisotropy
+// (VulkanContext enables it where the device has it), so anisotropy is turned off, not made invalid, without it.
+RuntimeOptions optionsForContext(const VulkanContext& context, RuntimeOptions options) {
+    if (!context.enabledFeatures().samplerAnisotropy && options.max_anisotropy > 1.0f) options.max_anisotropy = 1.0f;
+    return options;
+}
+
 // A runtime that owns the headless device it runs on: the context is made first and destroyed last.
 class HeadlessRuntime final : public Runtime {
 public:
     HeadlessRuntime(const BakeSetData& bake_set, const RuntimeOptions& options)
-        : context_(vulkanOptionsFromEnvironment()), runtime_(context_.gpu(), bake_set, options) {}
+        : context_(vulkanOptionsFromEnvironment()),
+          runtime_(context_.gpu(), bake_set, optionsForContext(context_, options)) {}
     FrameInfo renderFrame(const FrameInput& frame, uint8_t* output_rgba8) override {
         return runtime_.renderFrame(frame, output_rgba8);
     }

@@ -84,6 +84,8 @@ void RuntimeImpl::createTargets() {
 
 void RuntimeImpl::createDescriptors() {
     const VkDevice device = gpu_.device;
+    // Lightmaps and the ground's images: bilinear on their one level (runtime_scene.cpp's uploadLightmaps says
+    // why the lightmaps have no mips).
     VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sampler.magFilter = VK_FILTER_LINEAR;
     sampler.minFilter = VK_FILTER_LINEAR;
@@ -91,8 +93,14 @@ void RuntimeImpl::createDescriptors() {
     sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sampler.maxLod = 0.0f;
     checkVk(vkCreateSampler(device, &sampler, nullptr, &linear_sampler_), "vkCreateSampler");
+    // Base colour: trilinear over the full mip chain (runtime_scene.cpp), anisotropic where the app enabled it.
     VkSamplerCreateInfo texture = sampler;
     texture.addressModeU = texture.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    texture.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    texture.maxLod = VK_LOD_CLAMP_NONE;
+    const float anisotropy = std::min(options_.max_anisotropy, gpu_.limits().maxSamplerAnisotropy);
+    texture.anisotropyEnable = anisotropy > 1.0f ? VK_TRUE : VK_FALSE;
+    texture.maxAnisotropy = std::max(anisotropy, 1.0f);
     checkVk(vkCreateSampler(device, &texture, nullptr, &texture_sampler_), "vkCreateSampler");
     VkSamplerCreateInfo shadow = sampler;
     shadow.compareEnable = VK_TRUE;

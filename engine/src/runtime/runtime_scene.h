@@ -41,7 +41,7 @@ struct GpuScene {
     std::vector<MaterialDraw> draws;
     std::vector<glm::vec4> base_colour_factors;  ///< per material
     std::vector<int> material_texture;           ///< per material: index into textures, or -1 (white)
-    std::vector<GpuImage> textures;              ///< RGBA8 sRGB base colour textures
+    std::vector<GpuImage> textures;              ///< RGBA8 sRGB base colour textures, full mip chains
     GpuImage white_texture;                      ///< 1x1 white for materials without a texture
     GpuBuffer occluder_vertices;                 ///< vec3, device-local (may hold nothing)
     GpuBuffer occluder_indices;
@@ -66,6 +66,14 @@ struct GpuScene {
     glm::dvec3 casters_min{1.0}, casters_max{-1.0};     ///< building and occluder (empty when min > max)
     double scene_radius_m = 1.0;  ///< half the diagonal of everything, for depth ranges
 };
+
+/// How a base-colour texture's mip chain is made: blits on the GPU (where R8G8B8A8_SRGB can be blitted with
+/// linear filtering: canBlitMipChain), else a box filter on the CPU (srgb_mip_chain.h). Both filter in linear light.
+enum class MipChainMaker { kGpuBlit, kCpuBoxFilter };
+
+/// A base-colour texture (already checked: rgba8 holds width x height texels) as an R8G8B8A8_SRGB image with its
+/// full mip chain, left in SHADER_READ_ONLY_OPTIMAL. Throws std::runtime_error on Vulkan failure.
+GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker);
 
 /// Uploads the bake set (already checked by findBakeSetProblem); change_threshold is
 /// RuntimeOptions::ground_change_threshold. Throws std::runtime_error on Vulkan failure.

@@ -1,7 +1,7 @@
 #pragma once
 // Images for the runtime's raster passes (gusuku_gpu): a 2D image or 2D array with its memory and one view, on a
-// GpuDevice, plus the layout transition and upload helpers the runtime needs when it opens. The baker needs
-// none of this (its textures travel as storage buffers).
+// GpuDevice, plus the layout transition, upload and mip-chain helpers the runtime needs when it opens. The baker
+// needs none of this (its textures travel as storage buffers).
 
 #include <cstddef>
 #include <cstdint>
@@ -20,10 +20,21 @@ struct GpuImageDescription {
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     bool array_view = false;      ///< view as VK_IMAGE_VIEW_TYPE_2D_ARRAY even with one layer
+    /// Mip levels, 1 to fullMipLevelCount(width, height); the view spans all of them. Level l is
+    /// max(1, width >> l) x max(1, height >> l).
+    uint32_t mip_levels = 1;
 };
 
-/// A device-local optimal-tiling image with one view (2D, or 2D array). Created in VK_IMAGE_LAYOUT_UNDEFINED.
-/// Throws std::runtime_error when the format does not support the usage, or on Vulkan failure.
+/// Levels of a full mip chain down to 1 x 1: floor(log2(max(width, height))) + 1.
+uint32_t fullMipLevelCount(uint32_t width, uint32_t height);
+
+/// Whether `format` can have its mip chain made on the GPU by generateMipChain: optimal tiling with BLIT_SRC,
+/// BLIT_DST and SAMPLED_IMAGE_FILTER_LINEAR (a linear blit; for an sRGB format the blit filters in linear light).
+bool canBlitMipChain(const GpuDevice& gpu, VkFormat format);
+
+/// A device-local optimal-tiling image with one view (2D, or 2D array) over all its layers and mip levels.
+/// Created in VK_IMAGE_LAYOUT_UNDEFINED. Throws std::runtime_error when the format does not support the usage,
+/// std::invalid_argument for a mip_levels outside [1, fullMipLevelCount], or on Vulkan failure.
 class GpuImage {
 public:
     GpuImage() = default;
@@ -37,11 +48,20 @@ public:
     VkImage handle() const { return image_; }
     VkImageView view() const { return view_; }
     const GpuImageDescription& description() const { return description_; }
-    VkDeviceSize memoryBytes() const { return memory_bytes_; }
+    VkDeviceSize memoryBytes() const { return memory_bytes_; }  ///< the allocation: every layer and level
 
-    /// Uploads `bytes` (tightly packed texels of layer `layer`, row 0 first) through a staging buffer and leaves
-    /// the whole image in `final_layout`. One submission, waited for: for setup only.
-    void upload(const void* bytes, size_t byte_count, uint32_t layer, VkImageLayout final_layout);
+    /// Uploads `bytes` (tightly packed texels of level `level` of layer `layer`, row 0 first) through a staging
+    /// buffer and leaves the whole image in `final_layout`. One submission, waited for: for setup only.
+    void upload(const void* bytes, size_t byte_count, uint32_t layer, VkImageLayout final_layout,
+                uint32_t level = 0);
+
+    /// Fills levels 1 .. mip_levels - 1 of every layer from level 0 (already uploaded) by linear blits down the
+    /// chain, each level from the one above, and leaves the whole image in `final_layout`. Needs
+    /// canBlitMipChain(format) and usage TRANSFER_SRC | TRANSFER_DST (std::runtime_error otherwise). One
+    /// submission, waited for: for setup only. Each level's texel is the mean of the 2 x 2 texels above it when
+    /// the sides are even (a linear filter sampled at their shared corner); odd sides are filtered as the
+    /// device's linear blit does.
+    void generateMipChain(VkImageLayout final_layout);
 
 private:
     void release() noexcept;

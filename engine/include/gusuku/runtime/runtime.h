@@ -182,6 +182,12 @@ struct RuntimeOptions {
     CameraFormat camera_format = CameraFormat::kRgba8;
     YcbcrModel camera_ycbcr_model = YcbcrModel::kBt601;  ///< kNv12 / kNv21 only
     YcbcrRange camera_ycbcr_range = YcbcrRange::kNarrow;  ///< kNv12 / kNv21 only
+    /// Anisotropic filtering of the building's base-colour textures (which are mipmapped and sampled
+    /// trilinearly): the largest anisotropy, [1, 16], clamped to the device's maxSamplerAnisotropy. 1 is off.
+    /// Above 1 only when the app enabled samplerAnisotropy on its device (the runtime cannot know: a device
+    /// created without it makes a sampler with anisotropy invalid). openHeadless's own device enables the
+    /// feature where it exists, and sets this to 1 where it does not.
+    float max_anisotropy = 1.0f;
     /// Frames the GPU may work on while the app records the next, [1, 3]. Each has its own composite, command
     /// buffer, fence and host-visible staging; a frame waits only when it would reuse one still in flight.
     uint32_t frames_in_flight = 2;
