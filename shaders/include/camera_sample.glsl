@@ -31,14 +31,29 @@ vec3 rgbFromYcbcr(float luma, vec2 chroma) {
     return clamp(vec3(r, g, b), 0.0, 1.0);
 }
 
+vec4 cameraYcbcrPixel(ivec2 pixel) {
+    const float luma = texelFetch(camera_plane0, pixel, 0).r;
+    const vec2 stored = texelFetch(camera_plane1, pixel / 2, 0).rg;
+    return vec4(rgbFromYcbcr(luma, camera_chroma_swap != 0u ? stored.yx : stored.xy), 1.0);
+}
+
+// sRGB-encoded, as the statistics read the camera.
 vec4 cameraSrgbPixel(ivec2 pixel) {
-    if (camera_kind == CAMERA_KIND_TWO_PLANE_YUV) {
-        const float luma = texelFetch(camera_plane0, pixel, 0).r;
-        const vec2 stored = texelFetch(camera_plane1, pixel / 2, 0).rg;
-        return vec4(rgbFromYcbcr(luma, camera_chroma_swap != 0u ? stored.yx : stored.xy), 1.0);
-    }
+    if (camera_kind == CAMERA_KIND_TWO_PLANE_YUV) return cameraYcbcrPixel(pixel);
     vec4 texel = texelFetch(camera_plane0, pixel, 0);
     if (camera_push.view_decodes_srgb != 0u) texel.rgb = srgbEncode(texel.rgb);
+    return texel;
+}
+
+// Linear, as the composite's sRGB attachment takes it. An _SRGB view decodes in the sampler: no pow here, which
+// on llvmpipe is most of the camera-in draw's cost.
+vec4 cameraLinearPixel(ivec2 pixel) {
+    if (camera_kind == CAMERA_KIND_TWO_PLANE_YUV) {
+        const vec4 encoded = cameraYcbcrPixel(pixel);
+        return vec4(srgbDecode(encoded.rgb), encoded.a);
+    }
+    vec4 texel = texelFetch(camera_plane0, pixel, 0);
+    if (camera_push.view_decodes_srgb == 0u) texel.rgb = srgbDecode(texel.rgb);
     return texel;
 }
 

@@ -15,6 +15,5 @@ layout(set = 0, binding = CAMERA_PLANE1_BINDING) uniform sampler2D camera_plane1
 layout(location = 0) out vec4 out_colour;
 
 void main() {
-    const vec4 encoded = cameraSrgbPixel(ivec2(gl_FragCoord.xy));
-    out_colour = vec4(srgbDecode(encoded.rgb), encoded.a);
+    out_colour = cameraLinearPixel(ivec2(gl_FragCoord.xy));
 }

@@ -45,8 +45,9 @@ VkImageLayout sampledLayoutFor(VkImageLayout given) {
 
 CameraPlaneFormats cameraPlaneFormats(CameraFormat format) {
     switch (format) {
-        case CameraFormat::kRgba8: return {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_UNDEFINED};
-        case CameraFormat::kBgra8: return {VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_UNDEFINED};
+        // _SRGB: the sampler decodes (a table on most hardware) instead of the shader's pow per pixel.
+        case CameraFormat::kRgba8: return {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_UNDEFINED};
+        case CameraFormat::kBgra8: return {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_UNDEFINED};
         case CameraFormat::kNv12:
         case CameraFormat::kNv21: return {VK_FORMAT_R8_UNORM, VK_FORMAT_R8G8_UNORM};
     }
@@ -288,7 +289,7 @@ void CameraInput::prepare(uint32_t slot, const FrameInput& frame) {
         stageHostPixels(slot, frame);
         pointSlotAt(slot, plane0_.view(), isYuv(format_) ? plane1_.view() : plane0_.view(),
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        slot_sources_[slot].view_decodes_srgb = 0;
+        slot_sources_[slot].view_decodes_srgb = isYuv(format_) ? 0u : 1u;
         return;
     }
     if (!acceptsImageFormat(format_, frame.camera_image_format))
