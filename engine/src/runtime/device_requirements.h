@@ -8,7 +8,7 @@
 namespace gusuku::runtime_detail {
 
 /// Throws RuntimeError kDevice naming the first requirement the device does not meet: the Vulkan version, the
-/// queue family's graphics and compute, and each format's optimal-tiling features.
+/// queue family's graphics and compute, each format's optimal-tiling features and the main pass's sample count.
 void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options);
 
 }  // namespace gusuku::runtime_detail

@@ -15,8 +15,9 @@
 // (the colour statistics); optimal-tiling R8G8B8A8_SRGB as a blended colour attachment, sampled and a transfer
 // source; D32_SFLOAT as a depth attachment and a sampled image; R16G16B16A16_SFLOAT sampled with linear
 // filtering; the camera format's plane formats sampled (R8G8B8A8_UNORM, B8G8R8A8_UNORM, or R8_UNORM and
-// R8G8_UNORM). Timeline semaphores in FrameSync only if the app enabled them on its device. Nothing else: no
-// extension, no optional feature.
+// R8G8_UNORM); RuntimeOptions::msaa_samples among the framebuffer colour and depth sample counts. Timeline
+// semaphores in FrameSync only if the app enabled them on its device. Nothing else: no extension, no optional
+// feature.
 //
 // Threads and lifetimes: one Runtime is used from one thread at a time (its calls are not synchronised with
 // each other); several runtimes may run on several threads on one device, and share its queue when the
@@ -184,6 +185,14 @@ struct RuntimeOptions {
     /// Frames the GPU may work on while the app records the next, [1, 3]. Each has its own composite, command
     /// buffer, fence and host-visible staging; a frame waits only when it would reuse one still in flight.
     uint32_t frames_in_flight = 2;
+    /// Samples per pixel of the main pass (anti-aliasing of the occluder, building and ground-ratio draws):
+    /// 1, 2, 4 or 8. Above 1 the pass draws into a multisampled colour and depth attachment (shared by the
+    /// frame slots) and resolves into the composite at its end; the camera-in draw writes every sample, so
+    /// camera pixels nothing else touches resolve to the camera's own bytes. The device must support the count
+    /// for colour and depth framebuffers (limits framebufferColorSampleCounts and
+    /// framebufferDepthSampleCounts; lavapipe has 1 and 4), else open() throws kDevice naming msaa_samples.
+    /// 1: one sample per pixel and no resolve, the runtime's path before this option.
+    uint32_t msaa_samples = 4;
 };
 
 /// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary
