@@ -31,6 +31,7 @@ struct Settings {
     std::vector<uint32_t> msaa_counts{4};
     std::vector<RenderMode> modes{RenderMode::kProposed};
     long profiled_frames = 0;  // --profile N: N profiled frames per combination after the rounds
+    bool ground_ratio = true;  // --no-ground-ratio: the last pass keeps only what it must (the resolve)
 };
 
 struct PathRun {
@@ -69,7 +70,8 @@ Settings parseSettings(int argc, char** argv, bool& help) {
         std::printf("usage: gusuku-frame-paths [--width W] [--height H] [--rounds N] [--frames N]\n"
                     "                          [--msaa COUNTS (e.g. 1,4; default 4)]\n"
                     "                          [--mode proposed|direct-only|both (default proposed)]\n"
-                    "                          [--profile N (N profiled frames each: every pass alone)]\n");
+                    "                          [--profile N (N profiled frames each: every pass alone)]\n"
+                    "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n");
         return settings;
     }
     settings.width = long(line.integer("--width", 16, 8192).value_or(settings.width));
@@ -77,6 +79,7 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     settings.rounds = long(line.integer("--rounds", 1, 1000).value_or(settings.rounds));
     settings.frames_per_round = long(line.integer("--frames", 1, 100000).value_or(settings.frames_per_round));
     if (const std::optional<std::string> msaa = line.text("--msaa")) settings.msaa_counts = parseMsaaCounts(line, *msaa);
+    settings.ground_ratio = !line.flag("--no-ground-ratio");
     settings.profiled_frames = long(line.integer("--profile", 0, 1000).value_or(0));
     const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both"}).value_or(0);
     if (mode == 1) settings.modes = {RenderMode::kDirectOnly};
@@ -174,6 +177,7 @@ int main(int argc, char** argv) {
         frame.intrinsics = {focal, focal, width / 2.0, height / 2.0, uint32_t(width), uint32_t(height)};
         frame.weather = Weather::sunny();
         frame.exposure = 0.1f;
+        frame.ground_ratio = settings.ground_ratio;
         auto runRound = [&](PathRun& path, long round) {
             frame.mode = path.mode;
             const Clock::time_point start = Clock::now();
