@@ -98,6 +98,9 @@ void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
         std::printf("  msaa %u, %-11s  %-34s %8.2f ms a frame\n", run.msaa_samples, modeName(run.mode),
                     run.read_back ? "fenced   (read back, 1 slot):" : "resident (no read back, 2 slots):",
                     median(run.frame_ms));
+    for (size_t index = 0; index < runs.size(); index += 2 * settings.modes.size())
+        std::printf("  msaa %u: %.1f MiB of device memory held by a one-slot runtime\n", runs[index].msaa_samples,
+                    double(runs[index].runtime->deviceMemoryBytes()) / double(1 << 20));
     // Runs come in pairs (fenced, resident), for each count then each mode.
     for (size_t index = 0; index + 1 < runs.size(); index += 2) {
         const double fenced_ms = median(runs[index].frame_ms), resident_ms = median(runs[index + 1].frame_ms);
