@@ -3,15 +3,17 @@
 //             (0.1.0's only path; tools and tests keep it);
 //   resident  host bytes in, no read-back, frames_in_flight slots: the host records frame N+1 while the GPU
 //             draws frame N, and waits only when every slot is busy (an app then takes compositeImage()).
-// Both on the same in-memory bake set (tests/support/synthetic_bakeset.h) at the given size; rounds alternate
-// the two so that a noisy shared machine slows both alike. Prints each path's median milliseconds a frame and
-// their ratio.
+// Both on the same in-memory bake set (tests/support/synthetic_bakeset.h) at the given size, for each
+// multisample count of --msaa (RuntimeOptions::msaa_samples) and each render mode of --mode; rounds run every
+// combination in turn (the order reversed every other round) so that a noisy shared machine slows them alike.
+// Prints each one's median milliseconds a frame, resident over fenced, and each count's cost over the first's.
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,10 +26,21 @@ namespace {
 using namespace gusuku;
 using Clock = std::chrono::steady_clock;
 
+struct Settings {
+    long width = 1280, height = 720, rounds = 7, frames_per_round = 20;
+    std::vector<uint32_t> msaa_counts{4};
+    std::vector<RenderMode> modes{RenderMode::kProposed};
+    long profiled_frames = 0;  // --profile N: N profiled frames per combination after the rounds
+    bool ground_ratio = true;  // --no-ground-ratio: the last pass keeps only what it must (the resolve)
+};
+
 struct PathRun {
     std::unique_ptr<Runtime> runtime;
+    uint32_t msaa_samples = 1;
+    RenderMode mode = RenderMode::kProposed;
     bool read_back = false;
     std::vector<double> frame_ms;  // per round: mean milliseconds a frame
+    std::vector<PassTimings> profiles;
 };
 
 double median(std::vector<double> values) {
@@ -35,38 +48,130 @@ double median(std::vector<double> values) {
     return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
+// "1,4": each a count RuntimeOptions::msaa_samples allows (the runtime says which the device has).
+std::vector<uint32_t> parseMsaaCounts(const CommandLine& line, const std::string& text) {
+    std::vector<uint32_t> counts;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        if (item != "1" && item != "2" && item != "4" && item != "8")
+            line.fail("--msaa: '" + item + "' in '" + text + "' is not 1, 2, 4 or 8");
+        counts.push_back(uint32_t(std::stoul(item)));
+    }
+    if (counts.empty()) line.fail("--msaa: '" + text + "' names no sample count");
+    return counts;
+}
+
+Settings parseSettings(int argc, char** argv, bool& help) {
+    Settings settings;
+    CommandLine line("gusuku-frame-paths", std::vector<std::string>(argv + 1, argv + argc));
+    help = line.helpRequested();
+    if (help) {
+        std::printf("usage: gusuku-frame-paths [--width W] [--height H] [--rounds N] [--frames N]\n"
+                    "                          [--msaa COUNTS (e.g. 1,4; default 4)]\n"
+                    "                          [--mode proposed|direct-only|both (default proposed)]\n"
+                    "                          [--profile N (N profiled frames each: every pass alone)]\n"
+                    "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n");
+        return settings;
+    }
+    settings.width = long(line.integer("--width", 16, 8192).value_or(settings.width));
+    settings.height = long(line.integer("--height", 16, 8192).value_or(settings.height));
+    settings.rounds = long(line.integer("--rounds", 1, 1000).value_or(settings.rounds));
+    settings.frames_per_round = long(line.integer("--frames", 1, 100000).value_or(settings.frames_per_round));
+    if (const std::optional<std::string> msaa = line.text("--msaa")) settings.msaa_counts = parseMsaaCounts(line, *msaa);
+    settings.ground_ratio = !line.flag("--no-ground-ratio");
+    settings.profiled_frames = long(line.integer("--profile", 0, 1000).value_or(0));
+    const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both"}).value_or(0);
+    if (mode == 1) settings.modes = {RenderMode::kDirectOnly};
+    if (mode == 2) settings.modes = {RenderMode::kProposed, RenderMode::kDirectOnly};
+    line.positionals();
+    line.finish();
+    return settings;
+}
+
+const char* modeName(RenderMode mode) { return mode == RenderMode::kDirectOnly ? "direct-only" : "proposed"; }
+
+void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
+    std::printf("frame paths, %ldx%ld, %ld rounds x %ld frames each, interleaved (medians of round means)\n",
+                settings.width, settings.height, settings.rounds, settings.frames_per_round);
+    for (const PathRun& run : runs)
+        std::printf("  msaa %u, %-11s  %-34s %8.2f ms a frame\n", run.msaa_samples, modeName(run.mode),
+                    run.read_back ? "fenced   (read back, 1 slot):" : "resident (no read back, 2 slots):",
+                    median(run.frame_ms));
+    for (size_t index = 0; index < runs.size(); index += 2 * settings.modes.size())
+        std::printf("  msaa %u: %.1f MiB of device memory held by a one-slot runtime\n", runs[index].msaa_samples,
+                    double(runs[index].runtime->deviceMemoryBytes()) / double(1 << 20));
+    // Runs come in pairs (fenced, resident), for each count then each mode.
+    for (size_t index = 0; index + 1 < runs.size(); index += 2) {
+        const double fenced_ms = median(runs[index].frame_ms), resident_ms = median(runs[index + 1].frame_ms);
+        std::printf("  msaa %u, %-11s  resident / fenced: %.3f\n", runs[index].msaa_samples,
+                    modeName(runs[index].mode), fenced_ms > 0.0 ? resident_ms / fenced_ms : 0.0);
+    }
+    const size_t per_count = 2 * settings.modes.size();
+    for (size_t index = per_count; index < runs.size(); ++index) {
+        const PathRun& base = runs[index % per_count];
+        const double base_ms = median(base.frame_ms);
+        std::printf("  %-8s %-11s  msaa %u / msaa %u: %.3f\n", runs[index].read_back ? "fenced" : "resident",
+                    modeName(runs[index].mode), runs[index].msaa_samples, base.msaa_samples,
+                    base_ms > 0.0 ? median(runs[index].frame_ms) / base_ms : 0.0);
+    }
+    for (const PathRun& run : runs) {
+        if (run.profiles.empty() || !run.read_back) continue;
+        auto passMedian = [&](double PassTimings::*pass) {
+            std::vector<double> values;
+            for (const PassTimings& timings : run.profiles) values.push_back(timings.*pass);
+            return median(values);
+        };
+        std::printf("  msaa %u, %-11s  profile (each pass alone, ms): camera in + occluder %.2f, building %.2f, "
+                    "ground ratio + resolve %.2f, read-back %.2f, total %.2f\n",
+                    run.msaa_samples, modeName(run.mode), passMedian(&PassTimings::occluder_ms),
+                    passMedian(&PassTimings::building_ms), passMedian(&PassTimings::ground_ms),
+                    passMedian(&PassTimings::readback_ms), passMedian(&PassTimings::total_ms));
+    }
+    if (settings.modes.size() == 2)
+        for (size_t index = 0; index < runs.size(); index += per_count)
+            for (size_t path = 0; path < 2; ++path) {
+                const PathRun& proposed = runs[index + path];
+                const PathRun& direct = runs[index + 2 + path];
+                std::printf("  msaa %u, %-8s proposed / direct-only: %.3f\n", proposed.msaa_samples,
+                            proposed.read_back ? "fenced" : "resident",
+                            median(proposed.frame_ms) / std::max(median(direct.frame_ms), 1e-9));
+            }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    long width = 1280, height = 720, rounds = 7, frames_per_round = 20;
+    Settings settings;
     try {
-        CommandLine line("gusuku-frame-paths", std::vector<std::string>(argv + 1, argv + argc));
-        if (line.helpRequested()) {
-            std::printf("usage: gusuku-frame-paths [--width W] [--height H] [--rounds N] [--frames N]\n");
-            return 0;
-        }
-        width = long(line.integer("--width", 16, 8192).value_or(width));
-        height = long(line.integer("--height", 16, 8192).value_or(height));
-        rounds = long(line.integer("--rounds", 1, 1000).value_or(rounds));
-        frames_per_round = long(line.integer("--frames", 1, 100000).value_or(frames_per_round));
-        line.positionals();
-        line.finish();
+        bool help = false;
+        settings = parseSettings(argc, argv, help);
+        if (help) return 0;
     } catch (const UsageError& error) {
         std::fprintf(stderr, "%s\n", error.what());
         return 2;
     }
     try {
         const BakeSetData bake_set = testing::makeSyntheticBakeSet();
-        RuntimeOptions options;
-        options.frame_width = uint32_t(width);
-        options.frame_height = uint32_t(height);
-        PathRun fenced, resident;
-        options.frames_in_flight = 1;
-        fenced.runtime = Runtime::openHeadless(bake_set, options);
-        fenced.read_back = true;
-        options.frames_in_flight = 2;
-        resident.runtime = Runtime::openHeadless(bake_set, options);
+        std::vector<PathRun> runs;
+        for (uint32_t samples : settings.msaa_counts) {
+            RuntimeOptions options;
+            options.frame_width = uint32_t(settings.width);
+            options.frame_height = uint32_t(settings.height);
+            options.msaa_samples = samples;
+            for (RenderMode mode : settings.modes)
+                for (bool read_back : {true, false}) {
+                    options.frames_in_flight = read_back ? 1 : 2;
+                    PathRun run;
+                    run.runtime = Runtime::openHeadless(bake_set, options);
+                    run.msaa_samples = samples;
+                    run.mode = mode;
+                    run.read_back = read_back;
+                    runs.push_back(std::move(run));
+                }
+        }
 
+        const long width = settings.width, height = settings.height;
         std::vector<uint8_t> camera(size_t(width) * size_t(height) * 4), output(camera.size());
         for (size_t i = 0; i < camera.size(); ++i) camera[i] = i % 4 == 3 ? 255 : uint8_t(i * 7);
         FrameInput frame;
@@ -75,31 +180,34 @@ int main(int argc, char** argv) {
         frame.intrinsics = {focal, focal, width / 2.0, height / 2.0, uint32_t(width), uint32_t(height)};
         frame.weather = Weather::sunny();
         frame.exposure = 0.1f;
+        frame.ground_ratio = settings.ground_ratio;
         auto runRound = [&](PathRun& path, long round) {
+            frame.mode = path.mode;
             const Clock::time_point start = Clock::now();
-            for (long index = 0; index < frames_per_round; ++index) {
+            for (long index = 0; index < settings.frames_per_round; ++index) {
                 frame.pose = CameraPose::lookingAt({3.0 + 0.01 * double(index), -12, 3}, {0, 0, 1});
-                frame.utc_unix_seconds = testing::syntheticLocalTime(15, 0) + double(round * frames_per_round + index);
+                frame.utc_unix_seconds =
+                    testing::syntheticLocalTime(15, 0) + double(round * settings.frames_per_round + index);
                 path.runtime->renderFrame(frame, path.read_back ? output.data() : nullptr);
             }
-            path.runtime->waitIdle();  // the round's last frame is done on both paths
+            path.runtime->waitIdle();  // the round's last frame is done on every path
             path.frame_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count() /
-                                    double(frames_per_round));
+                                    double(settings.frames_per_round));
         };
-        runRound(fenced, -1);  // warm-up: pipelines' first use
-        runRound(resident, -1);
-        fenced.frame_ms.clear();
-        resident.frame_ms.clear();
-        for (long round = 0; round < rounds; ++round) {
-            runRound(round % 2 == 0 ? fenced : resident, round);
-            runRound(round % 2 == 0 ? resident : fenced, round);
+        for (PathRun& run : runs) {  // warm-up: pipelines' first use
+            runRound(run, -1);
+            run.frame_ms.clear();
         }
-        const double fenced_ms = median(fenced.frame_ms), resident_ms = median(resident.frame_ms);
-        std::printf("frame paths, %ldx%ld, %ld rounds x %ld frames each, interleaved (medians of round means)\n",
-                    width, height, rounds, frames_per_round);
-        std::printf("  fenced   (read back, 1 slot):   %8.2f ms a frame\n", fenced_ms);
-        std::printf("  resident (no read back, 2 slots): %6.2f ms a frame\n", resident_ms);
-        std::printf("  resident / fenced: %.3f\n", fenced_ms > 0.0 ? resident_ms / fenced_ms : 0.0);
+        for (long round = 0; round < settings.rounds; ++round)
+            for (size_t index = 0; index < runs.size(); ++index)
+                runRound(runs[round % 2 == 0 ? index : runs.size() - 1 - index], round);
+        for (PathRun& run : runs)
+            for (long index = 0; index < settings.profiled_frames && run.read_back; ++index) {
+                frame.mode = run.mode;
+                run.profiles.emplace_back();
+                run.runtime->renderFrameProfiled(frame, output.data(), run.profiles.back());
+            }
+        printResults(settings, runs);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "gusuku-frame-paths: %s\n", error.what());
         return 1;

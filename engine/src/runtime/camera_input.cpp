@@ -190,7 +190,7 @@ void CameraInput::createPackPipeline() {
     checkVk(result, "vkCreateComputePipelines (camera pack)");
 }
 
-void CameraInput::createDrawPipeline(VkRenderPass render_pass) {
+void CameraInput::createDrawPipeline(VkRenderPass render_pass, VkSampleCountFlagBits samples) {
     const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(CameraPushConstants)};
     VkPipelineLayoutCreateInfo layout{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout.setLayoutCount = 1;
@@ -208,6 +208,9 @@ void CameraInput::createDrawPipeline(VkRenderPass render_pass) {
     draw.fragment_specialization = &specialisation_;
     draw.depth_test = false;
     draw.depth_write = false;
+    // Per-pixel shading at the pass's sample count: the full-screen draw covers every sample of every pixel and
+    // writes the camera pixel's one value into all of them, so a resolve of untouched pixels gives it back.
+    draw.samples = samples;
     draw_pipeline_ = createGraphicsPipeline(gpu_.device, draw);
 }
 

@@ -38,8 +38,8 @@ public:
     CameraInput(const CameraInput&) = delete;
     CameraInput& operator=(const CameraInput&) = delete;
 
-    /// The camera-in draw's pipeline, for a render pass compatible with the main pass.
-    void createDrawPipeline(VkRenderPass render_pass);
+    /// The camera-in draw's pipeline, for a render pass compatible with the main pass, at its sample count.
+    void createDrawPipeline(VkRenderPass render_pass, VkSampleCountFlagBits samples);
 
     /// Host side of a frame in `slot`, whose previous frame has completed: host pixels into the slot's staging
     /// buffer, or the app image's view found or made; the slot's set pointed at the source when it changed.

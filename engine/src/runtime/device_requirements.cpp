@@ -2,6 +2,7 @@
 
 #include "device_requirements.h"
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,12 @@ std::string missingFeatures(VkFormatFeatureFlags missing) {
     return names;
 }
 
+std::string hexadecimal(uint32_t value) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%x", value);
+    return text;
+}
+
 }  // namespace
 
 void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options) {
@@ -48,6 +55,15 @@ void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options
     const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     if (gpu.queue_family_index >= family_count || (families[gpu.queue_family_index].queueFlags & needed) != needed)
         fail("queue family " + std::to_string(gpu.queue_family_index) + " lacks graphics and compute");
+
+    // The main pass's attachments at msaa_samples (a count checkRuntimeOptions allowed: one bit of the flags).
+    const VkSampleCountFlags samples = VkSampleCountFlags(options.msaa_samples);
+    const VkPhysicalDeviceLimits& limits = gpu.limits();
+    if ((limits.framebufferColorSampleCounts & samples) == 0 || (limits.framebufferDepthSampleCounts & samples) == 0)
+        fail("cannot draw options.msaa_samples = " + std::to_string(options.msaa_samples) +
+             " samples a pixel (framebufferColorSampleCounts 0x" + hexadecimal(limits.framebufferColorSampleCounts) +
+             ", framebufferDepthSampleCounts 0x" + hexadecimal(limits.framebufferDepthSampleCounts) +
+             "): choose a count both include, or 1");
 
     const CameraPlaneFormats camera = cameraPlaneFormats(options.camera_format);
     const VkFormatFeatureFlags sampled = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;

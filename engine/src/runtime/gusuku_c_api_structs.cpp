@@ -59,6 +59,7 @@ gusuku_runtime_options defaultOptions() {
     options.camera_ycbcr_model = gusuku_ycbcr_model(defaults.camera_ycbcr_model);
     options.camera_ycbcr_range = gusuku_ycbcr_range(defaults.camera_ycbcr_range);
     options.frames_in_flight = defaults.frames_in_flight;
+    options.msaa_samples = defaults.msaa_samples;
     return options;
 }
 
@@ -100,6 +101,7 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.camera_ycbcr_model = YcbcrModel(options.camera_ycbcr_model);
     converted.camera_ycbcr_range = YcbcrRange(options.camera_ycbcr_range);
     converted.frames_in_flight = options.frames_in_flight;
+    converted.msaa_samples = options.msaa_samples;
     return converted;
 }
 

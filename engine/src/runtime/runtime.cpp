@@ -60,6 +60,10 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "options.frames_in_flight: " + std::to_string(options.frames_in_flight) +
                                " is outside [1, 3]");
+    const uint32_t samples = options.msaa_samples;
+    if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.msaa_samples: " + std::to_string(samples) + " is not 1, 2, 4 or 8");
     const uint32_t camera_format = uint32_t(options.camera_format);
     if (camera_format > uint32_t(CameraFormat::kNv21))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.camera_format: " + std::to_string(camera_format) +
@@ -130,7 +134,7 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         camera_ = std::make_unique<CameraInput>(gpu_, options_, uint32_t(slots_.size()), statistics_ != nullptr);
         createDescriptors();
         createPipelines();
-        camera_->createDrawPipeline(main_passes_[0]);
+        camera_->createDrawPipeline(main_passes_[0], mainPassSamples());
         createCommands();
     } catch (const RuntimeError&) {
         destroy();

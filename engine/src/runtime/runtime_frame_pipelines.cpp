@@ -63,6 +63,7 @@ void RuntimeImpl::createPipelines() {
     site_shadow_pipeline_ = createGraphicsPipeline(device, site_shadow);
     GraphicsPipelineDescription occluder = shadow;
     occluder.render_pass = main_passes_[0];
+    occluder.samples = mainPassSamples();  // every main-pass pipeline rasterises at the pass's sample count
     occluder.vertex_input = occluder_positions;
     occluder.has_colour_attachment = true;
     occluder.blend = BlendMode::kNoColourWrites;
@@ -71,6 +72,7 @@ void RuntimeImpl::createPipelines() {
     GraphicsPipelineDescription building;
     building.layout = shading_layout_;
     building.render_pass = main_passes_[0];
+    building.samples = mainPassSamples();
     building.vertex_spirv = kBuildingVertSpirv;
     building.vertex_spirv_bytes = sizeof(kBuildingVertSpirv);
     building.fragment_spirv = kBuildingFragSpirv;
@@ -83,6 +85,7 @@ void RuntimeImpl::createPipelines() {
     ground.vertex_input.attributes = {{0, 0, VK_FORMAT_R32_SFLOAT, 0}};
     ground.layout = shading_layout_;
     ground.render_pass = main_passes_[0];
+    ground.samples = mainPassSamples();
     ground.vertex_spirv = kGroundVertSpirv;
     ground.vertex_spirv_bytes = sizeof(kGroundVertSpirv);
     ground.fragment_spirv = kGroundFragSpirv;

@@ -24,6 +24,7 @@
 #include "gusuku/maths/frame_lighting.h"
 #include "gusuku/maths/shadow_fit.h"
 #include "gusuku/runtime/runtime.h"
+#include "multisample_target.h"
 #include "runtime_depth_push.h"
 #include "runtime_interface.h"
 #include "runtime_scene.h"
@@ -40,7 +41,8 @@ void checkRuntimeOptions(const RuntimeOptions& options);
 /// What one frame in flight owns (RuntimeOptions::frames_in_flight of them).
 struct FrameSlot {
     GpuImage composite;                           // the frame's colour target, the app's compositeImage()
-    VkFramebuffer framebuffer = VK_NULL_HANDLE;   // composite + the shared depth
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;   // composite + the shared depth, or (msaa_samples > 1) the
+                                                  // shared multisampled colour and depth + the composite
     GpuBuffer readback;                           // host-visible RGBA8, the host-bytes path only
     GpuBuffer ground_indices;                     // host-visible: the ground quads chosen, 6 indices each
     GpuBuffer ground_candidates;                  // host-visible vertex stream: per cell, the shadow may fall here
@@ -70,10 +72,13 @@ private:
     // runtime_resources.cpp and runtime_frame_pipelines.cpp
     void createGroundSelectionArrays();
     void createTargets();
+    void createMainTargets();
     void createDescriptors();
     void createPipelines();
     void createCommands();
     void destroy() noexcept;
+
+    VkSampleCountFlagBits mainPassSamples() const { return VkSampleCountFlagBits(options_.msaa_samples); }
 
     // runtime_frame.cpp
     void checkFrame(const FrameInput& frame) const;  // RuntimeError kInvalidFrame naming the field
@@ -124,7 +129,9 @@ private:
     std::vector<FrameSlot> slots_;
     uint32_t slot_ = 0;       // the slot being recorded
     uint32_t last_slot_ = 0;  // the slot of the last frame submitted
-    GpuImage depth_target_;
+    GpuImage depth_target_;              // msaa_samples 1
+    MultisampleTarget msaa_colour_;      // msaa_samples > 1: what the main pass draws, resolved into the composite
+    MultisampleTarget msaa_depth_;
     GpuImage building_shadow_;
     GpuImage site_shadow_;
     GpuBuffer uniform_buffer_;   // device-local FrameUniforms, written in each frame's command buffer

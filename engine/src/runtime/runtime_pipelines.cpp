@@ -6,32 +6,59 @@
 
 namespace gusuku::runtime_detail {
 
-VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant) {
+namespace {
+
+// The main pass's attachment descriptions for a variant: [0] the colour it draws into, [1] depth and, with
+// multisampling, [2] the composite the colour resolves into. Returns how many.
+uint32_t describeMainAttachments(MainPassVariant variant, VkSampleCountFlagBits samples,
+                                 VkAttachmentDescription (&attachments)[3]) {
     // The later variants continue a frame the earlier ones began (profiling): they load what it drew.
     const bool loads_depth = variant == MainPassVariant::kMiddle || variant == MainPassVariant::kLast;
     const bool loads_colour = loads_depth;
     const bool ends_frame = variant == MainPassVariant::kWhole || variant == MainPassVariant::kLast;
-    VkAttachmentDescription attachments[2]{};
+    const bool multisampled = samples != VK_SAMPLE_COUNT_1_BIT;
+    for (VkAttachmentDescription& attachment : attachments) {
+        attachment = {};
+        attachment.samples = samples;
+        attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    }
     attachments[0].format = kColourFormat;
-    attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
-    // A new frame's composite is not loaded: the camera-in draw writes every pixel first (camera_input.h).
+    // A new frame's colour is not loaded: the camera-in draw writes every pixel (every sample) first
+    // (camera_input.h). Single-sampled it is the composite, kept; multisampled it is kept only for the next
+    // profiling variant, the frame's end keeping the resolved composite instead.
     attachments[0].loadOp = loads_colour ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    attachments[0].storeOp =
+        multisampled && ends_frame ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     attachments[0].initialLayout =
         loads_colour ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
-    attachments[0].finalLayout =
-        ends_frame ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    attachments[0].finalLayout = ends_frame && !multisampled ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL
+                                                             : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     attachments[1].format = kDepthFormat;
-    attachments[1].samples = VK_SAMPLE_COUNT_1_BIT;
     attachments[1].loadOp = loads_depth ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     attachments[1].storeOp = ends_frame ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-    attachments[1].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    attachments[1].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     attachments[1].initialLayout =
         loads_depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
     attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    if (!multisampled) return 2;
+    // The composite: written whole by the resolve at the frame's end (not loaded); in the profiling variants
+    // before it, no subpass uses it, so it is left alone in the layout compositeImage() promises.
+    attachments[2].format = kColourFormat;
+    attachments[2].samples = VK_SAMPLE_COUNT_1_BIT;
+    attachments[2].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    attachments[2].storeOp = ends_frame ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    attachments[2].initialLayout =
+        ends_frame ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    attachments[2].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    return 3;
+}
+
+}  // namespace
+
+VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples) {
+    VkAttachmentDescription attachments[3];
+    const uint32_t attachment_count = describeMainAttachments(variant, samples, attachments);
+    const bool ends_frame = variant == MainPassVariant::kWhole || variant == MainPassVariant::kLast;
 
     VkAttachmentReference colour_reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkAttachmentReference depth_reference{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
@@ -40,6 +67,11 @@ VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant) {
     subpass.colorAttachmentCount = 1;
     subpass.pColorAttachments = &colour_reference;
     subpass.pDepthStencilAttachment = &depth_reference;
+    // Multisampled, the frame's end resolves the colour into the composite. The profiling variants before it
+    // name no resolve: one subpass each, so they stay compatible with the others (Vulkan's render pass
+    // compatibility ignores resolve attachments when the passes have a single subpass) and share pipelines.
+    VkAttachmentReference resolve_reference{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    if (attachment_count == 3 && ends_frame) subpass.pResolveAttachments = &resolve_reference;
 
     // In: the last pass's colour and depth writes, the earlier reads of this slot's composite (the app's copies
     // and samplers, the read-back: write after read), and the shadow maps, uniforms and colour state written
@@ -73,7 +105,7 @@ VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant) {
                                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
 
     VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    info.attachmentCount = 2;
+    info.attachmentCount = attachment_count;
     info.pAttachments = attachments;
     info.subpassCount = 1;
     info.pSubpasses = &subpass;
@@ -174,7 +206,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
         raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
         raster.lineWidth = 1.0f;
         VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        multisample.rasterizationSamples = description.samples;
         VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         depth.depthTestEnable = description.depth_test ? VK_TRUE : VK_FALSE;
         depth.depthWriteEnable = description.depth_write ? VK_TRUE : VK_FALSE;

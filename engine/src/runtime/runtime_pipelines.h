@@ -15,11 +15,15 @@ namespace gusuku::runtime_detail {
 constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;  // the composite: sRGB bytes, blending in linear
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-/// The main pass's attachments: colour (the composite; the camera-in draw writes it first) and depth. The variants differ only in load
-/// and store operations and layouts, so they are compatible and share pipelines. `whole` = one pass for the
-/// whole frame; `first`, `middle`, `last` split it for the profiling mode.
+/// The main pass's attachments: colour (the camera-in draw writes it first) and depth, at `samples` a pixel.
+/// With one sample the colour is the composite. With more, both are multisampled (multisample_target.h) and a
+/// third attachment, the composite, receives the colour's resolve at the frame's end (kWhole, kLast); the
+/// variants before it keep the multisampled colour and depth for the next and leave the composite alone. The
+/// variants differ only in load and store operations, layouts and (single-subpass passes, where Vulkan's
+/// compatibility ignores it) the resolve, so they are compatible and share pipelines and framebuffers.
+/// `whole` = one pass for the whole frame; `first`, `middle`, `last` split it for the profiling mode.
 enum class MainPassVariant { kWhole, kFirst, kMiddle, kLast };
-VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant);
+VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples);
 /// A depth-only pass into a shadow map, left in SHADER_READ_ONLY_OPTIMAL for sampling.
 VkRenderPass createShadowRenderPass(VkDevice device);
 
@@ -48,6 +52,8 @@ struct GraphicsPipelineDescription {
     VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
     BlendMode blend = BlendMode::kOpaque;
     bool has_colour_attachment = true;
+    /// rasterizationSamples: the render pass's sample count (RuntimeOptions::msaa_samples in the main pass).
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 /// A graphics pipeline with dynamic viewport and scissor; triangle lists, no culling (thin walls and

@@ -19,16 +19,35 @@ void RuntimeImpl::createGroundSelectionArrays() {
     ground_quad_indices_.assign(size_t(scene_.ground_quad_capacity) * 6, 0);
 }
 
+// The main pass's render passes and the attachments the frame slots share: the depth, or multisampled, the
+// colour the pass draws and its depth.
+void RuntimeImpl::createMainTargets() {
+    const uint32_t width = options_.frame_width, height = options_.frame_height;
+    const VkSampleCountFlagBits samples = mainPassSamples();
+    if (samples == VK_SAMPLE_COUNT_1_BIT) {
+        GpuImageDescription depth;
+        depth.format = kDepthFormat;
+        depth.width = width;
+        depth.height = height;
+        depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+        depth_target_ = GpuImage(gpu_, depth);
+    } else {
+        msaa_colour_ = MultisampleTarget(gpu_, {kColourFormat, VK_IMAGE_ASPECT_COLOR_BIT, width, height, samples});
+        msaa_depth_ = MultisampleTarget(gpu_, {kDepthFormat, VK_IMAGE_ASPECT_DEPTH_BIT, width, height, samples});
+    }
+    const MainPassVariant variants[4] = {MainPassVariant::kWhole, MainPassVariant::kFirst, MainPassVariant::kMiddle,
+                                         MainPassVariant::kLast};
+    for (int index = 0; index < 4; ++index)
+        main_passes_[index] = createMainRenderPass(gpu_.device, variants[index], samples);
+}
+
 void RuntimeImpl::createTargets() {
     const uint32_t width = options_.frame_width, height = options_.frame_height;
-    GpuImageDescription depth;
-    depth.format = kDepthFormat;
-    depth.width = width;
-    depth.height = height;
-    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-    depth_target_ = GpuImage(gpu_, depth);
-    GpuImageDescription shadow = depth;
+    createMainTargets();
+    GpuImageDescription shadow;
+    shadow.format = kDepthFormat;
+    shadow.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     shadow.width = shadow.height = options_.shadow_map_size;
     shadow.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     building_shadow_ = GpuImage(gpu_, shadow);
@@ -38,10 +57,6 @@ void RuntimeImpl::createTargets() {
                                 GpuMemory::kDeviceLocal);
 
     const VkDevice device = gpu_.device;
-    main_passes_[0] = createMainRenderPass(device, MainPassVariant::kWhole);
-    main_passes_[1] = createMainRenderPass(device, MainPassVariant::kFirst);
-    main_passes_[2] = createMainRenderPass(device, MainPassVariant::kMiddle);
-    main_passes_[3] = createMainRenderPass(device, MainPassVariant::kLast);
     shadow_pass_ = createShadowRenderPass(device);
     building_shadow_framebuffer_ = createFramebuffer(device, shadow_pass_, {building_shadow_.view()},
                                                      options_.shadow_map_size, options_.shadow_map_size);
@@ -59,8 +74,11 @@ void RuntimeImpl::createTargets() {
     slots_.resize(options_.frames_in_flight);
     for (FrameSlot& slot : slots_) {
         slot.composite = GpuImage(gpu_, colour);
-        slot.framebuffer = createFramebuffer(device, main_passes_[0], {slot.composite.view(), depth_target_.view()},
-                                             width, height);
+        const std::vector<VkImageView> views =
+            mainPassSamples() == VK_SAMPLE_COUNT_1_BIT
+                ? std::vector<VkImageView>{slot.composite.view(), depth_target_.view()}
+                : std::vector<VkImageView>{msaa_colour_.view(), msaa_depth_.view(), slot.composite.view()};
+        slot.framebuffer = createFramebuffer(device, main_passes_[0], views, width, height);
         slot.readback = GpuBuffer(gpu_, size_t(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         slot.ground_indices = GpuBuffer(gpu_, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, GpuMemory::kHostVisible);
         slot.ground_candidates =
@@ -256,6 +274,7 @@ void RuntimeImpl::destroy() noexcept {
 
 uint64_t RuntimeImpl::deviceMemoryBytes() const {
     uint64_t bytes = camera_ ? camera_->memoryBytes() : 0;
+    bytes += msaa_colour_.memoryBytes() + msaa_depth_.memoryBytes();
     for (const GpuImage* image : {&depth_target_, &building_shadow_, &site_shadow_, &scene_.lightmaps,
                                   &scene_.ground_irradiance, &scene_.ground_geometry, &scene_.white_texture})
         bytes += image->memoryBytes();

@@ -277,6 +277,9 @@ typedef struct gusuku_runtime_options {
     gusuku_ycbcr_range camera_ycbcr_range;  /* NV12 / NV21 only; default NARROW */
     uint32_t frames_in_flight;            /* frames the GPU may hold while the app records the next, [1, 3];
                                              default 2 */
+    uint32_t msaa_samples;                /* samples a pixel of the building, occluder and ground-ratio draws
+                                             (anti-aliasing), 1, 2, 4 or 8 and supported by the device
+                                             (else GUSUKU_ERROR_DEVICE); 1 turns it off; default 4 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;

@@ -11,10 +11,11 @@
 // (tests/test_runtime_allocations.cpp counts), except a view the first time it meets an app camera image.
 //
 // Device requirements, checked when the runtime opens (RuntimeError kDevice naming what is missing; docs/runtime.md
-// "Device requirements"): Vulkan 1.0; a queue with graphics and compute; optimal-tiling R8G8B8A8_SRGB as a blended colour attachment, sampled and a transfer
-// source; D32_SFLOAT as a depth attachment and a sampled image; R16G16B16A16_SFLOAT sampled with linear
-// filtering; the camera format's plane formats sampled (R8G8B8A8_UNORM, B8G8R8A8_UNORM, or R8_UNORM and
-// R8G8_UNORM). Timeline semaphores in FrameSync only if the app enabled them on its device. The colour matches
+// "Device requirements"): Vulkan 1.0; a queue with graphics and compute; optimal-tiling R8G8B8A8_SRGB as a blended
+// colour attachment, sampled and a transfer source; D32_SFLOAT as a depth attachment and a sampled image;
+// R16G16B16A16_SFLOAT sampled with linear filtering; the camera format's plane formats sampled (R8G8B8A8_SRGB,
+// B8G8R8A8_SRGB, or R8_UNORM and R8G8_UNORM); RuntimeOptions::msaa_samples among the framebuffer colour and depth
+// sample counts. Timeline semaphores in FrameSync only if the app enabled them on its device. The colour matches
 // (FrameInput::colour_match other than kOff) also need a Vulkan 1.1 instance (GpuDevice::instance_api_version)
 // and subgroup arithmetic in compute shaders; without them the runtime opens and refuses only those frames.
 // Nothing else: no extension, no optional feature.
@@ -191,6 +192,14 @@ struct RuntimeOptions {
     /// Frames the GPU may work on while the app records the next, [1, 3]. Each has its own composite, command
     /// buffer, fence and host-visible staging; a frame waits only when it would reuse one still in flight.
     uint32_t frames_in_flight = 2;
+    /// Samples per pixel of the main pass (anti-aliasing of the occluder, building and ground-ratio draws):
+    /// 1, 2, 4 or 8. Above 1 the pass draws into a multisampled colour and depth attachment (shared by the
+    /// frame slots) and resolves into the composite at its end; the camera-in draw writes every sample, so
+    /// camera pixels nothing else touches resolve to the camera's own bytes. The device must support the count
+    /// for colour and depth framebuffers (limits framebufferColorSampleCounts and
+    /// framebufferDepthSampleCounts; lavapipe has 1 and 4), else open() throws kDevice naming msaa_samples.
+    /// 1: one sample per pixel and no resolve, the runtime's path before this option.
+    uint32_t msaa_samples = 4;
 };
 
 /// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary
