@@ -79,6 +79,9 @@ void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options
         {camera.plane0, sampled, "the camera's first plane format", "the camera"},
     };
     if (camera.plane1 != VK_FORMAT_UNDEFINED) needs.push_back({camera.plane1, sampled, "R8G8_UNORM", "the camera's chroma"});
+    if (mainDepthStencilFormat(gpu.physical_device) == VK_FORMAT_UNDEFINED)
+        fail("lacks DEPTH_STENCIL_ATTACHMENT for both D32_SFLOAT_S8_UINT and D24_UNORM_S8_UINT (the main pass's "
+             "depth and the building's stencil marks)");
     for (const FormatNeed& need : needs) {
         VkFormatProperties properties{};
         vkGetPhysicalDeviceFormatProperties(gpu.physical_device, need.format, &properties);

@@ -78,6 +78,7 @@ void RuntimeImpl::createPipelines() {
     building.fragment_spirv = kBuildingFragSpirv;
     building.fragment_spirv_bytes = sizeof(kBuildingFragSpirv);
     building.vertex_input = building_vertex;
+    building.stencil = StencilUse::kMarkBuilding;  // the ground ratio leaves these pixels alone
     building_pipeline_ = createGraphicsPipeline(device, building);
 
     GraphicsPipelineDescription ground;
@@ -93,6 +94,7 @@ void RuntimeImpl::createPipelines() {
     ground.depth_write = false;
     ground.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
     ground.blend = BlendMode::kMultiplyTwice;
+    ground.stencil = StencilUse::kSkipBuilding;
     // Two variants of the ground's shader, by a specialisation constant: llvmpipe runs every branch of a
     // fragment shader for the whole SIMD group (masked), so a shadow lookup that most fragments skip still costs
     // them all; the quads no shadow can reach get a shader without one.

@@ -129,6 +129,7 @@ private:
     std::vector<FrameSlot> slots_;
     uint32_t slot_ = 0;       // the slot being recorded
     uint32_t last_slot_ = 0;  // the slot of the last frame submitted
+    VkFormat main_depth_format_ = VK_FORMAT_UNDEFINED;  // depth-stencil (mainDepthStencilFormat)
     GpuImage depth_target_;              // msaa_samples 1
     MultisampleTarget msaa_colour_;      // msaa_samples > 1: what the main pass draws, resolved into the composite
     MultisampleTarget msaa_depth_;

@@ -10,7 +10,7 @@ namespace {
 
 // The main pass's attachment descriptions for a variant: [0] the colour it draws into, [1] depth and, with
 // multisampling, [2] the composite the colour resolves into. Returns how many.
-uint32_t describeMainAttachments(MainPassVariant variant, VkSampleCountFlagBits samples,
+uint32_t describeMainAttachments(MainPassVariant variant, VkSampleCountFlagBits samples, VkFormat depth_stencil_format,
                                  VkAttachmentDescription (&attachments)[3]) {
     // The later variants continue a frame the earlier ones began (profiling): they load what it drew.
     const bool loads_depth = variant == MainPassVariant::kMiddle || variant == MainPassVariant::kLast;
@@ -34,9 +34,11 @@ uint32_t describeMainAttachments(MainPassVariant variant, VkSampleCountFlagBits 
         loads_colour ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
     attachments[0].finalLayout = ends_frame && !multisampled ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL
                                                              : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    attachments[1].format = kDepthFormat;
+    attachments[1].format = depth_stencil_format;
     attachments[1].loadOp = loads_depth ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     attachments[1].storeOp = ends_frame ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    attachments[1].stencilLoadOp = attachments[1].loadOp;  // the building's marks (StencilUse), like depth
+    attachments[1].stencilStoreOp = attachments[1].storeOp;
     attachments[1].initialLayout =
         loads_depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
     attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -55,9 +57,19 @@ uint32_t describeMainAttachments(MainPassVariant variant, VkSampleCountFlagBits 
 
 }  // namespace
 
-VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples) {
+VkFormat mainDepthStencilFormat(VkPhysicalDevice physical_device) {
+    for (VkFormat format : {VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT}) {
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(physical_device, format, &properties);
+        if (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) return format;
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+
+VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples,
+                                  VkFormat depth_stencil_format) {
     VkAttachmentDescription attachments[3];
-    const uint32_t attachment_count = describeMainAttachments(variant, samples, attachments);
+    const uint32_t attachment_count = describeMainAttachments(variant, samples, depth_stencil_format, attachments);
     const bool ends_frame = variant == MainPassVariant::kWhole || variant == MainPassVariant::kLast;
 
     VkAttachmentReference colour_reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
@@ -211,6 +223,19 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
         depth.depthTestEnable = description.depth_test ? VK_TRUE : VK_FALSE;
         depth.depthWriteEnable = description.depth_write ? VK_TRUE : VK_FALSE;
         depth.depthCompareOp = description.depth_compare;
+        if (description.stencil != StencilUse::kNone) {
+            const bool mark = description.stencil == StencilUse::kMarkBuilding;
+            VkStencilOpState stencil{};
+            stencil.failOp = VK_STENCIL_OP_KEEP;
+            stencil.depthFailOp = VK_STENCIL_OP_KEEP;
+            stencil.passOp = mark ? VK_STENCIL_OP_REPLACE : VK_STENCIL_OP_KEEP;
+            stencil.compareOp = mark ? VK_COMPARE_OP_ALWAYS : VK_COMPARE_OP_EQUAL;
+            stencil.compareMask = 1;
+            stencil.writeMask = mark ? 1u : 0u;
+            stencil.reference = mark ? 1u : 0u;
+            depth.stencilTestEnable = VK_TRUE;
+            depth.front = depth.back = stencil;
+        }
         VkPipelineColorBlendAttachmentState blend_attachment{};
         switch (description.blend) {
             case BlendMode::kOpaque:

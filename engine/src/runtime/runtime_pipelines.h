@@ -13,7 +13,22 @@
 namespace gusuku::runtime_detail {
 
 constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;  // the composite: sRGB bytes, blending in linear
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // the shadow maps
+
+/// The main pass's depth-stencil format: D32_SFLOAT_S8_UINT, else D24_UNORM_S8_UINT (Vulkan guarantees one of
+/// them as a depth-stencil attachment); VK_FORMAT_UNDEFINED when the device has neither (the runtime refuses it).
+/// The stencil marks the building's pixels so the ground ratio never multiplies them (see StencilUse).
+VkFormat mainDepthStencilFormat(VkPhysicalDevice physical_device);
+
+/// The stencil in the main pass. The ground pass is pulled 10 cm towards the camera so that the site's occluder
+/// mesh it was sampled from cannot hide it; that also puts it in front of the building's lowest 10 cm wherever
+/// the building meets the ground (a 2 cm platform's whole front face), where its ratio darkened building
+/// pixels: a dark rim. The building marks the pixels it draws; the ground skips them.
+enum class StencilUse {
+    kNone,
+    kMarkBuilding,  ///< where the fragment passes the depth test, stencil = 1
+    kSkipBuilding,  ///< draw only where stencil = 0
+};
 
 /// The main pass's attachments: colour (the camera-in draw writes it first) and depth, at `samples` a pixel.
 /// With one sample the colour is the composite. With more, both are multisampled (multisample_target.h) and a
@@ -23,7 +38,8 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 /// compatibility ignores it) the resolve, so they are compatible and share pipelines and framebuffers.
 /// `whole` = one pass for the whole frame; `first`, `middle`, `last` split it for the profiling mode.
 enum class MainPassVariant { kWhole, kFirst, kMiddle, kLast };
-VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples);
+VkRenderPass createMainRenderPass(VkDevice device, MainPassVariant variant, VkSampleCountFlagBits samples,
+                                  VkFormat depth_stencil_format);
 /// A depth-only pass into a shadow map, left in SHADER_READ_ONLY_OPTIMAL for sampling.
 VkRenderPass createShadowRenderPass(VkDevice device);
 
@@ -50,6 +66,7 @@ struct GraphicsPipelineDescription {
     bool depth_test = true;
     bool depth_write = true;
     VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
+    StencilUse stencil = StencilUse::kNone;
     BlendMode blend = BlendMode::kOpaque;
     bool has_colour_attachment = true;
     /// rasterizationSamples: the render pass's sample count (RuntimeOptions::msaa_samples in the main pass).

@@ -23,23 +23,25 @@ void RuntimeImpl::createGroundSelectionArrays() {
 // colour the pass draws and its depth.
 void RuntimeImpl::createMainTargets() {
     const uint32_t width = options_.frame_width, height = options_.frame_height;
+    main_depth_format_ = mainDepthStencilFormat(gpu_.physical_device);  // checked by checkDeviceRequirements
     const VkSampleCountFlagBits samples = mainPassSamples();
     if (samples == VK_SAMPLE_COUNT_1_BIT) {
         GpuImageDescription depth;
-        depth.format = kDepthFormat;
+        depth.format = main_depth_format_;
         depth.width = width;
         depth.height = height;
         depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-        depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+        depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
         depth_target_ = GpuImage(gpu_, depth);
     } else {
         msaa_colour_ = MultisampleTarget(gpu_, {kColourFormat, VK_IMAGE_ASPECT_COLOR_BIT, width, height, samples});
-        msaa_depth_ = MultisampleTarget(gpu_, {kDepthFormat, VK_IMAGE_ASPECT_DEPTH_BIT, width, height, samples});
+        msaa_depth_ = MultisampleTarget(gpu_, {main_depth_format_, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT,
+                                               width, height, samples});
     }
     const MainPassVariant variants[4] = {MainPassVariant::kWhole, MainPassVariant::kFirst, MainPassVariant::kMiddle,
                                          MainPassVariant::kLast};
     for (int index = 0; index < 4; ++index)
-        main_passes_[index] = createMainRenderPass(gpu_.device, variants[index], samples);
+        main_passes_[index] = createMainRenderPass(gpu_.device, variants[index], samples, main_depth_format_);
 }
 
 void RuntimeImpl::createTargets() {
