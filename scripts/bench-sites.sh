@@ -33,7 +33,8 @@ bake="${GUSUKU_BAKE:-./build/baker/gusuku-bake}"
 views="front:2,-5,3.2:2,3.5,3;corner:-5,-2.5,3.2:2,3.5,2.8"
 code="$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')"
 
-"$bake" sample "$work/sample" > /dev/null
+# The sample as this build writes it (--force: its files replaced, its bake set beside them kept).
+"$bake" sample "$work/sample" --force > /dev/null
 for site in shrine house; do
   python3 scripts/write-bench-site.py "$work/sample/site.json" "$shared" "$site" "$work/$site/site.json"
 done
@@ -50,6 +51,6 @@ for site in sample shrine house; do
   echo "scripts/bench-sites.sh: $site benched ($work/$site/bench/summary.md)"
 done
 python3 scripts/bench-sites-table.py "$work" sample shrine house > "$work/summary.md.tmp"
-printf '\ncode: %s; command: scripts/bench-sites.sh %s%s\n' "$code" "${quick[*]:-}" "$work" >> "$work/summary.md.tmp"
+printf '\ncode: %s; command: %s\n' "$code" "scripts/bench-sites.sh ${quick[*]:+${quick[*]} }$work" >> "$work/summary.md.tmp"
 mv "$work/summary.md.tmp" "$work/summary.md"
 cat "$work/summary.md"
