@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench_views.h"
 #include "camera_view.h"
 #include "frame_spread.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -39,6 +40,9 @@ struct Settings {
     std::optional<std::string> photographed_bake_set;
     bool quick = false;
     std::vector<std::string> only;
+    // The site section (--views): the visitor poses, and the sample's results.json to compare the frame with.
+    std::vector<NamedView> views;
+    std::optional<std::string> sample_results;
     // Derived from quick.
     uint32_t accuracy_width = 320, accuracy_height = 180, truth_samples = 512;
     uint32_t sweep_width = 160, sweep_height = 90, sweep_samples = 256;
@@ -47,8 +51,11 @@ struct Settings {
     std::vector<uint32_t> tracer_samples{1, 4, 16, 64};
     uint32_t tracer_timed_max_samples = 64;  ///< above this, the tracer's 640x360 time is scaled from it
     bool wants(const std::string& section) const {
+        if (section == "site" && views.empty()) return false;  // the site section needs its poses
         return only.empty() || std::find(only.begin(), only.end(), section) != only.end();
     }
+    /// The main section (truth, every mode, the chart) runs unless --only names the site section alone.
+    bool wantsMain() const { return !(only.size() == 1 && only[0] == "site"); }
 };
 
 inline double millisecondsSince(Clock::time_point start) {
@@ -162,5 +169,7 @@ struct Bench {
 void runMain(Bench& bench);
 /// The day in steps: nearest slot, blend of two, direct-only (day_section.cpp).
 void runDay(Bench& bench);
+/// The goals from each visitor pose (--views) at a baked instant and 1.5 hours from it (site_section.cpp).
+void runSiteGoals(Bench& bench);
 
 }  // namespace gusuku::bench

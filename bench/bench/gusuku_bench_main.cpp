@@ -12,7 +12,9 @@
 //   day       the day in steps: nearest slot, blend of two, direct-only (day.svg);
 //   weather   overcast and partial cloud under three camera responses, colour match on and off, both modes;
 //   cost      frame time against building triangles and against screen coverage;
-//   clouds    the cloud-cover estimate from camera frames of known weather.
+//   clouds    the cloud-cover estimate from camera frames of known weather;
+//   site      (with --views) the goals from each visitor pose, at a baked instant and 1.5 hours from it
+//             (site_section.cpp; scripts/bench-sites.sh runs it on the sample and on real models).
 
 #include <algorithm>
 #include <chrono>
@@ -83,12 +85,21 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     settings.site_json = line.text("--site");
     settings.photographed_bake_set = line.text("--photographed-skies");
     const std::optional<std::string> cache = line.text("--cache");
+    settings.sample_results = line.text("--sample-results");
+    if (const auto views = line.text("--views")) {
+        try {
+            settings.views = parseBenchViews(*views);
+        } catch (const std::invalid_argument& error) {
+            throw OptionValueError("gusuku-bench: " + std::string(error.what()));
+        }
+    }
+    const std::optional<int64_t> truth_samples = line.integer("--truth-samples", 1, 1 << 20);
     if (const auto only = line.text("--only")) {
         std::stringstream stream(*only);
         for (std::string section; std::getline(stream, section, ',');) {
-            static const std::vector<std::string> known{"truth", "timing", "day", "weather", "cost", "clouds"};
+            static const std::vector<std::string> known{"truth", "timing", "day", "weather", "cost", "clouds", "site"};
             if (std::find(known.begin(), known.end(), section) == known.end())
-                line.failValue("--only", "'" + section + "' is not one of truth,timing,day,weather,cost,clouds");
+                line.failValue("--only", "'" + section + "' is not one of truth,timing,day,weather,cost,clouds,site");
             settings.only.push_back(section);
         }
     }
@@ -107,6 +118,12 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
         settings.timed_frames = 15, settings.warm_up_frames = 3;
         settings.tracer_timed_max_samples = 4;
     }
+    if (truth_samples) settings.truth_samples = uint32_t(*truth_samples);
+    if (settings.sample_results && settings.views.empty()) line.fail("--sample-results needs --views (see --help)");
+    if (!settings.views.empty() && !settings.only.empty() && !settings.wants("site"))
+        line.fail("--views is for the site section, which --only leaves out (see --help)");
+    if (settings.views.empty() && std::find(settings.only.begin(), settings.only.end(), "site") != settings.only.end())
+        line.fail("--only site needs --views (see --help)");
     return settings;
 }
 
@@ -405,7 +422,8 @@ int run(const Settings& settings) {
             "is there, in its full run)";
     }
 
-    runMain(bench);
+    if (settings.wantsMain()) runMain(bench);
+    if (settings.wants("site")) runSiteGoals(bench);
     if (settings.wants("day")) runDay(bench);
     if (settings.wants("weather")) runUnderEachSkySet(bench, "weather", runWeatherUnder);
     if (settings.wants("cost")) runCost(bench);

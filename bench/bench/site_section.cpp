@@ -1,0 +1,295 @@
+// The bench's site section (runSiteGoals, --views): issue 20's goals read from each visitor pose of one site (the
+// sample, or a real model on the sample terrace, scripts/bench-sites.sh): the composite's and direct-only's mean
+// CIEDE2000 against the path-traced truth over the pixels the building or its shadow changes, at a baked instant
+// and 1.5 hours before it (half way between two slots), the truth's own noise beside; the frame time of both at
+// 1280x720 (modes interleaved, the same multisampling) with the proposed method's per-pass profile; and, given the
+// sample's results (--sample-results), the frame against the sample's from the same pose.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_run.h"
+#include "camera_response.h"
+#include "gusuku/maths/time_utc.h"
+#include "runtime_modes.h"
+
+namespace gusuku::bench {
+namespace {
+
+// The goals (issue 20 item 7).
+constexpr double kBakedErrorGoal = 2.0;     // mean dE00 at a baked instant
+constexpr double kBetweenErrorGoal = 3.0;   // mean dE00 1.5 hours from one
+constexpr double kErrorRatioGoal = 1.0 / 3.0;  // of direct-only's, below
+constexpr double kFrameRatioLimit = 1.10, kFrameRatioGoal = 1.05;  // over direct-only at 1280x720
+constexpr double kOverSampleLimit = 2.0;   // the real model's frame over the sample's
+
+struct SiteInstant {
+    std::string label;  // "baked" or "between"
+    double utc_seconds = 0.0;
+    double error_goal = 0.0;
+};
+
+// The sunny slot nearest 12:00 on the site clock, and 1.5 hours before it: with the default slots (09:00, 12:00,
+// 15:00) 10:30, as far from a slot as the day between slots gets.
+std::vector<SiteInstant> siteInstants(const Bench& bench) {
+    std::optional<double> baked;
+    const double noon = bench.bake_midnight_utc + 12.0 * 3600.0;
+    for (const BakeSetSlot& slot : bench.bake_set.manifest.slots)
+        if (!slot.utc.empty()) {
+            const double utc = parseIso8601Utc(slot.utc);
+            if (!baked || std::abs(utc - noon) < std::abs(*baked - noon)) baked = utc;
+        }
+    // bakeDateMidnightUtc (run) has already refused a bake set without a sunny slot.
+    return {{"baked", *baked, kBakedErrorGoal}, {"between", *baked - 1.5 * 3600.0, kBetweenErrorGoal}};
+}
+
+struct PoseAccuracy {
+    SiteInstant instant;
+    size_t changed_pixels = 0;
+    RegionErrors noise, proposed, direct;
+    std::vector<uint8_t> camera;  // the camera frame at the accuracy size (the timing frames' source)
+    float exposure = 1.0f;
+};
+
+// One pose at one instant: the truth (seed 1 and seed 2), the camera frame, both modes' composites.
+PoseAccuracy measurePose(Bench& bench, const NamedView& named, const SiteInstant& instant,
+                         const CameraResponse& response) {
+    const Settings& settings = bench.settings;
+    const uint32_t width = settings.accuracy_width, height = settings.accuracy_height;
+    const BenchCondition condition{instant.utc_seconds, 0.0f};
+    const ConditionFrames frames = traceCondition(*bench.renderer, named.view, width, height, condition,
+                                                  settings.truth_samples);
+    TracedFrameRequest second;
+    second.view = named.view;
+    second.width = width;
+    second.height = height;
+    second.condition = condition;
+    second.samples_per_pixel = settings.truth_samples;
+    second.seed = 2;
+    const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
+    const std::vector<uint8_t> truth2 =
+        applyCameraResponse(bench.renderer->render(second).linear, frames.exposure, response);
+    PoseAccuracy pose;
+    pose.instant = instant;
+    pose.camera = applyCameraResponse(frames.camera, frames.exposure, response);
+    pose.exposure = frames.exposure * response.exposure_scale;
+    const std::vector<uint8_t> mask = changedPixelMask(truth, pose.camera);
+    for (uint8_t in : mask) pose.changed_pixels += in;
+    pose.noise = regionErrors(truth2, truth, mask);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, named.view.horizontal_fov_deg);
+    const CameraPose camera_pose = lookAtPose(named.view.position_enu, named.view.look_at_enu);
+    Runtime& runtime = bench.runtimeFor(width, height);
+    const std::string prefix = "site_" + named.name + "_" + instant.label + "_";
+    for (const char* mode_name : {"proposed", "direct_only"}) {
+        const FrameInput input = frameInputFor(runtimeModeNamed(mode_name), pose.camera, intrinsics, camera_pose,
+                                               instant.utc_seconds, 0.0f, pose.exposure);
+        const std::vector<uint8_t> composite = steadyComposite(runtime, input);
+        bench.writePng(prefix + mode_name + ".png", width, height, composite);
+        (std::string(mode_name) == "proposed" ? pose.proposed : pose.direct) = regionErrors(composite, truth, mask);
+    }
+    bench.writePng(prefix + "truth.png", width, height, truth);
+    bench.writePng(prefix + "camera.png", width, height, pose.camera);
+    return pose;
+}
+
+struct PoseFrame {
+    Spread proposed, direct;
+    PassTimings passes;  // the proposed method's, medians
+};
+
+// Both modes' fenced frames at 1280x720, interleaved, from the pose's camera frame at the baked instant; then the
+// proposed method's per-pass profile (shadow maps redrawn each profiled frame, as when the sun moves a step).
+PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& baked) {
+    const Settings& settings = bench.settings;
+    const uint32_t width = 1280, height = 720;
+    const std::vector<uint8_t> camera =
+        resizeNearest(baked.camera, settings.accuracy_width, settings.accuracy_height, width, height);
+    const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, named.view.horizontal_fov_deg);
+    const CameraPose pose = lookAtPose(named.view.position_enu, named.view.look_at_enu);
+    Runtime& runtime = bench.runtimeFor(width, height);
+    const FrameInput proposed = frameInputFor(runtimeModeNamed("proposed"), camera, intrinsics, pose,
+                                              baked.instant.utc_seconds, 0.0f, baked.exposure);
+    const FrameInput direct = frameInputFor(runtimeModeNamed("direct_only"), camera, intrinsics, pose,
+                                            baked.instant.utc_seconds, 0.0f, baked.exposure);
+    std::vector<uint8_t> out(size_t(width) * height * 4);
+    for (uint32_t frame = 0; frame < settings.warm_up_frames; ++frame) {
+        runtime.renderFrame(direct, out.data());
+        runtime.renderFrame(proposed, out.data());
+    }
+    std::vector<double> proposed_ms, direct_ms;
+    for (uint32_t frame = 0; frame < settings.timed_frames; ++frame) {
+        Clock::time_point start = Clock::now();
+        runtime.renderFrame(direct, out.data());
+        direct_ms.push_back(millisecondsSince(start));
+        start = Clock::now();
+        runtime.renderFrame(proposed, out.data());
+        proposed_ms.push_back(millisecondsSince(start));
+    }
+    std::vector<PassTimings> profiled(std::max(5u, settings.timed_frames / 2));
+    for (PassTimings& passes : profiled) {
+        runtime.invalidateShadowMaps();
+        runtime.renderFrameProfiled(proposed, out.data(), passes);
+    }
+    PoseFrame timed{spreadOf(proposed_ms), spreadOf(direct_ms), {}};
+    for (double PassTimings::*field : {&PassTimings::upload_ms, &PassTimings::shadow_ms, &PassTimings::occluder_ms,
+                                       &PassTimings::building_ms, &PassTimings::ground_ms,
+                                       &PassTimings::statistics_ms, &PassTimings::readback_ms,
+                                       &PassTimings::total_ms}) {
+        std::vector<double> values;
+        for (const PassTimings& passes : profiled) values.push_back(passes.*field);
+        timed.passes.*field = spreadOf(values).median;
+    }
+    return timed;
+}
+
+Json passesJson(const PassTimings& passes) {
+    return {{"upload_ms", passes.upload_ms}, {"shadow_ms", passes.shadow_ms}, {"occluder_ms", passes.occluder_ms},
+            {"building_ms", passes.building_ms}, {"ground_ms", passes.ground_ms},
+            {"statistics_ms", passes.statistics_ms}, {"readback_ms", passes.readback_ms},
+            {"total_ms", passes.total_ms}};
+}
+
+std::string heldText(bool held) { return held ? "held" : "NOT held"; }
+
+}  // namespace
+
+namespace {
+
+// The worst figure over the poses for each goal, what the goal lines and the per-site table read.
+struct SiteWorst {
+    double baked_error = 0.0, between_error = 0.0, error_ratio = 0.0, frame_ratio = 0.0;
+    std::optional<double> over_sample;
+};
+
+// One pose's accuracy rows (printed) and its JSON; folds its figures into `worst`.
+Json reportPoseAccuracy(Bench& bench, const NamedView& named, const std::vector<PoseAccuracy>& measured,
+                        SiteWorst& worst) {
+    Json rows = Json::array();
+    for (const PoseAccuracy& pose : measured) {
+        const double ratio = pose.proposed.changed.mean_de00 / pose.direct.changed.mean_de00;
+        const double error = pose.proposed.changed.mean_de00;
+        double& worst_error = pose.instant.label == "baked" ? worst.baked_error : worst.between_error;
+        worst_error = std::max(worst_error, error);
+        worst.error_ratio = std::max(worst.error_ratio, ratio);
+        rows.push_back({{"instant", pose.instant.label}, {"local_time", bench.localTime(pose.instant.utc_seconds)},
+                        {"changed_pixels", pose.changed_pixels}, {"truth_noise", regionJson(pose.noise)},
+                        {"proposed", regionJson(pose.proposed)}, {"direct_only", regionJson(pose.direct)},
+                        {"proposed_over_direct_only", ratio}, {"error_goal", pose.instant.error_goal},
+                        {"error_goal_held", error <= pose.instant.error_goal}});
+        bench.say("| " + named.name + " | " + bench.localTime(pose.instant.utc_seconds) + " (" + pose.instant.label +
+                  ") | " + std::to_string(pose.changed_pixels) + " | " + fixed(pose.noise.changed.mean_de00) + " | " +
+                  fixed(error) + " / " + fixed(pose.proposed.changed.p95_de00) + " | " +
+                  fixed(pose.direct.changed.mean_de00) + " / " + fixed(pose.direct.changed.p95_de00) + " | " +
+                  fixed(ratio, 3) + " | " + (error <= pose.instant.error_goal ? "within " : "over ") +
+                  fixed(pose.instant.error_goal, 0) + " |");
+    }
+    return rows;
+}
+
+// One pose's frame row (printed) and its JSON; folds its ratios into `worst`.
+Json reportPoseFrame(Bench& bench, const NamedView& named, const PoseFrame& timed,
+                     const std::optional<double>& sample_ms, SiteWorst& worst) {
+    const double ratio = timed.proposed.median / timed.direct.median;
+    worst.frame_ratio = std::max(worst.frame_ratio, ratio);
+    std::optional<double> over_sample;
+    if (sample_ms) {
+        over_sample = timed.proposed.median / *sample_ms;
+        worst.over_sample = std::max(worst.over_sample.value_or(0.0), *over_sample);
+    }
+    const PassTimings& passes = timed.passes;
+    bench.say("| " + named.name + " | " + fixed(timed.proposed.median, 1) + " [" + fixed(timed.proposed.low, 1) +
+              ", " + fixed(timed.proposed.high, 1) + "] | " + fixed(timed.direct.median, 1) + " [" +
+              fixed(timed.direct.low, 1) + ", " + fixed(timed.direct.high, 1) + "] | " + fixed(ratio, 3) + " | " +
+              (sample_ms ? fixed(*sample_ms, 1) + " | " + fixed(*over_sample, 2) : std::string("n/a | n/a")) +
+              " | " + fixed(passes.shadow_ms, 1) + " / " + fixed(passes.occluder_ms, 1) + " / " +
+              fixed(passes.building_ms, 1) + " / " + fixed(passes.ground_ms, 1) + " / " +
+              fixed(passes.total_ms, 1) + " |");
+    return {{"proposed_ms", timed.proposed.median}, {"proposed_p10_ms", timed.proposed.low},
+            {"proposed_p90_ms", timed.proposed.high}, {"direct_only_ms", timed.direct.median},
+            {"direct_only_p10_ms", timed.direct.low}, {"direct_only_p90_ms", timed.direct.high},
+            {"proposed_over_direct_only", ratio}, {"sample_proposed_ms", sample_ms ? Json(*sample_ms) : Json()},
+            {"over_sample", over_sample ? Json(*over_sample) : Json()}, {"passes_proposed", passesJson(passes)}};
+}
+
+// The goal lines under the tables, and results["site"]["goals"].
+Json reportSiteGoals(Bench& bench, const SiteWorst& worst) {
+    const bool over_sample_held = worst.over_sample && *worst.over_sample <= kOverSampleLimit;
+    bench.say("");
+    bench.say("site goal: composite within " + fixed(kBakedErrorGoal, 0) + " mean dE00 at the baked instant, worst pose " +
+              fixed(worst.baked_error) + ": " + heldText(worst.baked_error <= kBakedErrorGoal));
+    bench.say("site goal: composite within " + fixed(kBetweenErrorGoal, 0) + " mean dE00 1.5 hours from it, worst pose " +
+              fixed(worst.between_error) + ": " + heldText(worst.between_error <= kBetweenErrorGoal));
+    bench.say("site goal: proposed error over direct-only's below 0.333, worst " + fixed(worst.error_ratio, 3) + ": " +
+              heldText(worst.error_ratio < kErrorRatioGoal));
+    bench.say("site goal: frame over direct-only's at 1280x720 (limit 1.10, goal 1.05), worst " +
+              fixed(worst.frame_ratio, 3) + ": " + heldText(worst.frame_ratio <= kFrameRatioLimit));
+    bench.say("site goal: frame over the sample's from the same pose at most 2x, worst " +
+              (worst.over_sample ? fixed(*worst.over_sample, 2) + ": " + heldText(over_sample_held)
+                                 : std::string("not measured (no --sample-results)")));
+    return {{"baked_error_worst", worst.baked_error}, {"baked_error_goal", kBakedErrorGoal},
+            {"between_error_worst", worst.between_error}, {"between_error_goal", kBetweenErrorGoal},
+            {"error_ratio_worst", worst.error_ratio}, {"error_ratio_goal_below", kErrorRatioGoal},
+            {"frame_ratio_worst", worst.frame_ratio}, {"frame_ratio_limit", kFrameRatioLimit},
+            {"frame_ratio_goal", kFrameRatioGoal},
+            {"over_sample_worst", worst.over_sample ? Json(*worst.over_sample) : Json()},
+            {"over_sample_limit", kOverSampleLimit},
+            {"held", {{"baked_error", worst.baked_error <= kBakedErrorGoal},
+                      {"between_error", worst.between_error <= kBetweenErrorGoal},
+                      {"error_ratio", worst.error_ratio < kErrorRatioGoal},
+                      {"frame_ratio", worst.frame_ratio <= kFrameRatioLimit},
+                      {"over_sample", worst.over_sample ? Json(over_sample_held) : Json()}}}};
+}
+
+}  // namespace
+
+void runSiteGoals(Bench& bench) {
+    const Settings& settings = bench.settings;
+    const CameraResponse response = benchCameraResponses()[0];
+    const std::vector<SiteInstant> instants = siteInstants(bench);
+    std::map<std::string, double> sample_ms;
+    if (settings.sample_results) sample_ms = sampleFrameTimesFrom(*settings.sample_results);
+    const std::string site_name = bench.renderer->site().site.name;
+    const size_t triangles = bench.bake_set.building.indices.size() / 3;
+    bench.say("");
+    bench.say("**Site goals: " + site_name + " (building " + std::to_string(triangles) + " triangles; accuracy " +
+              std::to_string(settings.accuracy_width) + "x" + std::to_string(settings.accuracy_height) + ", truth " +
+              std::to_string(settings.truth_samples) + " spp, sunny; mean / p95 dE00 over the building and shadow)**");
+    bench.say("| pose | site clock | building+shadow px | truth noise | proposed | direct-only | proposed / direct-only | goal |");
+    bench.say("| --- | --- | --- | --- | --- | --- | --- | --- |");
+    std::vector<std::vector<PoseAccuracy>> measured;
+    SiteWorst worst;
+    Json views = Json::array();
+    for (const NamedView& named : settings.views) {
+        measured.emplace_back();
+        for (const SiteInstant& instant : instants) measured.back().push_back(measurePose(bench, named, instant, response));
+        const BenchView& view = named.view;
+        views.push_back({{"name", named.name},
+                         {"position_enu", {view.position_enu.x, view.position_enu.y, view.position_enu.z}},
+                         {"look_at_enu", {view.look_at_enu.x, view.look_at_enu.y, view.look_at_enu.z}},
+                         {"horizontal_fov_deg", view.horizontal_fov_deg},
+                         {"accuracy", reportPoseAccuracy(bench, named, measured.back(), worst)}});
+    }
+    bench.say("");
+    bench.say("frame 1280x720, ms (median [p10, p90] of " + std::to_string(settings.timed_frames) +
+              " fenced frames, modes interleaved; passes: the proposed method's profile)");
+    bench.say("| pose | proposed | direct-only | proposed / direct-only | sample's proposed | over the sample's | "
+              "passes shadow / occluder / building / ground / total |");
+    bench.say("| --- | --- | --- | --- | --- | --- | --- |");
+    for (size_t index = 0; index < settings.views.size(); ++index) {
+        const NamedView& named = settings.views[index];
+        const auto sample = sample_ms.find(named.name);
+        const std::optional<double> reference =
+            sample == sample_ms.end() ? std::nullopt : std::optional<double>(sample->second);
+        views[index]["frame_1280x720"] =
+            reportPoseFrame(bench, named, timePose(bench, named, measured[index][0]), reference, worst);
+    }
+    bench.results["site"] = {{"name", site_name}, {"building_triangles", triangles},
+                             {"size", std::to_string(settings.accuracy_width) + "x" + std::to_string(settings.accuracy_height)},
+                             {"truth_samples", settings.truth_samples},
+                             {"sample_results", settings.sample_results ? Json(*settings.sample_results) : Json()},
+                             {"views", views}, {"goals", reportSiteGoals(bench, worst)}};
+}
+
+}  // namespace gusuku::bench
