@@ -9,6 +9,7 @@
 // without ground albedo refuses the mode with a clear error.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -37,7 +38,7 @@ using glm::dvec3;
 using shader_interface::ColourMatchState;
 
 constexpr uint32_t kWidth = 640, kHeight = 360, kStatisticsStride = 8;
-// The ground kernel's stride for this frame (3: groundMatchStride, pinned below).
+// The ground kernel's stride for this frame (7: groundMatchStride, pinned below).
 const uint32_t kStride = groundMatchStride(kWidth, kHeight, kStatisticsStride);
 const dvec3 kSkyLinear(0.35, 0.45, 0.8);
 
@@ -147,8 +148,8 @@ protected:
 // ---- CPU reference ------------------------------------------------------------------------------------------
 
 TEST(GroundMatchReference, StrideGivesEnoughSamples) {
-    EXPECT_EQ(groundMatchStride(1280, 720, 8), 7u);  // sqrt(921600 / 16384) = 7.5
-    EXPECT_EQ(groundMatchStride(640, 360, 8), 3u);   // 3.75
+    EXPECT_EQ(groundMatchStride(1280, 720, 8), 8u);  // sqrt(921600 / 4096) = 15, never coarser than the stride
+    EXPECT_EQ(groundMatchStride(640, 360, 8), 7u);   // 7.5
     EXPECT_EQ(groundMatchStride(96, 54, 8), 1u);     // every pixel of a small frame
     EXPECT_EQ(groundMatchStride(3840, 2160, 8), 8u);  // never coarser than the statistics stride
     EXPECT_EQ(groundMatchStride(3840, 2160, 4), 4u);
@@ -371,6 +372,7 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
     frame.weather = Weather::sunny();
     frame.exposure = 0.3f;
     frame.ground_ratio = false;  // the camera's ground pixels stay as they are; only the building differs
+    frame.colour_match = ColourMatch::kOff;  // the unmatched frames (the default, kAuto, is kGround on this set)
     std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128);
     frame.camera_rgba8 = placeholder.data();
     std::vector<uint8_t> unmatched(placeholder.size()), matched(placeholder.size());
@@ -422,6 +424,34 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
                 unmatched[centre + 2], matched[centre], matched[centre + 1], matched[centre + 2],
                 camera.rgba[centre], camera.rgba[centre + 1], camera.rgba[centre + 2]);
     EXPECT_GT(compared, 300u);
+}
+
+// The ground statistics' cost on this device (docs/runtime.md "Colour match" quotes it): the pass's dispatches
+// alone, fence-timed, median of 20 after a warm-up, on the synthesised ground frame.
+TEST_F(GroundMatchGpu, TimingPrintsTheMedianCostOfTheGroundStatistics) {
+    const GroundMatchView view = viewFor(groundPose());
+    const SynthesisedFrame frame = synthesise(scene_, view, dvec3(1.1, 1.0, 0.9));
+    ColourStatisticsPass pass(context(), kWidth, kHeight, kStatisticsStride, 8.0f, &scene_);
+    GpuBuffer camera(context(), frame.rgba.size());
+    camera.upload(frame.rgba.data(), frame.rgba.size());
+    std::vector<double> milliseconds;
+    for (int run = 0; run < 21; ++run) {
+        const auto start = std::chrono::steady_clock::now();
+        context().submitAndWait([&](VkCommandBuffer cmd) {
+            pass.recordSourceUpdate(cmd, LabStatistics{}, ColourMatchMode::kGround, 2.0f);
+            pass.recordGround(cmd, camera, view);
+        });
+        const auto end = std::chrono::steady_clock::now();
+        if (run > 0) milliseconds.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    }
+    std::sort(milliseconds.begin(), milliseconds.end());
+    const ColourMatchState state = pass.readState();
+    EXPECT_EQ(state.ground_frames_accepted, 21u);
+    std::printf("ground statistics %ux%u stride %u (%llu samples, %u on the ground): median %.3f ms, min %.3f, "
+                "max %.3f\n",
+                kWidth, kHeight, pass.groundGrid().stride, (unsigned long long)pass.groundGrid().sampleCount(),
+                state.frame_ground_samples, (milliseconds[9] + milliseconds[10]) / 2, milliseconds.front(),
+                milliseconds.back());
 }
 
 TEST(GroundMatchBakeSet, ManifestFieldRoundTripsAndIsOptional) {

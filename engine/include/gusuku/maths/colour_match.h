@@ -99,8 +99,9 @@
 namespace gusuku {
 
 /// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h); the
-/// runtime's API names it ColourMatch.
-enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3 };
+/// runtime's API names it ColourMatch. kAuto is the API's default and never reaches the GPU: each frame resolves it
+/// to kGround where the bake set has ground albedo and the device runs the statistics, else to kOff.
+enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3, kAuto = 4 };
 
 struct BakeSetData;
 
@@ -117,6 +118,12 @@ inline constexpr double kColourMatchGamutTolerance = 1e-5;
 /// Frames are accepted with at least this fraction of the samples valid (and at least the count below).
 inline constexpr double kColourStatisticsMinValidFraction = 0.05;
 inline constexpr uint32_t kColourStatisticsMinValidSamplesFloor = 16;
+/// The runtime measures the camera (packs the sampled pixels and runs the statistics) on one frame in this many,
+/// and always on the first frame of a mode and after a reset; the smoothing's time constant stays
+/// RuntimeOptions::statistics_smoothing_frames frames (the pass smooths with T / interval measurements). Why:
+/// on lavapipe each measurement costs a fixed ~0.3-0.5 ms of small dependent dispatches whatever the samples,
+/// and the light and the camera's exposure change over seconds, not frames.
+inline constexpr uint32_t kColourStatisticsInterval = 4;
 
 // ------------------------------------------------------------------------------------------------------------
 // Camera statistics
@@ -199,7 +206,7 @@ inline constexpr double kGroundMatchLowestLog2Ratio = -4.0;
 inline constexpr uint32_t kGroundMatchWindowBins = 4;
 inline constexpr int kGroundMatchHeightIterations = 4;
 inline constexpr double kGroundMatchMinPredicted = 1e-6;
-inline constexpr uint64_t kGroundMatchTargetSamples = 16384;
+inline constexpr uint64_t kGroundMatchTargetSamples = 4096;
 
 /// The ground kernel's stride: the largest s <= statistics_stride (and >= 1) with (width / s) (height / s) >=
 /// kGroundMatchTargetSamples, i.e. floor(sqrt(width height / target)) clamped to [1, statistics_stride]: 1280 x
