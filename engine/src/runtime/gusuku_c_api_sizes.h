@@ -63,7 +63,7 @@ struct StructLayouts<gusuku_runtime_options> {
     static constexpr bool library_writes = false;
     static constexpr StructLayout layouts[] = {
         GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, frame_width, direct_only_shadow_darkening),
-        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, shadow_sun_step_deg, msaa_samples),
+        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, shadow_sun_step_deg, max_anisotropy),
     };
 };
 

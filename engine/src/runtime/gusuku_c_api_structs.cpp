@@ -60,6 +60,7 @@ gusuku_runtime_options defaultOptions() {
     options.camera_ycbcr_range = gusuku_ycbcr_range(defaults.camera_ycbcr_range);
     options.frames_in_flight = defaults.frames_in_flight;
     options.msaa_samples = defaults.msaa_samples;
+    options.max_anisotropy = defaults.max_anisotropy;
     return options;
 }
 
@@ -102,6 +103,7 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.camera_ycbcr_range = YcbcrRange(options.camera_ycbcr_range);
     converted.frames_in_flight = options.frames_in_flight;
     converted.msaa_samples = options.msaa_samples;
+    converted.max_anisotropy = options.max_anisotropy;
     return converted;
 }
 

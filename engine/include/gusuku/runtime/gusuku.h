@@ -280,6 +280,8 @@ typedef struct gusuku_runtime_options {
     uint32_t msaa_samples;                /* samples a pixel of the building, occluder and ground-ratio draws
                                              (anti-aliasing), 1, 2, 4 or 8 and supported by the device
                                              (else GUSUKU_ERROR_DEVICE); 1 turns it off; default 4 */
+    float max_anisotropy;                 /* anisotropic filtering of textures, [1, 16] (1: off; above 1 the app
+                                             enabled samplerAnisotropy on its device); default 1 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
