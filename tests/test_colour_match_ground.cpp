@@ -457,6 +457,41 @@ TEST_F(GroundMatchGpu, TimingPrintsTheMedianCostOfTheGroundStatistics) {
                 milliseconds.back());
 }
 
+// The default, kAuto: on a bake set with ground albedo each frame is exactly kGround's (the same bytes, frame after
+// frame, from a fresh runtime each); on one without, exactly kOff's, and it never fails the frame.
+TEST_F(GroundMatchGpu, AutoIsTheGroundMatchWithGroundAlbedoAndOffWithout) {
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 256;
+    const GroundMatchView view = viewFor(groundPose());
+    const SynthesisedFrame camera = synthesise(scene_, view, dvec3(1.2, 1.0, 0.75));
+    FrameInput frame;
+    EXPECT_EQ(frame.colour_match, ColourMatch::kAuto);
+    frame.camera_rgba8 = camera.rgba.data();
+    frame.intrinsics = intrinsics();
+    frame.pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
+    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
+    frame.weather = Weather::sunny();
+    frame.exposure = 0.3f;
+    auto render = [&](const BakeSetData& bake_set, ColourMatch match) {
+        std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set, options);
+        frame.colour_match = match;
+        std::vector<std::vector<uint8_t>> outputs(6, std::vector<uint8_t>(camera.rgba.size()));
+        for (std::vector<uint8_t>& output : outputs) {
+            runtime->renderFrame(frame, output.data());
+            frame.utc_unix_seconds += 2.0;  // the light moves: frames between measurements differ too
+        }
+        frame.utc_unix_seconds -= 12.0;
+        return outputs;
+    };
+    const std::vector<std::vector<uint8_t>> ground = render(bake_set_, ColourMatch::kGround);
+    EXPECT_EQ(render(bake_set_, ColourMatch::kAuto), ground);
+    EXPECT_NE(render(bake_set_, ColourMatch::kOff), ground);  // the match changes the building
+    const BakeSetData without_albedo = testing::makeSyntheticBakeSet();
+    EXPECT_EQ(render(without_albedo, ColourMatch::kAuto), render(without_albedo, ColourMatch::kOff));
+}
+
 TEST(GroundMatchBakeSet, ManifestFieldRoundTripsAndIsOptional) {
     BakeSetData bake_set = bakeSetWithGroundAlbedo();
     EXPECT_EQ(findBakeSetProblem(bake_set), std::nullopt);

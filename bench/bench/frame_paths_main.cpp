@@ -136,6 +136,18 @@ void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
                     passMedian(&PassTimings::statistics_ms), passMedian(&PassTimings::occluder_ms),
                     passMedian(&PassTimings::building_ms), passMedian(&PassTimings::ground_ms),
                     passMedian(&PassTimings::readback_ms), passMedian(&PassTimings::total_ms));
+        if (settings.colour_match != ColourMatch::kOff) {
+            // The camera is measured one frame in kColourStatisticsInterval: the median is a frame between
+            // measurements, the largest a measuring one, the mean what a frame pays on average.
+            std::vector<double> match_ms;
+            for (const PassTimings& timings : run.profiles) match_ms.push_back(timings.upload_ms + timings.statistics_ms);
+            double sum = 0.0;
+            for (double value : match_ms) sum += value;
+            std::printf("  msaa %u, %-11s  uniforms + camera pack + colour statistics (ms): median %.2f, mean %.2f, "
+                        "largest %.2f over %zu profiled frames\n",
+                        run.msaa_samples, modeName(run.mode), median(match_ms), sum / double(match_ms.size()),
+                        *std::max_element(match_ms.begin(), match_ms.end()), match_ms.size());
+        }
     }
     if (settings.modes.size() == 2)
         for (size_t index = 0; index < runs.size(); index += per_count)
