@@ -86,8 +86,10 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both"}).value_or(0);
     if (mode == 1) settings.modes = {RenderMode::kDirectOnly};
     if (mode == 2) settings.modes = {RenderMode::kProposed, RenderMode::kDirectOnly};
-    const ColourMatch matches[4] = {ColourMatch::kOff, ColourMatch::kPaper, ColourMatch::kPreserve, ColourMatch::kGround};
-    settings.colour_match = matches[line.choice("--colour-match", {"off", "paper", "preserve", "ground"}).value_or(0)];
+    const ColourMatch matches[4] = {ColourMatch::kOff, ColourMatch::kPaper, ColourMatch::kPreserve,
+                                    ColourMatch::kGround};
+    const size_t match = line.choice("--colour-match", {"off", "paper", "preserve", "ground"}).value_or(0);
+    settings.colour_match = matches[match];
     line.positionals();
     line.finish();
     return settings;
@@ -140,7 +142,8 @@ void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
             // The camera is measured one frame in kColourStatisticsInterval: the median is a frame between
             // measurements, the largest a measuring one, the mean what a frame pays on average.
             std::vector<double> match_ms;
-            for (const PassTimings& timings : run.profiles) match_ms.push_back(timings.upload_ms + timings.statistics_ms);
+            for (const PassTimings& timings : run.profiles)
+                match_ms.push_back(timings.upload_ms + timings.statistics_ms);
             double sum = 0.0;
             for (double value : match_ms) sum += value;
             std::printf("  msaa %u, %-11s  uniforms + camera pack + colour statistics (ms): median %.2f, mean %.2f, "
