@@ -9,6 +9,7 @@
 // without ground albedo refuses the mode with a clear error.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -455,6 +456,65 @@ TEST_F(GroundMatchGpu, TimingPrintsTheMedianCostOfTheGroundStatistics) {
                 kWidth, kHeight, pass.groundGrid().stride, (unsigned long long)pass.groundGrid().sampleCount(),
                 state.frame_ground_samples, (milliseconds[9] + milliseconds[10]) / 2, milliseconds.front(),
                 milliseconds.back());
+}
+
+// kColourStatisticsInterval and the smoothing: after a step in the camera's gains (gA, then gB from frame 1 on),
+// the building keeps frame 0's colour on frames 1-3 (no measurement) and on frame 4, the next measurement, moves
+// by the smoothing weight of statistics_smoothing_frames / interval measurements (8 / 4: a half) towards gB:
+// gain gA + (gB - gA) / 2, the time constant still 8 frames. Read on the building's centre pixel, in linear.
+TEST_F(GroundMatchGpu, TheCameraIsMeasuredOneFrameInTheIntervalWithTheSmoothingInFrames) {
+    ASSERT_EQ(kColourStatisticsInterval, 4u);
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 512;
+    options.msaa_samples = 1;
+    ASSERT_EQ(options.statistics_smoothing_frames, 8.0f);
+    std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set_, options);
+    const CameraPose pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
+    FrameInput frame;
+    frame.intrinsics = intrinsics();
+    frame.pose = pose;
+    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
+    frame.weather = Weather::sunny();
+    frame.exposure = 0.3f;
+    frame.colour_match = ColourMatch::kOff;
+    std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128), output(placeholder.size());
+    frame.camera_rgba8 = placeholder.data();
+    const FrameInfo info = runtime->renderFrame(frame, output.data());
+    GroundMatchView view = viewFor(pose);  // the runtime's own view and light, as RuntimeDrawsTheBuilding... reads them
+    view.sun_direction_enu = info.sun_direction_enu;
+    view.sun_irradiance_rgb = info.sun_irradiance_rgb;
+    view.exposure = frame.exposure;
+    view.slots[0] = info.slot_a;
+    view.weights[0] = info.slot_b >= 0 ? 1.0f - info.slot_b_weight : 1.0f;
+    view.slots[1] = info.slot_b;
+    view.weights[1] = info.slot_b >= 0 ? info.slot_b_weight : 0.0f;
+    const dvec3 gain_a(1.0), gain_b(1.2, 1.0, 0.8);
+    const SynthesisedFrame camera_a = synthesise(scene_, view, gain_a), camera_b = synthesise(scene_, view, gain_b);
+    frame.colour_match = ColourMatch::kGround;
+    runtime->resetColourStatistics();
+    const size_t centre = (size_t(kHeight / 2) * kWidth + kWidth / 2) * 4;
+    std::vector<std::array<uint8_t, 3>> building;
+    for (int index = 0; index < 5; ++index) {
+        frame.camera_rgba8 = index == 0 ? camera_a.rgba.data() : camera_b.rgba.data();
+        runtime->renderFrame(frame, output.data());
+        building.push_back({output[centre], output[centre + 1], output[centre + 2]});
+    }
+    for (int index = 1; index < 4; ++index) EXPECT_EQ(building[index], building[0]) << "frame " << index;
+    const dvec3 expected_gain = gain_a + 0.5 * (gain_b - gain_a);
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(building[0][c], 40) << "the centre pixel is the building, away from the 8-bit floor";
+        const double first = srgbDecode(building[0][c] / 255.0), fifth = srgbDecode(building[4][c] / 255.0);
+        const double first_step = srgbDecode((building[0][c] + 0.5) / 255.0) - first;
+        const double fifth_step = srgbDecode(std::min(1.0, (building[4][c] + 0.5) / 255.0)) - fifth;
+        // Both gains within their frames' quantisation bounds (plus 1e-3 for float sums).
+        const double gain_error = expected_gain[c] * (std::max(camera_a.relative_quantisation_bound[c],
+                                                               camera_b.relative_quantisation_bound[c]) + 1e-3);
+        EXPECT_NEAR(fifth, expected_gain[c] / gain_a[c] * first,
+                    fifth_step + expected_gain[c] * first_step + 2.0 * gain_error * (first + first_step))
+            << "channel " << c;
+    }
 }
 
 // The default, kAuto: on a bake set with ground albedo each frame is exactly kGround's (the same bytes, frame after
