@@ -463,6 +463,7 @@ static void testRendersAndRefusesBadFrames(void) {
     for (i = 0; i < (size_t)kWidth * kHeight * 4; ++i) camera[i] = (uint8_t)(i % 4 == 3 ? 255 : 40 + (i * 7) % 160);
     CHECK_RESULT(gusuku_frame_input_default(&frame), GUSUKU_OK);
     CHECK(frame.exposure == 1.0f && frame.flags == (GUSUKU_FRAME_BLEND_SLOTS | GUSUKU_FRAME_GROUND_RATIO));
+    CHECK(frame.colour_match == GUSUKU_COLOUR_MATCH_AUTO); /* FrameInput's ColourMatch::kAuto */
     setCamera(&frame);
     frame.camera_rgba8 = camera;
     frame.utc_unix_seconds = 1782000000.0; /* 2026-06-21T00:00:00Z, 09:00 at the site */

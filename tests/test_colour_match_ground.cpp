@@ -9,6 +9,8 @@
 // without ground albedo refuses the mode with a clear error.
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -37,7 +39,7 @@ using glm::dvec3;
 using shader_interface::ColourMatchState;
 
 constexpr uint32_t kWidth = 640, kHeight = 360, kStatisticsStride = 8;
-// The ground kernel's stride for this frame (3: groundMatchStride, pinned below).
+// The ground kernel's stride for this frame (7: groundMatchStride, pinned below).
 const uint32_t kStride = groundMatchStride(kWidth, kHeight, kStatisticsStride);
 const dvec3 kSkyLinear(0.35, 0.45, 0.8);
 
@@ -147,8 +149,8 @@ protected:
 // ---- CPU reference ------------------------------------------------------------------------------------------
 
 TEST(GroundMatchReference, StrideGivesEnoughSamples) {
-    EXPECT_EQ(groundMatchStride(1280, 720, 8), 7u);  // sqrt(921600 / 16384) = 7.5
-    EXPECT_EQ(groundMatchStride(640, 360, 8), 3u);   // 3.75
+    EXPECT_EQ(groundMatchStride(1280, 720, 8), 8u);  // sqrt(921600 / 4096) = 15, never coarser than the stride
+    EXPECT_EQ(groundMatchStride(640, 360, 8), 7u);   // 7.5
     EXPECT_EQ(groundMatchStride(96, 54, 8), 1u);     // every pixel of a small frame
     EXPECT_EQ(groundMatchStride(3840, 2160, 8), 8u);  // never coarser than the statistics stride
     EXPECT_EQ(groundMatchStride(3840, 2160, 4), 4u);
@@ -374,6 +376,7 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
     frame.weather = Weather::sunny();
     frame.exposure = 0.3f;
     frame.ground_ratio = false;  // the camera's ground pixels stay as they are; only the building differs
+    frame.colour_match = ColourMatch::kOff;  // the unmatched frames (the default, kAuto, is kGround on this set)
     std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128);
     frame.camera_rgba8 = placeholder.data();
     std::vector<uint8_t> unmatched(placeholder.size()), matched(placeholder.size());
@@ -425,6 +428,128 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
                 unmatched[centre + 2], matched[centre], matched[centre + 1], matched[centre + 2],
                 camera.rgba[centre], camera.rgba[centre + 1], camera.rgba[centre + 2]);
     EXPECT_GT(compared, 300u);
+}
+
+// The ground statistics' cost on this device (docs/runtime.md "Colour match" quotes it): the pass's dispatches
+// alone, fence-timed, median of 20 after a warm-up, on the synthesised ground frame.
+TEST_F(GroundMatchGpu, TimingPrintsTheMedianCostOfTheGroundStatistics) {
+    const GroundMatchView view = viewFor(groundPose());
+    const SynthesisedFrame frame = synthesise(scene_, view, dvec3(1.1, 1.0, 0.9));
+    ColourStatisticsPass pass(context(), kWidth, kHeight, kStatisticsStride, 8.0f, &scene_);
+    GpuBuffer camera(context(), frame.rgba.size());
+    camera.upload(frame.rgba.data(), frame.rgba.size());
+    std::vector<double> milliseconds;
+    for (int run = 0; run < 21; ++run) {
+        const auto start = std::chrono::steady_clock::now();
+        context().submitAndWait([&](VkCommandBuffer cmd) {
+            pass.recordSourceUpdate(cmd, LabStatistics{}, ColourMatchMode::kGround, 2.0f);
+            pass.recordGround(cmd, camera, view);
+        });
+        const auto end = std::chrono::steady_clock::now();
+        if (run > 0) milliseconds.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    }
+    std::sort(milliseconds.begin(), milliseconds.end());
+    const ColourMatchState state = pass.readState();
+    EXPECT_EQ(state.ground_frames_accepted, 21u);
+    std::printf("ground statistics %ux%u stride %u (%llu samples, %u on the ground): median %.3f ms, min %.3f, "
+                "max %.3f\n",
+                kWidth, kHeight, pass.groundGrid().stride, (unsigned long long)pass.groundGrid().sampleCount(),
+                state.frame_ground_samples, (milliseconds[9] + milliseconds[10]) / 2, milliseconds.front(),
+                milliseconds.back());
+}
+
+// kColourStatisticsInterval and the smoothing: after a step in the camera's gains (gA, then gB from frame 1 on),
+// the building keeps frame 0's colour on frames 1-3 (no measurement) and on frame 4, the next measurement, moves
+// by the smoothing weight of statistics_smoothing_frames / interval measurements (8 / 4: a half) towards gB:
+// gain gA + (gB - gA) / 2, the time constant still 8 frames. Read on the building's centre pixel, in linear.
+TEST_F(GroundMatchGpu, TheCameraIsMeasuredOneFrameInTheIntervalWithTheSmoothingInFrames) {
+    ASSERT_EQ(kColourStatisticsInterval, 4u);
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 512;
+    options.msaa_samples = 1;
+    ASSERT_EQ(options.statistics_smoothing_frames, 8.0f);
+    std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set_, options);
+    const CameraPose pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
+    FrameInput frame;
+    frame.intrinsics = intrinsics();
+    frame.pose = pose;
+    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
+    frame.weather = Weather::sunny();
+    frame.exposure = 0.3f;
+    frame.colour_match = ColourMatch::kOff;
+    std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128), output(placeholder.size());
+    frame.camera_rgba8 = placeholder.data();
+    const FrameInfo info = runtime->renderFrame(frame, output.data());
+    GroundMatchView view = viewFor(pose);  // the runtime's own view and light, as RuntimeDrawsTheBuilding... reads them
+    view.sun_direction_enu = info.sun_direction_enu;
+    view.sun_irradiance_rgb = info.sun_irradiance_rgb;
+    view.exposure = frame.exposure;
+    view.slots[0] = info.slot_a;
+    view.weights[0] = info.slot_b >= 0 ? 1.0f - info.slot_b_weight : 1.0f;
+    view.slots[1] = info.slot_b;
+    view.weights[1] = info.slot_b >= 0 ? info.slot_b_weight : 0.0f;
+    const dvec3 gain_a(1.0), gain_b(1.2, 1.0, 0.8);
+    const SynthesisedFrame camera_a = synthesise(scene_, view, gain_a), camera_b = synthesise(scene_, view, gain_b);
+    frame.colour_match = ColourMatch::kGround;
+    runtime->resetColourStatistics();
+    const size_t centre = (size_t(kHeight / 2) * kWidth + kWidth / 2) * 4;
+    std::vector<std::array<uint8_t, 3>> building;
+    for (int index = 0; index < 5; ++index) {
+        frame.camera_rgba8 = index == 0 ? camera_a.rgba.data() : camera_b.rgba.data();
+        runtime->renderFrame(frame, output.data());
+        building.push_back({output[centre], output[centre + 1], output[centre + 2]});
+    }
+    for (int index = 1; index < 4; ++index) EXPECT_EQ(building[index], building[0]) << "frame " << index;
+    const dvec3 expected_gain = gain_a + 0.5 * (gain_b - gain_a);
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(building[0][c], 40) << "the centre pixel is the building, away from the 8-bit floor";
+        const double first = srgbDecode(building[0][c] / 255.0), fifth = srgbDecode(building[4][c] / 255.0);
+        const double first_step = srgbDecode((building[0][c] + 0.5) / 255.0) - first;
+        const double fifth_step = srgbDecode(std::min(1.0, (building[4][c] + 0.5) / 255.0)) - fifth;
+        // Both gains within their frames' quantisation bounds (plus 1e-3 for float sums).
+        const double gain_error = expected_gain[c] * (std::max(camera_a.relative_quantisation_bound[c],
+                                                               camera_b.relative_quantisation_bound[c]) + 1e-3);
+        EXPECT_NEAR(fifth, expected_gain[c] / gain_a[c] * first,
+                    fifth_step + expected_gain[c] * first_step + 2.0 * gain_error * (first + first_step))
+            << "channel " << c;
+    }
+}
+
+// The default, kAuto: on a bake set with ground albedo each frame is exactly kGround's (the same bytes, frame after
+// frame, from a fresh runtime each); on one without, exactly kOff's, and it never fails the frame.
+TEST_F(GroundMatchGpu, AutoIsTheGroundMatchWithGroundAlbedoAndOffWithout) {
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.shadow_map_size = 256;
+    const GroundMatchView view = viewFor(groundPose());
+    const SynthesisedFrame camera = synthesise(scene_, view, dvec3(1.2, 1.0, 0.75));
+    FrameInput frame;
+    EXPECT_EQ(frame.colour_match, ColourMatch::kAuto);
+    frame.camera_rgba8 = camera.rgba.data();
+    frame.intrinsics = intrinsics();
+    frame.pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
+    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
+    frame.weather = Weather::sunny();
+    frame.exposure = 0.3f;
+    auto render = [&](const BakeSetData& bake_set, ColourMatch match) {
+        std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set, options);
+        frame.colour_match = match;
+        std::vector<std::vector<uint8_t>> outputs(6, std::vector<uint8_t>(camera.rgba.size()));
+        for (std::vector<uint8_t>& output : outputs) {
+            runtime->renderFrame(frame, output.data());
+            frame.utc_unix_seconds += 2.0;  // the light moves: frames between measurements differ too
+        }
+        frame.utc_unix_seconds -= 12.0;
+        return outputs;
+    };
+    const std::vector<std::vector<uint8_t>> ground = render(bake_set_, ColourMatch::kGround);
+    EXPECT_EQ(render(bake_set_, ColourMatch::kAuto), ground);
+    EXPECT_NE(render(bake_set_, ColourMatch::kOff), ground);  // the match changes the building
+    const BakeSetData without_albedo = testing::makeSyntheticBakeSet();
+    EXPECT_EQ(render(without_albedo, ColourMatch::kAuto), render(without_albedo, ColourMatch::kOff));
 }
 
 TEST(GroundMatchBakeSet, ManifestFieldRoundTripsAndIsOptional) {

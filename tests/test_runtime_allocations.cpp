@@ -1,6 +1,7 @@
 // "A frame allocates nothing" (runtime.h), counted: malloc and operator new replaced (tests/allocation), 100
 // steady frames after a warm-up, the sun moving a few minutes a frame so the shadow maps, the ground quads and
-// the blended slots all change, in each mode and colour match; zero allocations by gusuku's side on the calling
+// the blended slots all change, in each mode and colour match (the synthetic set with a ground albedo, so kGround
+// and the default kAuto run the ground statistics); zero allocations by gusuku's side on the calling
 // thread. The Vulkan side (loader, validation layer, lavapipe) is not counted: it allocates per recorded command
 // by its own design (allocation_counter.h).
 
@@ -41,7 +42,9 @@ TEST_P(RuntimeAllocations, HundredFramesAllocateNothing) {
     options.frame_width = kWidth;
     options.frame_height = kHeight;
     options.shadow_map_size = 256;
-    std::unique_ptr<Runtime> runtime = Runtime::openHeadless(makeSyntheticBakeSet(), options);
+    testing::SyntheticBakeSetOptions bake_options;
+    bake_options.ground_albedo = 0.4f;  // so that the ground match (kGround, and kAuto's choice) runs
+    std::unique_ptr<Runtime> runtime = Runtime::openHeadless(makeSyntheticBakeSet(bake_options), options);
 
     std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4), output(camera.size());
     for (size_t index = 0; index < camera.size(); ++index) camera[index] = index % 4 == 3 ? 255 : uint8_t(index * 7);
@@ -82,6 +85,8 @@ INSTANTIATE_TEST_SUITE_P(
                       AllocationCase{"proposed_gpu_resident", RenderMode::kProposed, ColourMatch::kOff, false},
                       AllocationCase{"proposed_paper", RenderMode::kProposed, ColourMatch::kPaper, true},
                       AllocationCase{"proposed_preserve", RenderMode::kProposed, ColourMatch::kPreserve, true},
+                      AllocationCase{"proposed_ground", RenderMode::kProposed, ColourMatch::kGround, true},
+                      AllocationCase{"proposed_auto_gpu_resident", RenderMode::kProposed, ColourMatch::kAuto, false},
                       AllocationCase{"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, true}),
     [](const ::testing::TestParamInfo<AllocationCase>& info) { return std::string(info.param.name); });
 

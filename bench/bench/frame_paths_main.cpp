@@ -32,6 +32,7 @@ struct Settings {
     std::vector<RenderMode> modes{RenderMode::kProposed};
     long profiled_frames = 0;  // --profile N: N profiled frames per combination after the rounds
     bool ground_ratio = true;  // --no-ground-ratio: the last pass keeps only what it must (the resolve)
+    ColourMatch colour_match = ColourMatch::kOff;  // --colour-match: FrameInput::colour_match of every frame
 };
 
 struct PathRun {
@@ -71,7 +72,8 @@ Settings parseSettings(int argc, char** argv, bool& help) {
                     "                          [--msaa COUNTS (e.g. 1,4; default 4)]\n"
                     "                          [--mode proposed|direct-only|both (default proposed)]\n"
                     "                          [--profile N (N profiled frames each: every pass alone)]\n"
-                    "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n");
+                    "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n"
+                    "                          [--colour-match off|paper|preserve|ground (default off)]\n");
         return settings;
     }
     settings.width = long(line.integer("--width", 16, 8192).value_or(settings.width));
@@ -84,6 +86,10 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both"}).value_or(0);
     if (mode == 1) settings.modes = {RenderMode::kDirectOnly};
     if (mode == 2) settings.modes = {RenderMode::kProposed, RenderMode::kDirectOnly};
+    const ColourMatch matches[4] = {ColourMatch::kOff, ColourMatch::kPaper, ColourMatch::kPreserve,
+                                    ColourMatch::kGround};
+    const size_t match = line.choice("--colour-match", {"off", "paper", "preserve", "ground"}).value_or(0);
+    settings.colour_match = matches[match];
     line.positionals();
     line.finish();
     return settings;
@@ -92,8 +98,11 @@ Settings parseSettings(int argc, char** argv, bool& help) {
 const char* modeName(RenderMode mode) { return mode == RenderMode::kDirectOnly ? "direct-only" : "proposed"; }
 
 void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
-    std::printf("frame paths, %ldx%ld, %ld rounds x %ld frames each, interleaved (medians of round means)\n",
-                settings.width, settings.height, settings.rounds, settings.frames_per_round);
+    const char* match_names[4] = {"off", "paper", "preserve", "ground"};
+    std::printf("frame paths, %ldx%ld, colour match %s, %ld rounds x %ld frames each, interleaved (medians of round "
+                "means)\n",
+                settings.width, settings.height, match_names[uint32_t(settings.colour_match)], settings.rounds,
+                settings.frames_per_round);
     for (const PathRun& run : runs)
         std::printf("  msaa %u, %-11s  %-34s %8.2f ms a frame\n", run.msaa_samples, modeName(run.mode),
                     run.read_back ? "fenced   (read back, 1 slot):" : "resident (no read back, 2 slots):",
@@ -122,11 +131,26 @@ void printResults(const Settings& settings, const std::vector<PathRun>& runs) {
             for (const PassTimings& timings : run.profiles) values.push_back(timings.*pass);
             return median(values);
         };
-        std::printf("  msaa %u, %-11s  profile (each pass alone, ms): camera in + occluder %.2f, building %.2f, "
-                    "ground ratio + resolve %.2f, read-back %.2f, total %.2f\n",
-                    run.msaa_samples, modeName(run.mode), passMedian(&PassTimings::occluder_ms),
+        std::printf("  msaa %u, %-11s  profile (each pass alone, ms): uniforms + camera pack %.2f, colour statistics "
+                    "%.2f, camera in + occluder %.2f, building %.2f, ground ratio + resolve %.2f, read-back %.2f, "
+                    "total %.2f\n",
+                    run.msaa_samples, modeName(run.mode), passMedian(&PassTimings::upload_ms),
+                    passMedian(&PassTimings::statistics_ms), passMedian(&PassTimings::occluder_ms),
                     passMedian(&PassTimings::building_ms), passMedian(&PassTimings::ground_ms),
                     passMedian(&PassTimings::readback_ms), passMedian(&PassTimings::total_ms));
+        if (settings.colour_match != ColourMatch::kOff) {
+            // The camera is measured one frame in kColourStatisticsInterval: the median is a frame between
+            // measurements, the largest a measuring one, the mean what a frame pays on average.
+            std::vector<double> match_ms;
+            for (const PassTimings& timings : run.profiles)
+                match_ms.push_back(timings.upload_ms + timings.statistics_ms);
+            double sum = 0.0;
+            for (double value : match_ms) sum += value;
+            std::printf("  msaa %u, %-11s  uniforms + camera pack + colour statistics (ms): median %.2f, mean %.2f, "
+                        "largest %.2f over %zu profiled frames\n",
+                        run.msaa_samples, modeName(run.mode), median(match_ms), sum / double(match_ms.size()),
+                        *std::max_element(match_ms.begin(), match_ms.end()), match_ms.size());
+        }
     }
     if (settings.modes.size() == 2)
         for (size_t index = 0; index < runs.size(); index += per_count)
@@ -152,7 +176,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        const BakeSetData bake_set = testing::makeSyntheticBakeSet();
+        testing::SyntheticBakeSetOptions bake_options;
+        bake_options.ground_albedo = 0.4f;  // so that --colour-match ground can run
+        const BakeSetData bake_set = testing::makeSyntheticBakeSet(bake_options);
         std::vector<PathRun> runs;
         for (uint32_t samples : settings.msaa_counts) {
             RuntimeOptions options;
@@ -181,6 +207,7 @@ int main(int argc, char** argv) {
         frame.weather = Weather::sunny();
         frame.exposure = 0.1f;
         frame.ground_ratio = settings.ground_ratio;
+        frame.colour_match = settings.colour_match;
         auto runRound = [&](PathRun& path, long round) {
             frame.mode = path.mode;
             const Clock::time_point start = Clock::now();

@@ -26,6 +26,12 @@
 GUSUKU_PUSH_CONSTANTS_BEGIN(CameraPushConstants)
     uint frame_width;
     uint view_decodes_srgb;  // 1: the view is an _SRGB format, so sampling returns linear values
+    // The packing kernel only (the draw leaves them 0): the statistics' sample grid (ColourStatisticsGrid of
+    // gusuku/maths/colour_match.h), so that only the pixels they read are packed.
+    uint pack_stride;
+    uint pack_offset;
+    uint pack_samples_x;
+    uint pack_samples_y;
 GUSUKU_PUSH_CONSTANTS_END(CameraPushConstants, camera_push)
 
 #endif

@@ -1,7 +1,9 @@
 #version 450
 // The camera as packed RGBA8 words (R in the low byte, sRGB, row 0 at the top) for the colour statistics
-// kernels, which read the camera that way. Runs only on frames with a colour match on; it reads the camera in
-// place through camera_sample.glsl, so the statistics see what the composite shows.
+// kernels, which read the camera that way. Runs only on frames with a colour match on, one invocation per pixel of
+// the statistics' sample grid (camera_push.pack_*): only those words are written, each at its pixel's place in the
+// frame-sized buffer (the others keep whatever they held; nothing reads them). It reads the camera in place
+// through camera_sample.glsl, so the statistics see what the composite shows.
 #extension GL_GOOGLE_include_directive : require
 #include "camera_interface.h"
 #include "colour.glsl"
@@ -14,8 +16,8 @@ layout(std430, set = 1, binding = CAMERA_PACKED_BINDING) writeonly buffer Packed
 #include "camera_sample.glsl"
 
 void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    const ivec2 size = textureSize(camera_plane0, 0);
-    if (pixel.x >= size.x || pixel.y >= size.y) return;
+    const uvec2 sample_index = gl_GlobalInvocationID.xy;
+    if (sample_index.x >= camera_push.pack_samples_x || sample_index.y >= camera_push.pack_samples_y) return;
+    const ivec2 pixel = ivec2(uvec2(camera_push.pack_offset) + sample_index * camera_push.pack_stride);
     camera_rgba8[pixel.y * int(camera_push.frame_width) + pixel.x] = packUnorm4x8(cameraSrgbPixel(pixel));
 }

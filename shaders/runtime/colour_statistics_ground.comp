@@ -48,9 +48,11 @@ int groundCellOfPixel(uvec2 pixel) {
         previous = cell;
         cell = cellAt(origin.xy + t * direction.xy);
         if (cell < 0 || cells[cell].ground < 0.5) return -1;
+        // Settled: the next step would start from this same cell's height, so every later step repeats it.
+        if (cell == previous) return cell;
         height = cells[cell].height_m;
     }
-    return cell == previous ? cell : -1;
+    return -1;  // not settled on one cell
 }
 
 vec3 slotWithout(uint slot, float weight, int cell) {

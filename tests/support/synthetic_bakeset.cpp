@@ -101,6 +101,10 @@ BakeSetData makeSyntheticBakeSet(const SyntheticBakeSetOptions& options) {
             data.ground_geometry.rgba[texel * 4 + 2] = 1.0f;
             data.ground_geometry.rgba[texel * 4 + 3] = float(syntheticGroundHeight(options, y));
         }
+    if (options.ground_albedo > 0.0f) {
+        manifest.ground_grid.albedo = "ground_albedo.exr";
+        data.ground_albedo = constantImage(cells, cells, options.ground_albedo, 1.0f);
+    }
 
     SunObserver observer;
     observer.latitude_deg = kLatitude;

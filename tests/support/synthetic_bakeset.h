@@ -32,6 +32,9 @@ struct SyntheticBakeSetOptions {
     /// occluder follows it (two levels and the riser), so the sample's terrace steps have a closed-form twin.
     double step_height_m = 0.0;
     double step_north_m = -3.0;
+    /// A grey ground albedo in every cell (ground_grid.albedo), so the ground colour match (ColourMatch::kGround)
+    /// can run; 0: none, as in bake sets made before the field existed.
+    float ground_albedo = 0.0f;
 };
 
 /// The ground's height (ENU z) at (x, y) for these options: 0, or -step_height_m south of the step.

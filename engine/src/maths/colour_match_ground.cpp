@@ -86,10 +86,12 @@ std::optional<size_t> groundMatchCellOfPixel(const GroundMatchScene& scene, cons
         previous = cell;
         cell = cellAt(scene.grid, origin.x + t * direction.x, origin.y + t * direction.y);
         if (cell < 0 || !scene.cells[size_t(cell)].ground) return std::nullopt;
+        // Settled: the next step would start from this same cell's height, so every later step repeats it (the
+        // GPU stops here too: on flat ground after the second step instead of the fifth).
+        if (cell == previous) return size_t(cell);
         height = scene.cells[size_t(cell)].height_m;
     }
-    if (cell != previous) return std::nullopt;  // not settled on one cell
-    return size_t(cell);
+    return std::nullopt;  // not settled on one cell
 }
 
 glm::dvec3 groundMatchPredictedRadiance(const GroundMatchScene& scene, const GroundMatchView& view, size_t cell) {

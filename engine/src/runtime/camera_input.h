@@ -18,6 +18,7 @@
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_device.h"
 #include "gusuku/gpu/gpu_image.h"
+#include "gusuku/maths/colour_match.h"
 #include "gusuku/runtime/runtime.h"
 
 namespace gusuku::runtime_detail {
@@ -50,14 +51,17 @@ public:
     bool needsEviction(const FrameInput& frame) const;
 
     /// Before the frame's passes, outside a render pass: the staged pixels into the plane images, the app
-    /// image's layout for sampling, and (pack) the packed words for the statistics, each with its barriers.
-    void recordBeforePasses(VkCommandBuffer cmd, uint32_t slot, const FrameInput& frame, bool pack);
+    /// image's layout for sampling, and (pack_grid not null) the packed words of that sample grid's pixels for the
+    /// statistics (the colour match's grid this frame: only what they read), each with its barriers.
+    void recordBeforePasses(VkCommandBuffer cmd, uint32_t slot, const FrameInput& frame,
+                            const ColourStatisticsGrid* pack_grid);
     /// The camera-in draw, first in the main pass (viewport set by the caller).
     void recordDraw(VkCommandBuffer cmd, uint32_t slot) const;
     /// After the frame's passes: the app image back to TRANSFER_SRC_OPTIMAL when it came so.
     void recordAfterPasses(VkCommandBuffer cmd, const FrameInput& frame) const;
 
-    /// The packed camera (frame_width * frame_height RGBA8 words), written by recordBeforePasses with pack.
+    /// The packed camera (frame_width * frame_height RGBA8 words), written by recordBeforePasses at the pixels of
+    /// its pack_grid (the others hold older frames' words or nothing).
     const GpuBuffer& packedBuffer() const { return packed_buffer_; }
 
     /// Lets go of an app image's view (the caller waited for the frames that read it); false when unknown.
@@ -84,7 +88,7 @@ private:
     void stageHostPixels(uint32_t slot, const FrameInput& frame);
     void pointSlotAt(uint32_t slot, VkImageView plane0, VkImageView plane1, VkImageLayout layout);
     void recordUpload(VkCommandBuffer cmd, uint32_t slot) const;
-    void recordPack(VkCommandBuffer cmd, uint32_t slot) const;
+    void recordPack(VkCommandBuffer cmd, uint32_t slot, const ColourStatisticsGrid& grid) const;
     void releaseView(CachedView& entry);
     void destroy() noexcept;
 

@@ -77,7 +77,7 @@ gusuku_frame_input defaultFrame() {
     frame.weather.cloud_cover = defaults.weather.cloud_cover;
     frame.exposure = defaults.exposure;
     frame.mode = GUSUKU_MODE_PROPOSED;
-    frame.colour_match = GUSUKU_COLOUR_MATCH_OFF;
+    frame.colour_match = GUSUKU_COLOUR_MATCH_AUTO;  // FrameInput's ColourMatch::kAuto
     frame.flags = (defaults.blend_slots ? GUSUKU_FRAME_BLEND_SLOTS : 0u) |
                   (defaults.ground_ratio ? GUSUKU_FRAME_GROUND_RATIO : 0u);
     return frame;
@@ -164,6 +164,7 @@ std::string convertFrame(const gusuku_frame_input& frame, FrameInput& converted)
     case GUSUKU_COLOUR_MATCH_PAPER: converted.colour_match = ColourMatch::kPaper; break;
     case GUSUKU_COLOUR_MATCH_PRESERVE: converted.colour_match = ColourMatch::kPreserve; break;
     case GUSUKU_COLOUR_MATCH_GROUND: converted.colour_match = ColourMatch::kGround; break;
+    case GUSUKU_COLOUR_MATCH_AUTO: converted.colour_match = ColourMatch::kAuto; break;
     default: return "colour_match: " + std::to_string(int(frame.colour_match)) + " is not a gusuku_colour_match";
     }
     const uint32_t known = GUSUKU_FRAME_BLEND_SLOTS | GUSUKU_FRAME_GROUND_RATIO;

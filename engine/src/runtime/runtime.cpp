@@ -121,7 +121,9 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         if (ColourStatisticsPass::deviceSupports(gpu_))
             statistics_ = std::make_unique<ColourStatisticsPass>(gpu_, options.frame_width, options.frame_height,
                                                                  options.statistics_stride,
-                                                                 options.statistics_smoothing_frames,
+                                                                 // T frames = T / interval measurements
+                                                                 options.statistics_smoothing_frames /
+                                                                     float(kColourStatisticsInterval),
                                                                  ground ? &*ground : nullptr);
         else
             colour_state_without_match_ =

@@ -95,22 +95,31 @@ void RuntimeImpl::uploadGroundSelection(FrameSlot& slot) {
     slot.ground_candidates.upload(ground_shadow_candidate_.data(), ground_shadow_candidate_.size() * sizeof(float));
 }
 
-// The colour match's mode and source this frame, and mode kGround's view.
+// The colour match's mode and source this frame, and mode kGround's view; kAuto resolved (kGround where the bake
+// set and the device allow it, else kOff: a default never makes a frame fail); whether the frame measures the
+// camera (one in kColourStatisticsInterval, the first of a mode, the first after a reset).
 void RuntimeImpl::prepareColourMatch(const FrameInput& frame, const FrameLighting& lighting, const SlotBlend& blend) {
-    if (frame.colour_match != ColourMatchMode::kOff && !statistics_)
+    ColourMatchMode requested = frame.colour_match;
+    if (requested == ColourMatchMode::kAuto)
+        requested = statistics_ && statistics_->hasGround() ? ColourMatchMode::kGround : ColourMatchMode::kOff;
+    if (requested != ColourMatchMode::kOff && !statistics_)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "frame: colour_match: needs subgroup arithmetic in compute shaders (a Vulkan 1.1 instance "
                            "and device), which this device lacks: use colour_match off");
-    if (frame.colour_match == ColourMatchMode::kGround && !statistics_->hasGround())
+    if (requested == ColourMatchMode::kGround && !statistics_->hasGround())
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "frame: colour_match: ground needs the bake set's ground_grid.albedo, which this bake set "
                            "lacks (bake it again)");
     const ColourSource source =
-        colourSourceFor(frame.colour_match, frame.mode == RenderMode::kDirectOnly, blend, slot_colour_statistics_);
+        colourSourceFor(requested, frame.mode == RenderMode::kDirectOnly, blend, slot_colour_statistics_);
     if (source.mode == ColourMatchMode::kGround)
         frame_ground_view_ = groundMatchViewFor(frame, lighting, sun_shines_, blend);
     if (source.statistics) frame_source_statistics_ = *source.statistics;
+    if (source.mode != frame_colour_mode_) frames_to_next_measurement_ = 0;
     frame_colour_mode_ = source.mode;
+    frame_measures_colour_ = source.mode != ColourMatchMode::kOff && frames_to_next_measurement_ == 0;
+    if (frame_measures_colour_) frames_to_next_measurement_ = kColourStatisticsInterval - 1;
+    else if (frames_to_next_measurement_ > 0) --frames_to_next_measurement_;
 }
 
 }  // namespace gusuku::runtime_detail

@@ -64,6 +64,7 @@ public:
     void forgetCameraImage(VkImage image) override;
     void resetColourStatistics() override {
         if (statistics_) statistics_->reset();
+        frames_to_next_measurement_ = 0;  // the next frame with a match measures the camera
     }
     void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
@@ -199,7 +200,9 @@ private:
     bool frame_set_bound_ = false;  // the frame set is bound in the command buffer being recorded
     bool site_shadows_ = false;
     LabStatistics frame_source_statistics_{};
-    ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;
+    ColourMatchMode frame_colour_mode_ = ColourMatchMode::kOff;  // resolved (never kAuto)
+    bool frame_measures_colour_ = false;  // this frame packs the camera and runs the statistics
+    uint32_t frames_to_next_measurement_ = 0;  // kColourStatisticsInterval's countdown
     GroundMatchView frame_ground_view_;  // mode kGround: this frame's camera and light
 };
 

@@ -26,12 +26,19 @@ void RuntimeImpl::recordFrameStart(VkCommandBuffer cmd, const FrameInput& frame)
     barrier.dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, uniform_readers, 0, 1, &barrier, 0, nullptr, 0,
                          nullptr);
-    camera_->recordBeforePasses(cmd, slot_, frame, frame_colour_mode_ != ColourMatchMode::kOff);
+    // The pack writes only the pixels this frame's statistics read (the ground grid, or the Lab modes' grid),
+    // and only on the frames that measure.
+    const ColourStatisticsGrid* pack_grid = nullptr;
+    if (statistics_ && frame_measures_colour_)
+        pack_grid = frame_colour_mode_ == ColourMatchMode::kGround ? &statistics_->groundGrid() : &statistics_->grid();
+    camera_->recordBeforePasses(cmd, slot_, frame, pack_grid);
 }
 
 void RuntimeImpl::recordStatistics(VkCommandBuffer cmd, const FrameInput& frame) {
     if (!statistics_) return;  // no colour match on this device (prepareColourMatch refused any other mode)
+    // Every frame: the mode and the source follow the frame; the smoothed camera state stays between measurements.
     statistics_->recordSourceUpdate(cmd, frame_source_statistics_, frame_colour_mode_, options_.colour_gain_limit);
+    if (!frame_measures_colour_) return;
     if (frame_colour_mode_ == ColourMatchMode::kGround)
         statistics_->recordGround(cmd, camera_->packedBuffer(), frame_ground_view_);
     else if (frame_colour_mode_ != ColourMatchMode::kOff)

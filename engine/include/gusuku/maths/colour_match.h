@@ -53,12 +53,16 @@
 // over the same pixels undoes exposure and white balance exactly, and a tone curve to first order about the
 // ground's brightness; the building's exposed linear colour is multiplied by it. Choices:
 // - Pixels: the sample grid above, at groundMatchStride: the statistics stride, made finer until the frame
-//   has at least kGroundMatchTargetSamples samples (every pixel of a small frame). The gain is a ratio over
-//   the ground's samples alone, a fraction of the frame: on the bench's 96 x 54 frames stride 8 leaves 17 of
-//   them, whose texture and noise moved the gain by up to 9 %; every pixel gives 589 and 1-2 %. Each sample's ray (through the pixel's centre) is intersected with the
-//   ground grid as a height field: a plane at the mean height of the cells with ground, then
+//   has at least kGroundMatchTargetSamples (4096) samples (every pixel of a small frame). The gain is a ratio
+//   over the ground's samples alone, a fraction of the frame: on the bench's 96 x 54 frames stride 8 leaves 17
+//   of them, whose texture and noise moved the gain by up to 9 %; every pixel gives 589 and 1-2 %. 4096 (640 x
+//   360 at stride 7: ~3000 on the ground in the tests' view) instead of 16384 (stride 3) cut the ground
+//   statistics on lavapipe from ~2.8 ms to ~0.6 ms; the bench's frames (160 x 90 and smaller) keep every pixel.
+//   Each sample's ray (through the pixel's centre) is intersected with the
+//   ground grid as a height field: a plane at the mean height of the cells with ground, then up to
 //   kGroundMatchHeightIterations steps of "the height of the cell the ray reaches at the current height"; the
-//   sample counts only if the last step stays in the same cell, the cell has ground and albedo, the ray goes
+//   sample counts only if a step lands in the cell it started from (then every later step would too, so the
+//   march stops there), the cell has ground and albedo, the ray goes
 //   down (d.z < -1e-6) and t > 0. Nearest cell, no interpolation (the gain is a ratio of sums over hundreds of
 //   cells: per-cell detail averages out).
 // - V = 1: the real site's shadows are not looked up (the statistics run before the shadow maps, and on
@@ -99,8 +103,9 @@
 namespace gusuku {
 
 /// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h); the
-/// runtime's API names it ColourMatch.
-enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3 };
+/// runtime's API names it ColourMatch. kAuto is the API's default and never reaches the GPU: each frame resolves it
+/// to kGround where the bake set has ground albedo and the device runs the statistics, else to kOff.
+enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3, kAuto = 4 };
 
 struct BakeSetData;
 
@@ -117,6 +122,12 @@ inline constexpr double kColourMatchGamutTolerance = 1e-5;
 /// Frames are accepted with at least this fraction of the samples valid (and at least the count below).
 inline constexpr double kColourStatisticsMinValidFraction = 0.05;
 inline constexpr uint32_t kColourStatisticsMinValidSamplesFloor = 16;
+/// The runtime measures the camera (packs the sampled pixels and runs the statistics) on one frame in this many,
+/// and always on the first frame of a mode and after a reset; the smoothing's time constant stays
+/// RuntimeOptions::statistics_smoothing_frames frames (the pass smooths with T / interval measurements). Why:
+/// on lavapipe each measurement costs a fixed ~0.3-0.5 ms of small dependent dispatches whatever the samples,
+/// and the light and the camera's exposure change over seconds, not frames.
+inline constexpr uint32_t kColourStatisticsInterval = 4;
 
 // ------------------------------------------------------------------------------------------------------------
 // Camera statistics
@@ -199,11 +210,11 @@ inline constexpr double kGroundMatchLowestLog2Ratio = -4.0;
 inline constexpr uint32_t kGroundMatchWindowBins = 4;
 inline constexpr int kGroundMatchHeightIterations = 4;
 inline constexpr double kGroundMatchMinPredicted = 1e-6;
-inline constexpr uint64_t kGroundMatchTargetSamples = 16384;
+inline constexpr uint64_t kGroundMatchTargetSamples = 4096;
 
 /// The ground kernel's stride: the largest s <= statistics_stride (and >= 1) with (width / s) (height / s) >=
 /// kGroundMatchTargetSamples, i.e. floor(sqrt(width height / target)) clamped to [1, statistics_stride]: 1280 x
-/// 720 at stride 8 gives 7, 96 x 54 gives 1.
+/// 720 at stride 8 gives 8, 640 x 360 gives 7, 96 x 54 gives 1.
 uint32_t groundMatchStride(uint32_t width, uint32_t height, uint32_t statistics_stride);
 
 /// One ground-grid cell as the match reads it (float: what the GPU holds).

@@ -295,9 +295,11 @@ typedef enum gusuku_colour_match {
     GUSUKU_COLOUR_MATCH_OFF = 0,
     GUSUKU_COLOUR_MATCH_PAPER = 1,     /* Reinhard per-channel Lab transfer */
     GUSUKU_COLOUR_MATCH_PRESERVE = 2,  /* lightness and white balance towards the camera, chroma spread kept */
-    GUSUKU_COLOUR_MATCH_GROUND = 3     /* per-channel gain that takes the bake set's predicted ground to the
+    GUSUKU_COLOUR_MATCH_GROUND = 3,    /* per-channel gain that takes the bake set's predicted ground to the
                                           camera's (needs a bake set with ground albedo: else the frame fails
                                           with GUSUKU_ERROR_INVALID_FRAME) */
+    GUSUKU_COLOUR_MATCH_AUTO = 4       /* the default: GROUND where the bake set has ground albedo and the device
+                                          runs the statistics, else OFF; never fails a frame */
 } gusuku_colour_match;
 
 /* gusuku_frame_input.flags */
@@ -345,7 +347,7 @@ typedef struct gusuku_frame_input {
     gusuku_weather weather;
     float exposure;                     /* display-linear value per unit radiance, > 0; default 1 */
     gusuku_render_mode mode;            /* default GUSUKU_MODE_PROPOSED */
-    gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_OFF (exposure given) */
+    gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_AUTO (ground where possible, else off) */
     uint32_t flags;                     /* GUSUKU_FRAME_*; default BLEND_SLOTS | GROUND_RATIO */
 
     /* API version 1 (runtime.h's FrameInput and FrameSync say more): */

@@ -16,8 +16,9 @@
 // R16G16B16A16_SFLOAT sampled with linear filtering; the camera format's plane formats sampled (R8G8B8A8_SRGB,
 // B8G8R8A8_SRGB, or R8_UNORM and R8G8_UNORM); RuntimeOptions::msaa_samples among the framebuffer colour and depth
 // sample counts. Timeline semaphores in FrameSync only if the app enabled them on its device. The colour matches
-// (FrameInput::colour_match other than kOff) also need a Vulkan 1.1 instance (GpuDevice::instance_api_version)
-// and subgroup arithmetic in compute shaders; without them the runtime opens and refuses only those frames.
+// (FrameInput::colour_match kPaper, kPreserve, kGround) also need a Vulkan 1.1 instance
+// (GpuDevice::instance_api_version) and subgroup arithmetic in compute shaders; without them the runtime opens and
+// refuses only those frames (the default, kAuto, is then off).
 // Nothing else: no extension, no optional feature.
 //
 // Threads and lifetimes: one Runtime is used from one thread at a time (its calls are not synchronised with
@@ -124,6 +125,8 @@ struct Weather {
 ///              observed / predicted multiplies the building's exposed colour (undoes exposure and white balance,
 ///              a tone curve to first order). Needs a bake set with ground_grid.albedo: with an older one a
 ///              frame asking for it throws RuntimeError kInvalidFrame.
+///   kAuto      the default: kGround where the bake set has ground albedo and the device has subgroup arithmetic,
+///              else kOff; resolved each frame, so it never makes a frame fail.
 using ColourMatch = ColourMatchMode;
 
 enum class RenderMode {
@@ -252,10 +255,10 @@ struct FrameInput {
     /// docs/platform-light.md; ColourMatch::kGround estimates it from the frame when the platform gives nothing.
     float exposure = 1.0f;
     RenderMode mode = RenderMode::kProposed;
-    /// Off by default: with the camera's exposure known (the platform's light estimate, or a rendered camera)
-    /// the building is already exposed like the camera. The matches are for a camera whose exposure and white
-    /// balance are unknown; gusuku-bench measures when they help and when they hurt.
-    ColourMatch colour_match = ColourMatch::kOff;
+    /// kAuto by default: the ground match where the bake set and the device allow it (it undoes an unknown
+    /// exposure and white balance, and leaves a known one nearly as it is), else off. kOff for a camera whose
+    /// exposure is known exactly (a rendered camera); gusuku-bench measures when each match helps and hurts.
+    ColourMatch colour_match = ColourMatch::kAuto;
     bool blend_slots = true;   ///< blend the two sunny slots whose suns are nearest (false: the nearest alone)
     bool ground_ratio = true;  ///< apply the shadow-catcher ratio to the camera pixels (false: leave them)
 };
