@@ -124,20 +124,7 @@ TEST_F(RuntimeTest, CameraPixelsOutsideTheBuildingsReachAreUnchangedBitForBit) {
         for (uint32_t x = 0; x < kWidth; ++x) {
             const glm::dvec3 ray = pose.camera_to_enu * glm::dvec3((x + 0.5 - kWidth / 2.0) / 120.0,
                                                                    (y + 0.5 - kHeight / 2.0) / 120.0, 1.0);
-            bool near_building = false;
-            if (ray.z < 0.0) {
-                const glm::dvec3 ground = pose.position_enu + ray * (-pose.position_enu.z / ray.z);
-                // Back along the sun, does the point's ray pass within 0.5 m of the box (shadow plus PCF margin)?
-                for (double t = 0.0; t < 20.0 && !near_building; t += 0.05) {
-                    const glm::dvec3 p = ground + sun * t;
-                    near_building = std::abs(p.x) < 1.5 && std::abs(p.y) < 1.5 && p.z < 3.5;
-                }
-            }
-            // Pixels whose ray passes near the box itself may show it.
-            for (double t = 0.0; t < 40.0 && !near_building; t += 0.05) {
-                const glm::dvec3 p = pose.position_enu + glm::normalize(ray) * t;
-                near_building = std::abs(p.x) < 1.3 && std::abs(p.y) < 1.3 && p.z > -0.3 && p.z < 3.3;
-            }
+            const bool near_building = testing::mayShowTheBoxOrItsShadow(pose.position_enu, ray, sun, 0.3);
             const size_t at = (size_t(y) * kWidth + x) * 4;
             const bool same = std::equal(camera.begin() + at, camera.begin() + at + 4, output.begin() + at);
             if (!near_building) {

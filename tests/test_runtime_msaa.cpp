@@ -194,19 +194,8 @@ TEST_F(RuntimeMsaa, CameraPixelsAwayFromTheBuildingPassThroughBitForBit) {
         for (uint32_t x = 0; x < kWidth; ++x) {
             const glm::dvec3 ray = pose.camera_to_enu * glm::dvec3((x + 0.5 - kWidth / 2.0) / kFocal,
                                                                    (y + 0.5 - kHeight / 2.0) / kFocal, 1.0);
-            bool near_building = false;
-            if (ray.z < 0.0) {
-                const glm::dvec3 ground = pose.position_enu + ray * (-pose.position_enu.z / ray.z);
-                for (double t = 0.0; t < 20.0 && !near_building; t += 0.05) {
-                    const glm::dvec3 p = ground + sun * t;
-                    near_building = std::abs(p.x) < 1.5 && std::abs(p.y) < 1.5 && p.z < 3.5;
-                }
-            }
             // A margin of a pixel and more around the box: its edge pixels blend it with the camera.
-            for (double t = 0.0; t < 40.0 && !near_building; t += 0.05) {
-                const glm::dvec3 p = pose.position_enu + glm::normalize(ray) * t;
-                near_building = std::abs(p.x) < 1.4 && std::abs(p.y) < 1.4 && p.z > -0.4 && p.z < 3.4;
-            }
+            const bool near_building = testing::mayShowTheBoxOrItsShadow(pose.position_enu, ray, sun, 0.4);
             const size_t at = (size_t(y) * kWidth + x) * 4;
             bool same = true;
             for (int c = 0; c < 4; ++c) same &= output[at + c] == camera[at + c];

@@ -138,14 +138,9 @@ double truthNoiseNearNoon(Bench& bench, const std::vector<std::pair<double, doub
     double noon_hour = blend_errors.front().first;
     for (const auto& step : blend_errors)
         if (std::abs(step.first - 12.0) < std::abs(noon_hour - 12.0)) noon_hour = step.first;
-    TracedFrameRequest request;
-    request.view = bench.view;
-    request.width = bench.settings.sweep_width;
-    request.height = bench.settings.sweep_height;
-    request.condition = {bench.bake_midnight_utc + noon_hour * 3600.0, 0.0f};
-    request.samples_per_pixel = bench.settings.sweep_samples;
-    request.include_building = true;
-    request.seed = 1;
+    TracedFrameRequest request = truthRequest(bench.view, bench.settings.sweep_width, bench.settings.sweep_height,
+                                              {bench.bake_midnight_utc + noon_hour * 3600.0, 0.0f},
+                                              bench.settings.sweep_samples, 1);
     const ImageRGBA first = bench.renderer->render(request).linear;
     request.seed = 2;
     const ImageRGBA second = bench.renderer->render(request).linear;

@@ -44,15 +44,8 @@ MainTruth traceMainTruth(Bench& bench, const BenchCondition& condition, const Ca
     MainTruth main;
     main.frames = traceCondition(*bench.renderer, bench.view, width, height, condition, settings.truth_samples);
     // A second seed: the noise left in the truth.
-    TracedFrameRequest& second = main.seed2_request;
-    second.view = bench.view;
-    second.width = width;
-    second.height = height;
-    second.condition = condition;
-    second.samples_per_pixel = settings.truth_samples;
-    second.seed = 2;
-    second.include_building = true;
-    const ImageRGBA truth_seed2 = bench.renderer->render(second).linear;
+    main.seed2_request = truthRequest(bench.view, width, height, condition, settings.truth_samples, 2);
+    const ImageRGBA truth_seed2 = bench.renderer->render(main.seed2_request).linear;
     const ConditionFrames& frames = main.frames;
     main.truth = applyCameraResponse(frames.truth, frames.exposure, response);
     main.camera = applyCameraResponse(frames.camera, frames.exposure, response);

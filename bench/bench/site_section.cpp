@@ -61,13 +61,8 @@ PoseAccuracy measurePose(Bench& bench, const NamedView& named, const SiteInstant
     const BenchCondition condition{instant.utc_seconds, 0.0f};
     const ConditionFrames frames = traceCondition(*bench.renderer, named.view, width, height, condition,
                                                   settings.truth_samples);
-    TracedFrameRequest second;
-    second.view = named.view;
-    second.width = width;
-    second.height = height;
-    second.condition = condition;
-    second.samples_per_pixel = settings.truth_samples;
-    second.seed = 2;
+    const TracedFrameRequest second =
+        truthRequest(named.view, width, height, condition, settings.truth_samples, 2);
     const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
     const std::vector<uint8_t> truth2 =
         applyCameraResponse(bench.renderer->render(second).linear, frames.exposure, response);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "gusuku/maths/sun.h"
 #include "gusuku/maths/time_utc.h"
 
@@ -27,6 +29,29 @@ BakeSetImage constantImage(int width, int height, float value, float alpha) {
 
 double syntheticGroundHeight(const SyntheticBakeSetOptions& options, double y) {
     return y < options.step_north_m ? -options.step_height_m : 0.0;
+}
+
+bool mayShowTheBoxOrItsShadow(const glm::dvec3& camera_enu, const glm::dvec3& ray_enu, const glm::dvec3& sun_enu,
+                              double box_margin_m) {
+    constexpr double kStepM = 0.05, kShadowSearchM = 20.0, kRaySearchM = 40.0;
+    constexpr double kBoxHalfM = 1.0, kBoxHeightM = 3.0, kShadowMarginM = 0.5;
+    if (ray_enu.z < 0.0) {
+        const glm::dvec3 ground = camera_enu + ray_enu * (-camera_enu.z / ray_enu.z);
+        for (double t = 0.0; t < kShadowSearchM; t += kStepM) {
+            const glm::dvec3 p = ground + sun_enu * t;
+            if (std::abs(p.x) < kBoxHalfM + kShadowMarginM && std::abs(p.y) < kBoxHalfM + kShadowMarginM &&
+                p.z < kBoxHeightM + kShadowMarginM)
+                return true;
+        }
+    }
+    const glm::dvec3 direction = glm::normalize(ray_enu);
+    for (double t = 0.0; t < kRaySearchM; t += kStepM) {
+        const glm::dvec3 p = camera_enu + direction * t;
+        if (std::abs(p.x) < kBoxHalfM + box_margin_m && std::abs(p.y) < kBoxHalfM + box_margin_m &&
+            p.z > -box_margin_m && p.z < kBoxHeightM + box_margin_m)
+            return true;
+    }
+    return false;
 }
 
 double syntheticLocalTime(int hours, int minutes) {

@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "gusuku/maths/bakeset_data.h"
 
 namespace gusuku::testing {
@@ -41,6 +43,13 @@ struct SyntheticBakeSetOptions {
 double syntheticGroundHeight(const SyntheticBakeSetOptions& options, double y);
 
 BakeSetData makeSyntheticBakeSet(const SyntheticBakeSetOptions& options = {});
+
+/// Whether the synthetic box (the default options' 2 x 2 x 3 m) or its shadow may show in the pixel whose centre
+/// ray is `ray_enu` from `camera_enu`: the ray passes within `box_margin_m` of the box, or the flat ground point it
+/// meets looks back along the sun (unit, towards it) within 0.5 m of the box (the shadow with the PCF's margin).
+/// Checked on the CPU by marching, for the tests that pin camera pixels outside this reach bit for bit.
+bool mayShowTheBoxOrItsShadow(const glm::dvec3& camera_enu, const glm::dvec3& ray_enu, const glm::dvec3& sun_enu,
+                              double box_margin_m);
 
 /// UTC seconds of a local time (hours, minutes) on the synthetic set's bake date at its UTC+9 clock.
 double syntheticLocalTime(int hours, int minutes);

@@ -239,16 +239,8 @@ void recordImageLayoutTransition(VkCommandBuffer cmd, VkImage image, VkImageAspe
                                  VkImageLayout old_layout, VkImageLayout new_layout, VkAccessFlags source_access,
                                  VkAccessFlags destination_access, VkPipelineStageFlags source_stages,
                                  VkPipelineStageFlags destination_stages) {
-    VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    barrier.srcAccessMask = source_access;
-    barrier.dstAccessMask = destination_access;
-    barrier.oldLayout = old_layout;
-    barrier.newLayout = new_layout;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
-    vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+    recordLevelsTransition(cmd, image, aspect, 0, VK_REMAINING_MIP_LEVELS, old_layout, new_layout, source_access,
+                           destination_access, source_stages, destination_stages);
 }
 
 }  // namespace gusuku

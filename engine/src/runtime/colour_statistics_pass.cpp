@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -102,30 +103,32 @@ ColourStatisticsGrid gridOrThrow(uint32_t width, uint32_t height, uint32_t strid
     }
 }
 
-VkPhysicalDeviceSubgroupProperties subgroupPropertiesOf(const GpuDevice& gpu) {
+// The device's subgroup properties, or none on a Vulkan 1.0 instance or device: vkGetPhysicalDeviceProperties2 is
+// Vulkan 1.1, and an app's 1.0 instance may not call it.
+std::optional<VkPhysicalDeviceSubgroupProperties> querySubgroupProperties(const GpuDevice& gpu) {
+    const uint32_t device_version = gpu.properties.apiVersion;
+    if (gpu.instance_api_version < VK_API_VERSION_1_1 ||
+        (VK_API_VERSION_MAJOR(device_version) == 1 && VK_API_VERSION_MINOR(device_version) < 1))
+        return std::nullopt;
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &subgroup;
     vkGetPhysicalDeviceProperties2(gpu.physical_device, &properties);
-    const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
-    if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & needed) != needed ||
-        subgroup.subgroupSize == 0)
-        throw RuntimeError(RuntimeErrorCode::kDevice,
-                           "colour statistics: the device has no subgroup arithmetic in compute shaders");
     return subgroup;
 }
 
-bool hasSubgroupArithmetic(const GpuDevice& gpu) {
-    // vkGetPhysicalDeviceProperties2 is Vulkan 1.1: an app's 1.0 instance may not call it.
-    if (gpu.instance_api_version < VK_API_VERSION_1_1 ||
-        VK_API_VERSION_MINOR(gpu.properties.apiVersion) < 1 && VK_API_VERSION_MAJOR(gpu.properties.apiVersion) == 1)
-        return false;
-    try {
-        subgroupPropertiesOf(gpu);
-        return true;
-    } catch (const RuntimeError&) {
-        return false;
-    }
+bool hasSubgroupArithmetic(const std::optional<VkPhysicalDeviceSubgroupProperties>& subgroup) {
+    const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    return subgroup && (subgroup->supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+           (subgroup->supportedOperations & needed) == needed && subgroup->subgroupSize > 0;
+}
+
+VkPhysicalDeviceSubgroupProperties subgroupPropertiesOf(const GpuDevice& gpu) {
+    const std::optional<VkPhysicalDeviceSubgroupProperties> subgroup = querySubgroupProperties(gpu);
+    if (!hasSubgroupArithmetic(subgroup))
+        throw RuntimeError(RuntimeErrorCode::kDevice,
+                           "colour statistics: the device has no subgroup arithmetic in compute shaders");
+    return *subgroup;
 }
 
 bool queueFamilyHasGraphics(const GpuDevice& gpu) {
@@ -207,7 +210,9 @@ std::vector<vec4> groundIrradianceFor(const GroundMatchScene& scene) {
 
 }  // namespace
 
-bool ColourStatisticsPass::deviceSupports(const GpuDevice& gpu) { return hasSubgroupArithmetic(gpu); }
+bool ColourStatisticsPass::deviceSupports(const GpuDevice& gpu) {
+    return hasSubgroupArithmetic(querySubgroupProperties(gpu));
+}
 
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
                                            uint32_t stride, float smoothing_frames, const GroundMatchScene* ground)
