@@ -246,6 +246,29 @@ protected:
         scene_ = *groundMatchSceneFrom(bake_set_);
     }
 
+    /// The runtime tests' options: the test frame's size, one sample a pixel (a multisampled edge pixel mixes
+    /// building and camera, which a gain does not scale: the building part alone it does).
+    static RuntimeOptions runtimeOptions(uint32_t shadow_map_size = 512) {
+        RuntimeOptions options;
+        options.frame_width = kWidth;
+        options.frame_height = kHeight;
+        options.shadow_map_size = shadow_map_size;
+        options.msaa_samples = 1;
+        return options;
+    }
+
+    /// The runtime tests' frame: the view at 10:30 in sun, exposure 0.3, colour match off (no camera set).
+    static FrameInput runtimeFrame() {
+        FrameInput frame;
+        frame.intrinsics = intrinsics();
+        frame.pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
+        frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
+        frame.weather = Weather::sunny();
+        frame.exposure = 0.3f;
+        frame.colour_match = ColourMatch::kOff;
+        return frame;
+    }
+
     ColourMatchState runFrame(ColourStatisticsPass& pass, GpuBuffer& camera, const std::vector<uint8_t>& rgba,
                               const GroundMatchView& view) {
         camera.upload(rgba.data(), rgba.size());
@@ -360,23 +383,11 @@ TEST_F(GroundMatchGpu, AnalyticGainsSkyFramesAndTheBuildingsColour) {
 }
 
 TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
-    RuntimeOptions options;
-    options.frame_width = kWidth;
-    options.frame_height = kHeight;
-    options.shadow_map_size = 512;
-    // One sample a pixel: the test compares each building pixel with and without the match, and a multisampled
-    // edge pixel mixes building and camera, which the gain does not scale (the building part alone it does).
-    options.msaa_samples = 1;
-    std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set_, options);
-    const CameraPose pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
-    FrameInput frame;
-    frame.intrinsics = intrinsics();
-    frame.pose = pose;
-    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
-    frame.weather = Weather::sunny();
-    frame.exposure = 0.3f;
+    // One sample a pixel (runtimeOptions): the test compares each building pixel with and without the match.
+    std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set_, runtimeOptions());
+    FrameInput frame = runtimeFrame();
+    const CameraPose pose = frame.pose;
     frame.ground_ratio = false;  // the camera's ground pixels stay as they are; only the building differs
-    frame.colour_match = ColourMatch::kOff;  // the unmatched frames (the default, kAuto, is kGround on this set)
     std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128);
     frame.camera_rgba8 = placeholder.data();
     std::vector<uint8_t> unmatched(placeholder.size()), matched(placeholder.size());
@@ -464,21 +475,11 @@ TEST_F(GroundMatchGpu, TimingPrintsTheMedianCostOfTheGroundStatistics) {
 // gain gA + (gB - gA) / 2, the time constant still 8 frames. Read on the building's centre pixel, in linear.
 TEST_F(GroundMatchGpu, TheCameraIsMeasuredOneFrameInTheIntervalWithTheSmoothingInFrames) {
     ASSERT_EQ(kColourStatisticsInterval, 4u);
-    RuntimeOptions options;
-    options.frame_width = kWidth;
-    options.frame_height = kHeight;
-    options.shadow_map_size = 512;
-    options.msaa_samples = 1;
+    const RuntimeOptions options = runtimeOptions();
     ASSERT_EQ(options.statistics_smoothing_frames, 8.0f);
     std::unique_ptr<Runtime> runtime = Runtime::open(context(), bake_set_, options);
-    const CameraPose pose = CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 0.0, 1.0});
-    FrameInput frame;
-    frame.intrinsics = intrinsics();
-    frame.pose = pose;
-    frame.utc_unix_seconds = testing::syntheticLocalTime(10, 30);
-    frame.weather = Weather::sunny();
-    frame.exposure = 0.3f;
-    frame.colour_match = ColourMatch::kOff;
+    FrameInput frame = runtimeFrame();
+    const CameraPose pose = frame.pose;
     std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128), output(placeholder.size());
     frame.camera_rgba8 = placeholder.data();
     const FrameInfo info = runtime->renderFrame(frame, output.data());
