@@ -5,7 +5,8 @@
 # visitor poses: the composite's and direct-only's error against the path-traced truth at a baked instant and 1.5
 # hours from it, the frame time of both at 1280x720, and the real model's frame against the sample's.
 #
-# Usage: scripts/bench-sites.sh [--quick] [WORK_DIR]   (default WORK_DIR: out/sites, outside git's view)
+# Usage: scripts/bench-sites.sh [--quick] [WORK_DIR [GUSUKU_BENCH_OPTION...]]   (default WORK_DIR: out/sites, outside
+# git's view; options after it go to every gusuku-bench run, e.g. --accuracy-size 320x180 --truth-samples 256)
 # Writes, in WORK_DIR: sample/ (gusuku-bake sample), shrine/site.json and house/site.json (scripts/write-bench-site.py:
 # they name the shared files by absolute path; nothing is copied), each site's bakeset/ and bench/ (gusuku-bench's
 # results.json, summary.md, frames/), and summary.md: the per-site table, also printed. A bake already up to date
@@ -18,6 +19,8 @@ cd "$(dirname "$0")/.."
 quick=()
 if [[ "${1:-}" == "--quick" ]]; then quick=(--quick); shift; fi
 work="${1:-out/sites}"
+[[ $# -gt 0 ]] && shift
+bench_options=("$@")
 shared="${GUSUKU_SHARED_DATA:-../shared/data}"
 for needed in building/japan_temple_yankobe/scene.gltf building/playcanvas_house_lightmapUV/house.glb \
               env/rooitou_park_1k.hdr env/potsdamer_platz_1k.hdr; do
@@ -47,10 +50,10 @@ for site in sample shrine house; do
   sample_results=()
   [[ "$site" != sample ]] && sample_results=(--sample-results "$work/sample/bench/results.json")
   "$bench" "$work/$site/bakeset" -o "$work/$site/bench" --cache "$work/bench-cache" --only site --views "$views" \
-    "${sample_results[@]}" "${quick[@]}" > "$work/$site/bench.log"
+    "${sample_results[@]}" "${quick[@]}" "${bench_options[@]}" > "$work/$site/bench.log"
   echo "scripts/bench-sites.sh: $site benched ($work/$site/bench/summary.md)"
 done
 python3 scripts/bench-sites-table.py "$work" sample shrine house > "$work/summary.md.tmp"
-printf '\ncode: %s; command: %s\n' "$code" "scripts/bench-sites.sh ${quick[*]:+${quick[*]} }$work" >> "$work/summary.md.tmp"
+printf '\ncode: %s; command: %s\n' "$code" "scripts/bench-sites.sh ${quick[*]:+${quick[*]} }$work${bench_options[*]:+ ${bench_options[*]}}" >> "$work/summary.md.tmp"
 mv "$work/summary.md.tmp" "$work/summary.md"
 cat "$work/summary.md"

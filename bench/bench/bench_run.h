@@ -43,6 +43,12 @@ struct Settings {
     // The site section (--views): the visitor poses, and the sample's results.json to compare the frame with.
     std::vector<NamedView> views;
     std::optional<std::string> sample_results;
+    // The runtime's anti-aliasing and texture filtering (--msaa, --anisotropy), so that a run can measure what
+    // each costs and buys. The bench's own device enables samplerAnisotropy where the device has it (the runtime
+    // clamps to it), so it asks for the most, as an app that enables the feature would: on the shrine's quick
+    // views 16 took the composite from 2.51-2.55 to 2.21-2.37 mean dE00 (docs/measurements.md).
+    uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;
+    float max_anisotropy = 16.0f;
     // Derived from quick.
     uint32_t accuracy_width = 320, accuracy_height = 180, truth_samples = 512;
     uint32_t sweep_width = 160, sweep_height = 90, sweep_samples = 256;
@@ -160,6 +166,8 @@ struct Bench {
             RuntimeOptions options;
             options.frame_width = width;
             options.frame_height = height;
+            options.msaa_samples = settings.msaa_samples;
+            options.max_anisotropy = settings.max_anisotropy;
             runtime = Runtime::open(*context, bake_set, options);
         }
         return *runtime;

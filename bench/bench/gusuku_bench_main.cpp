@@ -72,6 +72,15 @@ const char* const kUsage =
     "                    the same site baked under photographed skies (scripts/bench.sh bakes one under\n"
     "                    ../shared/data/env when it is there): the weather and clouds sections run under\n"
     "                    them too, with their own path-traced truths\n"
+    "  --truth-samples N samples a pixel of every path-traced truth (default 512, quick 128)\n"
+    "  --accuracy-size WxH\n"
+    "                    the accuracy frames' size (default 320x180, quick 160x90)\n"
+    "  --msaa N          the runtime's samples a pixel (RuntimeOptions::msaa_samples, default 4)\n"
+    "  --anisotropy N    the runtime's texture anisotropy (RuntimeOptions::max_anisotropy, default 16,\n"
+    "                    clamped to what the bench's own device has)\n"
+    "  --views LIST      the site section's visitor poses, NAME:E,N,U:E,N,U (eye, look-at) separated by ';'\n"
+    "  --sample-results FILE\n"
+    "                    the sample's results.json: the site section reads the frame against the sample's\n"
     "\n"
     "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
 
@@ -94,6 +103,9 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
         }
     }
     const std::optional<int64_t> truth_samples = line.integer("--truth-samples", 1, 1 << 20);
+    const std::optional<std::string> accuracy_size = line.text("--accuracy-size");
+    if (const auto msaa = line.integer("--msaa", 1, 64)) settings.msaa_samples = uint32_t(*msaa);
+    if (const auto anisotropy = line.integer("--anisotropy", 1, 16)) settings.max_anisotropy = float(*anisotropy);
     if (const auto only = line.text("--only")) {
         std::stringstream stream(*only);
         for (std::string section; std::getline(stream, section, ',');) {
@@ -119,6 +131,14 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
         settings.tracer_timed_max_samples = 4;
     }
     if (truth_samples) settings.truth_samples = uint32_t(*truth_samples);
+    if (accuracy_size) {
+        unsigned width = 0, height = 0;
+        char end = 0;
+        if (std::sscanf(accuracy_size->c_str(), "%ux%u%c", &width, &height, &end) != 2 || width < 16 ||
+            height < 16 || width > 4096 || height > 4096)
+            line.failValue("--accuracy-size", "'" + *accuracy_size + "' is not WxH with each in [16, 4096]");
+        settings.accuracy_width = width, settings.accuracy_height = height;
+    }
     if (settings.sample_results && settings.views.empty()) line.fail("--sample-results needs --views (see --help)");
     if (!settings.views.empty() && !settings.only.empty() && !settings.wants("site"))
         line.fail("--views is for the site section, which --only leaves out (see --help)");
@@ -387,12 +407,19 @@ int run(const Settings& settings) {
                             {"bake_set", settings.bake_set}, {"bake_samples", bench.bake_set.manifest.settings.samples_per_texel},
                             {"site", site_json}, {"cpu", host.cpu_model}, {"logical_cpus", host.logical_cpus},
                             {"lavapipe_threads", host.lavapipe_threads}, {"device", host.device},
+                            {"accuracy_size", {settings.accuracy_width, settings.accuracy_height}},
+                            {"truth_samples", settings.truth_samples},
+                            {"runtime", {{"msaa_samples", settings.msaa_samples},
+                                         {"max_anisotropy", settings.max_anisotropy}}},
                             {"view", {{"position_enu", {bench.view.position_enu.x, bench.view.position_enu.y, bench.view.position_enu.z}},
                                       {"look_at_enu", {bench.view.look_at_enu.x, bench.view.look_at_enu.y, bench.view.look_at_enu.z}},
                                       {"horizontal_fov_deg", bench.view.horizontal_fov_deg}}}};
     bench.say("**gusuku-bench, " + std::string(settings.quick ? "quick" : "full") + " run of " + started + "**");
     bench.say("machine: " + host.cpu_model + ", " + std::to_string(host.logical_cpus) + " logical CPUs, lavapipe threads " +
               std::to_string(host.lavapipe_threads) + "; device " + host.device);
+    bench.say("runtime: msaa " + std::to_string(settings.msaa_samples) + ", anisotropy " +
+              fixed(settings.max_anisotropy, 0) + "; accuracy frames " + std::to_string(settings.accuracy_width) + "x" +
+              std::to_string(settings.accuracy_height) + ", truth " + std::to_string(settings.truth_samples) + " spp");
     bench.say("bake set: " + settings.bake_set + " (" + std::to_string(bench.bake_set.manifest.settings.samples_per_texel) +
               " samples), building " + std::to_string(bench.bake_set.building.indices.size() / 3) + " triangles");
 

@@ -80,6 +80,8 @@ int run(const RenderRequest& request) {
     options.frame_width = width;
     options.frame_height = height;
     if (request.ground_change_threshold) options.ground_change_threshold = *request.ground_change_threshold;
+    options.msaa_samples = request.msaa_samples;
+    options.max_anisotropy = request.max_anisotropy;
     std::unique_ptr<Runtime> runtime = Runtime::open(context, bake_set, options);
 
     FrameInput frame;

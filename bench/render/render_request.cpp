@@ -36,6 +36,9 @@ const char* const kRenderUsage =
     "  --frames N             frames timed after 3 warm-up frames (default 20)\n"
     "  --ground-change R      relative change of the baked ground light below which the building is taken to\n"
     "                         change nothing there (default 1/255; see RuntimeOptions::ground_change_threshold)\n"
+    "  --msaa N               samples a pixel (RuntimeOptions::msaa_samples; default 4, 1 turns it off)\n"
+    "  --anisotropy N         texture anisotropy, [1, 16] (RuntimeOptions::max_anisotropy; default 16, clamped\n"
+    "                         to the device's)\n"
     "  --direct-only PNG      also write the direct-only frame (what AR apps draw today)\n"
     "  --camera-out PNG       also write the camera frame the composite was drawn into\n"
     "\n"
@@ -102,6 +105,8 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
     if (const auto exposure = line.number("--exposure", 1e-9, 1e9)) request.exposure = float(*exposure);
     request.camera_samples = uint32_t(line.integer("--samples", 1, 65536).value_or(request.camera_samples));
     if (const auto threshold = line.number("--ground-change", 0.0, 1.0)) request.ground_change_threshold = float(*threshold);
+    if (const auto msaa = line.integer("--msaa", 1, 64)) request.msaa_samples = uint32_t(*msaa);
+    if (const auto anisotropy = line.integer("--anisotropy", 1, 16)) request.max_anisotropy = float(*anisotropy);
     request.timed_frames = uint32_t(line.integer("--frames", 1, 100000).value_or(request.timed_frames));
     request.direct_only_png = line.text("--direct-only");
     request.camera_png = line.text("--camera-out");

@@ -29,6 +29,10 @@ struct RenderRequest {
     uint32_t camera_samples = 64;
     std::optional<float> exposure;          ///< default: middle grey of the sample camera frame, else 1
     std::optional<float> ground_change_threshold;  ///< RuntimeOptions::ground_change_threshold
+    uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;  ///< RuntimeOptions::msaa_samples
+    /// RuntimeOptions::max_anisotropy. The tool's own device enables samplerAnisotropy where the device has it
+    /// (and the runtime clamps to it), so the tool asks for the most: textures seen at a slant stay sharp.
+    float max_anisotropy = 16.0f;
     uint32_t timed_frames = 20;
     uint32_t warm_up_frames = 3;
     bool help = false;
