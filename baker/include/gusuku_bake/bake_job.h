@@ -30,8 +30,11 @@ struct BakeOptions {
     /// (gusuku_bake/bake_merge.h). Everything but the slot's own files is what the whole bake writes.
     std::string slot;
     int max_texture_size = 512;     ///< albedo textures are downsampled to this for tracing
-    double target_chunk_seconds = 1.0;  ///< dispatch length the sample chunks adapt to
-    /// Polled between chunks; returning true checkpoints and stops (BakeReport::completed = false).
+    /// The length each GPU dispatch aims at (gusuku_bake/dispatch_budget.h): a stop waits for at most about
+    /// one, and a pass over a large set is cut into point ranges to keep to it.
+    double target_chunk_seconds = 0.25;
+    /// Polled between setup steps and between dispatches; returning true checkpoints and stops
+    /// (BakeReport::completed = false).
     std::function<bool()> should_stop;
 };
 
