@@ -16,6 +16,7 @@
 #include "bake_inputs.h"
 #include "bake_outputs.h"
 #include "bake_preflight.h"
+#include "invalid_texel_reasons.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -405,6 +406,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     SetTracer set_tracer(tracer, progress, options, trace_hash, checkpoint_dir);
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();
+    InvalidTexelAccounting invalid_accounting(geometry);
     for (const SlotLighting& lighting : slots) {
         if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);
@@ -415,8 +417,10 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
             return report;  // completed = false: checkpoints hold everything done so far
         }
         const SetTracer::Sums& building = (*sums)[0];
-        writer.writeSlot(lighting,
-                         texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction),
+        const std::vector<glm::vec4> texel_sums =
+            texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction);
+        report.invalid_texels.push_back(invalid_accounting.count(lighting.slot.name, texel_sums, samples));
+        writer.writeSlot(lighting, texel_sums,
                          texelLuminanceVarianceFromFootprint(footprint, building.sums, building.luminance_square_sums,
                                                              samples_per_slot, kMaxBackfaceFraction),
                          (*sums)[1].sums, (*sums)[2].sums);

@@ -1,5 +1,6 @@
 // gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops after the current
-// chunk with everything checkpointed; the same command resumes.
+// dispatch (about a quarter of a second, gusuku_bake/dispatch_budget.h) with everything checkpointed; the same
+// command resumes.
 #include <csignal>
 #include <cstdio>
 #include <cstdint>
@@ -39,7 +40,7 @@ constexpr const char* kBakeUsage =
     "  --force            bake even if DIR/manifest.json already matches these inputs\n"
     "  --quiet            no progress bar\n"
     "\n"
-    "Ctrl-C stops after the current chunk of samples; everything traced so far is kept in DIR/.checkpoint,\n"
+    "Ctrl-C or SIGTERM stops within about a second; everything traced so far is kept in DIR/.checkpoint,\n"
     "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
     "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
     "Exit status: 0 done or up to date, 1 bad input or a bad option value, 2 bad usage, 130 interrupted.\n";
@@ -114,6 +115,12 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::printf("building:        %zu lightmap texels (%dx%d, charts fill %.1f %%)\n", report.building_texels,
                 report.lightmap_resolution, report.lightmap_resolution,
                 lightmap_texels > 0.0 ? 100.0 * double(report.building_texels) / lightmap_texels : 0.0);
+    for (const bake::InvalidTexelCounts& invalid : report.invalid_texels)
+        std::printf("invalid texels:  %s %zu (%.1f %%): %zu one-sided backs, %zu under the ground, %zu inside closed "
+                    "double-sided parts, %zu unexplained\n",
+                    invalid.slot.c_str(), invalid.total,
+                    report.building_texels > 0 ? 100.0 * double(invalid.total) / double(report.building_texels) : 0.0,
+                    invalid.one_sided_backs, invalid.under_ground, invalid.closed_double_sided, invalid.unexplained);
     std::printf("ground:          %zu cells\n", report.ground_cells);
     if (report.resumed_fraction > 0.0)
         std::printf("resumed:         %.0f %% of the work came from checkpoints\n", report.resumed_fraction * 100.0);

@@ -38,6 +38,17 @@ struct BakeOptions {
     std::function<bool()> should_stop;
 };
 
+/// One slot's invalid building texels (alpha 0 in its lightmap, filled by dilation) and why, by what their first
+/// rays see from the texel's centre (invalid_texel_reasons.h): each texel counted once, under its main reason.
+struct InvalidTexelCounts {
+    std::string slot;
+    size_t total = 0;
+    size_t one_sided_backs = 0;      ///< behind a one-sided face of the building (a wall's inner side)
+    size_t under_ground = 0;         ///< the site's ground seen from below: the building's foot, or a part sunk in it
+    size_t closed_double_sided = 0;  ///< inside a closed part of double-sided faces, by its winding (closed_parts.h)
+    size_t unexplained = 0;          ///< the re-traced rays found none of these (a texel at the limit of noise)
+};
+
 struct BakeReport {
     bool completed = false;         ///< false: stopped by should_stop; rerun to resume
     bool up_to_date = false;        ///< nothing to do: the manifest matches these inputs
@@ -51,6 +62,7 @@ struct BakeReport {
     double wall_seconds = 0.0;      ///< this run, all of it
     double resumed_fraction = 0.0;  ///< share of the work taken from checkpoints
     std::vector<std::string> warnings;
+    std::vector<InvalidTexelCounts> invalid_texels;  ///< per slot traced, in the site's order
 };
 
 BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options);
