@@ -6,8 +6,9 @@
 // input or settings starts that set afresh.
 //
 // File layout (little-endian): "GSKCKPT3", uint64 input hash, uint32 point count, uint32 samples done,
-// uint32 points with the next sample (points [0, this) hold samples_done + 1 samples), then point count x 4 float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on
-// a one-sided back, 1/9 per first hit on a double-sided face seen from behind), then point count x float32 sums
+// uint32 points with the next sample (points [0, this) hold samples_done + 1 samples), then point count x 4
+// float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on a one-sided back, 1/9
+// per first hit on a closed part's double-sided face seen from behind), then point count x float32 sums
 // of squared luminance (the lightmap filter's measure of each texel's noise). "GSKCKPT1" (before the squares)
 // and "GSKCKPT2" (before part-done passes) are recognised and not resumed: their tracer code differs, so that
 // set is traced afresh.

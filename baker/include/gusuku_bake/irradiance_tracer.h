@@ -94,9 +94,10 @@ inline constexpr uint32_t kSkyRaysAtPointWithoutSun = 8;
 struct PointAccumulator {
     GpuBuffer points;
     GpuBuffer sums;          ///< vec4 per point: irradiance sum xyz, w the sum of the first rays' back-face scores:
-                             ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided one
-                             ///< from behind by its winding (irradiance_paths.glsl), so w / samples above
-                             ///< kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over 90 % double-sided backs
+                             ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided face
+                             ///< of a closed part (closed_parts.h) from behind by its winding (irradiance_paths.glsl),
+                             ///< so w / samples above kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over
+                             ///< 90 % closed double-sided backs (an open sheet's back scores nothing)
     GpuBuffer luminance_square_sums;  ///< float per point: sum of each sample's squared luminance (Rec.709), so
                                       ///< luminanceVarianceOfMean can say how noisy the point's mean is
     uint32_t point_count = 0;
