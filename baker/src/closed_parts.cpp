@@ -73,12 +73,11 @@ std::vector<bool> closedOutwardTriangles(const TriangleMesh& mesh) {
             const uint32_t from = corner(t, k), to = corner(t, (k + 1) % 3);
             const EdgeUse& forward = directed[edgeKey(from, to)];
             const auto reverse = directed.find(edgeKey(to, from));
-            if (forward.count != 1 || reverse == directed.end() || reverse->second.count != 1) {
-                edge_is_open[t] = true;
-                if (reverse != directed.end()) parent[findRoot(parent, uint32_t(t))] = findRoot(parent, reverse->second.triangle);
-                continue;
-            }
-            parent[findRoot(parent, uint32_t(t))] = findRoot(parent, reverse->second.triangle);
+            // Joined to every triangle on the edge either way (a flipped neighbour runs it the same way).
+            parent[findRoot(parent, uint32_t(t))] = findRoot(parent, forward.triangle);
+            if (reverse != directed.end())
+                parent[findRoot(parent, uint32_t(t))] = findRoot(parent, reverse->second.triangle);
+            if (forward.count != 1 || reverse == directed.end() || reverse->second.count != 1) edge_is_open[t] = true;
         }
     }
     // Per part: open or not, and six times its signed volume (sum of p0 . (p1 x p2)).
