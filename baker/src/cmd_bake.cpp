@@ -1,13 +1,12 @@
-// gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops after the current
-// dispatch (about a quarter of a second, gusuku_bake/dispatch_budget.h) with everything checkpointed; the same
-// command resumes.
-#include <csignal>
+// gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops within about a second
+// (bake_stop_signals.h): after the current dispatch with everything checkpointed; the same command resumes.
 #include <cstdio>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bake_stop_signals.h"
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/site.h"
@@ -18,10 +17,6 @@
 namespace gusuku::bake_cli {
 
 namespace {
-
-volatile std::sig_atomic_t g_stop_requested = 0;
-
-void requestStop(int) { g_stop_requested = 1; }
 
 constexpr const char* kBakeUsage =
     "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
@@ -78,18 +73,16 @@ int runBakeCommand(const std::vector<std::string>& args) {
         return *exit_code;
     bake::BakeOptions& options = request.options;
 
-    // From the start: a Ctrl-C during setup (device, skies, BVH) stops the bake before its first sample.
-    std::signal(SIGINT, requestStop);
-    std::signal(SIGTERM, requestStop);
-    options.should_stop = [] { return g_stop_requested != 0; };
+    // From the start: a Ctrl-C during setup (device, skies, BVH) ends the bake before its first sample.
+    std::optional<BakeStopSignals> stop_signals(std::in_place, options.output_dir);
+    options.should_stop = stop_signals->poll();
     const SiteConfig site = loadSiteConfig(request.site_path);
     if (!options.slot.empty()) bake::requireSiteSlot(site, options.slot);  // before the device is opened
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 
     const bake::BakeReport report = bake::runBake(context, site, options);
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
+    stop_signals.reset();  // the bake has returned: no deadline to keep, default handlers again
 
     if (report.up_to_date) {
         std::printf("bake set %s is up to date with its inputs (use --force to bake again)\n",
