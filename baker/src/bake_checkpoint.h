@@ -1,14 +1,17 @@
 #pragma once
 // Checkpoints of a bake's running sums, so an interrupted bake (Ctrl-C, a kill, a power cut) resumes where it
-// stopped. One file per (slot, point set) under BAKESET/.checkpoint/, written atomically after each chunk of
-// samples. A checkpoint is used only when its input hash and point count match the current bake: a change of
+// stopped. One file per (slot, point set) under BAKESET/.checkpoint/, written atomically at a dispatch boundary
+// (every 2 s, at a stop, at the set's end), which may fall inside a sample pass cut into point ranges: the file
+// then says which points hold the pass's sample, and the resumed bake traces the rest. A checkpoint is used only when its input hash and point count match the current bake: a change of
 // input or settings starts that set afresh.
 //
-// File layout (little-endian): "GSKCKPT2", uint64 input hash, uint32 point count, uint32 samples done,
-// then point count x 4 float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on
-// a one-sided back, 1/9 per first hit on a double-sided face seen from behind), then point count x float32 sums
+// File layout (little-endian): "GSKCKPT3", uint64 input hash, uint32 point count, uint32 samples done,
+// uint32 points with the next sample (points [0, this) hold samples_done + 1 samples), then point count x 4
+// float32 sums (the tracer's vec4: irradiance sum xyz, back-face score w: 1 per first hit on a one-sided back, 1/9
+// per first hit on a closed part's double-sided face seen from behind), then point count x float32 sums
 // of squared luminance (the lightmap filter's measure of each texel's noise). "GSKCKPT1" (before the squares)
-// is recognised and not resumed: its squares are unknown, so that set is traced afresh.
+// and "GSKCKPT2" (before part-done passes) are recognised and not resumed: their tracer code differs, so that
+// set is traced afresh.
 
 #include <cstdint>
 #include <optional>
@@ -22,6 +25,7 @@ namespace gusuku::bake {
 struct Checkpoint {
     uint64_t input_hash = 0;
     uint32_t samples_done = 0;
+    uint32_t points_with_next_sample = 0;  ///< PointAccumulator's: below the point count
     std::vector<glm::vec4> sums;
     std::vector<float> luminance_square_sums;  ///< as many as sums
 };

@@ -16,6 +16,7 @@
 #include "bake_inputs.h"
 #include "bake_outputs.h"
 #include "bake_preflight.h"
+#include "invalid_texel_reasons.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -23,6 +24,7 @@
 #include "gusuku/maths/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_progress.h"
+#include "gusuku_bake/dispatch_budget.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/slot_lighting.h"
 
@@ -100,7 +102,7 @@ public:
     SetTracer(IrradianceTracer& tracer, BakeProgress& progress, const BakeOptions& options, uint64_t input_hash,
               const std::string& checkpoint_dir)
         : tracer_(tracer), progress_(progress), options_(options), input_hash_(input_hash),
-          checkpoint_dir_(checkpoint_dir) {}
+          checkpoint_dir_(checkpoint_dir), budget_(options.target_chunk_seconds) {}
 
     /// A set's running sums and sums of squared luminance (PointAccumulator's).
     struct Sums {
@@ -109,8 +111,9 @@ public:
     };
 
     /// Traces one set to `samples`; returns its sums, or nothing when stopped. A stop request is polled
-    /// before the set and after every chunk, and is honoured even when that chunk finished the set (with
-    /// --samples 1 every set is one chunk): the set's sums are checkpointed first, so nothing is lost.
+    /// before the set and after every dispatch (each about target_chunk_seconds, DispatchBudget), and is
+    /// honoured even when that dispatch finished the set (with --samples 1 every set may be one dispatch): the
+    /// set's sums are checkpointed first, a part-done pass included, so nothing is lost.
     std::optional<Sums> trace(const std::string& slot_name, const PointSet& set,
                                                 const TracePass& pass, uint32_t samples) {
         if (stopRequested()) return std::nullopt;
@@ -119,41 +122,24 @@ public:
         const std::string label = slot_name + " " + set.name;
         const std::string checkpoint_path = checkpoint_dir_ + "/" + slot_name + "." + set.name + ".bin";
         PointAccumulator accumulator = tracer_.createAccumulator(set.points);
-        const uint32_t point_count = uint32_t(set.points.size());
-        std::string ignored_checkpoint;
-        if (auto checkpoint = readMatchingCheckpoint(checkpoint_path, input_hash_, point_count, &ignored_checkpoint)) {
-            const uint32_t resumed = std::min(checkpoint->samples_done, samples);
-            tracer_.restoreSums(accumulator, checkpoint->sums, checkpoint->luminance_square_sums, resumed);
-            progress_.addResumedWork(double(resumed) * point_count);
-        }
-        if (!ignored_checkpoint.empty()) std::fprintf(stderr, "gusuku-bake: %s\n", ignored_checkpoint.c_str());
+        resume(accumulator, checkpoint_path, samples);
         auto last_checkpoint = Clock::now();
         std::optional<Sums> written;  // what the last checkpoint of this call wrote: the accumulator's sums then
         while (accumulator.samples_done < samples) {
-            const uint32_t chunk = std::min(chunk_samples_, samples - accumulator.samples_done);
-            const auto start = Clock::now();
-            const uint64_t rays = tracer_.addSamples(accumulator, chunk, pass);
-            const double seconds = std::max(secondsSince(start), 1e-4);
-            trace_seconds_ += seconds;
-            progress_.advance(label, accumulator.samples_done, samples, double(chunk) * point_count, rays, seconds);
-            // Size the next chunk so a dispatch takes about target_chunk_seconds.
-            const double wanted = double(chunk) * options_.target_chunk_seconds / seconds;
-            chunk_samples_ = uint32_t(std::clamp(wanted, 1.0, 64.0));
+            traceOneDispatch(accumulator, label, pass, samples);
             const bool stop = stopRequested();
             if (stop || accumulator.samples_done >= samples || secondsSince(last_checkpoint) > 2.0) {
-                written = Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
-                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, written->sums,
-                                                   written->luminance_square_sums});
+                written = checkpoint(accumulator, checkpoint_path);
                 last_checkpoint = Clock::now();
             }
             if (stop) return std::nullopt;
         }
-        // The loop's last chunk wrote the final sums; without a chunk (resumed complete) they are read once here.
+        // The loop's last dispatch wrote the final sums; without one (resumed complete) they are read once here.
         if (!written) {
-            written = Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
-            if (!std::filesystem::exists(checkpoint_path))
-                writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, written->sums,
-                                                   written->luminance_square_sums});
+            if (std::filesystem::exists(checkpoint_path))
+                written = Sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
+            else
+                written = checkpoint(accumulator, checkpoint_path);
         }
         if (stopRequested()) return std::nullopt;
         return written;
@@ -168,12 +154,49 @@ public:
     }
 
 private:
+    /// The set's checkpoint, if it matches, restored into the accumulator (a part-done pass only below `samples`).
+    void resume(PointAccumulator& accumulator, const std::string& checkpoint_path, uint32_t samples) {
+        const uint32_t point_count = accumulator.point_count;
+        std::string ignored_checkpoint;
+        if (auto checkpoint = readMatchingCheckpoint(checkpoint_path, input_hash_, point_count, &ignored_checkpoint)) {
+            const uint32_t resumed = std::min(checkpoint->samples_done, samples);
+            const uint32_t part_pass = resumed < samples ? checkpoint->points_with_next_sample : 0u;
+            tracer_.restoreSums(accumulator, checkpoint->sums, checkpoint->luminance_square_sums, resumed, part_pass);
+            progress_.addResumedWork(double(resumed) * point_count + double(part_pass));
+        }
+        if (!ignored_checkpoint.empty()) std::fprintf(stderr, "gusuku-bake: %s\n", ignored_checkpoint.c_str());
+    }
+
+    /// One dispatch as the budget sizes it: whole passes, or the next range of points of a pass.
+    void traceOneDispatch(PointAccumulator& accumulator, const std::string& label, const TracePass& pass,
+                          uint32_t samples) {
+        const DispatchSize size =
+            budget_.next(accumulator.point_count, accumulator.points_with_next_sample, samples - accumulator.samples_done);
+        const auto start = Clock::now();
+        const bool whole_passes = size.points == accumulator.point_count && accumulator.points_with_next_sample == 0;
+        const uint64_t rays = whole_passes ? tracer_.addSamples(accumulator, size.samples, pass)
+                                           : tracer_.addSampleToNextPoints(accumulator, size.points, pass);
+        const double seconds = std::max(secondsSince(start), 1e-4);
+        const double point_samples = double(size.samples) * double(size.points);
+        trace_seconds_ += seconds;
+        budget_.measured(point_samples, seconds);
+        progress_.advance(label, accumulator.samples_done, samples, point_samples, rays, seconds);
+    }
+
+    /// The accumulator's sums written to the set's checkpoint; returns them.
+    Sums checkpoint(const PointAccumulator& accumulator, const std::string& checkpoint_path) {
+        Sums sums{tracer_.readSums(accumulator), tracer_.readLuminanceSquareSums(accumulator)};
+        writeCheckpoint(checkpoint_path, {input_hash_, accumulator.samples_done, accumulator.points_with_next_sample,
+                                          sums.sums, sums.luminance_square_sums});
+        return sums;
+    }
+
     IrradianceTracer& tracer_;
     BakeProgress& progress_;
     const BakeOptions& options_;
     uint64_t input_hash_;
     std::string checkpoint_dir_;
-    uint32_t chunk_samples_ = 1;
+    DispatchBudget budget_;
     double trace_seconds_ = 0.0;
     bool stop_requested_ = false;
 };
@@ -383,6 +406,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     SetTracer set_tracer(tracer, progress, options, trace_hash, checkpoint_dir);
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();
+    InvalidTexelAccounting invalid_accounting(geometry);
     for (const SlotLighting& lighting : slots) {
         if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);
@@ -393,8 +417,10 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
             return report;  // completed = false: checkpoints hold everything done so far
         }
         const SetTracer::Sums& building = (*sums)[0];
-        writer.writeSlot(lighting,
-                         texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction),
+        const std::vector<glm::vec4> texel_sums =
+            texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction);
+        report.invalid_texels.push_back(invalid_accounting.count(lighting.slot.name, texel_sums, samples));
+        writer.writeSlot(lighting, texel_sums,
                          texelLuminanceVarianceFromFootprint(footprint, building.sums, building.luminance_square_sums,
                                                              samples_per_slot, kMaxBackfaceFraction),
                          (*sums)[1].sums, (*sums)[2].sums);

@@ -1,12 +1,12 @@
-// gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops after the current
-// chunk with everything checkpointed; the same command resumes.
-#include <csignal>
+// gusuku-bake bake site.json -o BAKESET/: the offline bake. Ctrl-C (SIGINT) or SIGTERM stops within about a second
+// (bake_stop_signals.h): after the current dispatch with everything checkpointed; the same command resumes.
 #include <cstdio>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bake_stop_signals.h"
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/site.h"
@@ -17,10 +17,6 @@
 namespace gusuku::bake_cli {
 
 namespace {
-
-volatile std::sig_atomic_t g_stop_requested = 0;
-
-void requestStop(int) { g_stop_requested = 1; }
 
 constexpr const char* kBakeUsage =
     "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
@@ -39,7 +35,7 @@ constexpr const char* kBakeUsage =
     "  --force            bake even if DIR/manifest.json already matches these inputs\n"
     "  --quiet            no progress bar\n"
     "\n"
-    "Ctrl-C stops after the current chunk of samples; everything traced so far is kept in DIR/.checkpoint,\n"
+    "Ctrl-C or SIGTERM stops within about a second; everything traced so far is kept in DIR/.checkpoint,\n"
     "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
     "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
     "Exit status: 0 done or up to date, 1 bad input or a bad option value, 2 bad usage, 130 interrupted.\n";
@@ -77,18 +73,16 @@ int runBakeCommand(const std::vector<std::string>& args) {
         return *exit_code;
     bake::BakeOptions& options = request.options;
 
-    // From the start: a Ctrl-C during setup (device, skies, BVH) stops the bake before its first sample.
-    std::signal(SIGINT, requestStop);
-    std::signal(SIGTERM, requestStop);
-    options.should_stop = [] { return g_stop_requested != 0; };
+    // From the start: a Ctrl-C during setup (device, skies, BVH) ends the bake before its first sample.
+    std::optional<BakeStopSignals> stop_signals(std::in_place, options.output_dir);
+    options.should_stop = stop_signals->poll();
     const SiteConfig site = loadSiteConfig(request.site_path);
     if (!options.slot.empty()) bake::requireSiteSlot(site, options.slot);  // before the device is opened
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 
     const bake::BakeReport report = bake::runBake(context, site, options);
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
+    stop_signals.reset();  // the bake has returned: no deadline to keep, default handlers again
 
     if (report.up_to_date) {
         std::printf("bake set %s is up to date with its inputs (use --force to bake again)\n",
@@ -114,6 +108,12 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::printf("building:        %zu lightmap texels (%dx%d, charts fill %.1f %%)\n", report.building_texels,
                 report.lightmap_resolution, report.lightmap_resolution,
                 lightmap_texels > 0.0 ? 100.0 * double(report.building_texels) / lightmap_texels : 0.0);
+    for (const bake::InvalidTexelCounts& invalid : report.invalid_texels)
+        std::printf("invalid texels:  %s %zu (%.1f %%): %zu one-sided backs, %zu under the ground, %zu inside closed "
+                    "double-sided parts, %zu unexplained\n",
+                    invalid.slot.c_str(), invalid.total,
+                    report.building_texels > 0 ? 100.0 * double(invalid.total) / double(report.building_texels) : 0.0,
+                    invalid.one_sided_backs, invalid.under_ground, invalid.closed_double_sided, invalid.unexplained);
     std::printf("ground:          %zu cells\n", report.ground_cells);
     if (report.resumed_fraction > 0.0)
         std::printf("resumed:         %.0f %% of the work came from checkpoints\n", report.resumed_fraction * 100.0);

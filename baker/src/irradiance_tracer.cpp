@@ -23,8 +23,9 @@ namespace {
 // Bindings and push constants are written once, in shaders/include/bake_{irradiance,accumulate}_interface.h.
 using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
 using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
-static_assert(sizeof(BakePushConstants) == 76 && offsetof(BakePushConstants, bounces_before_roulette) == 68 &&
+static_assert(sizeof(BakePushConstants) == 80 && offsetof(BakePushConstants, bounces_before_roulette) == 68 &&
                   offsetof(BakePushConstants, sky_rays_at_point) == 72 &&
+                  offsetof(BakePushConstants, first_point) == 76 &&
                   offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
                   offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
                   offsetof(BakePushConstants, sky_next_event) == 64,
@@ -87,18 +88,8 @@ PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPoin
     return accumulator;
 }
 
-uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass) {
-    // An empty set (no ground cell on the SfM mesh, say) has nothing to trace, but its samples are still done:
-    // callers loop until samples_done reaches their target, and would spin forever if it never moved.
-    if (accumulator.point_count == 0) {
-        accumulator.samples_done += sample_count;
-        return 0;
-    }
-    if (sample_count == 0) return 0;
+BakePushConstants IrradianceTracer::pushConstantsFor(const TracePass& pass) const {
     BakePushConstants push{};
-    push.point_count = accumulator.point_count;
-    push.first_sample = accumulator.samples_done;
-    push.sample_count = sample_count;
     push.max_bounces = pass.max_bounces;
     push.seed = pass.seed;
     push.skip_flags = pass.skip_flags;
@@ -109,34 +100,68 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
     push.bounces_before_roulette = pass.bounces_before_roulette;
     push.sky_rays_at_point = resolvedSkyRaysAtPoint(pass);
+    return push;
+}
 
-    const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
-    const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
-    if (sample_estimates_.size() < std::min<size_t>(sample_count, max_chunk) * point_bytes)
-        sample_estimates_ = GpuBuffer(context_, std::min<size_t>(sample_count, max_chunk) * point_bytes);
+uint64_t IrradianceTracer::dispatchRange(PointAccumulator& accumulator, BakePushConstants push, uint32_t first_point,
+                                         uint32_t point_count, uint32_t first_sample, uint32_t sample_count) {
+    const size_t scratch_bytes = size_t(point_count) * size_t(sample_count) * sizeof(glm::vec4);
+    if (sample_estimates_.size() < scratch_bytes) sample_estimates_ = GpuBuffer(context_, scratch_bytes);
     static_assert(BAKE_QUERY_POINT_BINDING == 7 && BAKE_SAMPLE_ESTIMATE_BINDING == 8 && BAKE_RAY_COUNTER_BINDING == 9);
     pipeline_->bindBuffers(traceInputBuffers(scene_, sky_, {&accumulator.points, &sample_estimates_, &ray_counter_}));
     accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums, &accumulator.luminance_square_sums});
+    push.point_count = point_count;
+    push.first_point = first_point;
+    push.first_sample = first_sample;
+    push.sample_count = sample_count;
+    const AccumulatePushConstants accumulate_push{point_count, sample_count, first_point};
+    const uint32_t zero_counter[4] = {0, 0, 0, 0};
+    ray_counter_.upload(zero_counter, sizeof zero_counter);
+    const uint32_t point_groups = (point_count + kWorkgroupSize - 1) / kWorkgroupSize;
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        pipeline_->recordDispatch(cmd, &push, point_groups, sample_count);
+        recordComputeBarrier(cmd);
+        accumulate_pipeline_->recordDispatch(cmd, &accumulate_push, point_groups);
+        recordComputeBarrier(cmd);
+    });
+    uint32_t rays = 0;
+    ray_counter_.download(&rays, sizeof rays);
+    return rays;
+}
+
+uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass) {
+    if (accumulator.points_with_next_sample != 0)
+        throw std::logic_error("addSamples: a sample pass is part done (finish it with addSampleToNextPoints)");
+    // An empty set (no ground cell on the SfM mesh, say) has nothing to trace, but its samples are still done:
+    // callers loop until samples_done reaches their target, and would spin forever if it never moved.
+    if (accumulator.point_count == 0) {
+        accumulator.samples_done += sample_count;
+        return 0;
+    }
+    const BakePushConstants push = pushConstantsFor(pass);
+    const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
+    const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
     uint64_t rays = 0;
     for (uint32_t done = 0; done < sample_count;) {
         const uint32_t chunk = std::min(max_chunk, sample_count - done);
-        push.first_sample = accumulator.samples_done;
-        push.sample_count = chunk;
-        const AccumulatePushConstants accumulate_push{accumulator.point_count, chunk};
-        const uint32_t zero_counter[4] = {0, 0, 0, 0};
-        ray_counter_.upload(zero_counter, sizeof zero_counter);
-        const uint32_t point_groups = (accumulator.point_count + kWorkgroupSize - 1) / kWorkgroupSize;
-        context_.submitAndWait([&](VkCommandBuffer cmd) {
-            pipeline_->recordDispatch(cmd, &push, point_groups, chunk);
-            recordComputeBarrier(cmd);
-            accumulate_pipeline_->recordDispatch(cmd, &accumulate_push, point_groups);
-            recordComputeBarrier(cmd);
-        });
-        uint32_t chunk_rays = 0;
-        ray_counter_.download(&chunk_rays, sizeof chunk_rays);
-        rays += chunk_rays;
+        rays += dispatchRange(accumulator, push, 0, accumulator.point_count, accumulator.samples_done, chunk);
         accumulator.samples_done += chunk;
         done += chunk;
+    }
+    return rays;
+}
+
+uint64_t IrradianceTracer::addSampleToNextPoints(PointAccumulator& accumulator, uint32_t point_count,
+                                                 const TracePass& pass) {
+    const uint32_t first_point = accumulator.points_with_next_sample;
+    const uint32_t count = std::min(point_count, accumulator.point_count - first_point);
+    uint64_t rays = 0;
+    if (count > 0)
+        rays = dispatchRange(accumulator, pushConstantsFor(pass), first_point, count, accumulator.samples_done, 1);
+    accumulator.points_with_next_sample += count;
+    if (accumulator.points_with_next_sample >= accumulator.point_count) {
+        accumulator.points_with_next_sample = 0;
+        ++accumulator.samples_done;
     }
     return rays;
 }
@@ -150,12 +175,17 @@ std::vector<float> IrradianceTracer::readLuminanceSquareSums(const PointAccumula
 }
 
 void IrradianceTracer::restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums,
-                                   const std::vector<float>& luminance_square_sums, uint32_t samples_done) {
+                                   const std::vector<float>& luminance_square_sums, uint32_t samples_done,
+                                   uint32_t points_with_next_sample) {
     if (sums.size() != accumulator.point_count || luminance_square_sums.size() != accumulator.point_count)
         throw std::invalid_argument("restoreSums: point count differs from the accumulator's");
+    if (points_with_next_sample >= std::max(accumulator.point_count, 1u))
+        throw std::invalid_argument("restoreSums: points_with_next_sample " + std::to_string(points_with_next_sample) +
+                                    " is not below the point count " + std::to_string(accumulator.point_count));
     if (!sums.empty()) accumulator.sums.uploadVector(sums);
     if (!luminance_square_sums.empty()) accumulator.luminance_square_sums.uploadVector(luminance_square_sums);
     accumulator.samples_done = samples_done;
+    accumulator.points_with_next_sample = points_with_next_sample;
 }
 
 std::vector<glm::vec3> IrradianceTracer::traceIrradiance(const std::vector<QueryPointGpu>& points,

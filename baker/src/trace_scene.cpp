@@ -1,5 +1,7 @@
 #include "gusuku_bake/trace_scene.h"
 
+#include "gusuku_bake/closed_parts.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -103,6 +105,7 @@ PackedSceneShading packSceneShading(const TriangleMesh& mesh, int max_texture_si
 
     const size_t triangle_count = mesh.triangleCount();
     packed.triangles.resize(triangle_count);
+    const std::vector<bool> closed = closedOutwardTriangles(mesh);
     for (size_t t = 0; t < triangle_count; ++t) {
         const uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
         const glm::vec3 p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
@@ -118,7 +121,7 @@ PackedSceneShading packSceneShading(const TriangleMesh& mesh, int max_texture_si
         gpu.normal1_v0 = glm::vec4(normal(i1), uv(i0).y);
         gpu.normal2_material = glm::vec4(normal(i2), floatFromBits(material));
         gpu.uv0_vertex1_vertex2 = glm::vec4(uv(i1), uv(i2));
-        gpu.geometric_normal = glm::vec4(face, 0.0f);
+        gpu.geometric_normal = glm::vec4(face, closed[t] ? 1.0f : 0.0f);
     }
     return packed;
 }

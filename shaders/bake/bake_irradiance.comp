@@ -1,5 +1,5 @@
 #version 450
-// Bake kernel: one invocation per (query point, sample): x indexes the point (a lightmap texel or a ground cell),
+// Bake kernel: one invocation per (query point, sample): x indexes the point of the dispatch's range (a lightmap texel or a ground cell),
 // y the sample within this dispatch's chunk. Each writes its one-sample estimate to a scratch slot;
 // bake_accumulate.comp then adds the chunk's samples onto the running sums in sample order.
 //
@@ -45,9 +45,12 @@ layout(std430, set = 0, binding = BAKE_RAY_COUNTER_BINDING) buffer RayCounter { 
 // The push-constant block `pc` (BakeIrradiancePushConstants) is declared in bake_irradiance_interface.h.
 
 void main() {
-    uint point_index = gl_GlobalInvocationID.x;
+    // x indexes the dispatch's range of points (a long pass is cut into ranges so a stop need not wait for it);
+    // the point's own index picks its random stream, so the ranges change nothing.
+    uint range_index = gl_GlobalInvocationID.x;
+    uint point_index = pc.first_point + range_index;
     uint sample_in_chunk = gl_GlobalInvocationID.y;
-    bool in_range = point_index < pc.point_count && sample_in_chunk < pc.sample_count;
+    bool in_range = range_index < pc.point_count && sample_in_chunk < pc.sample_count;
     if (in_range) {
         QueryPoint point = query_points[point_index];
         PathSettings settings;
@@ -85,7 +88,7 @@ void main() {
             if (any(isnan(estimate.xyz)) || any(isinf(estimate.xyz))) estimate.xyz = vec3(0.0);
             estimate.w = backface_score;
         }
-        sample_estimates[sample_in_chunk * pc.point_count + point_index] = estimate;
+        sample_estimates[sample_in_chunk * pc.point_count + range_index] = estimate;
     }
     // One atomic per subgroup rather than per invocation.
     uint subgroup_rays = subgroupAdd(in_range ? g_rays_traced : 0u);

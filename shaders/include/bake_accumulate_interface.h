@@ -12,8 +12,9 @@
 #define BAKE_ACCUMULATE_BINDING_COUNT 3
 
 GUSUKU_PUSH_CONSTANTS_BEGIN(BakeAccumulatePushConstants)
-    uint point_count;
+    uint point_count;   // points in this dispatch's range
     uint sample_count;
+    uint first_point;   // the range is points [first_point, first_point + point_count) of the running sums
 GUSUKU_PUSH_CONSTANTS_END(BakeAccumulatePushConstants, pc)
 
 // local_size_x, the same as bake_irradiance.comp's

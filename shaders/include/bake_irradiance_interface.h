@@ -17,7 +17,7 @@
 #define BAKE_SKY_RADIANCE_BINDING 5      // SkySamplingTables::radiance_rgba
 #define BAKE_SKY_TABLE_BINDING 6         // SkySamplingTables::table
 #define BAKE_QUERY_POINT_BINDING 7       // QueryPointGpu per point
-#define BAKE_SAMPLE_ESTIMATE_BINDING 8   // vec4 per (sample in chunk, point)
+#define BAKE_SAMPLE_ESTIMATE_BINDING 8   // vec4 per (sample in chunk, point of the range)
 #define BAKE_RAY_COUNTER_BINDING 9       // uint rays traced
 #define BAKE_IRRADIANCE_BINDING_COUNT 10
 
@@ -26,7 +26,7 @@
 #define BAKE_MODE_SUN_DIRECT 1u  // the direct sun term alone (tests)
 
 GUSUKU_PUSH_CONSTANTS_BEGIN(BakeIrradiancePushConstants)
-    uint point_count;
+    uint point_count;                // points in this dispatch's range (first_point below)
     uint first_sample;
     uint sample_count;
     uint max_bounces;
@@ -39,6 +39,7 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(BakeIrradiancePushConstants)
     uint sky_next_event;             // 1: sample the sky map too (MIS), 0: cosine lobe alone
     uint bounces_before_roulette;    // Russian roulette from this many reflections on (irradiance_paths.glsl)
     uint sky_rays_at_point;          // sky next-event rays at the query point itself (irradiance_paths.glsl)
+    uint first_point;                // this dispatch traces points [first_point, first_point + point_count)
 GUSUKU_PUSH_CONSTANTS_END(BakeIrradiancePushConstants, pc)
 
 // local_size_x of bake_irradiance.comp and bake_accumulate.comp

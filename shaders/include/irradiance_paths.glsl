@@ -53,12 +53,13 @@ bool traceOccluded(vec3 origin, vec3 direction, PathSettings settings) {
     return bvhOccluded(origin, direction, 1e30, settings.skip_flags);
 }
 
-// A double-sided surface hit from behind (by its winding) scores this much toward a texel's back-face share,
-// a one-sided one 1. The bake marks a texel invalid when its mean score passes kMaxBackfaceFraction = 0.1
+// A double-sided face of a closed part (baker/include/gusuku_bake/closed_parts.h) hit from behind (by its winding)
+// scores this much toward a texel's back-face share, a one-sided one 1; the back of an open double-sided sheet
+// (a roof of one layer) scores nothing: it is the sheet's other visible side, and a texel under it is in the
+// open (issue 21 item 7: a pavilion's floor under a wide roof saw its back in over 90 % of its rays). The bake marks a texel invalid when its mean score passes kMaxBackfaceFraction = 0.1
 // (baker/src/bake_outputs.h), so one-sided backs must fill more than 10 % of its first rays (as before) and
-// double-sided backs more than 90 %: a closed part's inside sees back faces in every direction (100 %), while
-// a single open sheet seen from behind fills at most half the hemisphere (a point at the foot of an endless
-// sheet) and the corner of two such sheets three quarters of it. Why not 1: double-sided is how most real
+// closed double-sided backs more than 90 %: a closed part's inside sees back faces in every direction (100 %),
+// while a texel outside sees at most half of a closed part's faces from behind (where it touches it). Why not 1: double-sided is how most real
 // models mark every material, so their backs alone are the only sign of a texel inside a closed part.
 const float kDoubleSidedBackfaceScore = 0.1 / 0.9;
 
@@ -136,7 +137,8 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
             if (depth == 0u) backface_score = 1.0;
             break;
         }
-        if (depth == 0u && !surface.front_face) backface_score = kDoubleSidedBackfaceScore;
+        // A double-sided face's back is evidence only on a closed part: an open sheet's back is its other side.
+        if (depth == 0u && !surface.front_face && surface.closed_part) backface_score = kDoubleSidedBackfaceScore;
         irradiance += path_weight * kPi * surface.emission;
         if (depth >= settings.max_bounces) break;
 

@@ -15,7 +15,7 @@ struct TriangleShadingGpu {
     vec4 normal1_v0;        // vertex 1 normal; w: vertex 0 uv0.y
     vec4 normal2_material;  // vertex 2 normal; w: material index (float bits)
     vec4 uv0_vertex1_vertex2;
-    vec4 geometric_normal;  // unit face normal of the counter-clockwise winding; w unused
+    vec4 geometric_normal;  // unit face normal of the counter-clockwise winding; w 1 on a closed part's face
 };
 
 struct MaterialGpu {
@@ -78,6 +78,7 @@ struct SurfacePoint {
     vec3 emission;
     bool front_face;        // the ray hit the counter-clockwise side
     bool double_sided;
+    bool closed_part;       // a face of a closed, outward-wound part (baker/include/gusuku_bake/closed_parts.h)
 };
 
 SurfacePoint evaluateSurface(uint triangle_index, float barycentric_u, float barycentric_v, vec3 ray_direction) {
@@ -86,6 +87,7 @@ SurfacePoint evaluateSurface(uint triangle_index, float barycentric_u, float bar
     SurfacePoint surface;
     vec3 geometric = shading.geometric_normal.xyz;
     surface.front_face = dot(geometric, ray_direction) < 0.0;
+    surface.closed_part = shading.geometric_normal.w > 0.5;
     float side = surface.front_face ? 1.0 : -1.0;
     surface.geometric_normal = geometric * side;
     vec3 interpolated = w0 * shading.normal0_u0.xyz + barycentric_u * shading.normal1_v0.xyz +

@@ -30,9 +30,23 @@ struct BakeOptions {
     /// (gusuku_bake/bake_merge.h). Everything but the slot's own files is what the whole bake writes.
     std::string slot;
     int max_texture_size = 512;     ///< albedo textures are downsampled to this for tracing
-    double target_chunk_seconds = 1.0;  ///< dispatch length the sample chunks adapt to
-    /// Polled between chunks; returning true checkpoints and stops (BakeReport::completed = false).
+    /// The length each GPU dispatch aims at (gusuku_bake/dispatch_budget.h): a stop waits for at most about
+    /// one, and a pass over a large set is cut into point ranges to keep to it.
+    double target_chunk_seconds = 0.25;
+    /// Polled between setup steps and between dispatches; returning true checkpoints and stops
+    /// (BakeReport::completed = false).
     std::function<bool()> should_stop;
+};
+
+/// One slot's invalid building texels (alpha 0 in its lightmap, filled by dilation) and why, by what their first
+/// rays see from the texel's centre (invalid_texel_reasons.h): each texel counted once, under its main reason.
+struct InvalidTexelCounts {
+    std::string slot;
+    size_t total = 0;
+    size_t one_sided_backs = 0;      ///< behind a one-sided face of the building (a wall's inner side)
+    size_t under_ground = 0;         ///< the site's ground seen from below: the building's foot, or a part sunk in it
+    size_t closed_double_sided = 0;  ///< inside a closed part of double-sided faces, by its winding (closed_parts.h)
+    size_t unexplained = 0;          ///< the re-traced rays found none of these (a texel at the limit of noise)
 };
 
 struct BakeReport {
@@ -48,6 +62,7 @@ struct BakeReport {
     double wall_seconds = 0.0;      ///< this run, all of it
     double resumed_fraction = 0.0;  ///< share of the work taken from checkpoints
     std::vector<std::string> warnings;
+    std::vector<InvalidTexelCounts> invalid_texels;  ///< per slot traced, in the site's order
 };
 
 BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options);

@@ -16,6 +16,9 @@
 #include "gusuku_bake/trace_inputs_gpu.h"
 #include "gusuku_bake/trace_scene.h"
 
+namespace gusuku::shader_interface {
+struct BakeIrradiancePushConstants;  // shaders/include/bake_irradiance_interface.h, private to the baker
+}
 namespace gusuku::bake {
 
 /// A point where irradiance is estimated, in the shader's layout. The convention at a surface (README, "How the
@@ -91,13 +94,17 @@ inline constexpr uint32_t kSkyRaysAtPointWithoutSun = 8;
 struct PointAccumulator {
     GpuBuffer points;
     GpuBuffer sums;          ///< vec4 per point: irradiance sum xyz, w the sum of the first rays' back-face scores:
-                             ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided one
-                             ///< from behind by its winding (irradiance_paths.glsl), so w / samples above
-                             ///< kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over 90 % double-sided backs
+                             ///< 1 per hit on the back of a one-sided surface, 1/9 per hit on a double-sided face
+                             ///< of a closed part (closed_parts.h) from behind by its winding (irradiance_paths.glsl),
+                             ///< so w / samples above kMaxBackfaceFraction = 0.1 means over 10 % one-sided or over
+                             ///< 90 % closed double-sided backs (an open sheet's back scores nothing)
     GpuBuffer luminance_square_sums;  ///< float per point: sum of each sample's squared luminance (Rec.709), so
                                       ///< luminanceVarianceOfMean can say how noisy the point's mean is
     uint32_t point_count = 0;
-    uint32_t samples_done = 0;
+    uint32_t samples_done = 0;  ///< samples every point holds
+    /// A sample pass cut into point ranges (addSampleToNextPoints): points [0, this) also hold sample
+    /// samples_done. 0 between passes; when the last point gets its sample, samples_done advances and this is 0.
+    uint32_t points_with_next_sample = 0;
 };
 
 /// Fingerprint of the tracing kernel's SPIR-V: part of a bake's input hash, so checkpoints written by other
@@ -125,16 +132,24 @@ public:
 
     /// Adds `sample_count` samples per point: samples [samples_done, samples_done + sample_count) of each
     /// point's fixed random stream, so the result depends only on the total, not on how it was chunked.
-    /// Returns the number of rays traced. An empty accumulator advances samples_done without tracing.
+    /// Returns the number of rays traced. An empty accumulator advances samples_done without tracing. Throws
+    /// std::logic_error while a pass is part done (points_with_next_sample > 0).
     uint64_t addSamples(PointAccumulator& accumulator, uint32_t sample_count, const TracePass& pass);
+    /// One sample pass in pieces, so that no dispatch need be longer than a stop may wait: adds sample
+    /// samples_done to the next `point_count` points that lack it (from points_with_next_sample on, fewer at the
+    /// end of the pass). The sums are those of a whole pass: each point's sum takes its samples in order, from its
+    /// own random stream, however the points were split. Returns the number of rays traced.
+    uint64_t addSampleToNextPoints(PointAccumulator& accumulator, uint32_t point_count, const TracePass& pass);
 
     /// The running sums (vec4 per point, see PointAccumulator::sums).
     std::vector<glm::vec4> readSums(const PointAccumulator& accumulator) const;
     /// The running sums of squared luminance (float per point, see PointAccumulator::luminance_square_sums).
     std::vector<float> readLuminanceSquareSums(const PointAccumulator& accumulator) const;
-    /// Restores sums saved from an earlier run (resume), with the number of samples they hold.
+    /// Restores sums saved from an earlier run (resume), with the number of samples they hold (and the points of
+    /// a part-done pass that hold one more, PointAccumulator::points_with_next_sample).
     void restoreSums(PointAccumulator& accumulator, const std::vector<glm::vec4>& sums,
-                     const std::vector<float>& luminance_square_sums, uint32_t samples_done);
+                     const std::vector<float>& luminance_square_sums, uint32_t samples_done,
+                     uint32_t points_with_next_sample = 0);
 
     /// Convenience: mean irradiance at each point after `samples` samples (tests, tools).
     std::vector<glm::vec3> traceIrradiance(const std::vector<QueryPointGpu>& points, uint32_t samples,
@@ -144,6 +159,12 @@ public:
     size_t droppedTriangleCount() const { return scene_.dropped_triangle_count; }
 
 private:
+    shader_interface::BakeIrradiancePushConstants pushConstantsFor(const TracePass& pass) const;
+    /// Samples [first_sample, first_sample + sample_count) of points [first_point, first_point + point_count),
+    /// traced and added onto their sums in one submission; returns the rays traced.
+    uint64_t dispatchRange(PointAccumulator& accumulator, shader_interface::BakeIrradiancePushConstants push,
+                           uint32_t first_point, uint32_t point_count, uint32_t first_sample, uint32_t sample_count);
+
     VulkanContext& context_;
     std::unique_ptr<ComputePipeline> pipeline_;             ///< bake_irradiance.comp: one path per invocation
     std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums

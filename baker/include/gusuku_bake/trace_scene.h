@@ -38,7 +38,7 @@ struct TriangleShadingGpu {
     glm::vec4 normal1_v0;
     glm::vec4 normal2_material;  ///< w: material index as float bits
     glm::vec4 uv0_vertex1_vertex2;
-    glm::vec4 geometric_normal;
+    glm::vec4 geometric_normal;  ///< xyz unit face normal; w 1 on a face of a closed part (closed_parts.h), else 0
 };
 static_assert(sizeof(TriangleShadingGpu) == 80);
 

@@ -1,0 +1,98 @@
+#include "invalid_texel_reasons.h"
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "bake_outputs.h"
+#include "gusuku_bake/bvh.h"
+#include "gusuku_bake/closed_parts.h"
+
+namespace gusuku::bake {
+
+namespace {
+
+// The tracer's ray offset (TracePass::ray_offset_m) and its score for a closed double-sided back
+// (irradiance_paths.glsl's kDoubleSidedBackfaceScore).
+constexpr float kRayOffsetM = 1e-3f;
+constexpr double kClosedDoubleSidedScore = 0.1 / 0.9;
+
+// An orthonormal frame about unit n.
+void frameAbout(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitangent) {
+    const glm::vec3 helper = std::abs(n.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    tangent = glm::normalize(glm::cross(helper, n));
+    bitangent = glm::cross(n, tangent);
+}
+
+}  // namespace
+
+InvalidTexelAccounting::InvalidTexelAccounting(const BakeGeometry& geometry)
+    : geometry_(geometry), closed_(closedOutwardTriangles(geometry.scene.mesh)),
+      reason_of_(geometry.texels.size(), int8_t(-1)) {}
+
+InvalidTexelReason InvalidTexelAccounting::reason(size_t texel_index) {
+    if (reason_of_[texel_index] >= 0) return InvalidTexelReason(reason_of_[texel_index]);
+    const LightmapTexel& texel = geometry_.texels[texel_index];
+    const TriangleMesh& mesh = geometry_.scene.mesh;
+    const glm::vec3 normal = texel.shading_normal;
+    // The face plane on the shading normal's side, as the tracer takes it.
+    const glm::vec3 face = glm::dot(texel.geometric_normal, normal) < 0.0f ? -texel.geometric_normal
+                                                                            : texel.geometric_normal;
+    glm::vec3 tangent, bitangent;
+    frameAbout(normal, tangent, bitangent);
+    const glm::vec3 origin = texel.position + normal * kRayOffsetM;
+    std::array<double, 3> score{};  // by InvalidTexelReason: one-sided, under ground, closed double-sided
+    constexpr int side = kInvalidReasonRaysPerSide;
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) {
+            // Cosine-weighted, stratified: r = sqrt(u), phi = 2 pi v over cell centres.
+            const double u = (i + 0.5) / side, v = (j + 0.5) / side;
+            const double r = std::sqrt(u), phi = 2.0 * std::numbers::pi * v;
+            const glm::vec3 direction = glm::normalize(tangent * float(r * std::cos(phi)) +
+                                                       bitangent * float(r * std::sin(phi)) +
+                                                       normal * float(std::sqrt(std::max(0.0, 1.0 - u))));
+            if (glm::dot(direction, face) <= 0.0f) continue;
+            const std::optional<BvhHit> hit = traceClosestCpu(geometry_.cpuBvh(), origin, direction, 1e30f);
+            if (!hit || hit->front_face) continue;
+            const uint32_t material_index =
+                hit->triangle_index < mesh.triangle_material.size() ? mesh.triangle_material[hit->triangle_index] : 0u;
+            const bool double_sided =
+                material_index < mesh.materials.size() && mesh.materials[material_index].double_sided;
+            const bool building = hit->triangle_index < geometry_.scene.building_triangle_count;
+            if (!double_sided)
+                score[building ? 0 : 1] += 1.0;
+            else if (closed_[hit->triangle_index])
+                score[2] += kClosedDoubleSidedScore;
+        }
+    InvalidTexelReason found = InvalidTexelReason::Unexplained;
+    double highest = 0.0;
+    for (size_t k = 0; k < score.size(); ++k)
+        if (score[k] > highest) {
+            highest = score[k];
+            found = InvalidTexelReason(k);
+        }
+    reason_of_[texel_index] = int8_t(found);
+    return found;
+}
+
+InvalidTexelCounts InvalidTexelAccounting::count(const std::string& slot, const std::vector<glm::vec4>& texel_sums,
+                                                 uint32_t samples) {
+    InvalidTexelCounts counts;
+    counts.slot = slot;
+    const float inverse_samples = 1.0f / float(std::max(samples, 1u));
+    for (size_t i = 0; i < texel_sums.size() && i < geometry_.texels.size(); ++i) {
+        if (texel_sums[i].w * inverse_samples <= kMaxBackfaceFraction) continue;
+        ++counts.total;
+        switch (reason(i)) {
+            case InvalidTexelReason::OneSidedBack: ++counts.one_sided_backs; break;
+            case InvalidTexelReason::UnderGround: ++counts.under_ground; break;
+            case InvalidTexelReason::ClosedDoubleSided: ++counts.closed_double_sided; break;
+            case InvalidTexelReason::Unexplained: ++counts.unexplained; break;
+        }
+    }
+    return counts;
+}
+
+}  // namespace gusuku::bake
