@@ -19,10 +19,14 @@ layout(std430, set = RUNTIME_FRAME_SET, binding = RUNTIME_COLOUR_MATCH_BINDING) 
 };
 #include "runtime_shadow.glsl"
 
-layout(location = 0) in vec3 position_enu;
-layout(location = 1) in vec3 normal_enu;
+// Centroid: with multisampling a pixel on a triangle's edge is shaded once, and at the pixel's centre the
+// interpolated values lie outside the triangle: the lightmap would be read past its chart (the gutter, or a
+// neighbour's texels) and the shadow maps at a point off the surface. At a covered sample they stay on it. The
+// base colour's UV keeps centre interpolation, since its mip level comes from the UV's derivatives.
+layout(location = 0) centroid in vec3 position_enu;
+layout(location = 1) centroid in vec3 normal_enu;
 layout(location = 2) in vec2 base_colour_uv;
-layout(location = 3) in vec2 lightmap_uv;
+layout(location = 3) centroid in vec2 lightmap_uv;
 
 layout(location = 0) out vec4 out_colour;  // linear; the sRGB attachment encodes it
 
