@@ -2,7 +2,10 @@
 
 #include "runtime_modes.h"
 
+#include <cmath>
 #include <stdexcept>
+
+#include "gusuku/maths/colour.h"
 
 namespace gusuku::bench {
 
@@ -64,6 +67,28 @@ std::vector<uint8_t> resizeNearest(const std::vector<uint8_t>& rgba8, uint32_t w
         }
     }
     return resized;
+}
+
+std::vector<uint8_t> averageDown2x(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height) {
+    if (rgba8.size() != size_t(width) * height * 16)
+        throw std::invalid_argument("averageDown2x: the frame is not 2 width x 2 height RGBA8");
+    std::vector<uint8_t> averaged(size_t(width) * height * 4);
+    const size_t source_row = size_t(width) * 2 * 4;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const size_t corner = size_t(2 * y) * source_row + size_t(2 * x) * 4;
+            const size_t block[4] = {corner, corner + 4, corner + source_row, corner + source_row + 4};
+            uint8_t* out = &averaged[(size_t(y) * width + x) * 4];
+            for (int channel = 0; channel < 3; ++channel) {
+                double linear = 0.0;
+                for (size_t at : block) linear += srgbDecode(double(rgba8[at + channel]) / 255.0);
+                out[channel] = uint8_t(std::lround(255.0 * srgbEncode(linear / 4.0)));
+            }
+            unsigned alpha = 0;
+            for (size_t at : block) alpha += rgba8[at + 3];
+            out[3] = uint8_t((alpha + 2) / 4);
+        }
+    return averaged;
 }
 
 }  // namespace gusuku::bench

@@ -40,4 +40,10 @@ std::vector<uint8_t> steadyComposite(Runtime& runtime, const FrameInput& frame, 
 std::vector<uint8_t> resizeNearest(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height,
                                    uint32_t new_width, uint32_t new_height);
 
+/// An RGBA8 frame of 2 width x 2 height averaged down to width x height: each pixel the mean of its 2 x 2 block
+/// in linear light (sRGB decoded, averaged, encoded, rounded; alpha averaged as it is). A frame the runtime drew
+/// at twice the size, averaged so, has 4 times the samples a pixel (16 at msaa 4) and 4 shadings: against the
+/// truth it reads how right the light is with the pixel sampling's share mostly gone.
+std::vector<uint8_t> averageDown2x(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height);
+
 }  // namespace gusuku::bench
