@@ -43,6 +43,8 @@ struct Settings {
     // The site section (--views): the visitor poses, and the sample's results.json to compare the frame with.
     std::vector<NamedView> views;
     std::optional<std::string> sample_results;
+    // --cycles-truth: Cycles' renders of the poses (bench/cycles/cycles_view_render.py), checked at the baked instant.
+    std::optional<std::string> cycles_truth;
     // Derived from quick.
     uint32_t accuracy_width = 320, accuracy_height = 180, truth_samples = 512;
     uint32_t sweep_width = 160, sweep_height = 90, sweep_samples = 256;

@@ -72,6 +72,10 @@ const char* const kUsage =
     "                    the same site baked under photographed skies (scripts/bench.sh bakes one under\n"
     "                    ../shared/data/env when it is there): the weather and clouds sections run under\n"
     "                    them too, with their own path-traced truths\n"
+    "  --cycles-truth DIR\n"
+    "                    Cycles' renders of the --views poses at the site section's size, lit by the slot of\n"
+    "                    its baked instant (bench/cycles/compare_views_with_cycles.sh writes them): each pose\n"
+    "                    reports the path tracer's difference from Cycles beside its own seed-to-seed noise\n"
     "\n"
     "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
 
@@ -86,6 +90,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     settings.photographed_bake_set = line.text("--photographed-skies");
     const std::optional<std::string> cache = line.text("--cache");
     settings.sample_results = line.text("--sample-results");
+    settings.cycles_truth = line.text("--cycles-truth");
     if (const auto views = line.text("--views")) {
         try {
             settings.views = parseBenchViews(*views);
@@ -120,6 +125,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     }
     if (truth_samples) settings.truth_samples = uint32_t(*truth_samples);
     if (settings.sample_results && settings.views.empty()) line.fail("--sample-results needs --views (see --help)");
+    if (settings.cycles_truth && settings.views.empty()) line.fail("--cycles-truth needs --views (see --help)");
     if (!settings.views.empty() && !settings.only.empty() && !settings.wants("site"))
         line.fail("--views is for the site section, which --only leaves out (see --help)");
     if (settings.views.empty() && std::find(settings.only.begin(), settings.only.end(), "site") != settings.only.end())
