@@ -16,22 +16,28 @@
 
 namespace gusuku::bench {
 
-/// One pose's renders, as cycles_view_render.py writes them in DIR.
+/// One pose's renders, as cycles_view_render.py writes them in DIR: each frame twice, with two seeds (suffix
+/// _b), whose mean is Cycles' estimate and whose difference measures its own noise.
 struct CyclesView {
-    ImageRGBA with_building;            ///< DIR/NAME_building.exr, linear Rec.709 radiance
-    ImageRGBA without_building;         ///< DIR/NAME_site.exr
+    ImageRGBA with_building[2];         ///< DIR/NAME_building.exr, NAME_building_b.exr: linear Rec.709 radiance
+    ImageRGBA without_building[2];      ///< DIR/NAME_site.exr, NAME_site_b.exr
     std::vector<uint32_t> material_ids; ///< DIR/NAME_materials.exr red channel: 0 none, k: materials[k - 1]
     std::vector<std::string> materials; ///< DIR/materials.json
 };
+
+/// The mean of two frames of the same size.
+ImageRGBA meanOf(const ImageRGBA& a, const ImageRGBA& b);
 
 /// Reads pose `name`'s renders. InputError naming the file when one is missing, unreadable or not width x height,
 /// or materials.json is not a list of names.
 CyclesView readCyclesView(const std::string& folder, const std::string& name, uint32_t width, uint32_t height);
 
-/// Two linear frames' difference over the mask: mean CIEDE2000 after the camera response, the per-pixel mean
-/// |luminance difference| over the mean luminance, and the ratio of mean luminances minus one.
+/// Two linear frames' difference over the mask (empty: every pixel): the mean and the root mean square of the
+/// per-pixel CIEDE2000 after the bench's neutral camera response at this exposure; the per-pixel luminance
+/// difference's root mean square over the mean luminance; the ratio of mean luminances minus one.
 struct FrameDifference {
-    double mean_de00 = 0.0, relative_luminance = 0.0, luminance_bias = 0.0;
+    double mean_de00 = 0.0, rms_de00 = 0.0, rms_relative_luminance = 0.0, luminance_bias = 0.0;
+    size_t pixels = 0;
 };
 FrameDifference frameDifference(const ImageRGBA& frame, const ImageRGBA& reference, float exposure,
                                 const std::vector<uint8_t>& mask);

@@ -50,6 +50,8 @@ def add_exported_lighting(scene, lighting_dir, slot, gate_direct_sun):
     world.use_nodes = True
     environment = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
     environment.image = bpy.data.images.load(f"{lighting_dir}/sky_{slot}.hdr")
+    # The tracer reads the texel containing a direction, unfiltered (sky_sampling.glsl skyRadiance): so does this.
+    environment.interpolation = "Closest"
     world.node_tree.links.new(environment.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
     sun = read_sun(lighting_dir, slot)
     if not sun["present"]:

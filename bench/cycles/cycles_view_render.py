@@ -13,7 +13,9 @@
 # VIEWS is gusuku-bench's --views (NAME:E,N,U:E,N,U[:HFOV], ';'-separated; default field of view 60 degrees,
 # horizontal): the camera is the bench's pinhole (CameraIntrinsics::fromFieldOfView: square pixels, principal
 # point at the centre) looking from the first point at the second, world up +U, each pixel the box average of
-# its rays (the tracer jitters its rays uniformly in the pixel). Per view it writes, in OUT_DIR:
+# its rays (the tracer jitters its rays uniformly in the pixel). Per view it writes, in OUT_DIR, each radiance
+# frame twice, SAMPLES a pixel with two seeds (NAME_building.exr and NAME_building_b.exr, ...): their mean is the
+# estimate and their difference its noise, which gusuku-bench --cycles-truth takes out of the comparison:
 #   NAME_building.exr  linear Rec.709 radiance (RGBA float), the site with the building
 #   NAME_site.exr      the same without the building (the camera frame)
 #   NAME_materials.exr the building material at each pixel's centre: R = index + 1 in materials.json's list
@@ -119,6 +121,13 @@ def render_to(scene, path):
     bpy.ops.render.render(write_still=True)
 
 
+def render_two_seeds(scene, stem):
+    """STEM.exr with seed 1 and STEM_b.exr with seed 2."""
+    for seed, suffix in ((1, ""), (2, "_b")):
+        scene.cycles.seed = seed
+        render_to(scene, f"{stem}{suffix}.exr")
+
+
 def material_id_pass(scene, building_objects, path):
     """Swaps every building material for an emission of (index + 1, 0, 0), hides the rest, renders one
     unfiltered sample (each pixel its centre), then restores the materials."""
@@ -172,7 +181,6 @@ def main():
     cycles_scene.make_materials_lambertian()
     scene.cycles.samples = samples
     scene.cycles.use_adaptive_sampling = False
-    scene.cycles.seed = 7
     scene.cycles.pixel_filter_type = "BOX"
     scene.cycles.filter_width = 1.0
     scene.view_settings.view_transform = "Standard"  # EXR is written scene-linear whatever the view; set anyway
@@ -182,11 +190,11 @@ def main():
     names = []
     for name, position, look_at, fov in views:
         add_camera(scene, position, look_at, fov, width, height)
-        render_to(scene, f"{out_dir}/{name}_building.exr")
+        render_two_seeds(scene, f"{out_dir}/{name}_building")
         names = material_id_pass(scene, building_objects, f"{out_dir}/{name}_materials.exr")
         for obj in building_objects:
             obj.hide_render = True
-        render_to(scene, f"{out_dir}/{name}_site.exr")
+        render_two_seeds(scene, f"{out_dir}/{name}_site")
         for obj in building_objects:
             obj.hide_render = False
         print(f"CYCLES_VIEW {name} {width}x{height} samples={samples}", flush=True)
