@@ -92,23 +92,42 @@ def import_gltf(path):
     return list(bpy.context.selected_objects)
 
 
-def make_materials_lambertian(texture_interpolation=None):
+def linear_light_copy(image):
+    """A float copy of an 8-bit sRGB texture, decoded to linear light (the sRGB curve, as gusuku's tracer
+    decodes), so that Cycles' bilinear lookup mixes linear values as the tracer's does."""
+    image.colorspace_settings.name = "Non-Color"  # read the stored bytes, untransformed
+    width, height = image.size
+    texels = numpy.empty(width * height * 4, dtype=numpy.float32)
+    image.pixels.foreach_get(texels)
+    rgba = texels.reshape(-1, 4)
+    encoded = rgba[:, :3]
+    rgba[:, :3] = numpy.where(encoded <= 0.04045, encoded / 12.92, ((encoded + 0.055) / 1.055) ** 2.4)
+    copy = bpy.data.images.new(image.name + " linear", width, height, alpha=True, float_buffer=True)
+    copy.colorspace_settings.name = "Linear"
+    copy.pixels.foreach_set(texels)
+    return copy
+
+
+def make_materials_lambertian(textures_in_linear_light=False):
     """gusuku's surfaces are Lambertian. Blender's glTF importer gives every material a Principled BSDF, whose
     diffuse lobe is not Lambertian (retro-reflection at roughness > 0) and whose specular layer takes energy
     through a Fresnel term. Each becomes a Diffuse BSDF (roughness 0: Lambert) fed the same base colour.
-    texture_interpolation ("Closest"): how every image texture is read. Cycles keeps an 8-bit sRGB texture as
-    bytes and decodes after its bilinear lookup, so it mixes neighbouring texels in sRGB, not linear light, which
-    darkens a grainy texture's mean: on the shrine the building read 1.02 % (front pose) and 0.32 % (corner)
-    darker than the bench's camera tracer (which mixes decoded texels) with the default lookup, 0.06 % and -0.47 %
-    (the other way) with the texel itself, a pixel's many rays doing the averaging (bench/cycles/README.md)."""
+    textures_in_linear_light: Cycles keeps an 8-bit sRGB texture as bytes and decodes after its bilinear lookup,
+    mixing neighbouring texels in sRGB rather than linear light, which darkens a grainy texture's mean: on the
+    shrine the building read 1.02 % (front pose) and 0.32 % (corner) darker than the bench's camera tracer
+    over the bench's mask (bench/cycles/README.md). With it, every 8-bit sRGB texture is replaced by a float
+    copy decoded to linear light, so Cycles' lookup is the tracer's: decode, then interpolate."""
+    copies = {}
     for material in bpy.data.materials:
         if material.node_tree is None:
             continue
         tree = material.node_tree
-        if texture_interpolation:
-            for node in tree.nodes:
-                if node.type == "TEX_IMAGE":
-                    node.interpolation = texture_interpolation
+        for node in tree.nodes:
+            if (textures_in_linear_light and node.type == "TEX_IMAGE" and node.image is not None and
+                    not node.image.is_float and node.image.colorspace_settings.name == "sRGB"):
+                if node.image.name not in copies:
+                    copies[node.image.name] = linear_light_copy(node.image)
+                node.image = copies[node.image.name]
         for principled in [n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"]:
             diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
             diffuse.inputs["Roughness"].default_value = 0.0

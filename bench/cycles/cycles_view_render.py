@@ -178,7 +178,7 @@ def main():
     scene = cycles_scene.start_cycles_scene(max_bounces=max_bounces)
     cycles_scene.add_exported_lighting(scene, lighting_dir, slot, gate_direct_sun=False)
     _, building_objects = load_site(site_json)
-    cycles_scene.make_materials_lambertian(texture_interpolation="Closest")
+    cycles_scene.make_materials_lambertian(textures_in_linear_light=True)
     scene.cycles.samples = samples
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.pixel_filter_type = "BOX"
