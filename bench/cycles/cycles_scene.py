@@ -123,10 +123,13 @@ def make_materials_lambertian(textures_in_linear_light=False):
             continue
         tree = material.node_tree
         for node in tree.nodes:
-            if (textures_in_linear_light and node.type == "TEX_IMAGE" and node.image is not None and
-                    not node.image.is_float and node.image.colorspace_settings.name == "sRGB"):
-                if node.image.name not in copies:
-                    copies[node.image.name] = linear_light_copy(node.image)
+            if not (textures_in_linear_light and node.type == "TEX_IMAGE" and node.image is not None):
+                continue
+            # An image two materials share is copied once (its colour space is Non-Color after the first).
+            if node.image.name not in copies and not node.image.is_float and \
+                    node.image.colorspace_settings.name == "sRGB":
+                copies[node.image.name] = linear_light_copy(node.image)
+            if node.image.name in copies:
                 node.image = copies[node.image.name]
         for principled in [n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"]:
             diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
