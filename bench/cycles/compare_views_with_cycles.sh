@@ -12,7 +12,7 @@
 # Settings (environment): VIEWS (default scripts/bench-sites.sh's two poses), SLOT (default sunny_1200: the slot
 # the site section's baked instant falls on, the sunny slot nearest 12:00), CYCLES_SAMPLES (default 512: each of
 # Cycles' two seeds), QUICK (default 1: the bench's --quick, 160x90 and 128 tracer samples; 0: 320x180, 512).
-# The sample at the defaults takes about 5 minutes on 2 cores, the shrine about 15.
+# The sample or the shrine at the defaults: 4 to 7 minutes each on 2 shared cores.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 if [[ $# -ne 3 ]]; then
