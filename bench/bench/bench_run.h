@@ -49,6 +49,8 @@ struct Settings {
     // views 16 took the composite from 2.51-2.55 to 2.21-2.37 mean dE00 (docs/measurements.md).
     uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;
     float max_anisotropy = 16.0f;
+    // --cycles-truth: Cycles' renders of the poses (bench/cycles/cycles_view_render.py), checked at the baked instant.
+    std::optional<std::string> cycles_truth;
     // Derived from quick.
     uint32_t accuracy_width = 320, accuracy_height = 180, truth_samples = 512;
     uint32_t sweep_width = 160, sweep_height = 90, sweep_samples = 256;

@@ -81,6 +81,10 @@ const char* const kUsage =
     "  --views LIST      the site section's visitor poses, NAME:E,N,U:E,N,U (eye, look-at) separated by ';'\n"
     "  --sample-results FILE\n"
     "                    the sample's results.json: the site section reads the frame against the sample's\n"
+    "  --cycles-truth DIR\n"
+    "                    Cycles' renders of the --views poses at the site section's size, lit by the slot of\n"
+    "                    its baked instant (bench/cycles/compare_views_with_cycles.sh writes them): each pose\n"
+    "                    reports the path tracer's difference from Cycles beside its own seed-to-seed noise\n"
     "\n"
     "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
 
@@ -95,6 +99,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     settings.photographed_bake_set = line.text("--photographed-skies");
     const std::optional<std::string> cache = line.text("--cache");
     settings.sample_results = line.text("--sample-results");
+    settings.cycles_truth = line.text("--cycles-truth");
     if (const auto views = line.text("--views")) {
         try {
             settings.views = parseBenchViews(*views);
@@ -140,6 +145,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
         settings.accuracy_width = width, settings.accuracy_height = height;
     }
     if (settings.sample_results && settings.views.empty()) line.fail("--sample-results needs --views (see --help)");
+    if (settings.cycles_truth && settings.views.empty()) line.fail("--cycles-truth needs --views (see --help)");
     if (!settings.views.empty() && !settings.only.empty() && !settings.wants("site"))
         line.fail("--views is for the site section, which --only leaves out (see --help)");
     if (settings.views.empty() && std::find(settings.only.begin(), settings.only.end(), "site") != settings.only.end())

@@ -18,107 +18,33 @@
 # REFERENCE / 2 samples with different seeds, whose difference measures its noise (its mean square is 4 times
 # the reference's own), and the noise of independent estimates adds in squares. Last, the agreement of that
 # converged bake with gusuku's lightmap of the slot.
-import json
 import math
 import os
 import sys
 import time
 
 import bpy
-import numpy
 
-# Debian 12's Blender 3.4 glTF importer still uses numpy.bool, which Debian 12's numpy 1.24 removed.
-if not hasattr(numpy, "bool"):
-    numpy.bool = bool
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cycles_scene  # noqa: E402  (this folder, put on the path above)
 
 args = sys.argv[sys.argv.index("--") + 1:]
 bakeset, site_glb, lighting_dir, slot = args[0], args[1], args[2], args[3]
 reference_samples = int(args[4])
 sample_counts = [int(a) for a in args[5:]]
 modes = os.environ.get("CYCLES_MODES", "fixed,adaptive").split(",")
-sky_hdr = f"{lighting_dir}/sky_{slot}.hdr"
-with open(f"{lighting_dir}/sun_{slot}.json") as stream:
-    sun = json.load(stream)
 
-bpy.ops.wm.read_factory_settings(use_empty=True)
-scene = bpy.context.scene
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.render.threads_mode = "FIXED"
-scene.render.threads = 2
 # Three diffuse bounces, as the sample site's bake.max_bounces; nothing else in the scene needs more.
-scene.cycles.max_bounces = 3
-scene.cycles.diffuse_bounces = 3
-scene.cycles.glossy_bounces = 0
-scene.cycles.transmission_bounces = 0
-scene.cycles.transparent_max_bounces = 0
-scene.cycles.use_denoising = False
-scene.cycles.sample_clamp_direct = 0.0
-scene.cycles.sample_clamp_indirect = 0.0
-
-world = bpy.data.worlds.new("sky")
-scene.world = world
-world.use_nodes = True
-environment = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
-environment.image = bpy.data.images.load(sky_hdr)
-world.node_tree.links.new(environment.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
-
-if sun["present"]:
-    # The tracer's sun: a disc of its angular radius (Blender's angle is the diameter), E_sun per channel at
-    # normal incidence (a Cycles sun's strength is irradiance), shining along -direction_enu (Blender's world
-    # axes are ENU here, as building.glb imports). Gated off at ray depth 0: E_ind has no direct sun.
-    import mathutils
-    irradiance = sun["irradiance_rgb"]
-    strength = max(irradiance)
-    lamp_data = bpy.data.lights.new("sun", type="SUN")
-    lamp_data.energy = strength
-    lamp_data.color = [c / strength for c in irradiance]
-    lamp_data.angle = math.radians(2.0 * sun["angular_radius_deg"])
-    lamp_data.use_nodes = True
-    nodes = lamp_data.node_tree.nodes
-    emission = next(n for n in nodes if n.type == "EMISSION")
-    light_path = nodes.new("ShaderNodeLightPath")
-    after_first_bounce = nodes.new("ShaderNodeMath")
-    after_first_bounce.operation = "GREATER_THAN"
-    # Cycles' Light Path "Ray Depth" reads 1, not 0, when a light is sampled from the baked surface itself
-    # (measured on the sample's sunny_1200: a threshold of 0.5 leaves the direct sun in, fitted scale 0.918
-    # against gusuku's E_ind; 1.5 gives 3.1409, pi; no sun at all gives 3.989).
-    after_first_bounce.inputs[1].default_value = 1.5
-    lamp_data.node_tree.links.new(light_path.outputs["Ray Depth"], after_first_bounce.inputs[0])
-    lamp_data.node_tree.links.new(after_first_bounce.outputs["Value"], emission.inputs["Strength"])
-    lamp = bpy.data.objects.new("sun", lamp_data)
-    lamp.rotation_mode = "QUATERNION"
-    lamp.rotation_quaternion = mathutils.Vector(sun["direction_enu"]).to_track_quat("Z", "Y")
-    scene.collection.objects.link(lamp)
-
-bpy.ops.import_scene.gltf(filepath=site_glb)
-site_objects = set(bpy.context.selected_objects)
-bpy.ops.import_scene.gltf(filepath=bakeset + "/building.glb")
-building = [o for o in bpy.context.selected_objects if o.type == "MESH"]
+scene = cycles_scene.start_cycles_scene(max_bounces=3)
+cycles_scene.add_exported_lighting(scene, lighting_dir, slot, gate_direct_sun=True)
+site_objects = set(cycles_scene.import_gltf(site_glb))
+building = [o for o in cycles_scene.import_gltf(bakeset + "/building.glb") if o.type == "MESH"]
 
 reference_image = bpy.data.images.load(f"{bakeset}/building_{slot}.exr")
 resolution = reference_image.size[0]
 target = bpy.data.images.new("lightmap", resolution, resolution, float_buffer=True, alpha=False)
 
-# gusuku's surfaces are Lambertian. Blender's glTF importer gives every material a Principled BSDF, whose
-# diffuse lobe is not Lambertian (retro-reflection at roughness > 0) and whose specular layer takes energy
-# through a Fresnel term. Replace each with a Diffuse BSDF (roughness 0: Lambert) fed the same base colour, so
-# both tools bake the same light transport.
-for material in bpy.data.materials:
-    if material.node_tree is None:
-        continue
-    tree = material.node_tree
-    for principled in [n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"]:
-        diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
-        diffuse.inputs["Roughness"].default_value = 0.0
-        base_colour = principled.inputs["Base Color"]
-        if base_colour.is_linked:
-            tree.links.new(base_colour.links[0].from_socket, diffuse.inputs["Color"])
-        else:
-            diffuse.inputs["Color"].default_value = base_colour.default_value
-        for link in list(principled.outputs["BSDF"].links):
-            tree.links.new(diffuse.outputs["BSDF"], link.to_socket)
-        tree.nodes.remove(principled)
+cycles_scene.make_materials_lambertian()
 
 for obj in building:
     uv_layers = obj.data.uv_layers
