@@ -25,8 +25,7 @@ foreach(runtime_library gusuku_maths gusuku_gpu gusuku_runtime)
   target_compile_features(${runtime_library} INTERFACE cxx_std_17)
 endforeach()
 
-set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
-install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader EXPORT gusukuRuntimeTargets
+install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
@@ -35,17 +34,15 @@ foreach(library maths gpu runtime)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
           COMPONENT runtime FILES_MATCHING PATTERN "*.h")
 endforeach()
-# gusuku::pack_loader's headers (the runtime pack reader, standard library only) come with the runtime.
-install(FILES ${PROJECT_SOURCE_DIR}/engine/include/gusuku/loader/gusuku_loader.h
-              ${PROJECT_SOURCE_DIR}/engine/include/gusuku/loader/runtime_pack.h
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku/loader COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
 
 if(NOT GUSUKU_RUNTIME_ONLY)
   set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
   set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
-  install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
+  # gusuku_pack_loader (the runtime pack's reader, standard library only) goes with the loader, which links it.
+  set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
+  install(TARGETS gusuku_assets gusuku_pack_loader gusuku_loader EXPORT gusukuLoaderTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   foreach(library assets loader)

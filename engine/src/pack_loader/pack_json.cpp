@@ -82,7 +82,8 @@ private:
             if (value.find(key) != nullptr) fail("the key \"" + key + "\" appears twice");
             expect(':', "':' after a member name");
             JsonValue member = parseValue(depth + 1);
-            value.members.emplace_back(std::move(key), std::move(member));
+            value.keys.push_back(std::move(key));
+            value.items.push_back(std::move(member));
             skipSpace();
             if (at_ < text_.size() && text_[at_] == ',') {
                 ++at_;
@@ -211,8 +212,9 @@ private:
 }  // namespace
 
 const JsonValue* JsonValue::find(const std::string& key) const {
-    for (const auto& [name, value] : members)
-        if (name == key) return &value;
+    if (type != Type::kObject) return nullptr;
+    for (size_t index = 0; index < keys.size(); ++index)
+        if (keys[index] == key) return &items[index];
     return nullptr;
 }
 

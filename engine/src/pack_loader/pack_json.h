@@ -5,7 +5,6 @@
 // nesting at most 64 deep. Errors are InputError(file, "byte N", problem).
 
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace gusuku::pack_detail {
@@ -16,8 +15,9 @@ struct JsonValue {
     bool boolean = false;
     double number = 0.0;
     std::string text;
-    std::vector<JsonValue> items;                              ///< kArray
-    std::vector<std::pair<std::string, JsonValue>> members;    ///< kObject, in file order
+    std::vector<JsonValue> items;     ///< kArray; kObject: the members' values, in file order
+    std::vector<std::string> keys;    ///< kObject: the members' names, one per items entry (a vector of pairs of
+                                      ///< an incomplete type does not compile with every standard library)
 
     /// The member named `key`, or null when there is none (kObject only).
     const JsonValue* find(const std::string& key) const;
