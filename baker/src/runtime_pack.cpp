@@ -9,6 +9,7 @@
 
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/ktx2.h"
 #include "gusuku/maths/pack_geometry.h"
@@ -63,6 +64,13 @@ Ktx2Image floatImage(const BakeSetImage& image) {
     return out;
 }
 
+// The pack's manifest: the bake set's, but for its statistics (this run's rays and seconds) zeroed, so that two
+// bakes of the same inputs, or a bake and a merge, write the same pack byte for byte.
+std::string packManifestText(BakeSetManifest manifest) {
+    manifest.statistics = BakeSetStatistics{};
+    return bakeSetManifestJson(manifest);
+}
+
 class PackFiles {
 public:
     explicit PackFiles(std::string folder) : folder_(std::move(folder)) {}
@@ -114,7 +122,7 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
         files.writeKtx2(packName(entry.ground_irradiance_with_building), floatImage(images.ground_with));
         files.writeKtx2(packName(entry.ground_irradiance_without_building), floatImage(images.ground_without));
     }
-    const std::string manifest_text = readWholeFile(bake_set_folder + "/manifest.json");
+    const std::string manifest_text = packManifestText(manifest);
     files.write("manifest.json", std::vector<uint8_t>(manifest_text.begin(), manifest_text.end()));
     report.bytes = files.bytes();
     return report;
@@ -124,7 +132,7 @@ bool runtimePackIsUpToDate(const std::string& bake_set_folder) {
     const std::string packed = bake_set_folder + "/" + kRuntimePackFolder + "/manifest.json";
     if (!fs::exists(packed)) return false;
     try {
-        return readWholeFile(packed) == readWholeFile(bake_set_folder + "/manifest.json");
+        return readWholeFile(packed) == packManifestText(readBakeSetManifest(bake_set_folder + "/manifest.json"));
     } catch (const std::exception&) {
         return false;
     }

@@ -20,12 +20,13 @@ struct RuntimePackReport {
 
 /// Loads the bake set in `bake_set_folder` (loadBakeSet: complete and checked, or InputError) and writes its pack
 /// into pack_folder (empty: bake_set_folder/pack; `gusuku-bake pack BAKESET -o DIR` writes it elsewhere, as for
-/// a bake set one may not write into): manifest.json is removed first and written last (a copy of the set's, byte for byte), every other file is
+/// a bake set one may not write into): manifest.json is removed first and written last (the set's with its statistics zeroed, so the same inputs
+/// give the same pack byte for byte), every other file is
 /// written atomically, so a pack with a manifest is always complete. A partial set (loadBakeSet refuses it) has no
 /// pack. Throws InputError naming the bake set's file and field, or std::runtime_error on a write failure.
 RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "");
 
-/// True when bake_set_folder/pack/manifest.json exists with the same bytes as bake_set_folder/manifest.json.
+/// True when bake_set_folder/pack/manifest.json is the pack manifest of bake_set_folder/manifest.json.
 bool runtimePackIsUpToDate(const std::string& bake_set_folder);
 
 }  // namespace gusuku::bake
