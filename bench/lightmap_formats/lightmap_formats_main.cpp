@@ -7,7 +7,9 @@
 // at display value 0.6; no colour match (exposure known). Without --position the camera stands south-east of the
 // building's bounds, 1.8 radii out and 0.6 up, looking at their centre. Each slot is drawn at its own instant
 // (overcast slots at the first sunny slot's, with cloud cover 1). "region" is the pixels where the float32
-// composite differs from the camera frame; "frame" is every pixel.
+// composite differs from the camera frame; "frame" is every pixel. With astcenc (libastcenc-dev) the lightmaps are
+// also encoded as ASTC 4x4 HDR (astcenc's medium quality), decoded on the CPU and drawn as float32: what a device
+// that samples ASTC HDR would show, at its 1 byte a texel.
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +26,7 @@
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/runtime/runtime.h"
+#include "astc_lightmap.h"
 #include "image_metrics.h"
 
 using namespace gusuku;
@@ -98,11 +101,66 @@ double meanLightmapLuminance(const BakeSetImage& image) {
 }
 
 struct FormatRun {
-    LightmapFormat format;
     const char* name;
+    uint32_t bytes_per_texel_x16;  // GPU bytes a texel, times 16 (ASTC 4x4: 16 bytes a block, 1 a texel)
     uint64_t device_bytes = 0;
     std::vector<std::vector<uint8_t>> composites;  // one per slot
 };
+
+// Each slot drawn with the lightmaps in `format`, at its own instant (overcast slots at sunny_utc, cloud cover 1).
+void drawSlots(const BakeSetData& bake_set, LightmapFormat format, const Request& request, const std::string& sunny_utc,
+               const std::vector<uint8_t>& camera, FormatRun& run) {
+    RuntimeOptions options;
+    options.frame_width = request.width;
+    options.frame_height = request.height;
+    options.lightmap_format = format;
+    std::unique_ptr<Runtime> runtime = Runtime::openHeadless(bake_set, options);
+    run.device_bytes = runtime->deviceMemoryBytes();
+    for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
+        const BakeSetSlot& info = bake_set.manifest.slots[slot];
+        const bool sunny = info.sky == BakeSetSky::Sunny;
+        const double sun = sunny ? luminanceRec709(info.sun.irradiance_rgb) : 0.0;
+        FrameInput frame;
+        frame.camera_rgba8 = camera.data();
+        frame.intrinsics = CameraIntrinsics::fromFieldOfView(request.width, request.height, request.fov_deg);
+        frame.pose = CameraPose::lookingAt(request.position, request.look_at);
+        frame.utc_unix_seconds = parseIso8601Utc(sunny ? info.utc : sunny_utc);
+        frame.weather.cloud_cover = sunny ? 0.0f : 1.0f;
+        frame.exposure =
+            float(0.6 / (0.5 / M_PI * std::max(meanLightmapLuminance(bake_set.slots[slot].building) + sun, 1e-9)));
+        frame.colour_match = ColourMatch::kOff;
+        std::vector<uint8_t> composite(camera.size());
+        for (int warm_up = 0; warm_up < 2; ++warm_up) runtime->renderFrame(frame, composite.data());
+        run.composites.push_back(composite);
+    }
+}
+
+void report(const BakeSetData& bake_set, const Request& request, const std::vector<uint8_t>& camera,
+            const std::vector<FormatRun>& runs) {
+    const uint64_t texels = uint64_t(bake_set.manifest.building.lightmap_resolution) *
+                            bake_set.manifest.building.lightmap_resolution * bake_set.slots.size();
+    std::printf("bake set: %s, %zu slots, lightmap %d^2, camera %.1f,%.1f,%.1f -> %.1f,%.1f,%.1f, %ux%u\n",
+                request.folder.c_str(), bake_set.slots.size(), bake_set.manifest.building.lightmap_resolution,
+                request.position.x, request.position.y, request.position.z, request.look_at.x, request.look_at.y,
+                request.look_at.z, request.width, request.height);
+    for (const FormatRun& run : runs) {
+        std::printf("%-16s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB; ASTC: drawn from decoded floats)\n",
+                    run.name,
+                    double(texels * run.bytes_per_texel_x16) / 16.0 / 1048576.0, double(run.device_bytes) / 1048576.0);
+        for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
+            const std::vector<uint8_t>& reference = runs[0].composites[slot];
+            std::vector<uint8_t> region(size_t(request.width) * request.height, 0);
+            for (size_t pixel = 0; pixel < region.size(); ++pixel)
+                for (int channel = 0; channel < 3; ++channel)
+                    if (reference[pixel * 4 + channel] != camera[pixel * 4 + channel]) region[pixel] = 1;
+            const bench::ErrorSummary in_region = bench::summariseError(run.composites[slot], reference, region);
+            const bench::ErrorSummary whole = bench::summariseError(run.composites[slot], reference);
+            std::printf("  %-14s dE00 vs rgba32f: region mean %.4f p95 %.4f (%zu px), frame mean %.4f\n",
+                        bake_set.manifest.slots[slot].name.c_str(), in_region.mean_de00, in_region.p95_de00,
+                        in_region.pixel_count, whole.mean_de00);
+        }
+    }
+}
 
 }  // namespace
 
@@ -116,58 +174,16 @@ int main(int argc, char** argv) {
             if (slot.sky == BakeSetSky::Sunny && sunny_utc.empty()) sunny_utc = slot.utc;
         if (sunny_utc.empty()) throw std::invalid_argument(request.folder + ": no sunny slot to take an instant from");
         const std::vector<uint8_t> camera(size_t(request.width) * request.height * 4, 128);
-        std::vector<FormatRun> runs = {{LightmapFormat::kRgba32f, "rgba32f"},
-                                       {LightmapFormat::kRgba16f, "rgba16f"},
-                                       {LightmapFormat::kE5b9g9r9, "e5b9g9r9"}};
-        for (FormatRun& run : runs) {
-            RuntimeOptions options;
-            options.frame_width = request.width;
-            options.frame_height = request.height;
-            options.lightmap_format = run.format;
-            std::unique_ptr<Runtime> runtime = Runtime::openHeadless(bake_set, options);
-            run.device_bytes = runtime->deviceMemoryBytes();
-            for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
-                const BakeSetSlot& info = bake_set.manifest.slots[slot];
-                const bool sunny = info.sky == BakeSetSky::Sunny;
-                const double sun = sunny ? luminanceRec709(info.sun.irradiance_rgb) : 0.0;
-                FrameInput frame;
-                frame.camera_rgba8 = camera.data();
-                frame.intrinsics = CameraIntrinsics::fromFieldOfView(request.width, request.height, request.fov_deg);
-                frame.pose = CameraPose::lookingAt(request.position, request.look_at);
-                frame.utc_unix_seconds = parseIso8601Utc(sunny ? info.utc : sunny_utc);
-                frame.weather.cloud_cover = sunny ? 0.0f : 1.0f;
-                frame.exposure =
-                    float(0.6 / (0.5 / M_PI * std::max(meanLightmapLuminance(bake_set.slots[slot].building) + sun, 1e-9)));
-                frame.colour_match = ColourMatch::kOff;
-                std::vector<uint8_t> composite(camera.size());
-                for (int warm_up = 0; warm_up < 2; ++warm_up) runtime->renderFrame(frame, composite.data());
-                run.composites.push_back(composite);
-            }
+        std::vector<FormatRun> runs = {{"rgba32f", 256}, {"rgba16f", 128}, {"e5b9g9r9", 64}};
+        const LightmapFormat formats[3] = {LightmapFormat::kRgba32f, LightmapFormat::kRgba16f, LightmapFormat::kE5b9g9r9};
+        for (int index = 0; index < 3; ++index) drawSlots(bake_set, formats[index], request, sunny_utc, camera, runs[index]);
+        if (bench::astcAvailable()) {
+            BakeSetData astc = bake_set;
+            for (BakeSetSlotImages& slot : astc.slots) slot.building = bench::astcRoundTrip(slot.building, 60.0f);
+            runs.push_back({"astc4x4 hdr", 16});
+            drawSlots(astc, LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
         }
-        const uint64_t texels = uint64_t(bake_set.manifest.building.lightmap_resolution) *
-                                bake_set.manifest.building.lightmap_resolution * bake_set.slots.size();
-        std::printf("bake set: %s, %zu slots, lightmap %d^2, camera %.1f,%.1f,%.1f -> %.1f,%.1f,%.1f, %ux%u\n",
-                    request.folder.c_str(), bake_set.slots.size(), bake_set.manifest.building.lightmap_resolution,
-                    request.position.x, request.position.y, request.position.z, request.look_at.x, request.look_at.y,
-                    request.look_at.z, request.width, request.height);
-        const uint32_t bytes_per_texel[3] = {16, 8, 4};
-        for (size_t index = 0; index < runs.size(); ++index) {
-            const FormatRun& run = runs[index];
-            std::printf("%-9s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB)\n", run.name,
-                        double(texels * bytes_per_texel[index]) / 1048576.0, double(run.device_bytes) / 1048576.0);
-            for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
-                const std::vector<uint8_t>& reference = runs[0].composites[slot];
-                std::vector<uint8_t> region(size_t(request.width) * request.height, 0);
-                for (size_t pixel = 0; pixel < region.size(); ++pixel)
-                    for (int channel = 0; channel < 3; ++channel)
-                        if (reference[pixel * 4 + channel] != camera[pixel * 4 + channel]) region[pixel] = 1;
-                const bench::ErrorSummary in_region = bench::summariseError(run.composites[slot], reference, region);
-                const bench::ErrorSummary whole = bench::summariseError(run.composites[slot], reference);
-                std::printf("  %-14s dE00 vs rgba32f: region mean %.4f p95 %.4f (%zu px), frame mean %.4f\n",
-                            bake_set.manifest.slots[slot].name.c_str(), in_region.mean_de00, in_region.p95_de00,
-                            in_region.pixel_count, whole.mean_de00);
-            }
-        }
+        report(bake_set, request, camera, runs);
         return 0;
     } catch (const std::exception& error) {
         std::fprintf(stderr, "gusuku-lightmap-formats: %s\n", error.what());
