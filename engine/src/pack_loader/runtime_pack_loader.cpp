@@ -19,6 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr uintmax_t kLargestPackFile = uintmax_t(1) << 30;
+// A manifest is about 10 KB; far above that is not one (and would only cost the JSON reader time).
+constexpr size_t kLargestManifest = size_t(16) << 20;
 
 std::vector<uint8_t> readPackFile(const std::string& path) {
     std::error_code error;
@@ -92,6 +94,8 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
     const std::string folder = packFolderOf(given_folder);
     const std::string manifest_path = folder + "/manifest.json";
     const std::vector<uint8_t> manifest_bytes = readPackFile(manifest_path);
+    if (manifest_bytes.size() > kLargestManifest)
+        throw InputError(manifest_path, "", std::to_string(manifest_bytes.size()) + " bytes is more than a manifest's 16 MiB");
     BakeSetData data;
     data.manifest = pack_detail::readPackManifest(std::string(manifest_bytes.begin(), manifest_bytes.end()), manifest_path);
     const std::string geometry_path = folder + "/pack.bin";
