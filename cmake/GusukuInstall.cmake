@@ -40,7 +40,9 @@ install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INST
 if(NOT GUSUKU_RUNTIME_ONLY)
   set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
   set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
-  install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
+  # gusuku_pack_loader (the runtime pack's reader, standard library only) goes with the loader, which links it.
+  set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
+  install(TARGETS gusuku_assets gusuku_pack_loader gusuku_loader EXPORT gusukuLoaderTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   foreach(library assets loader)

@@ -13,10 +13,18 @@
 #include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/bake_progress.h"
+#include "gusuku_bake/runtime_pack.h"
 
 namespace gusuku::bake_cli {
 
 namespace {
+
+// The runtime pack beside the EXRs (gusuku_bake/runtime_pack.h), for a whole bake set; partial sets have none.
+void writePackOf(const std::string& folder) {
+    const bake::RuntimePackReport pack = bake::writeRuntimePack(folder);
+    std::printf("runtime pack:    %s (%.2f MiB; lightmaps E5B9G9R9 %.2f MiB)\n", pack.folder.c_str(),
+                double(pack.bytes) / 1048576.0, double(pack.lightmap_bytes) / 1048576.0);
+}
 
 constexpr const char* kBakeUsage =
     "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
@@ -87,6 +95,7 @@ int runBakeCommand(const std::vector<std::string>& args) {
     if (report.up_to_date) {
         std::printf("bake set %s is up to date with its inputs (use --force to bake again)\n",
                     options.output_dir.c_str());
+        if (options.slot.empty() && !bake::runtimePackIsUpToDate(options.output_dir)) writePackOf(options.output_dir);
         return 0;
     }
     if (!report.completed) {
@@ -120,6 +129,7 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::printf("rays:            %.3g traced, %.3f Mrays/s\n", double(report.rays_traced), rays_per_second / 1e6);
     std::printf("wall time:       %s (tracing %s)\n", bake::formatDuration(report.wall_seconds).c_str(),
                 bake::formatDuration(report.trace_seconds).c_str());
+    if (options.slot.empty()) writePackOf(options.output_dir);
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include "gusuku/tools/command_line.h"
 #include "gusuku_bake/bake_merge.h"
 #include "gusuku_bake/bake_progress.h"
+#include "gusuku_bake/runtime_pack.h"
 
 namespace gusuku::bake_cli {
 
@@ -61,6 +62,9 @@ int runMergeCommand(const std::vector<std::string>& args) {
     std::printf("time:            tracing %s in all; the longest partial bake took %s\n",
                 bake::formatDuration(report.statistics.trace_seconds).c_str(),
                 bake::formatDuration(report.statistics.wall_seconds).c_str());
+    // The runtime pack, as `gusuku-bake bake` writes it (gusuku_bake/runtime_pack.h): the same bytes.
+    const bake::RuntimePackReport pack = bake::writeRuntimePack(request.output_dir);
+    std::printf("runtime pack:    %s (%.2f MiB)\n", pack.folder.c_str(), double(pack.bytes) / 1048576.0);
     return 0;
 }
 

@@ -20,6 +20,7 @@ void printUsage() {
                  "  check     validate a site.json and load everything it names\n"
                  "  bake      bake a site's lightmaps and ground terms into a bake set\n"
                  "  merge     join partial bake sets (one slot each, `bake --slot`) into one bake set\n"
+                 "  pack      write a bake set's runtime pack (KTX2 lightmaps, pack.bin; bake writes it too)\n"
                  "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
                  "\n"
                  "`gusuku-bake <command> --help` describes each.\n");
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
         if (command == "bake") return runBakeCommand(args);
         if (command == "converge") return runConvergeCommand(args);
         if (command == "merge") return runMergeCommand(args);
+        if (command == "pack") return runPackCommand(args);
         std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
         printUsage();
         return 2;

@@ -8,6 +8,7 @@
 
 #include "camera_input.h"
 #include "runtime_pipelines.h"
+#include "runtime_scene.h"
 
 namespace gusuku::runtime_detail {
 namespace {
@@ -75,7 +76,9 @@ void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options
         {kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT,
          "D32_SFLOAT", "depth and the shadow maps"},
         {VK_FORMAT_R16G16B16A16_SFLOAT, sampled | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
-         "R16G16B16A16_SFLOAT", "the lightmaps and the ground's irradiance"},
+         "R16G16B16A16_SFLOAT", "the ground's irradiance"},
+        {lightmapVkFormat(options.lightmap_format), sampled | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+         lightmapFormatName(options.lightmap_format), "the lightmaps (options.lightmap_format)"},
         {camera.plane0, sampled, "the camera's first plane format", "the camera"},
     };
     if (camera.plane1 != VK_FORMAT_UNDEFINED) needs.push_back({camera.plane1, sampled, "R8G8_UNORM", "the camera's chroma"});

@@ -64,6 +64,10 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "options.msaa_samples: " + std::to_string(samples) + " is not 1, 2, 4 or 8");
+    if (uint32_t(options.lightmap_format) > uint32_t(LightmapFormat::kRgba32f))
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.lightmap_format: " + std::to_string(uint32_t(options.lightmap_format)) +
+                               " is not e5b9g9r9, rgba16f or rgba32f");
     const uint32_t camera_format = uint32_t(options.camera_format);
     if (camera_format > uint32_t(CameraFormat::kNv21))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.camera_format: " + std::to_string(camera_format) +
@@ -111,7 +115,7 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     slot_colour_statistics_ = slotColourStatistics(manifest_);
     checkDeviceRequirements(gpu_, options_);
     try {
-        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold);
+        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options.lightmap_format);
         createGroundSelectionArrays();
         createTargets();
         // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).

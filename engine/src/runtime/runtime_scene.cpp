@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 #include <glm/common.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include "gusuku/maths/shared_exponent.h"
 #include "gusuku/maths/srgb_mip_chain.h"
 #include "ground_quads.h"
 
@@ -144,24 +146,53 @@ float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots) {
     return largest > kLargestStoredHalf ? largest / kLargestStoredHalf : 1.0f;
 }
 
-// The lightmaps as one half-float array, a layer per slot. One mip level, sampled bilinearly, as measured
-// (docs/runtime.md, "Textures"): at the default 8 texels a metre a texel covers a pixel or more out to about 125 m
-// at a 1000-pixel focal length, so there is nothing to alias; a trilinear chain only blurred obliquely seen faces
-// and face edges (the isotropic level follows the foreshortened axis; coarse levels mix neighbouring charts) and
-// made the building pass 14-16 % slower on lavapipe.
-void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float inverse_scale, GpuScene& scene) {
+// One slot's lightmap RGB / irradiance scale in `format`'s texel layout (alpha, the bake set's validity, is not
+// read by the shaders: 1 in the 16- and 32-bit formats, absent in E5B9G9R9).
+std::vector<uint8_t> lightmapTexels(const BakeSetImage& image, float inverse_scale, LightmapFormat format) {
+    const size_t texels = image.rgba.size() / 4;
+    const float* rgba = image.rgba.data();
+    std::vector<uint8_t> bytes;
+    if (format == LightmapFormat::kE5b9g9r9) {
+        bytes.resize(texels * 4);
+        for (size_t texel = 0; texel < texels; ++texel) {
+            const uint32_t packed = packE5b9g9r9(rgba[texel * 4] * inverse_scale, rgba[texel * 4 + 1] * inverse_scale,
+                                                 rgba[texel * 4 + 2] * inverse_scale);
+            std::memcpy(&bytes[texel * 4], &packed, 4);
+        }
+    } else if (format == LightmapFormat::kRgba16f) {
+        const std::vector<uint16_t> halves = toHalf(image, inverse_scale);
+        bytes.resize(halves.size() * 2);
+        std::memcpy(bytes.data(), halves.data(), bytes.size());
+    } else {
+        std::vector<float> floats(image.rgba.size());
+        for (size_t index = 0; index < floats.size(); ++index)
+            floats[index] = index % 4 == 3 ? rgba[index] : rgba[index] * inverse_scale;
+        bytes.resize(floats.size() * 4);
+        std::memcpy(bytes.data(), floats.data(), bytes.size());
+    }
+    return bytes;
+}
+
+// The lightmaps as one array, a layer per slot, in the option's format (E5B9G9R9 by default: 4 bytes a texel,
+// half of RGBA16F's, docs/runtime.md "Lightmap formats" has what it costs in colour). One mip level, sampled
+// bilinearly, as measured (docs/runtime.md, "Textures"): at the default 8 texels a metre a texel covers a pixel or
+// more out to about 125 m at a 1000-pixel focal length, so there is nothing to alias; a trilinear chain only
+// blurred obliquely seen faces and face edges (the isotropic level follows the foreshortened axis; coarse levels
+// mix neighbouring charts) and made the building pass 14-16 % slower on lavapipe.
+void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float inverse_scale, LightmapFormat format,
+                     GpuScene& scene) {
     const uint32_t slot_count = uint32_t(bake_set.slots.size());
     const int resolution = bake_set.manifest.building.lightmap_resolution;
     GpuImageDescription description;
-    description.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    description.format = lightmapVkFormat(format);
     description.width = uint32_t(resolution);
     description.height = uint32_t(resolution);
     description.layers = slot_count;
     description.array_view = true;
     scene.lightmaps = GpuImage(gpu, description);
     for (uint32_t slot = 0; slot < slot_count; ++slot) {
-        const std::vector<uint16_t> halves = toHalf(bake_set.slots[slot].building, inverse_scale);
-        scene.lightmaps.upload(halves.data(), halves.size() * 2, slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        const std::vector<uint8_t> texels = lightmapTexels(bake_set.slots[slot].building, inverse_scale, format);
+        scene.lightmaps.upload(texels.data(), texels.size(), slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 }
 
@@ -280,17 +311,35 @@ GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& tex
     return image;
 }
 
-GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold) {
+VkFormat lightmapVkFormat(LightmapFormat format) {
+    switch (format) {
+        case LightmapFormat::kRgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case LightmapFormat::kRgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
+        default: return VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
+    }
+}
+
+const char* lightmapFormatName(LightmapFormat format) {
+    switch (format) {
+        case LightmapFormat::kRgba16f: return "R16G16B16A16_SFLOAT";
+        case LightmapFormat::kRgba32f: return "R32G32B32A32_SFLOAT";
+        default: return "E5B9G9R9_UFLOAT_PACK32";
+    }
+}
+
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold,
+                     LightmapFormat lightmap_format) {
     GpuScene scene;
     uploadBuilding(gpu, bake_set.building, scene);
     uploadMaterials(gpu, bake_set.building, scene);
     uploadOccluder(gpu, bake_set.occluder, scene);
     scene.slot_mean_indirect = slotMeanIndirect(bake_set.slots);
 
-    // Lightmaps and ground terms as half-float arrays, scaled so the largest value fits.
+    // Lightmaps and ground terms scaled so the largest value fits a half float (and E5B9G9R9, whose largest is
+    // about the same: 65408).
     scene.irradiance_scale = irradianceScaleOf(bake_set.slots);
     const float inverse_scale = 1.0f / scene.irradiance_scale;
-    uploadLightmaps(gpu, bake_set, inverse_scale, scene);
+    uploadLightmaps(gpu, bake_set, inverse_scale, lightmap_format, scene);
     const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
     const uint32_t columns = uint32_t(std::max(grid.columns, 1)), rows = uint32_t(std::max(grid.rows, 1));
     const bool has_ground = grid.columns > 0 && grid.rows > 0 && !bake_set.ground_geometry.rgba.empty();

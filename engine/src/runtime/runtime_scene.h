@@ -11,6 +11,7 @@
 #include "gusuku/maths/bakeset_data.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_image.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku::runtime_detail {
 
@@ -53,7 +54,7 @@ struct GpuScene {
     /// the ground's height (ENU z). The CPU's copy, for choosing the quads to draw.
     std::vector<uint8_t> ground_cell_state;
     std::vector<float> ground_cell_height;
-    GpuImage lightmaps;          ///< RGBA16F array, one layer per slot, values / irradiance_scale
+    GpuImage lightmaps;          ///< lightmapVkFormat array, one layer per slot, RGB / irradiance_scale
     /// RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), RGB / irradiance_scale. Alpha: 0 no ground,
     /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, above
     /// RuntimeOptions::ground_change_threshold).
@@ -77,6 +78,11 @@ GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& tex
 
 /// Uploads the bake set (already checked by findBakeSetProblem); change_threshold is
 /// RuntimeOptions::ground_change_threshold. Throws std::runtime_error on Vulkan failure.
-GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold);
+GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold,
+                     LightmapFormat lightmap_format);
+
+/// The Vulkan format that holds lightmaps in `format`, and its name for messages.
+VkFormat lightmapVkFormat(LightmapFormat format);
+const char* lightmapFormatName(LightmapFormat format);
 
 }  // namespace gusuku::runtime_detail

@@ -147,6 +147,14 @@ enum class YcbcrModel { kBt601 = 0, kBt709 = 1 };
 /// Y'CbCr range: narrow (studio: Y' 16-235, Cb Cr 16-240) or full (0-255).
 enum class YcbcrRange { kNarrow = 0, kFull = 1 };
 
+/// How the runtime holds the building's lightmaps on the GPU (docs/runtime.md, "Lightmap formats"). The RGB is
+/// all the shaders read; the bake set's validity alpha stays on the CPU.
+enum class LightmapFormat {
+    kE5b9g9r9 = 0,  ///< shared exponent, 4 bytes a texel; every Vulkan device samples and filters it (default)
+    kRgba16f = 1,   ///< half floats, 8 bytes a texel (the runtime's format before kE5b9g9r9)
+    kRgba32f = 2,   ///< float32, 16 bytes a texel: the reference; needs linear filtering of R32G32B32A32_SFLOAT
+};
+
 /// Options fixed when the runtime opens.
 /// Every option is range-checked when the runtime opens: one outside its range (NaN included) is a RuntimeError
 /// kInvalidFrame naming it, "options.NAME: VALUE is outside [MIN, MAX]".
@@ -203,6 +211,9 @@ struct RuntimeOptions {
     /// framebufferDepthSampleCounts; lavapipe has 1 and 4), else open() throws kDevice naming msaa_samples.
     /// 1: one sample per pixel and no resolve, the runtime's path before this option.
     uint32_t msaa_samples = 4;
+    /// The lightmaps' GPU format. A device without the format's SAMPLED_IMAGE_FILTER_LINEAR (only kRgba32f can
+    /// lack it) fails open() with kDevice naming lightmap_format.
+    LightmapFormat lightmap_format = LightmapFormat::kE5b9g9r9;
 };
 
 /// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary

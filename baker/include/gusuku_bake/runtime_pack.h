@@ -1,0 +1,32 @@
+#pragma once
+// The runtime pack (docs/bakeset.md, "The runtime pack"): BAKESET/pack/, what a phone app ships and
+// gusuku_loader's gusuku_bakeset_load_pack reads with the C++ standard library alone. Written by `gusuku-bake
+// bake` after the bake set's manifest, from the finished bake set (so it holds exactly what loadBakeSet reads).
+
+#include <cstdint>
+#include <string>
+
+namespace gusuku::bake {
+
+/// The pack's folder inside a bake set: "pack".
+inline constexpr const char* kRuntimePackFolder = "pack";
+
+struct RuntimePackReport {
+    std::string folder;     ///< BAKESET/pack
+    uint64_t bytes = 0;     ///< all its files
+    uint64_t lightmap_bytes = 0;  ///< its building_<slot>.ktx2 files
+    float lightmap_scale = 1.0f;  ///< pack.bin's lightmap_scale
+};
+
+/// Loads the bake set in `bake_set_folder` (loadBakeSet: complete and checked, or InputError) and writes its pack
+/// into pack_folder (empty: bake_set_folder/pack; `gusuku-bake pack BAKESET -o DIR` writes it elsewhere, as for
+/// a bake set one may not write into): manifest.json is removed first and written last (the set's with its statistics zeroed, so the same inputs
+/// give the same pack byte for byte), every other file is
+/// written atomically, so a pack with a manifest is always complete. A partial set (loadBakeSet refuses it) has no
+/// pack. Throws InputError naming the bake set's file and field, or std::runtime_error on a write failure.
+RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "");
+
+/// True when bake_set_folder/pack/manifest.json is the pack manifest of bake_set_folder/manifest.json.
+bool runtimePackIsUpToDate(const std::string& bake_set_folder);
+
+}  // namespace gusuku::bake

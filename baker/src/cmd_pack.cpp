@@ -1,0 +1,47 @@
+// gusuku-bake pack BAKESET [-o DIR]: writes a finished bake set's runtime pack (gusuku_bake/runtime_pack.h), for
+// bake sets made before `bake` wrote one, merged sets, or into another folder.
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "gusuku/tools/command_line.h"
+#include "gusuku_bake/runtime_pack.h"
+
+namespace gusuku::bake_cli {
+
+namespace {
+
+constexpr const char* kPackUsage =
+    "usage: gusuku-bake pack BAKESET_DIR [-o PACK_DIR]\n"
+    "\n"
+    "Writes the bake set's runtime pack (docs/bakeset.md, \"The runtime pack\"): the lightmaps as E5B9G9R9\n"
+    "KTX2, their validity, the ground terms as float KTX2, the building and occluder as pack.bin, its\n"
+    "textures as RGBA8 sRGB KTX2, and the manifest (statistics zeroed), written last. `gusuku-bake bake` and\n"
+    "`merge` write it into BAKESET_DIR/pack themselves; this command is for older bake sets. Needs no GPU.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output DIR   the pack's folder (created; default BAKESET_DIR/pack)\n"
+    "Exit status: 0 written, 1 bad input, 2 bad usage.\n";
+
+}  // namespace
+
+int runPackCommand(const std::vector<std::string>& args) {
+    std::string bake_set, output;
+    if (const std::optional<int> exit_code =
+            readCommandLine("gusuku-bake pack", args, kPackUsage, false, [&](CommandLine& line) {
+                output = line.text("--output", "-o").value_or("");
+                const std::vector<std::string> positionals = line.positionals();
+                line.finish();
+                if (positionals.size() != 1) line.fail("needs one BAKESET_DIR (see --help)");
+                bake_set = positionals.front();
+            }))
+        return *exit_code;
+    const bake::RuntimePackReport pack = bake::writeRuntimePack(bake_set, output);
+    std::printf("runtime pack:    %s (%.2f MiB; lightmaps E5B9G9R9 %.2f MiB, scale %g)\n", pack.folder.c_str(),
+                double(pack.bytes) / 1048576.0, double(pack.lightmap_bytes) / 1048576.0, double(pack.lightmap_scale));
+    return 0;
+}
+
+}  // namespace gusuku::bake_cli

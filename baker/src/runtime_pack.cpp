@@ -1,0 +1,141 @@
+// Writes BAKESET/pack/ from a finished bake set (gusuku_bake/runtime_pack.h).
+
+#include "gusuku_bake/runtime_pack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/maths/ktx2.h"
+#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/maths/shared_exponent.h"
+
+namespace gusuku::bake {
+namespace {
+
+namespace fs = std::filesystem;
+
+// building_noon.exr -> building_noon.ktx2: the pack's name for each image the manifest names.
+std::string packName(const std::string& exr_name) {
+    const size_t dot = exr_name.rfind('.');
+    return (dot == std::string::npos ? exr_name : exr_name.substr(0, dot)) + ".ktx2";
+}
+
+// The smallest power of 2 (>= 1) that brings every lightmap's RGB within E5B9G9R9's range: dividing by a power
+// of 2 changes no float but its exponent, so the pack's scale loses nothing.
+float lightmapScaleOf(const BakeSetData& bake_set) {
+    float largest = 0.0f;
+    for (const BakeSetSlotImages& slot : bake_set.slots)
+        for (size_t index = 0; index < slot.building.rgba.size(); ++index)
+            if (index % 4 != 3) largest = std::max(largest, slot.building.rgba[index]);
+    float scale = 1.0f;
+    while (largest / scale > kLargestSharedExponentValue) scale *= 2.0f;
+    return scale;
+}
+
+Ktx2Image sharedExponentLightmap(const BakeSetImage& image, float inverse_scale) {
+    Ktx2Image out{Ktx2Format::kE5b9g9r9Ufloat, uint32_t(image.width), uint32_t(image.height), {}};
+    out.texels.resize(size_t(image.width) * image.height * 4);
+    for (size_t texel = 0; texel < out.texels.size() / 4; ++texel) {
+        const float* rgba = &image.rgba[texel * 4];
+        const uint32_t packed = packE5b9g9r9(rgba[0] * inverse_scale, rgba[1] * inverse_scale, rgba[2] * inverse_scale);
+        std::memcpy(&out.texels[texel * 4], &packed, 4);
+    }
+    return out;
+}
+
+// The lightmap's alpha (1 on traced, valid texels) as 255 and 0.
+Ktx2Image validityMask(const BakeSetImage& image) {
+    Ktx2Image out{Ktx2Format::kR8Unorm, uint32_t(image.width), uint32_t(image.height), {}};
+    for (size_t texel = 0; texel < image.rgba.size() / 4; ++texel)
+        out.texels.push_back(image.rgba[texel * 4 + 3] > 0.0f ? 255 : 0);
+    return out;
+}
+
+Ktx2Image floatImage(const BakeSetImage& image) {
+    Ktx2Image out{Ktx2Format::kR32g32b32a32Sfloat, uint32_t(image.width), uint32_t(image.height), {}};
+    out.texels.resize(image.rgba.size() * 4);
+    std::memcpy(out.texels.data(), image.rgba.data(), out.texels.size());
+    return out;
+}
+
+// The pack's manifest: the bake set's, but for its statistics (this run's rays and seconds) zeroed, so that two
+// bakes of the same inputs, or a bake and a merge, write the same pack byte for byte.
+std::string packManifestText(BakeSetManifest manifest) {
+    manifest.statistics = BakeSetStatistics{};
+    return bakeSetManifestJson(manifest);
+}
+
+class PackFiles {
+public:
+    explicit PackFiles(std::string folder) : folder_(std::move(folder)) {}
+    uint64_t write(const std::string& name, const std::vector<uint8_t>& bytes) {
+        writeBytesAtomically(folder_ + "/" + name, bytes.data(), bytes.size());
+        bytes_ += bytes.size();
+        return bytes.size();
+    }
+    uint64_t writeKtx2(const std::string& name, const Ktx2Image& image) { return write(name, encodeKtx2(image)); }
+    uint64_t bytes() const { return bytes_; }
+
+private:
+    std::string folder_;
+    uint64_t bytes_ = 0;
+};
+
+}  // namespace
+
+RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder) {
+    const BakeSetData bake_set = loadBakeSet(bake_set_folder);
+    RuntimePackReport report;
+    report.folder = pack_folder.empty() ? bake_set_folder + "/" + kRuntimePackFolder : pack_folder;
+    fs::create_directories(report.folder);
+    fs::remove(report.folder + "/manifest.json");
+    PackFiles files(report.folder);
+
+    report.lightmap_scale = lightmapScaleOf(bake_set);
+    PackGeometry geometry{report.lightmap_scale, bake_set.building, bake_set.occluder};
+    for (size_t index = 0; index < geometry.building.textures.size(); ++index) {
+        BakeSetTexture& texture = geometry.building.textures[index];
+        files.writeKtx2("texture_" + std::to_string(index) + ".ktx2",
+                        {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width), uint32_t(texture.height), texture.rgba8});
+        texture.rgba8.clear();  // pack.bin holds the sides; the texels are the KTX2's
+    }
+    files.write("pack.bin", encodePackGeometry(geometry));
+
+    const BakeSetManifest& manifest = bake_set.manifest;
+    files.writeKtx2(packName(manifest.ground_grid.geometry), floatImage(bake_set.ground_geometry));
+    if (!manifest.ground_grid.albedo.empty())
+        files.writeKtx2(packName(manifest.ground_grid.albedo), floatImage(bake_set.ground_albedo));
+    for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
+        const BakeSetSlot& entry = manifest.slots[slot];
+        const BakeSetSlotImages& images = bake_set.slots[slot];
+        report.lightmap_bytes +=
+            files.writeKtx2(packName(entry.building_irradiance),
+                            sharedExponentLightmap(images.building, 1.0f / report.lightmap_scale));
+        const std::string base = packName(entry.building_irradiance);
+        files.writeKtx2(base.substr(0, base.size() - 5) + "_valid.ktx2", validityMask(images.building));
+        files.writeKtx2(packName(entry.ground_irradiance_with_building), floatImage(images.ground_with));
+        files.writeKtx2(packName(entry.ground_irradiance_without_building), floatImage(images.ground_without));
+    }
+    const std::string manifest_text = packManifestText(manifest);
+    files.write("manifest.json", std::vector<uint8_t>(manifest_text.begin(), manifest_text.end()));
+    report.bytes = files.bytes();
+    return report;
+}
+
+bool runtimePackIsUpToDate(const std::string& bake_set_folder) {
+    const std::string packed = bake_set_folder + "/" + kRuntimePackFolder + "/manifest.json";
+    if (!fs::exists(packed)) return false;
+    try {
+        return readWholeFile(packed) == packManifestText(readBakeSetManifest(bake_set_folder + "/manifest.json"));
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+}  // namespace gusuku::bake

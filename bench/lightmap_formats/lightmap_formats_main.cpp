@@ -1,0 +1,192 @@
+// gusuku-lightmap-formats: what each runtime lightmap format (RuntimeOptions::lightmap_format) costs on a bake
+// set: the lightmaps' GPU memory, and the composite's CIEDE2000 against the float32 lightmaps' composite, per slot.
+//
+// Usage: gusuku-lightmap-formats BAKESET [--size WxH] [--position E,N,U --look-at E,N,U] [--fov DEG]
+// The camera frame is a flat mid grey (the composite passes it through where the building changes nothing, so
+// only the building's and its ground effect's pixels can differ); the exposure puts a sunlit face of albedo 0.5
+// at display value 0.6; no colour match (exposure known). Without --position the camera stands south-east of the
+// building's bounds, 1.8 radii out and 0.6 up, looking at their centre. Each slot is drawn at its own instant
+// (overcast slots at the first sunny slot's, with cloud cover 1). "region" is the pixels where the float32
+// composite differs from the camera frame; "frame" is every pixel. With astcenc (libastcenc-dev) the lightmaps are
+// also encoded as ASTC 4x4 HDR (astcenc's medium quality), decoded on the CPU and drawn as float32: what a device
+// that samples ASTC HDR would show, at its 1 byte a texel.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/time_utc.h"
+#include "gusuku/runtime/runtime.h"
+#include "astc_lightmap.h"
+#include "image_metrics.h"
+
+using namespace gusuku;
+
+namespace {
+
+struct Request {
+    std::string folder;
+    uint32_t width = 480, height = 270;
+    bool placed = false;
+    glm::dvec3 position{0.0}, look_at{0.0};
+    double fov_deg = 55.0;
+};
+
+glm::dvec3 parsePoint(const std::string& option, const char* text) {
+    glm::dvec3 point;
+    if (std::sscanf(text, "%lf,%lf,%lf", &point.x, &point.y, &point.z) != 3)
+        throw std::invalid_argument(option + ": '" + text + "' is not E,N,U");
+    return point;
+}
+
+Request readRequest(int argc, char** argv) {
+    Request request;
+    for (int index = 1; index < argc; ++index) {
+        const std::string argument = argv[index];
+        const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
+        if (argument.rfind("--", 0) == 0 && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
+        if (argument == "--size") {
+            if (std::sscanf(value, "%ux%u", &request.width, &request.height) != 2 || request.width < 16 ||
+                request.height < 16)
+                throw std::invalid_argument(std::string("--size: '") + value + "' is not WxH of at least 16x16");
+        } else if (argument == "--position") {
+            request.position = parsePoint(argument, value);
+            request.placed = true;
+        } else if (argument == "--look-at") {
+            request.look_at = parsePoint(argument, value);
+        } else if (argument == "--fov") {
+            request.fov_deg = std::atof(value);
+        } else if (request.folder.empty() && argument.rfind("--", 0) != 0) {
+            request.folder = argument;
+            continue;
+        } else {
+            throw std::invalid_argument("'" + argument + "': unknown argument");
+        }
+        ++index;
+    }
+    if (request.folder.empty()) throw std::invalid_argument("usage: gusuku-lightmap-formats BAKESET [--size WxH] ...");
+    return request;
+}
+
+void placeCamera(const BakeSetData& bake_set, Request& request) {
+    if (request.placed) return;
+    glm::dvec3 low(INFINITY), high(-INFINITY);
+    for (const glm::vec3& position : bake_set.building.positions) {
+        low = glm::min(low, glm::dvec3(position));
+        high = glm::max(high, glm::dvec3(position));
+    }
+    const glm::dvec3 centre = 0.5 * (low + high);
+    const double radius = std::max(0.5 * glm::length(high - low), 1.0);
+    request.look_at = centre;
+    request.position = centre + radius * glm::dvec3(1.8 * 0.6, -1.8 * 0.8, 0.6);
+}
+
+double meanLightmapLuminance(const BakeSetImage& image) {
+    double sum = 0.0, count = 0.0;
+    for (size_t texel = 0; texel + 3 < image.rgba.size(); texel += 4)
+        if (image.rgba[texel + 3] > 0.0f) {
+            sum += luminanceRec709(glm::dvec3(image.rgba[texel], image.rgba[texel + 1], image.rgba[texel + 2]));
+            count += 1.0;
+        }
+    return count > 0.0 ? sum / count : 0.0;
+}
+
+struct FormatRun {
+    const char* name;
+    uint32_t bytes_per_texel_x16;  // GPU bytes a texel, times 16 (ASTC 4x4: 16 bytes a block, 1 a texel)
+    uint64_t device_bytes = 0;
+    std::vector<std::vector<uint8_t>> composites;  // one per slot
+};
+
+// Each slot drawn with the lightmaps in `format`, at its own instant (overcast slots at sunny_utc, cloud cover 1).
+void drawSlots(const BakeSetData& bake_set, LightmapFormat format, const Request& request, const std::string& sunny_utc,
+               const std::vector<uint8_t>& camera, FormatRun& run) {
+    RuntimeOptions options;
+    options.frame_width = request.width;
+    options.frame_height = request.height;
+    options.lightmap_format = format;
+    std::unique_ptr<Runtime> runtime = Runtime::openHeadless(bake_set, options);
+    run.device_bytes = runtime->deviceMemoryBytes();
+    for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
+        const BakeSetSlot& info = bake_set.manifest.slots[slot];
+        const bool sunny = info.sky == BakeSetSky::Sunny;
+        const double sun = sunny ? luminanceRec709(info.sun.irradiance_rgb) : 0.0;
+        FrameInput frame;
+        frame.camera_rgba8 = camera.data();
+        frame.intrinsics = CameraIntrinsics::fromFieldOfView(request.width, request.height, request.fov_deg);
+        frame.pose = CameraPose::lookingAt(request.position, request.look_at);
+        frame.utc_unix_seconds = parseIso8601Utc(sunny ? info.utc : sunny_utc);
+        frame.weather.cloud_cover = sunny ? 0.0f : 1.0f;
+        frame.exposure =
+            float(0.6 / (0.5 / M_PI * std::max(meanLightmapLuminance(bake_set.slots[slot].building) + sun, 1e-9)));
+        frame.colour_match = ColourMatch::kOff;
+        std::vector<uint8_t> composite(camera.size());
+        for (int warm_up = 0; warm_up < 2; ++warm_up) runtime->renderFrame(frame, composite.data());
+        run.composites.push_back(composite);
+    }
+}
+
+void report(const BakeSetData& bake_set, const Request& request, const std::vector<uint8_t>& camera,
+            const std::vector<FormatRun>& runs) {
+    const uint64_t texels = uint64_t(bake_set.manifest.building.lightmap_resolution) *
+                            bake_set.manifest.building.lightmap_resolution * bake_set.slots.size();
+    std::printf("bake set: %s, %zu slots, lightmap %d^2, camera %.1f,%.1f,%.1f -> %.1f,%.1f,%.1f, %ux%u\n",
+                request.folder.c_str(), bake_set.slots.size(), bake_set.manifest.building.lightmap_resolution,
+                request.position.x, request.position.y, request.position.z, request.look_at.x, request.look_at.y,
+                request.look_at.z, request.width, request.height);
+    for (const FormatRun& run : runs) {
+        std::printf("%-16s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB; ASTC: drawn from decoded floats)\n",
+                    run.name,
+                    double(texels * run.bytes_per_texel_x16) / 16.0 / 1048576.0, double(run.device_bytes) / 1048576.0);
+        for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
+            const std::vector<uint8_t>& reference = runs[0].composites[slot];
+            std::vector<uint8_t> region(size_t(request.width) * request.height, 0);
+            for (size_t pixel = 0; pixel < region.size(); ++pixel)
+                for (int channel = 0; channel < 3; ++channel)
+                    if (reference[pixel * 4 + channel] != camera[pixel * 4 + channel]) region[pixel] = 1;
+            const bench::ErrorSummary in_region = bench::summariseError(run.composites[slot], reference, region);
+            const bench::ErrorSummary whole = bench::summariseError(run.composites[slot], reference);
+            std::printf("  %-14s dE00 vs rgba32f: region mean %.4f p95 %.4f (%zu px), frame mean %.4f\n",
+                        bake_set.manifest.slots[slot].name.c_str(), in_region.mean_de00, in_region.p95_de00,
+                        in_region.pixel_count, whole.mean_de00);
+        }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        Request request = readRequest(argc, argv);
+        const BakeSetData bake_set = loadBakeSet(request.folder);
+        placeCamera(bake_set, request);
+        std::string sunny_utc;
+        for (const BakeSetSlot& slot : bake_set.manifest.slots)
+            if (slot.sky == BakeSetSky::Sunny && sunny_utc.empty()) sunny_utc = slot.utc;
+        if (sunny_utc.empty()) throw std::invalid_argument(request.folder + ": no sunny slot to take an instant from");
+        const std::vector<uint8_t> camera(size_t(request.width) * request.height * 4, 128);
+        std::vector<FormatRun> runs = {{"rgba32f", 256}, {"rgba16f", 128}, {"e5b9g9r9", 64}};
+        const LightmapFormat formats[3] = {LightmapFormat::kRgba32f, LightmapFormat::kRgba16f, LightmapFormat::kE5b9g9r9};
+        for (int index = 0; index < 3; ++index) drawSlots(bake_set, formats[index], request, sunny_utc, camera, runs[index]);
+        if (bench::astcAvailable()) {
+            BakeSetData astc = bake_set;
+            for (BakeSetSlotImages& slot : astc.slots) slot.building = bench::astcRoundTrip(slot.building, 60.0f);
+            runs.push_back({"astc4x4 hdr", 16});
+            drawSlots(astc, LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
+        }
+        report(bake_set, request, camera, runs);
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "gusuku-lightmap-formats: %s\n", error.what());
+        return 1;
+    }
+}

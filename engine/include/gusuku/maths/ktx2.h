@@ -1,0 +1,50 @@
+#pragma once
+// KTX 2.0 containers (Khronos KTX File Format Specification 2.0, with the Khronos Data Format Specification 1.3's
+// basic descriptor block) for the runtime pack (docs/bakeset.md, "The runtime pack"): one 2D image, one level, no
+// array layers, one face, no supercompression, in one of the few formats the pack uses. Standard library only, so
+// a phone app's loader reads them without an image library.
+//
+// Written: the 12-byte identifier, the header, the index, one level index entry, the DFD (what the format's texels
+// are, as libktx's vk2dfd would describe them), key/value data with KTXwriter and KTXorientation "rd" (row 0 at
+// the top, as the bake set's images), then the level's texels at an offset aligned to lcm(texel size, 4).
+// Read: every field checked against that layout; anything else is InputError "FILE: FIELD: PROBLEM".
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gusuku {
+
+/// The VkFormat values the pack uses (gusuku_maths has no Vulkan headers; the values are Vulkan's).
+enum class Ktx2Format : uint32_t {
+    kR8Unorm = 9,              ///< VK_FORMAT_R8_UNORM: the lightmaps' validity (0 or 255)
+    kR8g8b8a8Srgb = 43,        ///< VK_FORMAT_R8G8B8A8_SRGB: base-colour textures (A linear)
+    kR32g32b32a32Sfloat = 109, ///< VK_FORMAT_R32G32B32A32_SFLOAT: the ground terms, geometry and albedo
+    kE5b9g9r9Ufloat = 123,     ///< VK_FORMAT_E5B9G9R9_UFLOAT_PACK32: the lightmaps (gusuku/maths/shared_exponent.h)
+};
+
+/// "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32" and so on, for messages; "VkFormat N" for any other value.
+std::string ktx2FormatName(uint32_t vk_format);
+/// Bytes a texel of `format` takes.
+uint32_t ktx2TexelBytes(Ktx2Format format);
+
+/// A decoded container: level 0's texels, width * height * ktx2TexelBytes(format) bytes, row 0 at the top.
+struct Ktx2Image {
+    Ktx2Format format = Ktx2Format::kR8Unorm;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> texels;
+};
+
+/// The file's bytes. std::invalid_argument when texels is not width * height texels or a side is 0.
+std::vector<uint8_t> encodeKtx2(const Ktx2Image& image);
+
+/// Reads a container written as encodeKtx2 writes, whose format must be `expected`; `file` names it in errors.
+/// InputError(file, field, problem) for: a file shorter than its header or its parts, a wrong identifier, another
+/// format, a typeSize, depth, layer, face or level count or supercompression other than written, a DFD that does
+/// not describe the format, key/value data that does not parse, a level outside the file, misaligned, or whose
+/// byte length is not width x height texels. Never reads outside `bytes`; allocates at most `size` bytes.
+Ktx2Image decodeKtx2(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected);
+
+}  // namespace gusuku

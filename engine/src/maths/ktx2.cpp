@@ -1,0 +1,299 @@
+// KTX 2.0 containers for the runtime pack (ktx2.h): the layout written from the KTX 2.0 specification's file
+// structure, the DFD from the Data Format Specification 1.3's basic descriptor block.
+
+#include "gusuku/maths/ktx2.h"
+
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+#include "gusuku/maths/input_error.h"
+
+namespace gusuku {
+namespace {
+
+constexpr uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr size_t kHeaderBytes = 80;       // identifier 12, header 9 x 4, index 4 x 4 + 2 x 8
+constexpr size_t kLevelEntryBytes = 24;   // byteOffset, byteLength, uncompressedByteLength (u64 each)
+constexpr size_t kDfdOffset = kHeaderBytes + kLevelEntryBytes;
+constexpr char kWriter[] = "gusuku runtime pack";
+
+// Data Format Specification 1.3 values.
+constexpr uint32_t kModelRgbsda = 1, kPrimariesBt709 = 1, kTransferLinear = 1, kTransferSrgb = 2;
+constexpr uint32_t kChannelAlpha = 15, kQualifierLinear = 0x10, kQualifierExponent = 0x20;
+constexpr uint32_t kQualifierSigned = 0x40, kQualifierFloat = 0x80;
+constexpr uint32_t kFloatMinusOne = 0xBF800000u, kFloatOne = 0x3F800000u;
+
+struct Sample {
+    uint32_t bit_offset, bit_length, channel_type, lower, upper;
+};
+
+uint32_t typeSizeOf(Ktx2Format format) {
+    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb ? 1u : 4u;
+}
+
+bool isKnown(uint32_t vk_format) {
+    for (Ktx2Format format : {Ktx2Format::kR8Unorm, Ktx2Format::kR8g8b8a8Srgb, Ktx2Format::kR32g32b32a32Sfloat,
+                              Ktx2Format::kE5b9g9r9Ufloat})
+        if (uint32_t(format) == vk_format) return true;
+    return false;
+}
+
+std::vector<Sample> samplesOf(Ktx2Format format) {
+    switch (format) {
+        case Ktx2Format::kR8Unorm: return {{0, 8, 0, 0, 255}};
+        case Ktx2Format::kR8g8b8a8Srgb:
+            return {{0, 8, 0, 0, 255}, {8, 8, 1, 0, 255}, {16, 8, 2, 0, 255},
+                    {24, 8, kChannelAlpha | kQualifierLinear, 0, 255}};
+        case Ktx2Format::kR32g32b32a32Sfloat: {
+            const uint32_t real = kQualifierFloat | kQualifierSigned;
+            return {{0, 32, 0 | real, kFloatMinusOne, kFloatOne}, {32, 32, 1 | real, kFloatMinusOne, kFloatOne},
+                    {64, 32, 2 | real, kFloatMinusOne, kFloatOne},
+                    {96, 32, kChannelAlpha | real, kFloatMinusOne, kFloatOne}};
+        }
+        case Ktx2Format::kE5b9g9r9Ufloat: {
+            // Each channel: its 9-bit mantissa, then the shared 5-bit exponent (bias 15) as an exponent sample;
+            // the limits are those libktx's vk2dfd gives the format (mantissa upper 8448, exponent 15 to 31).
+            std::vector<Sample> samples;
+            for (uint32_t channel = 0; channel < 3; ++channel) {
+                samples.push_back({9 * channel, 9, channel, 0, 8448});
+                samples.push_back({27, 5, channel | kQualifierExponent, 15, 31});
+            }
+            return samples;
+        }
+    }
+    return {};
+}
+
+// The DFD as written: dfdTotalSize, then one basic descriptor block.
+std::vector<uint32_t> dfdWords(Ktx2Format format) {
+    const std::vector<Sample> samples = samplesOf(format);
+    const uint32_t block_bytes = 24 + 16 * uint32_t(samples.size());
+    const uint32_t transfer = format == Ktx2Format::kR8g8b8a8Srgb ? kTransferSrgb : kTransferLinear;
+    std::vector<uint32_t> words = {4 + block_bytes, 0, 2u | block_bytes << 16,
+                                   kModelRgbsda | kPrimariesBt709 << 8 | transfer << 16, 0,
+                                   ktx2TexelBytes(format), 0};
+    for (const Sample& sample : samples) {
+        words.push_back(sample.bit_offset | (sample.bit_length - 1) << 16 | sample.channel_type << 24);
+        words.push_back(0);  // sample position 0, 0, 0, 0
+        words.push_back(sample.lower);
+        words.push_back(sample.upper);
+    }
+    return words;
+}
+
+// Key/value data: KTXorientation then KTXwriter (sorted by key, as the specification requires), each entry
+// padded to 4 bytes.
+std::vector<uint8_t> keyValueData() {
+    std::vector<uint8_t> bytes;
+    auto entry = [&](const std::string& key, const std::string& value) {
+        const uint32_t length = uint32_t(key.size() + 1 + value.size() + 1);
+        for (int shift = 0; shift < 32; shift += 8) bytes.push_back(uint8_t(length >> shift));
+        bytes.insert(bytes.end(), key.begin(), key.end());
+        bytes.push_back(0);
+        bytes.insert(bytes.end(), value.begin(), value.end());
+        bytes.push_back(0);
+        while (bytes.size() % 4 != 0) bytes.push_back(0);
+    };
+    entry("KTXorientation", "rd");
+    entry("KTXwriter", kWriter);
+    return bytes;
+}
+
+// The specification's level alignment without supercompression: lcm(texel block size, 4).
+size_t levelAlignment(Ktx2Format format) { return std::lcm(size_t(ktx2TexelBytes(format)), size_t(4)); }
+
+size_t alignedUp(size_t value, size_t alignment) { return (value + alignment - 1) / alignment * alignment; }
+
+void putU32(std::vector<uint8_t>& bytes, size_t at, uint32_t value) {
+    for (int index = 0; index < 4; ++index) bytes[at + index] = uint8_t(value >> (8 * index));
+}
+void putU64(std::vector<uint8_t>& bytes, size_t at, uint64_t value) {
+    for (int index = 0; index < 8; ++index) bytes[at + index] = uint8_t(value >> (8 * index));
+}
+uint32_t getU32(const uint8_t* bytes) {
+    return uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 | uint32_t(bytes[2]) << 16 | uint32_t(bytes[3]) << 24;
+}
+uint64_t getU64(const uint8_t* bytes) { return uint64_t(getU32(bytes)) | uint64_t(getU32(bytes + 4)) << 32; }
+
+}  // namespace
+
+std::string ktx2FormatName(uint32_t vk_format) {
+    switch (vk_format) {
+        case uint32_t(Ktx2Format::kR8Unorm): return "VK_FORMAT_R8_UNORM";
+        case uint32_t(Ktx2Format::kR8g8b8a8Srgb): return "VK_FORMAT_R8G8B8A8_SRGB";
+        case uint32_t(Ktx2Format::kR32g32b32a32Sfloat): return "VK_FORMAT_R32G32B32A32_SFLOAT";
+        case uint32_t(Ktx2Format::kE5b9g9r9Ufloat): return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
+        default: return "VkFormat " + std::to_string(vk_format);
+    }
+}
+
+uint32_t ktx2TexelBytes(Ktx2Format format) {
+    switch (format) {
+        case Ktx2Format::kR8Unorm: return 1;
+        case Ktx2Format::kR32g32b32a32Sfloat: return 16;
+        default: return 4;
+    }
+}
+
+std::vector<uint8_t> encodeKtx2(const Ktx2Image& image) {
+    if (!isKnown(uint32_t(image.format))) throw std::invalid_argument("encodeKtx2: unknown format");
+    const size_t level_bytes = size_t(image.width) * image.height * ktx2TexelBytes(image.format);
+    if (image.width == 0 || image.height == 0 || image.texels.size() != level_bytes)
+        throw std::invalid_argument("encodeKtx2: texels are not width x height texels of the format");
+    const std::vector<uint32_t> dfd = dfdWords(image.format);
+    const std::vector<uint8_t> kvd = keyValueData();
+    const size_t kvd_offset = kDfdOffset + dfd.size() * 4;
+    const size_t level_offset = alignedUp(kvd_offset + kvd.size(), levelAlignment(image.format));
+    std::vector<uint8_t> bytes(level_offset + level_bytes, 0);
+    std::memcpy(bytes.data(), kIdentifier, sizeof kIdentifier);
+    const uint32_t header[9] = {uint32_t(image.format), typeSizeOf(image.format), image.width, image.height, 0, 0, 1, 1, 0};
+    for (int field = 0; field < 9; ++field) putU32(bytes, 12 + 4 * field, header[field]);
+    putU32(bytes, 48, uint32_t(kDfdOffset));
+    putU32(bytes, 52, uint32_t(dfd.size() * 4));
+    putU32(bytes, 56, uint32_t(kvd_offset));
+    putU32(bytes, 60, uint32_t(kvd.size()));
+    putU64(bytes, 64, 0);  // no supercompression global data
+    putU64(bytes, 72, 0);
+    putU64(bytes, kHeaderBytes, level_offset);
+    putU64(bytes, kHeaderBytes + 8, level_bytes);
+    putU64(bytes, kHeaderBytes + 16, level_bytes);
+    for (size_t word = 0; word < dfd.size(); ++word) putU32(bytes, kDfdOffset + 4 * word, dfd[word]);
+    std::memcpy(bytes.data() + kvd_offset, kvd.data(), kvd.size());
+    std::memcpy(bytes.data() + level_offset, image.texels.data(), level_bytes);
+    return bytes;
+}
+
+namespace {
+
+// Reads the parts of one container, each checked before it is used.
+class Ktx2Reader {
+public:
+    Ktx2Reader(const uint8_t* bytes, size_t size, const std::string& file) : bytes_(bytes), size_(size), file_(file) {}
+
+    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+        throw InputError(file_, field, problem);
+    }
+
+    void need(size_t offset, size_t length, const std::string& field) const {
+        if (offset > size_ || length > size_ - offset)
+            fail(field, "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+                            " lie outside the file of " + std::to_string(size_) + " bytes (truncated?)");
+    }
+    uint32_t u32(size_t offset) const { return getU32(bytes_ + offset); }
+    uint64_t u64(size_t offset) const { return getU64(bytes_ + offset); }
+
+    void expectU32(size_t offset, const std::string& field, uint32_t expected, const std::string& why) const {
+        const uint32_t value = u32(offset);
+        if (value != expected) fail(field, std::to_string(value) + " is not " + std::to_string(expected) + " (" + why + ")");
+    }
+
+    void checkHeader(Ktx2Format expected) const {
+        if (size_ < kHeaderBytes + kLevelEntryBytes)
+            fail("header", "the file has " + std::to_string(size_) + " bytes, fewer than the 104 of a KTX2 header, "
+                           "index and one level entry (truncated?)");
+        if (std::memcmp(bytes_, kIdentifier, sizeof kIdentifier) != 0)
+            fail("identifier", "is not the KTX 2.0 identifier (not a KTX2 file)");
+        const uint32_t format = u32(12);
+        if (format != uint32_t(expected))
+            fail("vkFormat", ktx2FormatName(format) + " is not " + ktx2FormatName(uint32_t(expected)) +
+                                 ", the format this file holds in a runtime pack");
+        expectU32(16, "typeSize", typeSizeOf(expected), "the format's type size");
+        if (u32(20) == 0 || u32(24) == 0) fail("pixelWidth/pixelHeight", "a side is 0");
+        expectU32(28, "pixelDepth", 0, "a 2D image");
+        expectU32(32, "layerCount", 0, "one image, not an array");
+        expectU32(36, "faceCount", 1, "not a cube map");
+        expectU32(40, "levelCount", 1, "the pack holds one level");
+        expectU32(44, "supercompressionScheme", 0, "the pack is not supercompressed");
+        if (u64(64) != 0 || u64(72) != 0) fail("sgdByteOffset/sgdByteLength", "is not 0 (no supercompression)");
+    }
+
+    // The DFD must be, word for word, the one the format is written with. Returns where it ends.
+    size_t checkDfd(Ktx2Format format) const {
+        const std::vector<uint32_t> expected = dfdWords(format);
+        const uint32_t offset = u32(48), length = u32(52);
+        if (offset != kDfdOffset) fail("dfdByteOffset", std::to_string(offset) + " is not 104 (right after the level index)");
+        if (length != expected.size() * 4)
+            fail("dfdByteLength", std::to_string(length) + " is not " + std::to_string(expected.size() * 4) +
+                                      ", the descriptor of " + ktx2FormatName(uint32_t(format)));
+        need(offset, length, "dfd");
+        for (size_t word = 0; word < expected.size(); ++word)
+            if (u32(offset + 4 * word) != expected[word])
+                fail("dfd word " + std::to_string(word), "does not describe " + ktx2FormatName(uint32_t(format)) +
+                                                             " (" + std::to_string(u32(offset + 4 * word)) + ", expected " +
+                                                             std::to_string(expected[word]) + ")");
+        return offset + length;
+    }
+
+    // Key/value entries well formed inside their region, which follows the DFD; KTXorientation, when present,
+    // "rd" (row 0 at the top). Returns where the region ends.
+    size_t checkKeyValueData(size_t dfd_end) const {
+        const uint32_t offset = u32(56), length = u32(60);
+        if (length == 0) return dfd_end;
+        if (offset < dfd_end) fail("kvdByteOffset", std::to_string(offset) + " overlaps the DFD (ends at " + std::to_string(dfd_end) + ")");
+        need(offset, length, "kvd");
+        size_t at = offset;
+        const size_t end = size_t(offset) + length;
+        for (int entry = 0; at < end; ++entry) {
+            const std::string field = "kvd entry " + std::to_string(entry);
+            if (end - at < 4) fail(field, "its length runs past the key/value data");
+            const uint32_t entry_bytes = u32(at);
+            if (entry_bytes > end - at - 4) fail(field, "its " + std::to_string(entry_bytes) + " bytes run past the key/value data");
+            const char* text = reinterpret_cast<const char*>(bytes_ + at + 4);
+            const void* nul = std::memchr(text, 0, entry_bytes);
+            if (nul == nullptr) fail(field, "its key has no terminating NUL");
+            const std::string key(text, static_cast<const char*>(nul));
+            std::string value(static_cast<const char*>(nul) + 1, text + entry_bytes);
+            while (!value.empty() && value.back() == '\0') value.pop_back();  // string values end in NUL
+            if (key == "KTXorientation" && value.rfind("rd", 0) != 0)
+                fail("kvd KTXorientation", quotedForMessage(value) + " is not rd (row 0 at the top, as the pack writes)");
+            at = alignedUp(at + 4 + entry_bytes, 4);
+        }
+        return end;
+    }
+
+    Ktx2Image level(Ktx2Format format, size_t parts_end) const {
+        Ktx2Image image{format, u32(20), u32(24), {}};
+        const uint64_t offset = u64(kHeaderBytes), length = u64(kHeaderBytes + 8);
+        const uint64_t expected = uint64_t(image.width) * image.height * ktx2TexelBytes(format);
+        if (length != expected)
+            fail("levels[0].byteLength", std::to_string(length) + " is not " + std::to_string(image.width) + " x " +
+                                             std::to_string(image.height) + " texels of " +
+                                             std::to_string(ktx2TexelBytes(format)) + " bytes (" +
+                                             std::to_string(expected) + ")");
+        if (u64(kHeaderBytes + 16) != length)
+            fail("levels[0].uncompressedByteLength", std::to_string(u64(kHeaderBytes + 16)) + " is not its byteLength " +
+                                                         std::to_string(length) + " (no supercompression)");
+        if (offset % levelAlignment(format) != 0)
+            fail("levels[0].byteOffset", std::to_string(offset) + " is not a multiple of " +
+                                             std::to_string(levelAlignment(format)));
+        if (offset < parts_end)
+            fail("levels[0].byteOffset", std::to_string(offset) + " overlaps the header, DFD or key/value data (they end at " +
+                                             std::to_string(parts_end) + ")");
+        if (offset > size_ || length > size_ - offset)
+            fail("levels[0]", "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+                                  " lie outside the file of " + std::to_string(size_) + " bytes (truncated?)");
+        if (offset + length != size_)
+            fail("levels[0]", "the file has " + std::to_string(size_ - offset - length) +
+                                  " bytes after its one level (levels do not add up to the file)");
+        image.texels.assign(bytes_ + offset, bytes_ + offset + length);
+        return image;
+    }
+
+private:
+    const uint8_t* bytes_;
+    size_t size_;
+    const std::string& file_;
+};
+
+}  // namespace
+
+Ktx2Image decodeKtx2(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected) {
+    const Ktx2Reader reader(bytes, size, file);
+    reader.checkHeader(expected);
+    const size_t dfd_end = reader.checkDfd(expected);
+    const size_t parts_end = reader.checkKeyValueData(dfd_end);
+    return reader.level(expected, parts_end);
+}
+
+}  // namespace gusuku
