@@ -1,5 +1,21 @@
-// The runtime's shadow lookup: V in [0, 1] (1 lit) of an ENU point from one of the sun's depth maps, with a
-// slope-scaled depth bias and a (2r+1)^2-tap PCF of the hardware's 2x2 compare filter. Needs FrameUniforms.
+// The runtime's shadow lookups. Needs FrameUniforms; the includer declares the building map's two samplers:
+// `building_shadow` (sampler2DShadow, bilinear compare) and `building_shadow_depths` (sampler2D, nearest).
+//   - The building's shadow (buildingSunVisibility): V in [0, 1] (1 lit) with the penumbra the sun's real disc
+//     casts (angular radius 0.2675 degrees) and a normal-offset bias that keeps ribs, eaves and sills
+//     self-shadowed:
+//       1. the receiver point moves off its surface along the normal by one texel times sin(normal, sun), which
+//          lifts it above its own plane by one texel's depth change along that plane (no acne within the
+//          hardware's footprint) and costs a 4 cm batten's shadow well under a centimetre, where the old
+//          depth bias of 1.5 texels (1 + tan) cost it most of its length;
+//       2. blocker search, fixed taps: the 4 x 4 texels about the point and 4 x 2 x 2 on a ring 3 texels out
+//          (8 gathers of the stored depths), each compared with the receiver's plane at that texel's centre (the
+//          plane's depth change across the taps would shade a sloped receiver by itself). None blocks: lit;
+//       3. the blockers' mean distance d gives the penumbra's radius, d tan(0.2675 deg) over the texel's side,
+//          held to [kMinPenumbraTexels, kMaxPenumbraTexels]; up to 1 texel it is a disc filter of the 16 gathered
+//          texels already in hand (each against the plane at its centre), beyond it kDiscTaps bilinear compare
+//          taps on a Vogel disc of that radius (fixed: no noise from frame to frame), each against the plane.
+//   - The site's shadow (shadowLookup): one compare tap with a slope-scaled depth bias (its edges come from far
+//     away and are soft in the camera image anyway).
 #ifndef GUSUKU_RUNTIME_SHADOW_GLSL
 #define GUSUKU_RUNTIME_SHADOW_GLSL
 
@@ -9,14 +25,26 @@ const float kShadowMinCosine = 0.05;
 // ... and the tangent's share of the bias is capped at this (about 84 degrees): a larger bias would detach the
 // shadow from the contact line of the surfaces that cast it, for a gain only on surfaces nearly edge-on to the sun.
 const float kShadowMaxBiasTangent = 10.0;
-// surelyLit's corner taps sit this many texels out at least: with PCF radius 0 the footprint is still the
-// hardware's 2x2 compare filter, which reaches half a texel about the centre.
-const float kSurelyLitMinReachTexels = 0.5;
-// The centre and four corners: all lit means the whole footprint is lit.
-const float kSurelyLitTaps = 5.0;
+// tan(the sun's mean apparent angular radius, 0.2675 degrees): the penumbra's half-width per metre from the caster.
+const float kSunRadiusTangent = 0.0046688;
+// The normal offset, in texels at sin(normal, sun) = 1 (step 1).
+const float kNormalOffsetTexels = 1.0;
+// A depth margin for what the plane does not know (float rounding, smoothly shaded normals), in texels' side.
+const float kPlaneMarginTexels = 0.1;
+// A blocker beside the point's ray must be nearer the sun by this many texels' side per texel it lies beside it
+// (blockingDepth): 1, a 45-degree cone about the ray.
+const float kConcaveGuardSlope = 1.0;
+// The penumbra's radius in texels, at most what the blocker search reaches (the ring 3 texels out, less a texel
+// for the taps' own footprint) ...
+const float kMaxPenumbraTexels = 3.0;
+// ... and up to this, a contact shadow: one bilinear compare tap (its 10-90 % width 1.1 texels, the sun's disc's
+// 1.37 radii) with the site's slope-scaled bias, which keeps a lit wall's foot lit on a grazing floor in front.
+const float kContactTexels = 1.0;
+const int kDiscTaps = 12;
+const float kGoldenAngle = 2.39996323;
 
-// The point's shadow-map coordinates and biased depth; false outside the fitted window (nothing of the building
-// can shade it there).
+// The point's shadow-map coordinates and biased depth for the site's map; false outside the fitted window
+// (nothing of the building can shade it there).
 bool shadowLookup(vec3 position_enu, vec3 normal_enu, out vec2 uv, out float depth) {
     vec4 clip = frame.enu_to_shadow_clip * vec4(position_enu, 1.0);
     uv = clip.xy * 0.5 + 0.5;
@@ -27,31 +55,102 @@ bool shadowLookup(vec3 position_enu, vec3 normal_enu, out vec2 uv, out float dep
     return true;
 }
 
-// True when the whole PCF footprint is lit, from its centre and four corner taps (5 lookups instead of
-// (2r+1)^2): most ground is in no shadow, and this lets the ground pass leave it untouched cheaply.
-bool surelyLit(sampler2DShadow shadow_map, vec3 position_enu, vec3 normal_enu) {
-    vec2 uv;
-    float depth;
-    if (!shadowLookup(position_enu, normal_enu, uv, depth)) return true;
-    float reach = frame.shadow_texel_uv * max(frame.shadow_pcf_radius, kSurelyLitMinReachTexels);
-    float lit = texture(shadow_map, vec3(uv, depth)) + texture(shadow_map, vec3(uv + vec2(reach, reach), depth)) +
-                texture(shadow_map, vec3(uv + vec2(-reach, reach), depth)) +
-                texture(shadow_map, vec3(uv + vec2(reach, -reach), depth)) +
-                texture(shadow_map, vec3(uv + vec2(-reach, -reach), depth));
-    return lit >= kSurelyLitTaps;
+// The receiver as the building's map sees it. The map's matrix is orthographic with orthogonal rows
+// (shadow_fit.h): |row x| = 2 / window side, |row z| = 1 / depth range.
+struct ShadowReceiver {
+    vec2 texel;           // position in texels (texel i's centre at i + 0.5)
+    float depth;          // the offset point's map depth, less the margin
+    vec2 plane_gradient;  // the receiver plane's map depth per texel step in x and y
+    float texel_m;        // one texel's side, metres
+    float depth_range_m;  // map depth 0 to 1, metres
+    float guard_per_texel;  // kConcaveGuardSlope texels' side in map depth
+};
+
+bool shadowReceiver(vec3 position_enu, vec3 normal_enu, out ShadowReceiver receiver) {
+    mat4 m = frame.enu_to_shadow_clip;
+    vec3 row_x = vec3(m[0][0], m[1][0], m[2][0]);
+    vec3 row_y = vec3(m[0][1], m[1][1], m[2][1]);
+    vec3 row_z = vec3(m[0][2], m[1][2], m[2][2]);
+    receiver.texel_m = 2.0 * frame.shadow_texel_uv / length(row_x);
+    receiver.depth_range_m = 1.0 / length(row_z);
+    float cosine = clamp(dot(normal_enu, frame.sun_direction), kShadowMinCosine, 1.0);
+    float sine = sqrt(1.0 - cosine * cosine);
+    vec3 offset_enu = position_enu + normal_enu * (kNormalOffsetTexels * receiver.texel_m * sine);
+    vec4 clip = m * vec4(offset_enu, 1.0);
+    vec2 uv = clip.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
+    receiver.texel = uv / frame.shadow_texel_uv;
+    receiver.depth = clip.z - kPlaneMarginTexels * receiver.texel_m / receiver.depth_range_m;
+    receiver.guard_per_texel = kConcaveGuardSlope * receiver.texel_m / receiver.depth_range_m;
+    // Along the plane, a step of one texel in map x moves the depth by -(n.x / n.z) texel_m (n in the map's
+    // unit axes, n.z = -cosine towards the sun), held to the same grazing limit as the site's bias.
+    vec2 slope = vec2(dot(normalize(row_x), normal_enu), dot(normalize(row_y), normal_enu)) / cosine;
+    float steepest = length(slope);
+    if (steepest > kShadowMaxBiasTangent) slope *= kShadowMaxBiasTangent / steepest;
+    receiver.plane_gradient = slope * (receiver.texel_m / receiver.depth_range_m);
+    return true;
 }
 
-float sunVisibility(sampler2DShadow shadow_map, vec3 position_enu, vec3 normal_enu) {
+// What a texel `offset` texels from the point (`lateral` = its length) must lie in front of to block: the receiver's
+// plane there, and the point's own depth less kConcaveGuardSlope texels' depth per texel of lateral offset. The
+// plane alone would let a surface at a concave corner block (the ground's plane runs on under a sunlit wall's
+// foot, the roof's under a batten's sunlit side), though it lies beside the point's ray, not on it; what does lie
+// on the ray is nearer the sun than the point by more than this the farther it is from it.
+float blockingDepth(ShadowReceiver receiver, vec2 offset, float lateral) {
+    float plane_depth = receiver.depth + dot(receiver.plane_gradient, offset);
+    return min(plane_depth, receiver.depth - lateral * receiver.guard_per_texel);
+}
+
+// The 2 x 2 texels whose shared corner is `corner` (in texels), their depths `stored` (textureGather's order:
+// (0, 1), (1, 1), (1, 0), (0, 0) from the block's first texel): the summed distance in front of the point (x) and
+// the count (y) of those that block (blockingDepth).
+vec2 blockerSums(ShadowReceiver receiver, vec2 corner, vec4 stored) {
+    const vec2 centres[4] = vec2[](vec2(-0.5, 0.5), vec2(0.5, 0.5), vec2(0.5, -0.5), vec2(-0.5, -0.5));
+    vec2 sums = vec2(0.0);
+    for (int index = 0; index < 4; ++index) {
+        vec2 offset = corner + centres[index] - receiver.texel;
+        if (stored[index] < blockingDepth(receiver, offset, length(offset)))
+            sums += vec2(receiver.depth - stored[index], 1.0);
+    }
+    return sums;
+}
+
+vec4 gatherDepths(vec2 corner) { return textureGather(building_shadow_depths, corner * frame.shadow_texel_uv, 0); }
+
+// The wide penumbra: bilinear compare taps on a disc of `radius` texels, each against the plane at the tap less
+// the plane's depth change across the hardware's 2 x 2 footprint.
+float discVisibility(ShadowReceiver receiver, float radius) {
+    float footprint = 0.5 * (abs(receiver.plane_gradient.x) + abs(receiver.plane_gradient.y));
+    float lit = 0.0;
+    for (int tap = 0; tap < kDiscTaps; ++tap) {
+        float r = radius * sqrt((float(tap) + 0.5) / float(kDiscTaps));
+        float angle = float(tap) * kGoldenAngle;
+        vec2 offset = r * vec2(cos(angle), sin(angle));
+        float depth = blockingDepth(receiver, offset, r) - footprint;
+        lit += texture(building_shadow, vec3((receiver.texel + offset) * frame.shadow_texel_uv, depth));
+    }
+    return lit / float(kDiscTaps);
+}
+
+float buildingSunVisibility(vec3 position_enu, vec3 normal_enu) {
+    ShadowReceiver receiver;
+    if (!shadowReceiver(position_enu, normal_enu, receiver)) return 1.0;
+    // Step 2. The 4 x 4 block about the texel corner nearest the point, then the ring.
+    const vec2 kBlocks[8] = vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0),
+                                   vec2(-3.0, 0.0), vec2(3.0, 0.0), vec2(0.0, -3.0), vec2(0.0, 3.0));
+    vec2 centre = floor(receiver.texel + 0.5);
+    vec2 sums = vec2(0.0);
+    for (int block = 0; block < 8; ++block)
+        sums += blockerSums(receiver, centre + kBlocks[block], gatherDepths(centre + kBlocks[block]));
+    if (sums.y == 0.0) return 1.0;
+    // Step 3. The penumbra's radius from the blockers' mean distance.
+    float distance_m = sums.x / sums.y * receiver.depth_range_m;
+    float radius = min(distance_m * kSunRadiusTangent / receiver.texel_m, kMaxPenumbraTexels);
+    if (radius > kContactTexels) return discVisibility(receiver, radius);
     vec2 uv;
     float depth;
-    if (!shadowLookup(position_enu, normal_enu, uv, depth)) return 1.0;
-    int radius = int(frame.shadow_pcf_radius);
-    float texel = frame.shadow_texel_uv;
-    float lit = 0.0;
-    for (int y = -radius; y <= radius; ++y)
-        for (int x = -radius; x <= radius; ++x) lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, depth));
-    float taps = float((2 * radius + 1) * (2 * radius + 1));
-    return lit / taps;
+    shadowLookup(position_enu, normal_enu, uv, depth);
+    return texture(building_shadow, vec3(uv, depth));
 }
 
 #endif
