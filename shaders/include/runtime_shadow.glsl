@@ -39,7 +39,7 @@ const float kConcaveGuardSlope = 1.0;
 const float kMaxPenumbraTexels = 3.0;
 // ... and up to this, a contact shadow: one bilinear compare tap (its 10-90 % width 1.1 texels, the sun's disc's
 // 1.37 radii) with the site's slope-scaled bias, which keeps a lit wall's foot lit on a grazing floor in front.
-const float kContactTexels = 1.0;
+const float kContactTexels = 0.8;
 const int kDiscTaps = 12;
 const float kGoldenAngle = 2.39996323;
 
