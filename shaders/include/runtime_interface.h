@@ -44,7 +44,7 @@ GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFO
     float direct_only_shadow_darkening;  // direct-only mode: the ground's ratio in the building's full shadow
     float shadow_texel_uv;         // 1 / shadow map size
     float shadow_depth_bias;       // depth bias per unit tan(angle), in the map's depth units
-    float shadow_pcf_radius;       // PCF radius in taps: (2r + 1)^2 taps
+    float shadow_pcf_radius;       // 0: hard building shadow; r: the sun's penumbra, blocker search 2 + r texels out
     float pass_through_threshold;  // |ratio - 1| below this in every channel: the camera pixel is untouched
     float ground_origin_east_m;    // the ground grid's south-west corner (ENU m)
     float ground_origin_north_m;

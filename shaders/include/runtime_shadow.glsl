@@ -1,19 +1,22 @@
 // The runtime's shadow lookups. Needs FrameUniforms; the includer declares the building map's two samplers:
 // `building_shadow` (sampler2DShadow, bilinear compare) and `building_shadow_depths` (sampler2D, nearest).
 //   - The building's shadow (buildingSunVisibility): V in [0, 1] (1 lit) with the penumbra the sun's real disc
-//     casts (angular radius 0.2675 degrees) and a normal-offset bias that keeps ribs, eaves and sills
-//     self-shadowed:
-//       1. the receiver point moves off its surface along the normal by one texel times sin(normal, sun), which
-//          lifts it above its own plane by one texel's depth change along that plane (no acne within the
-//          hardware's footprint) and costs a 4 cm batten's shadow well under a centimetre, where the old
-//          depth bias of 1.5 texels (1 + tan) cost it most of its length;
-//       2. blocker search, fixed taps: the 4 x 4 texels about the point and 4 x 2 x 2 on a ring 3 texels out
-//          (8 gathers of the stored depths), each compared with the receiver's plane at that texel's centre (the
-//          plane's depth change across the taps would shade a sloped receiver by itself). None blocks: lit;
-//       3. the blockers' mean distance d gives the penumbra's radius, d tan(0.2675 deg) over the texel's side,
-//          held to [kMinPenumbraTexels, kMaxPenumbraTexels]; up to 1 texel it is a disc filter of the 16 gathered
-//          texels already in hand (each against the plane at its centre), beyond it kDiscTaps bilinear compare
-//          taps on a Vogel disc of that radius (fixed: no noise from frame to frame), each against the plane.
+//     casts (angular radius 0.2675 degrees: 2 d tan of it wide at d metres from the caster), in three steps:
+//       1. blocker search, fixed taps (no noise from frame to frame, bounded cost): the 4 x 4 texels about the
+//          point and four 2 x 2 blocks on a ring (2 + shadow_pcf_radius) texels out, 8 gathers of the stored
+//          depths. A texel blocks when it lies in front of the receiver's plane at its centre (the plane's own
+//          depth change across the taps would shade a sloped receiver by itself) and in front of the point by a
+//          texel's depth per texel it lies beside the point (blockingDepth: not a floor beside a lit wall's
+//          foot). None blocks: lit, where most fragments stop;
+//       2. the blockers' mean distance d gives the penumbra's radius, d tan(0.2675 deg) over the texel's side
+//          (the receiver is moved one texel x sin(normal, sun) along its normal first, so that its own plane
+//          never blocks within the hardware's 2 x 2 footprint);
+//       3. radius above kContactTexels: kDiscTaps bilinear compare taps on a Vogel disc of that radius, each
+//          against the receiver's plane at the tap. Below it (a contact shadow: ribs, sills, a wall's foot, the
+//          sun's penumbra narrower than the filter can draw), the one bilinear compare tap of the site's
+//          slope-scaled bias, the sharpest the map can give; measured on the ribbed roof (tests/
+//          test_runtime_shadows.cpp) it keeps the battens' shadows (-0.33 % from the truth; the 3 x 3 PCF it
+//          replaces -1.02 %), and a receiver-plane test there darkened lit walls' feet on grazing floors.
 //   - The site's shadow (shadowLookup): one compare tap with a slope-scaled depth bias (its edges come from far
 //     away and are soft in the camera image anyway).
 #ifndef GUSUKU_RUNTIME_SHADOW_GLSL
@@ -34,11 +37,10 @@ const float kPlaneMarginTexels = 0.1;
 // A blocker beside the point's ray must be nearer the sun by this many texels' side per texel it lies beside it
 // (blockingDepth): 1, a 45-degree cone about the ray.
 const float kConcaveGuardSlope = 1.0;
-// The penumbra's radius in texels, at most what the blocker search reaches (the ring 3 texels out, less a texel
-// for the taps' own footprint) ...
-const float kMaxPenumbraTexels = 3.0;
-// ... and up to this, a contact shadow: one bilinear compare tap (its 10-90 % width 1.1 texels, the sun's disc's
-// 1.37 radii) with the site's slope-scaled bias, which keeps a lit wall's foot lit on a grazing floor in front.
+// The blocker search's ring lies this many texels out plus shadow_pcf_radius (3 at the default 1) ...
+const float kRingTexels = 2.0;
+// ... and a penumbra radius up to this is a contact shadow: one bilinear compare tap with the site's slope-scaled
+// bias. Its 10-90 % width, 1.1 texels, is the sun's disc's (1.37 radii) at this radius, so the step is smooth.
 const float kContactTexels = 0.8;
 const int kDiscTaps = 12;
 const float kGoldenAngle = 2.39996323;
@@ -133,23 +135,27 @@ float discVisibility(ShadowReceiver receiver, float radius) {
 }
 
 float buildingSunVisibility(vec3 position_enu, vec3 normal_enu) {
+    vec2 uv;
+    float depth;
+    if (!shadowLookup(position_enu, normal_enu, uv, depth)) return 1.0;
+    // shadow_pcf_radius 0: hard shadows, the contact tap alone (the cheapest).
+    if (frame.shadow_pcf_radius <= 0.0) return texture(building_shadow, vec3(uv, depth));
     ShadowReceiver receiver;
     if (!shadowReceiver(position_enu, normal_enu, receiver)) return 1.0;
     // Step 2. The 4 x 4 block about the texel corner nearest the point, then the ring.
-    const vec2 kBlocks[8] = vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0),
-                                   vec2(-3.0, 0.0), vec2(3.0, 0.0), vec2(0.0, -3.0), vec2(0.0, 3.0));
+    float ring = kRingTexels + frame.shadow_pcf_radius;
+    vec2 blocks[8] = vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0), vec2(-ring, 0.0),
+                            vec2(ring, 0.0), vec2(0.0, -ring), vec2(0.0, ring));
     vec2 centre = floor(receiver.texel + 0.5);
     vec2 sums = vec2(0.0);
     for (int block = 0; block < 8; ++block)
-        sums += blockerSums(receiver, centre + kBlocks[block], gatherDepths(centre + kBlocks[block]));
+        sums += blockerSums(receiver, centre + blocks[block], gatherDepths(centre + blocks[block]));
     if (sums.y == 0.0) return 1.0;
-    // Step 3. The penumbra's radius from the blockers' mean distance.
+    // Step 3. The penumbra's radius from the blockers' mean distance, at most what the ring reaches less a texel
+    // for the taps' own footprint.
     float distance_m = sums.x / sums.y * receiver.depth_range_m;
-    float radius = min(distance_m * kSunRadiusTangent / receiver.texel_m, kMaxPenumbraTexels);
+    float radius = min(distance_m * kSunRadiusTangent / receiver.texel_m, ring - 1.0);
     if (radius > kContactTexels) return discVisibility(receiver, radius);
-    vec2 uv;
-    float depth;
-    shadowLookup(position_enu, normal_enu, uv, depth);
     return texture(building_shadow, vec3(uv, depth));
 }
 
