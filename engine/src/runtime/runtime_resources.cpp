@@ -102,6 +102,20 @@ void RuntimeImpl::createTargets() {
     });
 }
 
+namespace {
+
+// The building's map read as depths (runtime_shadow.glsl's blocker search gathers them): the compare sampler's
+// addressing (outside the map: far, lit), nearest and no compare (D32_SFLOAT need not filter linearly without one).
+VkSampler createDepthReadSampler(VkDevice device, VkSamplerCreateInfo info) {
+    info.compareEnable = VK_FALSE;
+    info.magFilter = info.minFilter = VK_FILTER_NEAREST;
+    VkSampler sampler = VK_NULL_HANDLE;
+    checkVk(vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
+    return sampler;
+}
+
+}  // namespace
+
 void RuntimeImpl::createDescriptors() {
     const VkDevice device = gpu_.device;
     // Lightmaps and the ground's images: bilinear on their one level (runtime_scene.cpp's uploadLightmaps says
@@ -128,12 +142,7 @@ void RuntimeImpl::createDescriptors() {
     shadow.addressModeU = shadow.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
     shadow.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     checkVk(vkCreateSampler(device, &shadow, nullptr, &shadow_sampler_), "vkCreateSampler");
-    // The building's map read as depths (the blocker search and the near filter of runtime_shadow.glsl gather
-    // them): nearest, no compare (D32_SFLOAT need not filter linearly without one); outside the map: far, lit.
-    VkSamplerCreateInfo depth = shadow;
-    depth.compareEnable = VK_FALSE;
-    depth.magFilter = depth.minFilter = VK_FILTER_NEAREST;
-    checkVk(vkCreateSampler(device, &depth, nullptr, &shadow_depth_sampler_), "vkCreateSampler");
+    shadow_depth_sampler_ = createDepthReadSampler(device, shadow);
 
     const VkShaderStageFlags graphics = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const VkDescriptorSetLayoutBinding frame_bindings[RUNTIME_FRAME_BINDING_COUNT] = {
