@@ -6,8 +6,8 @@
 //          point and four 2 x 2 blocks on a ring (2 + shadow_pcf_radius) texels out, 8 gathers of the stored
 //          depths. A texel blocks when it lies in front of the receiver's plane at its centre (the plane's own
 //          depth change across the taps would shade a sloped receiver by itself) and in front of the point by a
-//          texel's depth per texel it lies beside the point (blockingDepth: not a floor beside a lit wall's
-//          foot). None blocks: lit, where most fragments stop;
+//          texel's depth per texel it lies beside the point (blockerSums: not a floor beside a lit wall's
+//          foot). None of the 4 x 4 blocks: lit, where most fragments stop after 4 gathers;
 //       2. the blockers' mean distance d gives the penumbra's radius, d tan(0.2675 deg) over the texel's side
 //          (the receiver is moved one texel x sin(normal, sun) along its normal first, so that its own plane
 //          never blocks within the hardware's 2 x 2 footprint);
@@ -35,7 +35,7 @@ const float kNormalOffsetTexels = 1.0;
 // A depth margin for what the plane does not know (float rounding, smoothly shaded normals), in texels' side.
 const float kPlaneMarginTexels = 0.1;
 // A blocker beside the point's ray must be nearer the sun by this many texels' side per texel it lies beside it
-// (blockingDepth): 1, a 45-degree cone about the ray.
+// (blockerSums): 1, a 45-degree cone about the ray.
 const float kConcaveGuardSlope = 1.0;
 // The blocker search's ring lies this many texels out plus shadow_pcf_radius (3 at the default 1) ...
 const float kRingTexels = 2.0;
@@ -93,28 +93,23 @@ bool shadowReceiver(vec3 position_enu, vec3 normal_enu, out ShadowReceiver recei
     return true;
 }
 
-// What a texel `offset` texels from the point (`lateral` = its length) must lie in front of to block: the receiver's
-// plane there, and the point's own depth less kConcaveGuardSlope texels' depth per texel of lateral offset. The
-// plane alone would let a surface at a concave corner block (the ground's plane runs on under a sunlit wall's
-// foot, the roof's under a batten's sunlit side), though it lies beside the point's ray, not on it; what does lie
-// on the ray is nearer the sun than the point by more than this the farther it is from it.
-float blockingDepth(ShadowReceiver receiver, vec2 offset, float lateral) {
-    float plane_depth = receiver.depth + dot(receiver.plane_gradient, offset);
-    return min(plane_depth, receiver.depth - lateral * receiver.guard_per_texel);
-}
-
 // The 2 x 2 texels whose shared corner is `corner` (in texels), their depths `stored` (textureGather's order:
 // (0, 1), (1, 1), (1, 0), (0, 0) from the block's first texel): the summed distance in front of the point (x) and
-// the count (y) of those that block (blockingDepth).
+// the count (y) of those that block. A texel blocks when it lies in front of the receiver's plane at its centre,
+// and in front of the point's own depth by kConcaveGuardSlope texels' depth per texel it lies beside the point:
+// the plane alone would let a surface at a concave corner block (the ground's plane runs on under a sunlit
+// wall's foot, the roof's under a batten's sunlit side), though it lies beside the point's ray, not on it; what
+// does lie on the ray is nearer the sun than the point by more than this the farther it is from it. Four texels
+// at once, without branches (a fragment's lanes do not diverge).
 vec2 blockerSums(ShadowReceiver receiver, vec2 corner, vec4 stored) {
-    const vec2 centres[4] = vec2[](vec2(-0.5, 0.5), vec2(0.5, 0.5), vec2(0.5, -0.5), vec2(-0.5, -0.5));
-    vec2 sums = vec2(0.0);
-    for (int index = 0; index < 4; ++index) {
-        vec2 offset = corner + centres[index] - receiver.texel;
-        if (stored[index] < blockingDepth(receiver, offset, length(offset)))
-            sums += vec2(receiver.depth - stored[index], 1.0);
-    }
-    return sums;
+    vec2 first = corner - receiver.texel;
+    vec4 offset_x = first.x + vec4(-0.5, 0.5, 0.5, -0.5);
+    vec4 offset_y = first.y + vec4(0.5, 0.5, -0.5, -0.5);
+    vec4 plane_depth = receiver.depth + receiver.plane_gradient.x * offset_x + receiver.plane_gradient.y * offset_y;
+    vec4 lateral = sqrt(offset_x * offset_x + offset_y * offset_y);
+    vec4 limit = min(plane_depth, receiver.depth - lateral * receiver.guard_per_texel);
+    vec4 blocks = vec4(lessThan(stored, limit));
+    return vec2(dot(blocks, receiver.depth - stored), dot(blocks, vec4(1.0)));
 }
 
 vec4 gatherDepths(vec2 corner) { return textureGather(building_shadow_depths, corner * frame.shadow_texel_uv, 0); }
@@ -128,7 +123,8 @@ float discVisibility(ShadowReceiver receiver, float radius) {
         float r = radius * sqrt((float(tap) + 0.5) / float(kDiscTaps));
         float angle = float(tap) * kGoldenAngle;
         vec2 offset = r * vec2(cos(angle), sin(angle));
-        float depth = blockingDepth(receiver, offset, r) - footprint;
+        float depth = min(receiver.depth + dot(receiver.plane_gradient, offset),
+                          receiver.depth - r * receiver.guard_per_texel) - footprint;
         lit += texture(building_shadow, vec3((receiver.texel + offset) * frame.shadow_texel_uv, depth));
     }
     return lit / float(kDiscTaps);
@@ -148,9 +144,13 @@ float buildingSunVisibility(vec3 position_enu, vec3 normal_enu) {
                             vec2(ring, 0.0), vec2(0.0, -ring), vec2(0.0, ring));
     vec2 centre = floor(receiver.texel + 0.5);
     vec2 sums = vec2(0.0);
-    for (int block = 0; block < 8; ++block)
+    for (int block = 0; block < 4; ++block)
         sums += blockerSums(receiver, centre + blocks[block], gatherDepths(centre + blocks[block]));
+    // Nothing blocks within 2 texels: lit (most fragments stop here, after 4 gathers). What this gives up: the
+    // outermost rim of a penumbra wider than about 2 texels of radius, where V is above 0.9 anyway.
     if (sums.y == 0.0) return 1.0;
+    for (int block = 4; block < 8; ++block)
+        sums += blockerSums(receiver, centre + blocks[block], gatherDepths(centre + blocks[block]));
     // Step 3. The penumbra's radius from the blockers' mean distance, at most what the ring reaches less a texel
     // for the taps' own footprint.
     float distance_m = sums.x / sums.y * receiver.depth_range_m;
