@@ -16,7 +16,8 @@
 #define RUNTIME_GROUND_IRRADIANCE_BINDING 4    // sampler2DArray: layer 2 slot = E_with, 2 slot + 1 = E_without
 #define RUNTIME_GROUND_GEOMETRY_BINDING 5      // sampler2D: RGB unit normal, A height (ENU z)
 #define RUNTIME_COLOUR_MATCH_BINDING 6         // storage buffer: the colour match state (colour_match_interface.h)
-#define RUNTIME_FRAME_BINDING_COUNT 7
+#define RUNTIME_BUILDING_SHADOW_DEPTH_BINDING 7  // sampler2D, nearest: the building's map as depths (gathers)
+#define RUNTIME_FRAME_BINDING_COUNT 8
 // Set 1: per material of the building.
 #define RUNTIME_MATERIAL_SET 1
 #define RUNTIME_BASE_COLOUR_BINDING 0          // sampler2D, sRGB: the material's base colour texture (or white)
@@ -43,7 +44,7 @@ GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFO
     float direct_only_shadow_darkening;  // direct-only mode: the ground's ratio in the building's full shadow
     float shadow_texel_uv;         // 1 / shadow map size
     float shadow_depth_bias;       // depth bias per unit tan(angle), in the map's depth units
-    float shadow_pcf_radius;       // PCF radius in taps: (2r + 1)^2 taps
+    float shadow_pcf_radius;       // 0: hard building shadow; r: the sun's penumbra, blocker search 2 + r texels out
     float pass_through_threshold;  // |ratio - 1| below this in every channel: the camera pixel is untouched
     float ground_origin_east_m;    // the ground grid's south-west corner (ENU m)
     float ground_origin_north_m;

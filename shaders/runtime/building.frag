@@ -9,6 +9,7 @@
 #include "constants.glsl"
 
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_BINDING) uniform sampler2DShadow building_shadow;
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_DEPTH_BINDING) uniform sampler2D building_shadow_depths;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_LIGHTMAP_BINDING) uniform sampler2DArray lightmaps;
 layout(set = RUNTIME_MATERIAL_SET, binding = RUNTIME_BASE_COLOUR_BINDING) uniform sampler2D base_colour;
@@ -54,10 +55,8 @@ void main() {
     vec3 sun_irradiance = vec3(0.0);
     float cosine = dot(normal, frame.sun_direction);
     if (frame.sun_shines != 0u && cosine > 0.0) {
-        // Five taps settle most fragments (fully lit); only the rest pay for the whole PCF kernel.
-        float visibility = surelyLit(building_shadow, position_enu, normal)
-                               ? 1.0
-                               : sunVisibility(building_shadow, position_enu, normal);
+        // The blocker search settles most fragments (fully lit); only the rest pay for the penumbra's filter.
+        float visibility = buildingSunVisibility(position_enu, normal);
         // The real site's shadow on the building: one bilinear compare tap (its edges come from far away and
         // are soft in the camera image anyway).
         if (frame.site_shadows != 0u && visibility > 0.0) {

@@ -12,6 +12,7 @@
 #include "ground_ratio.glsl"
 
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_BINDING) uniform sampler2DShadow building_shadow;
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_DEPTH_BINDING) uniform sampler2D building_shadow_depths;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
 
 #include "runtime_shadow.glsl"
@@ -52,14 +53,15 @@ void main() {
     bool baked_change = ground_present > kBakedChangeOnACorner && !direct_only;
     vec3 normal = normalize(normal_enu);
     bool sun_shines = kSunShines && frame.sun_shines != 0u && dot(normal, frame.sun_direction) > 0.0;
-    // Only cells the CPU found in the building's shadow reach read the building's shadow map at all.
-    bool lit = !kBuildingShadow || !sun_shines || shadow_candidate <= 0.0 ||
-               surelyLit(building_shadow, position_enu, normal);
-    if (lit && !baked_change) {
+    // Only cells the CPU found in the building's shadow reach read the building's shadow map at all; there the
+    // blocker search settles most fragments (lit) before any filter.
+    float building_visibility = 1.0;
+    if (kBuildingShadow && sun_shines && shadow_candidate > 0.0)
+        building_visibility = buildingSunVisibility(position_enu, normal);
+    if (building_visibility >= 1.0 && !baked_change) {
         out_ratio = kUnchanged;
         return;
     }
-    float building_visibility = (!kBuildingShadow || lit) ? 1.0 : sunVisibility(building_shadow, position_enu, normal);
 
     vec3 ratio;
     if (direct_only) {

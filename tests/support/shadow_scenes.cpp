@@ -73,6 +73,12 @@ std::vector<glm::vec3> platformBuilding(double platform_height_m) {
     return out;
 }
 
+std::vector<glm::vec3> wallBuilding() {
+    std::vector<glm::vec3> out;
+    addBox(out, glm::dvec3(3.0, 0.0, 0.0), glm::dvec3(0.2, 0, 0), glm::dvec3(0, 3.0, 0), glm::dvec3(0, 0, 4.0));
+    return out;
+}
+
 std::optional<RayHit> castRay(const std::vector<glm::vec3>& triangles, const glm::dvec3& origin,
                               const glm::dvec3& direction) {
     std::optional<RayHit> nearest;

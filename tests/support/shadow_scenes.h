@@ -6,7 +6,9 @@
 //   - ribbedRoof: a mono-pitch roof facing east (pitch 30 degrees, 3 m along the slope, 4 m wide) on a 2 m
 //     eave line, with horizontal battens across it (`rib_height_m` tall, 3 cm wide, every `rib_spacing_m`);
 //     0 ribs gives the flat roof alone;
-//   - platformBuilding: a base platform `platform_height_m` tall over [-2.5, 2.5]^2 and a 2 x 2 x 2 m box on it.
+//   - platformBuilding: a base platform `platform_height_m` tall over [-2.5, 2.5]^2 and a 2 x 2 x 2 m box on it;
+//   - wallBuilding: a wall over x in [3, 3.2], y in [0, 3], 4 m tall, whose south-east vertical edge casts a long
+//     straight shadow edge on the ground under a morning sun (the penumbra-width test).
 
 #include <cstdint>
 #include <optional>
@@ -34,6 +36,7 @@ BakeSetData bakeSetWithBuilding(const std::vector<glm::vec3>& triangles, const S
 /// Triangle soup (three corners each, counter-clockwise seen from outside).
 std::vector<glm::vec3> ribbedRoof(const RibbedRoofOptions& options);
 std::vector<glm::vec3> platformBuilding(double platform_height_m);
+std::vector<glm::vec3> wallBuilding();
 
 /// What a ray meets first: distance, the triangle's unit normal (facing the ray's origin) and its index.
 struct RayHit {

@@ -150,6 +150,7 @@ private:
     VkFramebuffer site_shadow_framebuffer_ = VK_NULL_HANDLE;
     VkSampler linear_sampler_ = VK_NULL_HANDLE;
     VkSampler shadow_sampler_ = VK_NULL_HANDLE;
+    VkSampler shadow_depth_sampler_ = VK_NULL_HANDLE;  // nearest, no compare: the building's map read as depths
     VkSampler texture_sampler_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout frame_set_layout_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout material_set_layout_ = VK_NULL_HANDLE;

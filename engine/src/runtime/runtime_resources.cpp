@@ -102,6 +102,20 @@ void RuntimeImpl::createTargets() {
     });
 }
 
+namespace {
+
+// The building's map read as depths (runtime_shadow.glsl's blocker search gathers them): the compare sampler's
+// addressing (outside the map: far, lit), nearest and no compare (D32_SFLOAT need not filter linearly without one).
+VkSampler createDepthReadSampler(VkDevice device, VkSamplerCreateInfo info) {
+    info.compareEnable = VK_FALSE;
+    info.magFilter = info.minFilter = VK_FILTER_NEAREST;
+    VkSampler sampler = VK_NULL_HANDLE;
+    checkVk(vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
+    return sampler;
+}
+
+}  // namespace
+
 void RuntimeImpl::createDescriptors() {
     const VkDevice device = gpu_.device;
     // Lightmaps and the ground's images: bilinear on their one level (runtime_scene.cpp's uploadLightmaps says
@@ -128,6 +142,7 @@ void RuntimeImpl::createDescriptors() {
     shadow.addressModeU = shadow.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
     shadow.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     checkVk(vkCreateSampler(device, &shadow, nullptr, &shadow_sampler_), "vkCreateSampler");
+    shadow_depth_sampler_ = createDepthReadSampler(device, shadow);
 
     const VkShaderStageFlags graphics = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const VkDescriptorSetLayoutBinding frame_bindings[RUNTIME_FRAME_BINDING_COUNT] = {
@@ -138,6 +153,8 @@ void RuntimeImpl::createDescriptors() {
         {RUNTIME_GROUND_IRRADIANCE_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
         {RUNTIME_GROUND_GEOMETRY_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, graphics, nullptr},
         {RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {RUNTIME_BUILDING_SHADOW_DEPTH_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+         VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
     };
     VkDescriptorSetLayoutCreateInfo frame_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     frame_layout.bindingCount = RUNTIME_FRAME_BINDING_COUNT;
@@ -155,7 +172,7 @@ void RuntimeImpl::createDescriptors() {
     const uint32_t material_count = uint32_t(scene_.base_colour_factors.size());
     const VkDescriptorPoolSize pool_sizes[3] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 + material_count},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 + material_count},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
     };
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -178,12 +195,13 @@ void RuntimeImpl::createDescriptors() {
     const VkDescriptorBufferInfo uniforms{uniform_buffer_.handle(), 0, sizeof(FrameUniforms)};
     const VkDescriptorBufferInfo colour_state{colourStateBuffer().handle(), 0, VK_WHOLE_SIZE};
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    const VkDescriptorImageInfo images[5] = {
+    const VkDescriptorImageInfo images[6] = {
         {shadow_sampler_, building_shadow_.view(), read},
         {shadow_sampler_, site_shadow_.view(), read},
         {linear_sampler_, scene_.lightmaps.view(), read},
         {linear_sampler_, scene_.ground_irradiance.view(), read},
         {linear_sampler_, scene_.ground_geometry.view(), read},
+        {shadow_depth_sampler_, building_shadow_.view(), read},
     };
     std::vector<VkWriteDescriptorSet> writes;
     auto write = [&](VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
@@ -197,10 +215,10 @@ void RuntimeImpl::createDescriptors() {
     };
     writes.reserve(8 + material_count);
     write(frame_set_, RUNTIME_FRAME_UNIFORMS_BINDING, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)->pBufferInfo = &uniforms;
-    const uint32_t image_bindings[5] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
+    const uint32_t image_bindings[6] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
                                         RUNTIME_LIGHTMAP_BINDING, RUNTIME_GROUND_IRRADIANCE_BINDING,
-                                        RUNTIME_GROUND_GEOMETRY_BINDING};
-    for (int index = 0; index < 5; ++index)
+                                        RUNTIME_GROUND_GEOMETRY_BINDING, RUNTIME_BUILDING_SHADOW_DEPTH_BINDING};
+    for (int index = 0; index < 6; ++index)
         write(frame_set_, image_bindings[index], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[index];
     write(frame_set_, RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)->pBufferInfo = &colour_state;
     std::vector<VkDescriptorImageInfo> material_images(material_count);
@@ -254,7 +272,7 @@ void RuntimeImpl::destroy() noexcept {
     if (descriptor_pool_) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     for (VkDescriptorSetLayout layout : {frame_set_layout_, material_set_layout_})
         if (layout) vkDestroyDescriptorSetLayout(device, layout, nullptr);
-    for (VkSampler sampler : {linear_sampler_, shadow_sampler_, texture_sampler_})
+    for (VkSampler sampler : {linear_sampler_, shadow_sampler_, shadow_depth_sampler_, texture_sampler_})
         if (sampler) vkDestroySampler(device, sampler, nullptr);
     for (VkFramebuffer framebuffer : {building_shadow_framebuffer_, site_shadow_framebuffer_})
         if (framebuffer) vkDestroyFramebuffer(device, framebuffer, nullptr);
@@ -267,7 +285,7 @@ void RuntimeImpl::destroy() noexcept {
     depth_layout_ = shading_layout_ = VK_NULL_HANDLE;
     descriptor_pool_ = VK_NULL_HANDLE;
     frame_set_layout_ = material_set_layout_ = VK_NULL_HANDLE;
-    linear_sampler_ = shadow_sampler_ = texture_sampler_ = VK_NULL_HANDLE;
+    linear_sampler_ = shadow_sampler_ = shadow_depth_sampler_ = texture_sampler_ = VK_NULL_HANDLE;
     building_shadow_framebuffer_ = site_shadow_framebuffer_ = VK_NULL_HANDLE;
     for (VkRenderPass& render_pass : main_passes_) render_pass = VK_NULL_HANDLE;
     shadow_pass_ = VK_NULL_HANDLE;

@@ -260,7 +260,7 @@ typedef struct gusuku_runtime_options {
     uint32_t frame_height;
     uint32_t shadow_map_size;             /* texels per side, [64, 8192]; default 1024 */
     float shadow_bias_texels;             /* [0, 64]; default 1.5 */
-    uint32_t shadow_pcf_radius;           /* [0, 3]; default 1 */
+    uint32_t shadow_pcf_radius;           /* [0, 3]; default 1; 0 hard shadows, else the sun's penumbra */
     uint32_t statistics_stride;           /* colour statistics on every n-th pixel; default 8 */
     float statistics_smoothing_frames;    /* [1, 1e6]; default 8 */
     float colour_gain_limit;              /* [1, 100]; default 2 */

@@ -166,7 +166,9 @@ struct RuntimeOptions {
     uint32_t shadow_map_size = 1024;
     /// Depth bias of the shadow test, in shadow-map texels (slope-scaled by the receiver's normal). [0, 64].
     float shadow_bias_texels = 1.5f;
-    /// PCF kernel: (2 r + 1)^2 taps of the hardware 2x2 compare filter. 0 gives one bilinear compare tap.
+    /// The building's shadow: r >= 1 gives the sun's disc as the penumbra, searched for blockers up to 2 + r texels
+    /// out (so at most 1 + r texels of penumbra radius; runtime_shadow.glsl); 0 gives hard shadows, one bilinear
+    /// compare tap (the cheapest). [0, 3].
     uint32_t shadow_pcf_radius = 1;
     /// The shadow maps are drawn for the sun's azimuth and elevation rounded to this step (degrees) and redrawn
     /// only when the rounded sun moves: every 12 s or so at 0.05 degrees, which shifts a 10 m shadow by 9 mm.
