@@ -21,6 +21,7 @@ void printUsage() {
                  "  bake      bake a site's lightmaps and ground terms into a bake set\n"
                  "  merge     join partial bake sets (one slot each, `bake --slot`) into one bake set\n"
                  "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
+                 "  export    write the building with one slot's lightmap as a glTF other engines show\n"
                  "\n"
                  "`gusuku-bake <command> --help` describes each.\n");
 }
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
         if (command == "bake") return runBakeCommand(args);
         if (command == "converge") return runConvergeCommand(args);
         if (command == "merge") return runMergeCommand(args);
+        if (command == "export") return runExportCommand(args);
         std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
         printUsage();
         return 2;
