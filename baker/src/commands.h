@@ -20,6 +20,7 @@ int runConvergeCommand(const std::vector<std::string>& args);  // cmd_converge.c
 int runCheckCommand(const std::vector<std::string>& args);     // cmd_check.cpp: validate site.json and load all
 int runMergeCommand(const std::vector<std::string>& args);     // cmd_merge.cpp: join partial bake sets
 int runPackCommand(const std::vector<std::string>& args);      // cmd_pack.cpp: a bake set's runtime pack
+int runExportCommand(const std::vector<std::string>& args);    // cmd_export.cpp: a glTF with a slot's lightmap
 
 /// How every subcommand reads its command line (gusuku/tools/command_line.h), so that all behave alike. `parse` takes
 /// the command's options and positionals from `line` and calls line.finish(); it throws UsageError for bad usage

@@ -22,6 +22,7 @@ void printUsage() {
                  "  merge     join partial bake sets (one slot each, `bake --slot`) into one bake set\n"
                  "  pack      write a bake set's runtime pack (KTX2 lightmaps, pack.bin; bake writes it too)\n"
                  "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
+                 "  export    write the building with one slot's lightmap as a glTF other engines show\n"
                  "\n"
                  "`gusuku-bake <command> --help` describes each.\n");
 }
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
         if (command == "converge") return runConvergeCommand(args);
         if (command == "merge") return runMergeCommand(args);
         if (command == "pack") return runPackCommand(args);
+        if (command == "export") return runExportCommand(args);
         std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
         printUsage();
         return 2;

@@ -126,6 +126,23 @@ std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha
     return png;
 }
 
+std::vector<unsigned char> encodePng8(int width, int height, int channels, const std::vector<uint8_t>& bytes) {
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+        bytes.size() != size_t(width) * size_t(height) * size_t(channels))
+        throw std::invalid_argument("PNG in memory: cannot encode " + std::to_string(bytes.size()) + " bytes as a " +
+                                    std::to_string(width) + " x " + std::to_string(height) + " image of " +
+                                    std::to_string(channels) + " 8-bit channels");
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    std::vector<unsigned char> png;
+    OIIO::Filesystem::IOVecOutput writer(png);
+    const std::string name = "memory.png";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(name, &writer);
+    if (!output) throw std::runtime_error("cannot create a PNG writer: " + OIIO::geterror());
+    if (!output->open(name, spec) || !output->write_image(spec.format, bytes.data()) || !output->close())
+        throw std::runtime_error("cannot encode PNG: " + output->geterror());
+    return png;
+}
+
 void writeHdr(const std::string& path, const ImageRGBA& image) {
     checkWritable(path, image);
     const std::vector<float> packed = packChannels(image, 3);

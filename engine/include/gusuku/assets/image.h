@@ -74,6 +74,11 @@ void writePngRgba8(const std::string& path, int width, int height, const std::ve
 /// Encodes linear RGBA as an 8-bit sRGB PNG in memory (as writePngSrgb does to a file), e.g. to embed in a .glb.
 std::vector<unsigned char> encodePngSrgb(const ImageRGBA& image, bool with_alpha = true);
 
+/// Encodes 8-bit bytes as they are (no transfer function applied: the caller says what they mean, e.g. a linear
+/// lightmap) as a PNG in memory: width * height * channels bytes, row 0 at the top, channels 1 to 4.
+/// std::invalid_argument when the byte count or channel count is wrong.
+std::vector<unsigned char> encodePng8(int width, int height, int channels, const std::vector<uint8_t>& bytes);
+
 /// Writes a Radiance .hdr (RGBE), atomically. Values are linear.
 void writeHdr(const std::string& path, const ImageRGBA& image);
 
