@@ -18,6 +18,7 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
+#include "bake_output_checks.h"
 #include "mini_site.h"
 
 namespace gusuku::bake {
@@ -25,29 +26,7 @@ namespace {
 
 using gusuku::testing::GpuTest;
 namespace fs = std::filesystem;
-
-std::vector<std::string> exrFiles(const std::string& dir) {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().extension() == ".exr") names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-void expectSameBakeSets(const std::string& expected_dir, const std::string& actual_dir) {
-    const std::vector<std::string> names = exrFiles(expected_dir);
-    ASSERT_FALSE(names.empty());
-    ASSERT_EQ(names, exrFiles(actual_dir));
-    for (const std::string& name : names) {
-        const ImageRGBA expected = readImage(expected_dir + "/" + name);
-        const ImageRGBA actual = readImage(actual_dir + "/" + name);
-        ASSERT_EQ(expected.width, actual.width) << name;
-        ASSERT_EQ(expected.height, actual.height) << name;
-        size_t differing = 0;
-        for (size_t i = 0; i < expected.texels.size(); ++i) differing += expected.texels[i] != actual.texels[i];
-        EXPECT_EQ(differing, 0u) << name << ": resumed bake differs from the uninterrupted one";
-    }
-}
+using gusuku::testing::expectSameBakeSets;
 
 class BakeResumeTest : public GpuTest {};
 
@@ -111,8 +90,8 @@ TEST_F(BakeResumeTest, StoppedInsideAdaptiveSamplingsExtraSamplesResumesToTheSam
     options.output_dir = dir + "/uniform";
     options.adaptive_sampling = false;
     ASSERT_TRUE(runBake(context(), site, options).completed);
-    const ImageRGBA adaptive_lightmap = readImage(dir + "/uninterrupted/" + exrFiles(dir + "/uninterrupted").front());
-    const ImageRGBA uniform_lightmap = readImage(dir + "/uniform/" + exrFiles(dir + "/uniform").front());
+    const ImageRGBA adaptive_lightmap = readImage(dir + "/uninterrupted/" + gusuku::testing::exrFilesIn(dir + "/uninterrupted").front());
+    const ImageRGBA uniform_lightmap = readImage(dir + "/uniform/" + gusuku::testing::exrFilesIn(dir + "/uniform").front());
     EXPECT_NE(adaptive_lightmap.texels, uniform_lightmap.texels);
 }
 

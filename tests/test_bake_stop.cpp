@@ -24,38 +24,17 @@
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/dispatch_budget.h"
+#include "bake_output_checks.h"
 #include "mini_site.h"
 
 namespace gusuku::bake {
 namespace {
 
 namespace fs = std::filesystem;
+using gusuku::testing::expectSameBakeSets;
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::vector<std::string> exrFiles(const std::string& dir) {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().extension() == ".exr") names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-// Every EXR of the two bake sets equal bit for bit.
-void expectSameBakeSets(const std::string& expected_dir, const std::string& actual_dir) {
-    const std::vector<std::string> names = exrFiles(expected_dir);
-    ASSERT_FALSE(names.empty());
-    ASSERT_EQ(names, exrFiles(actual_dir));
-    for (const std::string& name : names) {
-        const ImageRGBA expected = readImage(expected_dir + "/" + name);
-        const ImageRGBA actual = readImage(actual_dir + "/" + name);
-        ASSERT_EQ(expected.texels.size(), actual.texels.size()) << name;
-        size_t differing = 0;
-        for (size_t i = 0; i < expected.texels.size(); ++i) differing += expected.texels[i] != actual.texels[i];
-        EXPECT_EQ(differing, 0u) << name << ": resumed bake differs from the uninterrupted one";
-    }
-}
 
 std::string writeHeavySite(const std::string& dir) {
     gusuku::testing::MiniSiteOptions options;

@@ -1,5 +1,6 @@
 #include "bake_output_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -20,6 +21,30 @@ int expectExrImagesFinite(const std::string& dir) {
         ++images;
     }
     return images;
+}
+
+std::vector<std::string> exrFilesIn(const std::string& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().extension() == ".exr") names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void expectSameBakeSets(const std::string& expected_dir, const std::string& actual_dir) {
+    const std::vector<std::string> names = exrFilesIn(expected_dir);
+    ASSERT_FALSE(names.empty());
+    ASSERT_EQ(names, exrFilesIn(actual_dir));
+    for (const std::string& name : names) {
+        const ImageRGBA expected = readImage(expected_dir + "/" + name);
+        const ImageRGBA actual = readImage(actual_dir + "/" + name);
+        ASSERT_EQ(expected.width, actual.width) << name;
+        ASSERT_EQ(expected.height, actual.height) << name;
+        ASSERT_EQ(expected.texels.size(), actual.texels.size()) << name;
+        size_t differing = 0;
+        for (size_t i = 0; i < expected.texels.size(); ++i) differing += expected.texels[i] != actual.texels[i];
+        EXPECT_EQ(differing, 0u) << name << ": resumed bake differs from the uninterrupted one";
+    }
 }
 
 }  // namespace gusuku::testing

@@ -2,11 +2,19 @@
 // Checks shared by the tests that look at a finished bake set on disk.
 
 #include <string>
+#include <vector>
 
 namespace gusuku::testing {
 
 /// Reads every .exr in dir through OpenImageIO and fails the current test (gtest EXPECT) on any NaN or infinite
 /// value; returns how many images it read, so a caller can assert that the bake wrote anything at all.
 int expectExrImagesFinite(const std::string& dir);
+
+/// The .exr file names in dir, sorted.
+std::vector<std::string> exrFilesIn(const std::string& dir);
+
+/// Fails the current test unless both folders hold the same .exr names and every image is equal bit for bit (a
+/// resumed or re-sliced bake against an uninterrupted one).
+void expectSameBakeSets(const std::string& expected_dir, const std::string& actual_dir);
 
 }  // namespace gusuku::testing
