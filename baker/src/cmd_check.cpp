@@ -12,6 +12,7 @@
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
+#include "gusuku/assets/sky_photo.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/mesh.h"
 #include "gusuku/assets/site.h"
@@ -61,9 +62,16 @@ void printMesh(const char* label, const std::string& path, const TriangleMesh& m
 }
 
 ImageRGBA checkSky(const char* label, const SkyConfig& sky, std::vector<std::string>& warnings) {
-    ImageRGBA image = readRadianceMap(sky.path);
+    SkyPhotoSummary photos;
+    ImageRGBA image = readSkyRadiance(sky, &photos);
     std::printf("%s sky: %s\n  %d x %d, north at %.2f deg in the image\n", label, sky.path.c_str(), image.width,
                 image.height, sky.north_azimuth_in_image_deg);
+    if (!photos.ev100.empty()) {
+        std::printf("  8-bit photo%s at EV100", photos.ev100.size() > 1 ? "s (an exposure bracket)" : "");
+        for (const double ev100 : photos.ev100) std::printf(" %.2f", ev100);
+        std::printf("; %zu of %zu texels clipped in every photo (%.3f %%)\n", photos.clipped_texel_count,
+                    photos.texel_count, 100.0 * double(photos.clipped_texel_count) / double(photos.texel_count));
+    }
     if (image.width != 2 * image.height)
         warnings.push_back(std::string(label) + " sky is " + std::to_string(image.width) + " x " +
                            std::to_string(image.height) + ", not the 2:1 of an equirectangular map");

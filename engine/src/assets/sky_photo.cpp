@@ -1,0 +1,152 @@
+// 8-bit sky photos (one, or an exposure bracket of one view) to a radiance map in the bake's units; the
+// calibration, the clipping rule and the bracket weights are stated in gusuku/assets/sky_photo.h.
+#include "gusuku/assets/sky_photo.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
+
+namespace gusuku {
+
+namespace {
+
+// The bracket weight falls linearly to 0 over this many codes below the clip (the upper half of a hat): a
+// camera's shoulder and JPEG's ringing make the last codes the least trustworthy, and the taper keeps the merge
+// free of a seam where a member starts to clip.
+constexpr double kClipTaperCodes = 32.0;
+// Added to every unclipped member's weight so that a texel dark in every member still gets their mean.
+constexpr double kMinimumWeight = 1e-6;
+
+std::string lowerCaseExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
+/// Weight of a member whose brightest channel has code m (0..255, fractional after downsampling): the inverse
+/// square of the relative quantisation step of the sRGB code there (dL/L per code: 1/m in the curve's linear
+/// foot, about 2.4 / (m + 14) above), so each member counts by how precisely its 8 bits hold the texel,
+/// tapered to 0 at the clip.
+double bracketWeight(double code) {
+    const double step = srgbDecode(std::min(code + 0.5, 255.0) / 255.0) - srgbDecode(std::max(code - 0.5, 0.0) / 255.0);
+    const double linear = srgbDecode(code / 255.0);
+    const double precision = linear > 0.0 ? (linear / step) * (linear / step) : 0.0;
+    const double taper = std::clamp((kSkyPhotoClippedCode - code) / kClipTaperCodes, 0.0, 1.0);
+    return precision * taper + kMinimumWeight;
+}
+
+/// One photo's encoded values (code / 255, as readImage reads 8-bit data with ImageEncoding::Linear) and scale.
+struct EncodedPhoto {
+    std::string path;
+    double ev100 = 0.0;
+    double radiance_scale = 0.0;  ///< bake units of linear 1
+    ImageRGBA encoded;
+};
+
+/// The reader's checks, then that the data is 8-bit PNG or JPEG: what the file holds decides, not its name.
+void checkPhotoFormat(const std::string& path) {
+    readImageSize(path);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) throw InputError(path, "", "cannot read image: " + OIIO::geterror());
+    const std::string format = input->format_name();
+    if (format != "png" && format != "jpeg")
+        throw InputError(path, "", "holds " + format + " data: an 8-bit sky photo must be PNG or JPEG");
+    if (input->spec().format != OIIO::TypeDesc::UINT8)
+        throw InputError(path, "", std::string("holds ") + input->spec().format.c_str() +
+                                       " channels: an 8-bit sky photo must have 8 bits a channel");
+}
+
+EncodedPhoto readEncodedPhoto(const SkyPhotoConfig& config) {
+    if (!isSkyPhotoExtension(lowerCaseExtension(config.path)))
+        throw InputError(config.path, "", "an 8-bit sky photo must be .jpg, .jpeg or .png");
+    checkPhotoFormat(config.path);
+    EncodedPhoto photo;
+    photo.path = config.path;
+    photo.ev100 = skyPhotoEv100(config.path, config.ev100);
+    photo.radiance_scale = skyPhotoRadianceScale(photo.ev100);
+    photo.encoded = readImage(config.path, ImageEncoding::Linear);
+    if (photo.encoded.width != 2 * photo.encoded.height)
+        throw InputError(config.path, "size",
+                         std::to_string(photo.encoded.width) + " x " + std::to_string(photo.encoded.height) +
+                             " is not the 2:1 of an equirectangular sky");
+    return photo;
+}
+
+/// The brightest channel's code of a texel (0..255).
+double brightestCode(const float* encoded) {
+    return 255.0 * double(std::max({encoded[0], encoded[1], encoded[2]}));
+}
+
+/// Merges one texel from every photo; returns false when every photo holds it clipped.
+bool mergeTexel(const std::vector<EncodedPhoto>& photos, int x, int y, float* radiance_out) {
+    std::array<double, 3> sum{0.0, 0.0, 0.0};
+    double weight_sum = 0.0;
+    double darkest_white = 0.0;
+    for (const EncodedPhoto& photo : photos) {
+        const float* encoded = photo.encoded.texel(x, y);
+        darkest_white = std::max(darkest_white, photo.radiance_scale);
+        const double code = brightestCode(encoded);
+        if (code >= kSkyPhotoClippedCode - 1e-3) continue;
+        const double weight = photos.size() == 1 ? 1.0 : bracketWeight(code);
+        for (int c = 0; c < 3; ++c) sum[c] += weight * srgbDecode(double(encoded[c])) * photo.radiance_scale;
+        weight_sum += weight;
+    }
+    const bool known = weight_sum > 0.0;
+    for (int c = 0; c < 3; ++c) radiance_out[c] = float(known ? sum[c] / weight_sum : darkest_white);
+    radiance_out[3] = 1.0f;
+    return known;
+}
+
+}  // namespace
+
+ImageRGBA readSkyPhotos(const std::vector<SkyPhotoConfig>& configs, SkyPhotoSummary* summary) {
+    if (configs.empty()) throw InputError("", "bracket", "no sky photo given");
+    std::vector<EncodedPhoto> photos;
+    photos.reserve(configs.size());
+    for (const SkyPhotoConfig& config : configs) {
+        photos.push_back(readEncodedPhoto(config));
+        const EncodedPhoto& first = photos.front();
+        const EncodedPhoto& last = photos.back();
+        if (last.encoded.width != first.encoded.width || last.encoded.height != first.encoded.height)
+            throw InputError(last.path, "size",
+                             std::to_string(last.encoded.width) + " x " + std::to_string(last.encoded.height) +
+                                 " differs from the bracket's first photo " + first.path + " (" +
+                                 std::to_string(first.encoded.width) + " x " + std::to_string(first.encoded.height) +
+                                 "): a bracket is one view");
+    }
+    ImageRGBA radiance;
+    radiance.width = photos.front().encoded.width;
+    radiance.height = photos.front().encoded.height;
+    radiance.texels.assign(size_t(radiance.width) * size_t(radiance.height) * 4, 0.0f);
+    size_t clipped = 0;
+    for (int y = 0; y < radiance.height; ++y)
+        for (int x = 0; x < radiance.width; ++x)
+            if (!mergeTexel(photos, x, y, radiance.texel(x, y))) ++clipped;
+    if (summary) {
+        summary->ev100.clear();
+        for (const EncodedPhoto& photo : photos) summary->ev100.push_back(photo.ev100);
+        summary->clipped_texel_count = clipped;
+        summary->texel_count = size_t(radiance.width) * size_t(radiance.height);
+    }
+    return radiance;
+}
+
+ImageRGBA readSkyRadiance(const SkyConfig& sky, SkyPhotoSummary* summary) {
+    if (!sky.photos.empty()) return readSkyPhotos(sky.photos, summary);
+    if (isSkyPhotoExtension(lowerCaseExtension(sky.path))) return readSkyPhotos({SkyPhotoConfig{sky.path, {}}}, summary);
+    if (summary) *summary = SkyPhotoSummary{};
+    return readRadianceMap(sky.path);
+}
+
+}  // namespace gusuku
