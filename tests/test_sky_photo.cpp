@@ -317,6 +317,7 @@ TEST(SkyPhoto, BadPhotosAreRefusedInOneLineNamingFileAndField) {
     zero_time.exposure_time_override = -1.0;  // stored as EXIF's unsigned rational: read back as 0 or negative
     writePhoto(dir + "/zero_time.jpg", grey, camera, zero_time);
     const std::string zero = expectInputError([&] { gusuku::readSkyPhotos({SkyPhotoConfig{dir + "/zero_time.jpg", {}}}); });
+    std::printf("%s\n", zero.c_str());
     EXPECT_EQ(zero.rfind(dir + "/zero_time.jpg: ExposureTime: ", 0), 0u) << zero;
     EXPECT_NE(zero.find("is not a positive exposure value"), std::string::npos) << zero;
     EXPECT_EQ(zero.find('\n'), std::string::npos);
