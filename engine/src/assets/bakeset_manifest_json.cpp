@@ -145,7 +145,8 @@ void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
         matches = ends_with(".glb") || ends_with(".gltf");
     } else if (input.role == "sunny_sky" || input.role == "overcast_sky") {
         expected = "a .hdr or .exr map or a .jpg, .jpeg or .png photo";
-        matches = ends_with(".hdr") || ends_with(".exr") || ends_with(".jpg") || ends_with(".jpeg") || ends_with(".png");
+        matches = ends_with(".hdr") || ends_with(".exr") || ends_with(".jpg") || ends_with(".jpeg") ||
+                  ends_with(".png");
     }
     if (!matches) reader.fail("path", "\"" + input.path + "\" is not " + expected + ", as the " + input.role + " input is");
 }

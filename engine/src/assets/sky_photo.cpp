@@ -39,7 +39,8 @@ std::string lowerCaseExtension(const std::string& path) {
 /// foot, about 2.4 / (m + 14) above), so each member counts by how precisely its 8 bits hold the texel,
 /// tapered to 0 at the clip.
 double bracketWeight(double code) {
-    const double step = srgbDecode(std::min(code + 0.5, 255.0) / 255.0) - srgbDecode(std::max(code - 0.5, 0.0) / 255.0);
+    const double step =
+        srgbDecode(std::min(code + 0.5, 255.0) / 255.0) - srgbDecode(std::max(code - 0.5, 0.0) / 255.0);
     const double linear = srgbDecode(code / 255.0);
     const double precision = linear > 0.0 ? (linear / step) * (linear / step) : 0.0;
     const double taper = std::clamp((kSkyPhotoClippedCode - code) / kClipTaperCodes, 0.0, 1.0);
@@ -144,7 +145,8 @@ ImageRGBA readSkyPhotos(const std::vector<SkyPhotoConfig>& configs, SkyPhotoSumm
 
 ImageRGBA readSkyRadiance(const SkyConfig& sky, SkyPhotoSummary* summary) {
     if (!sky.photos.empty()) return readSkyPhotos(sky.photos, summary);
-    if (isSkyPhotoExtension(lowerCaseExtension(sky.path))) return readSkyPhotos({SkyPhotoConfig{sky.path, {}}}, summary);
+    if (isSkyPhotoExtension(lowerCaseExtension(sky.path)))
+        return readSkyPhotos({SkyPhotoConfig{sky.path, {}}}, summary);  // a bare photo path: EXIF exposure
     if (summary) *summary = SkyPhotoSummary{};
     return readRadianceMap(sky.path);
 }

@@ -33,7 +33,7 @@ double positiveExifNumber(const std::string& path, const OIIO::ImageSpec& spec,
                          "absent from the photo's EXIF; give the sky's exposure as \"ev100\" in site.json instead");
     const double value = found->get_float();
     if (!std::isfinite(value) || value <= 0.0)
-        throw InputError(path, field, formatValue(value) + unit + " is not a positive exposure value");
+        throw InputError(path, field, formatValue(value) + unit + " is not a positive, finite exposure value");
     return value;
 }
 
