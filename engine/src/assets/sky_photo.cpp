@@ -34,6 +34,13 @@ std::string lowerCaseExtension(const std::string& path) {
     return extension;
 }
 
+// Photos are held as 8-bit codes in 1/256ths (uint16): exact for the file's integer codes, fine enough for the
+// fractional ones of a downsampled photo, and 6 bytes a texel where float RGBA takes 16 (a bracket of three
+// 8192 x 4096 photos: 0.6 GB, not 1.6 GB). Decoding and weights are tables over these values.
+constexpr int kFixedPerCode = 256;
+constexpr int kFixedMaximum = 255 * kFixedPerCode;
+constexpr int kFixedClipped = kSkyPhotoClippedCode * kFixedPerCode;
+
 /// Weight of a member whose brightest channel has code m (0..255, fractional after downsampling): the inverse
 /// square of the relative quantisation step of the sRGB code there (dL/L per code: 1/m in the curve's linear
 /// foot, about 2.4 / (m + 14) above), so each member counts by how precisely its 8 bits hold the texel,
@@ -47,12 +54,32 @@ double bracketWeight(double code) {
     return precision * taper + kMinimumWeight;
 }
 
-/// One photo's encoded values (code / 255, as readImage reads 8-bit data with ImageEncoding::Linear) and scale.
+/// srgbDecode and bracketWeight of every fixed-point code.
+struct CodeTables {
+    std::vector<double> linear, weight;
+    CodeTables() : linear(kFixedMaximum + 1), weight(kFixedMaximum + 1) {
+        for (int i = 0; i <= kFixedMaximum; ++i) {
+            const double code = double(i) / kFixedPerCode;
+            linear[size_t(i)] = srgbDecode(code / 255.0);
+            weight[size_t(i)] = bracketWeight(code);
+        }
+    }
+};
+
+const CodeTables& codeTables() {
+    static const CodeTables tables;
+    return tables;
+}
+
+/// One photo's codes (RGB, fixed point) and scale.
 struct EncodedPhoto {
     std::string path;
     double ev100 = 0.0;
     double radiance_scale = 0.0;  ///< bake units of linear 1
-    ImageRGBA encoded;
+    int width = 0, height = 0;
+    std::vector<uint16_t> codes;  ///< width * height * 3, code x 256
+
+    const uint16_t* texel(int x, int y) const { return codes.data() + (size_t(y) * size_t(width) + size_t(x)) * 3; }
 };
 
 /// The reader's checks, then that the data is 8-bit PNG or JPEG: what the file holds decides, not its name.
@@ -76,31 +103,35 @@ EncodedPhoto readEncodedPhoto(const SkyPhotoConfig& config) {
     photo.path = config.path;
     photo.ev100 = skyPhotoEv100(config.path, config.ev100);
     photo.radiance_scale = skyPhotoRadianceScale(photo.ev100);
-    photo.encoded = readImage(config.path, ImageEncoding::Linear);
-    if (photo.encoded.width != 2 * photo.encoded.height)
+    // ImageEncoding::Linear reads 8-bit data as code / 255, undecoded (box-averaged when downsampled).
+    const ImageRGBA encoded = readImage(config.path, ImageEncoding::Linear);
+    if (encoded.width != 2 * encoded.height)
         throw InputError(config.path, "size",
-                         std::to_string(photo.encoded.width) + " x " + std::to_string(photo.encoded.height) +
+                         std::to_string(encoded.width) + " x " + std::to_string(encoded.height) +
                              " is not the 2:1 of an equirectangular sky");
+    photo.width = encoded.width;
+    photo.height = encoded.height;
+    photo.codes.resize(size_t(encoded.width) * size_t(encoded.height) * 3);
+    for (size_t i = 0, n = size_t(encoded.width) * size_t(encoded.height); i < n; ++i)
+        for (size_t c = 0; c < 3; ++c)
+            photo.codes[i * 3 + c] = uint16_t(std::lround(
+                std::clamp(double(encoded.texels[i * 4 + c]), 0.0, 1.0) * double(kFixedMaximum)));
     return photo;
 }
 
-/// The brightest channel's code of a texel (0..255).
-double brightestCode(const float* encoded) {
-    return 255.0 * double(std::max({encoded[0], encoded[1], encoded[2]}));
-}
-
 /// Merges one texel from every photo; returns false when every photo holds it clipped.
-bool mergeTexel(const std::vector<EncodedPhoto>& photos, int x, int y, float* radiance_out) {
+bool mergeTexel(const std::vector<EncodedPhoto>& photos, const CodeTables& tables, int x, int y,
+                float* radiance_out) {
     std::array<double, 3> sum{0.0, 0.0, 0.0};
     double weight_sum = 0.0;
     double darkest_white = 0.0;
     for (const EncodedPhoto& photo : photos) {
-        const float* encoded = photo.encoded.texel(x, y);
+        const uint16_t* codes = photo.texel(x, y);
         darkest_white = std::max(darkest_white, photo.radiance_scale);
-        const double code = brightestCode(encoded);
-        if (code >= kSkyPhotoClippedCode - 1e-3) continue;
-        const double weight = photos.size() == 1 ? 1.0 : bracketWeight(code);
-        for (int c = 0; c < 3; ++c) sum[c] += weight * srgbDecode(double(encoded[c])) * photo.radiance_scale;
+        const uint16_t brightest = std::max({codes[0], codes[1], codes[2]});
+        if (brightest >= kFixedClipped) continue;
+        const double weight = photos.size() == 1 ? 1.0 : tables.weight[brightest];
+        for (int c = 0; c < 3; ++c) sum[c] += weight * tables.linear[codes[c]] * photo.radiance_scale;
         weight_sum += weight;
     }
     const bool known = weight_sum > 0.0;
@@ -119,21 +150,22 @@ ImageRGBA readSkyPhotos(const std::vector<SkyPhotoConfig>& configs, SkyPhotoSumm
         photos.push_back(readEncodedPhoto(config));
         const EncodedPhoto& first = photos.front();
         const EncodedPhoto& last = photos.back();
-        if (last.encoded.width != first.encoded.width || last.encoded.height != first.encoded.height)
+        if (last.width != first.width || last.height != first.height)
             throw InputError(last.path, "size",
-                             std::to_string(last.encoded.width) + " x " + std::to_string(last.encoded.height) +
+                             std::to_string(last.width) + " x " + std::to_string(last.height) +
                                  " differs from the bracket's first photo " + first.path + " (" +
-                                 std::to_string(first.encoded.width) + " x " + std::to_string(first.encoded.height) +
+                                 std::to_string(first.width) + " x " + std::to_string(first.height) +
                                  "): a bracket is one view");
     }
+    const CodeTables& tables = codeTables();
     ImageRGBA radiance;
-    radiance.width = photos.front().encoded.width;
-    radiance.height = photos.front().encoded.height;
+    radiance.width = photos.front().width;
+    radiance.height = photos.front().height;
     radiance.texels.assign(size_t(radiance.width) * size_t(radiance.height) * 4, 0.0f);
     size_t clipped = 0;
     for (int y = 0; y < radiance.height; ++y)
         for (int x = 0; x < radiance.width; ++x)
-            if (!mergeTexel(photos, x, y, radiance.texel(x, y))) ++clipped;
+            if (!mergeTexel(photos, tables, x, y, radiance.texel(x, y))) ++clipped;
     if (summary) {
         summary->ev100.clear();
         for (const EncodedPhoto& photo : photos) summary->ev100.push_back(photo.ev100);

@@ -28,7 +28,7 @@
 // below the clip (a camera's shoulder, JPEG ringing; and no seam where a member starts to clip), plus 1e-6 so that
 // a texel dark in every member still gets their mean. A texel clipped in every member is the darkest member's
 // saturation white. A bracket whose darkest member holds the sun unclipped gives a measured E_sun, not a modelled
-// one. Memory: each member is held decoded (16 bytes a texel) while merging.
+// one. Memory: each member is held as 8-bit codes in 1/256ths (6 bytes a texel) while merging.
 //
 // Errors (InputError naming the file and the field, one line): not PNG or JPEG data, not 8 bits a channel, not
 // 2:1 (equirectangular), bracket members of different sizes, no exposure (neither ev100 nor the EXIF fields
