@@ -144,15 +144,14 @@ TEST(SkyPhoto, PngAtAKnownExposureReadsBackWithinItsQuantisation) {
     size_t unclipped = 0, clipped = 0, outside = 0;
     for (int y = 0; y < hdr.height; ++y)
         for (int x = 0; x < hdr.width; ++x) {
-            if (brightestCode(hdr, x, y, camera) >= gusuku::kSkyPhotoClippedCode) {
-                ++clipped;
-                for (int c = 0; c < 3; ++c)
-                    EXPECT_NEAR(back.texel(x, y)[c], camera.saturatingRadiance(), 1e-4 * camera.saturatingRadiance());
-                continue;
-            }
-            ++unclipped;
+            const bool texel_clipped = brightestCode(hdr, x, y, camera) >= gusuku::kSkyPhotoClippedCode;
+            texel_clipped ? ++clipped : ++unclipped;
             for (int c = 0; c < 3; ++c) {
                 const double truth = hdr.texel(x, y)[c];
+                if (photographedCode(truth, camera) >= gusuku::kSkyPhotoClippedCode) {  // the lower bound
+                    EXPECT_NEAR(back.texel(x, y)[c], camera.saturatingRadiance(), 1e-4 * camera.saturatingRadiance());
+                    continue;
+                }
                 const double allowed = halfCodeStep(photographedCode(truth, camera), camera) * 1.0001 + 1e-7;
                 if (std::abs(back.texel(x, y)[c] - truth) > allowed) ++outside;
             }

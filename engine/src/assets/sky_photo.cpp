@@ -119,25 +119,31 @@ EncodedPhoto readEncodedPhoto(const SkyPhotoConfig& config) {
     return photo;
 }
 
-/// Merges one texel from every photo; returns false when every photo holds it clipped.
+/// Merges one texel from every photo; returns false when every photo holds it clipped. Then it is the least
+/// radiance the darkest photo's codes allow: a clipped channel its saturation white, the others their value.
 bool mergeTexel(const std::vector<EncodedPhoto>& photos, const CodeTables& tables, int x, int y,
                 float* radiance_out) {
     std::array<double, 3> sum{0.0, 0.0, 0.0};
     double weight_sum = 0.0;
-    double darkest_white = 0.0;
+    const EncodedPhoto* darkest = &photos.front();
     for (const EncodedPhoto& photo : photos) {
         const uint16_t* codes = photo.texel(x, y);
-        darkest_white = std::max(darkest_white, photo.radiance_scale);
+        if (photo.radiance_scale > darkest->radiance_scale) darkest = &photo;
         const uint16_t brightest = std::max({codes[0], codes[1], codes[2]});
         if (brightest >= kFixedClipped) continue;
         const double weight = photos.size() == 1 ? 1.0 : tables.weight[brightest];
         for (int c = 0; c < 3; ++c) sum[c] += weight * tables.linear[codes[c]] * photo.radiance_scale;
         weight_sum += weight;
     }
-    const bool known = weight_sum > 0.0;
-    for (int c = 0; c < 3; ++c) radiance_out[c] = float(known ? sum[c] / weight_sum : darkest_white);
     radiance_out[3] = 1.0f;
-    return known;
+    if (weight_sum > 0.0) {
+        for (int c = 0; c < 3; ++c) radiance_out[c] = float(sum[c] / weight_sum);
+        return true;
+    }
+    const uint16_t* codes = darkest->texel(x, y);
+    for (int c = 0; c < 3; ++c)
+        radiance_out[c] = float((codes[c] >= kFixedClipped ? 1.0 : tables.linear[codes[c]]) * darkest->radiance_scale);
+    return false;
 }
 
 }  // namespace

@@ -18,16 +18,17 @@
 // declares); a camera's own shoulder near white is not modelled, one reason the top codes count as clipped.
 //
 // Clipped texels are unknown: a texel with any channel at or above kSkyPhotoClippedCode holds at least the
-// saturation white, not its radiance. In a single photo it becomes that white, L_white / 179 in every channel (a
+// saturation white, not its radiance. In a single photo its clipped channels become that white, L_white / 179 (a
 // lower bound whose flat top the sun-disc extraction recognises as a clipped sun, so E_sun comes from the
-// clear-sky model calibrated on the unclipped diffuse light: gusuku_bake/sky_light.h, slot_lighting.cpp).
+// clear-sky model calibrated on the unclipped diffuse light: gusuku_bake/sky_light.h, slot_lighting.cpp); where
+// only some channels clip, the others keep their value (the least radiance the codes allow).
 // In a bracket each texel is the weighted mean of radiance_i = srgbDecode(code_i / 255) x L_white_i / 179 over
 // the members that hold it unclipped, by a hat in the encoded value m (the brightest channel's code): the inverse
 // square of the relative radiance step of one code at m (1/m in the sRGB curve's linear foot, about 2.4 / (m + 14)
 // above), so a member counts by how precisely its 8 bits hold the texel, falling linearly to 0 over the 32 codes
 // below the clip (a camera's shoulder, JPEG ringing; and no seam where a member starts to clip), plus 1e-6 so that
-// a texel dark in every member still gets their mean. A texel clipped in every member is the darkest member's
-// saturation white. A bracket whose darkest member holds the sun unclipped gives a measured E_sun, not a modelled
+// a texel dark in every member still gets their mean. A texel clipped in every member takes the darkest
+// member's lower bound, as a single photo. A bracket whose darkest member holds the sun unclipped gives a measured E_sun, not a modelled
 // one. Memory: each member is held as 8-bit codes in 1/256ths (6 bytes a texel) while merging.
 //
 // Errors (InputError naming the file and the field, one line): not PNG or JPEG data, not 8 bits a channel, not
