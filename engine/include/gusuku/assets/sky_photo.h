@@ -28,8 +28,9 @@
 // above), so a member counts by how precisely its 8 bits hold the texel, falling linearly to 0 over the 32 codes
 // below the clip (a camera's shoulder, JPEG ringing; and no seam where a member starts to clip), plus 1e-6 so that
 // a texel dark in every member still gets their mean. A texel clipped in every member takes the darkest
-// member's lower bound, as a single photo. A bracket whose darkest member holds the sun unclipped gives a measured E_sun, not a modelled
-// one. Memory: each member is held as 8-bit codes in 1/256ths (6 bytes a texel) while merging.
+// member's lower bound, as a single photo. A bracket whose darkest member holds the sun unclipped gives a
+// measured E_sun, not a modelled one. Memory: each member is held as 8-bit codes in 1/256ths (6 bytes a texel)
+// while merging.
 //
 // Errors (InputError naming the file and the field, one line): not PNG or JPEG data, not 8 bits a channel, not
 // 2:1 (equirectangular), bracket members of different sizes, no exposure (neither ev100 nor the EXIF fields
