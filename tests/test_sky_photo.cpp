@@ -328,6 +328,21 @@ TEST(SkyPhoto, BakeTakesABracketOfJpegsFromSiteJson) {
     EXPECT_EQ(sunny_inputs, (std::vector<std::string>{"../bright.jpg", "../dark.jpg"}));
 }
 
+TEST(SkyPhoto, CheckWarnsOfAnOverexposedSky) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_overexposed");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    // Four stops over the bracket test's brighter photo: most of the mini sky clips.
+    writePhoto(dir + "/over.jpg", gusuku::readRadianceMap(dir + "/sky_sunny.hdr"), TestCamera{0.4, 2.0, 1600.0},
+               WriteOptions{true, true, 0.0, 0, 0});
+    nlohmann::json site = nlohmann::json::parse(std::ifstream(site_path));
+    site["skies"]["sunny"] = {{"path", "over.jpg"}};
+    std::ofstream(site_path, std::ios::trunc) << site.dump(2);
+    const gusuku::testing::CommandResult check = gusuku::testing::runBakeCommand({"check", site_path}, dir);
+    ASSERT_EQ(check.exit_code, 0) << check.stderr_text;
+    EXPECT_NE(check.stdout_text.find("texels clipped in every photo, more than a sun's glare"), std::string::npos)
+        << check.stdout_text;
+}
+
 TEST(SkyPhoto, BadPhotosAreRefusedInOneLineNamingFileAndField) {
     ImageRGBA grey;
     grey.width = 64;

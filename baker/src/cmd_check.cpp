@@ -61,6 +61,9 @@ void printMesh(const char* label, const std::string& path, const TriangleMesh& m
     std::printf("  ENU bounds (m): %s\n", formatBounds(meshBounds(mesh)).c_str());
 }
 
+/// Clipped texels beyond this fraction of a photo sky are more than a sun's glare (checkSky's warning).
+constexpr double kClippedSkyWarningFraction = 0.005;
+
 ImageRGBA checkSky(const char* label, const SkyConfig& sky, std::vector<std::string>& warnings) {
     SkyPhotoSummary photos;
     ImageRGBA image = readSkyRadiance(sky, &photos);
@@ -71,6 +74,12 @@ ImageRGBA checkSky(const char* label, const SkyConfig& sky, std::vector<std::str
         for (const double ev100 : photos.ev100) std::printf(" %.2f", ev100);
         std::printf("; %zu of %zu texels clipped in every photo (%.3f %%)\n", photos.clipped_texel_count,
                     photos.texel_count, 100.0 * double(photos.clipped_texel_count) / double(photos.texel_count));
+        // A clipped sun covers some 1e-5 of an equirect map; beyond 0.5 % the clipped sky itself is lost light
+        // (held only as the clip's lower bound), which also biases the clear-sky sun calibrated on it.
+        if (double(photos.clipped_texel_count) > kClippedSkyWarningFraction * double(photos.texel_count))
+            warnings.push_back(std::string(label) + " sky: " + std::to_string(photos.clipped_texel_count) +
+                               " texels clipped in every photo, more than a sun's glare: its light there is a lower "
+                               "bound; a darker exposure (or a bracket) would hold it");
     }
     if (image.width != 2 * image.height)
         warnings.push_back(std::string(label) + " sky is " + std::to_string(image.width) + " x " +
