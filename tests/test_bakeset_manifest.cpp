@@ -215,7 +215,8 @@ std::vector<BadManifest> badManifests() {
         withValue("1e12 invalid texels", "/slots/0/invalid_texels", 1e12, "is outside [0, 67108864]"),
         withValue("a site input that is not a site.json", "/inputs/0/path", "/etc/passwd",
                   "\"/etc/passwd\" is not a .json file, as the site input is"),
-        withValue("a sky input that is no sky", "/inputs/3/path", "sky.png", "is not a .hdr or .exr file"),
+        withValue("a sky input that is no sky", "/inputs/3/path", "sky.txt",
+                  "is not a .hdr or .exr map or a .jpg, .jpeg or .png photo"),
         [] {
             json document = exampleJson();  // the night slot (-12.5 degrees) claiming its sun shines
             document["slots"][1]["sun"]["present"] = true;

@@ -248,6 +248,44 @@ TEST_F(SiteJson, MissingReferencedFile) {
     EXPECT_TRUE(contains(error.problem(), "missing.hdr"));
 }
 
+TEST_F(SiteJson, EightBitSkyPhotoAndBracket) {
+    for (const char* name : {"theta.jpg", "dark.jpg", "bright.png"})
+        std::ofstream(fs::path(directory_) / name) << "placeholder";
+    document_["skies"]["sunny"] = {{"path", "theta.jpg"}, {"ev100", 14.5}, {"north_azimuth_in_image_deg", 90}};
+    document_["skies"]["overcast"] = {{"bracket", json::array({{{"path", "dark.jpg"}}, {{"path", "bright.png"},
+                                                                                         {"ev100", 9}}})}};
+    const gusuku::SiteConfig config = load();
+    ASSERT_EQ(config.sunny_sky.photos.size(), 1u);
+    EXPECT_EQ(config.sunny_sky.path, (fs::path(directory_) / "theta.jpg").string());
+    EXPECT_EQ(config.sunny_sky.photos[0].path, config.sunny_sky.path);
+    EXPECT_EQ(config.sunny_sky.photos[0].ev100, 14.5);
+    EXPECT_EQ(config.sunny_sky.north_azimuth_in_image_deg, 90.0);
+    ASSERT_EQ(config.overcast_sky->photos.size(), 2u);
+    EXPECT_EQ(config.overcast_sky->path, (fs::path(directory_) / "dark.jpg").string());
+    EXPECT_FALSE(config.overcast_sky->photos[0].ev100.has_value());  // from its EXIF
+    EXPECT_EQ(config.overcast_sky->photos[1].ev100, 9.0);
+}
+
+TEST_F(SiteJson, BadSkyPhotoFieldsAreNamed) {
+    std::ofstream(fs::path(directory_) / "theta.jpg") << "placeholder";
+    const auto expectError = [&](const json& sky, const std::string& field, const std::string& part) {
+        document_["skies"]["sunny"] = sky;
+        const gusuku::InputError error = loadError();
+        EXPECT_EQ(error.field(), field) << error.what();
+        EXPECT_TRUE(contains(error.problem(), part));
+    };
+    expectError({{"path", "sky.hdr"}, {"ev100", 12}}, "/skies/sunny/ev100", "applies to an 8-bit photo");
+    expectError({{"path", "theta.jpg"}, {"ev100", 31}}, "/skies/sunny/ev100", "is outside [-10, 30]");
+    expectError({{"path", "theta.jpg"}, {"bracket", json::array({{{"path", "theta.jpg"}}})}}, "/skies/sunny/path",
+                "not both");
+    expectError({{"north_azimuth_in_image_deg", 0}}, "/skies/sunny/path", "give path or bracket");
+    expectError({{"bracket", json::array()}}, "/skies/sunny/bracket", "holds 0 photos; expected 1 to 16");
+    expectError({{"bracket", json::array({{{"path", "sky.hdr"}}})}}, "/skies/sunny/bracket/0/path",
+                "does not end in .jpg or .jpeg or .png");
+    expectError({{"bracket", json::array({{{"path", "theta.jpg"}, {"ev", 3}}})}}, "/skies/sunny/bracket/0/ev", "");
+    expectError({{"path", "sky.txt"}}, "/skies/sunny/path", "does not end in .hdr or .exr or .jpg");
+}
+
 TEST_F(SiteJson, PositionAndOffsetBothGiven) {
     document_["building"]["position"] = {{"latitude_deg", 26.2}, {"longitude_deg", 127.7}, {"height_m", 0}};
     const gusuku::InputError error = loadError();

@@ -94,8 +94,12 @@ std::vector<std::string> bakeInputFiles(const SiteConfig& site) {
         files.push_back(site.sfm_mesh->path);
         for (const std::string& file : gltfExternalFiles(site.sfm_mesh->path)) files.push_back(file);
     }
-    files.push_back(site.sunny_sky.path);
-    if (site.overcast_sky) files.push_back(site.overcast_sky->path);
+    // Every photo of a bracket is an input (the first is the sky's path).
+    for (const SkyConfig* sky : {&site.sunny_sky, site.overcast_sky ? &*site.overcast_sky : nullptr}) {
+        if (!sky) continue;
+        files.push_back(sky->path);
+        for (const SkyPhotoConfig& photo : sky->photos) files.push_back(photo.path);
+    }
     std::vector<std::string> unique;
     for (const std::string& file : files)
         if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(file);

@@ -190,8 +190,13 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
     addInput("site", site.file);
     addInput("building", site.building.path);
     if (site.sfm_mesh) addInput("sfm_mesh", site.sfm_mesh->path);
-    addInput("sunny_sky", site.sunny_sky.path);
-    if (site.overcast_sky) addInput("overcast_sky", site.overcast_sky->path);
+    // A sky's every photo (a bracket) is an input under its role; the first is the sky's path.
+    const auto addSky = [&](const std::string& role, const SkyConfig& sky) {
+        addInput(role, sky.path);
+        for (size_t i = 1; i < sky.photos.size(); ++i) addInput(role, sky.photos[i].path);
+    };
+    addSky("sunny_sky", site.sunny_sky);
+    if (site.overcast_sky) addSky("overcast_sky", *site.overcast_sky);
     manifest.site = {site.site.name, site.site.reference.latitude_deg, site.site.reference.longitude_deg,
                      site.site.reference.height_m, site.site.utc_offset_minutes};
     manifest.settings = {samples_, site.bake.max_bounces, site.bake.seed, denoise_};

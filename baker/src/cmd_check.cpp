@@ -12,6 +12,7 @@
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
+#include "gusuku/assets/sky_photo.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/mesh.h"
 #include "gusuku/assets/site.h"
@@ -60,10 +61,26 @@ void printMesh(const char* label, const std::string& path, const TriangleMesh& m
     std::printf("  ENU bounds (m): %s\n", formatBounds(meshBounds(mesh)).c_str());
 }
 
+/// Clipped texels beyond this fraction of a photo sky are more than a sun's glare (checkSky's warning).
+constexpr double kClippedSkyWarningFraction = 0.005;
+
 ImageRGBA checkSky(const char* label, const SkyConfig& sky, std::vector<std::string>& warnings) {
-    ImageRGBA image = readRadianceMap(sky.path);
+    SkyPhotoSummary photos;
+    ImageRGBA image = readSkyRadiance(sky, &photos);
     std::printf("%s sky: %s\n  %d x %d, north at %.2f deg in the image\n", label, sky.path.c_str(), image.width,
                 image.height, sky.north_azimuth_in_image_deg);
+    if (!photos.ev100.empty()) {
+        std::printf("  8-bit photo%s at EV100", photos.ev100.size() > 1 ? "s (an exposure bracket)" : "");
+        for (const double ev100 : photos.ev100) std::printf(" %.2f", ev100);
+        std::printf("; %zu of %zu texels clipped in every photo (%.3f %%)\n", photos.clipped_texel_count,
+                    photos.texel_count, 100.0 * double(photos.clipped_texel_count) / double(photos.texel_count));
+        // A clipped sun covers some 1e-5 of an equirect map; beyond 0.5 % the clipped sky itself is lost light
+        // (held only as the clip's lower bound), which also biases the clear-sky sun calibrated on it.
+        if (double(photos.clipped_texel_count) > kClippedSkyWarningFraction * double(photos.texel_count))
+            warnings.push_back(std::string(label) + " sky: " + std::to_string(photos.clipped_texel_count) +
+                               " texels clipped in every photo, more than a sun's glare: its light there is a lower "
+                               "bound; a darker exposure (or a bracket) would hold it");
+    }
     if (image.width != 2 * image.height)
         warnings.push_back(std::string(label) + " sky is " + std::to_string(image.width) + " x " +
                            std::to_string(image.height) + ", not the 2:1 of an equirectangular map");

@@ -8,6 +8,7 @@
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/equirect.h"
 #include "gusuku/assets/image.h"
+#include "gusuku/assets/sky_photo.h"
 #include "gusuku/maths/sun_air_mass.h"
 
 namespace gusuku::bake {
@@ -34,7 +35,7 @@ glm::dvec3 diffuseHorizontalRgb(const ImageRGBA& sky) {
 PreparedSky prepareSky(const SkyConfig& sky) {
     PreparedSky prepared;
     prepared.path = sky.path;
-    ImageRGBA radiance = readRadianceMap(sky.path);
+    ImageRGBA radiance = readSkyRadiance(sky);  // an HDR map, or 8-bit photos turned into radiance
     prepared.disc = extractSunDisc(radiance, sky.north_azimuth_in_image_deg);
     prepared.diffuse_horizontal_rgb = diffuseHorizontalRgb(radiance);
     prepared.diffuse_horizontal_luminance = luminanceRec709(prepared.diffuse_horizontal_rgb);

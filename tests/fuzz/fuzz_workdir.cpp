@@ -30,7 +30,7 @@ std::string makeWorkFolder() {
     std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/gusuku_fuzz_XXXXXX";
     if (!mkdtemp(pattern.data())) throw std::runtime_error("fuzz: cannot create a work folder");
     const std::string folder = pattern;
-    for (const char* name : {"building.glb", "site.glb", "sky.hdr", "sky_overcast.exr"})
+    for (const char* name : {"building.glb", "site.glb", "sky.hdr", "sky_overcast.exr", "sky.jpg", "sky_dark.png"})
         writeFile(folder + "/" + name, "placeholder", 11);
     const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint16_t indices[3] = {0, 1, 2};

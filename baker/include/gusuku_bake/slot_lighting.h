@@ -25,7 +25,8 @@ struct PreparedSky {
     double diffuse_horizontal_luminance = 0.0;
 };
 
-/// Reads the map (readRadianceMap: bad texels are an InputError naming the file), removes the disc.
+/// Reads the map (readSkyRadiance: an HDR map, or 8-bit photos turned into radiance with their clipped texels at
+/// the saturation white; bad input is an InputError naming the file), removes the disc.
 PreparedSky prepareSky(const SkyConfig& sky);
 
 /// E_sun on a plane facing the sun (direct normal irradiance, the map's units) for a sunny slot:

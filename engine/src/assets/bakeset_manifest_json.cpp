@@ -125,7 +125,8 @@ const NumberRange kNonNegative{0.0, kInfinity};
 NumberRange rangeOf(const BakeSetRange& range) { return {range.minimum, range.maximum}; }
 
 /// Each input role names a file of its kind (a tool that follows the manifest to site.json must not be led to
-/// read /etc/passwd as one): site .json, building and sfm_mesh .glb or .gltf, skies .hdr or .exr. Roles this
+/// read /etc/passwd as one): site .json, building and sfm_mesh .glb or .gltf, skies .hdr or .exr maps or .jpg,
+/// .jpeg or .png photos (gusuku/assets/sky_photo.h; each photo of a bracket under its sky's role). Roles this
 /// reader does not know are kept as they are.
 void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
     const auto ends_with = [&](const char* extension) {
@@ -143,8 +144,9 @@ void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
         expected = "a .glb or .gltf file";
         matches = ends_with(".glb") || ends_with(".gltf");
     } else if (input.role == "sunny_sky" || input.role == "overcast_sky") {
-        expected = "a .hdr or .exr file";
-        matches = ends_with(".hdr") || ends_with(".exr");
+        expected = "a .hdr or .exr map or a .jpg, .jpeg or .png photo";
+        matches = ends_with(".hdr") || ends_with(".exr") || ends_with(".jpg") || ends_with(".jpeg") ||
+                  ends_with(".png");
     }
     if (!matches) reader.fail("path", "\"" + input.path + "\" is not " + expected + ", as the " + input.role + " input is");
 }

@@ -40,6 +40,10 @@ constexpr NumberRange kScale{1e-6, 1e6};
 constexpr NumberRange kQuaternionComponent{-1.01, 1.01};
 constexpr NumberRange kHeading{-360.0, 360.0};
 constexpr NumberRange kNorthAzimuth{0.0, 360.0, false, true};
+// EV100 of a sky photo: -10 is a moonless night at a long exposure, 30 far above the sun through a dense filter.
+constexpr NumberRange kEv100{-10.0, 30.0};
+// A bracket of one view: cameras shoot 3 to 9; beyond 16 it is more likely a folder of different photos.
+constexpr size_t kMaxBracketPhotos = 16;
 constexpr NumberRange kTexelsPerMetre{0.0, 1000.0, true, false};
 constexpr NumberRange kGroundCell{0.0, 100.0, true, false};
 constexpr int kMaxUtcOffsetMinutes = 14 * 60;
@@ -189,10 +193,47 @@ BuildingConfig readBuilding(const ObjectReader& root, const fs::path& base_direc
     return building;
 }
 
+/// One photo's file and optional EV100 (the same two fields at the sky's level and in a bracket entry).
+SkyPhotoConfig readSkyPhoto(const ObjectReader& reader, const fs::path& base_directory) {
+    SkyPhotoConfig photo;
+    photo.path = readFilePath(reader, "path", base_directory, {".jpg", ".jpeg", ".png"});
+    photo.ev100 = reader.optionalNumber("ev100", kEv100);
+    return photo;
+}
+
+/// An HDR map or one 8-bit photo in `path`, or an exposure bracket of 8-bit photos in `bracket`.
 SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::path& base_directory) {
-    const ObjectReader reader = skies.object(name, {"path", "north_azimuth_in_image_deg"});
+    const ObjectReader reader = skies.object(name, {"path", "ev100", "bracket", "north_azimuth_in_image_deg"});
     SkyConfig sky;
-    sky.path = readFilePath(reader, "path", base_directory, {".hdr", ".exr"});
+    const bool has_path = reader.has("path");
+    if (has_path == reader.has("bracket"))
+        reader.fail("path", has_path ? "give either path or bracket, not both"
+                                     : "required field is missing (give path or bracket)");
+    if (has_path) {
+        const std::string text = reader.string("path");
+        const std::string extension = lowercaseExtension(fs::path(text));
+        if (extension == ".jpg" || extension == ".jpeg" || extension == ".png") {
+            sky.photos.push_back(readSkyPhoto(reader, base_directory));
+            sky.path = sky.photos.front().path;
+        } else {
+            sky.path = readFilePath(reader, "path", base_directory, {".hdr", ".exr", ".jpg", ".jpeg", ".png"});
+            if (reader.has("ev100"))
+                reader.fail("ev100", "applies to an 8-bit photo (.jpg, .jpeg, .png); an HDR map holds radiance");
+        }
+    } else {
+        if (reader.has("ev100"))
+            reader.fail("ev100", "give each bracket member its own ev100 (or none: from its EXIF)");
+        const nlohmann::json& bracket = reader.array("bracket");
+        if (bracket.empty() || bracket.size() > kMaxBracketPhotos)
+            reader.fail("bracket", "holds " + std::to_string(bracket.size()) + " photos; expected 1 to " +
+                                       std::to_string(kMaxBracketPhotos));
+        for (size_t i = 0; i < bracket.size(); ++i) {
+            const ObjectReader member(reader.file(), bracket[i],
+                                      reader.fieldPointer("bracket") + "/" + std::to_string(i), {"path", "ev100"});
+            sky.photos.push_back(readSkyPhoto(member, base_directory));
+        }
+        sky.path = sky.photos.front().path;
+    }
     sky.north_azimuth_in_image_deg =
         reader.number("north_azimuth_in_image_deg", kNorthAzimuth, sky.north_azimuth_in_image_deg);
     return sky;

@@ -59,9 +59,18 @@ struct BuildingConfig {
 /// An equirectangular sky photo: row 0 is the zenith, column u in [0, 1) from the left edge.
 /// north_azimuth_in_image_deg is 360 * u of the column that faces north; azimuth east of north grows with u:
 /// azimuth_deg = 360 * u - north_azimuth_in_image_deg (mod 360).
+/// One 8-bit photo of a sky (gusuku/assets/sky_photo.h): its file and, when site.json gives it, its EV100
+/// (otherwise read from the photo's EXIF).
+struct SkyPhotoConfig {
+    std::string path;  ///< absolute, .jpg, .jpeg or .png
+    std::optional<double> ev100;
+};
+
 struct SkyConfig {
-    std::string path;  ///< absolute, .hdr or .exr
+    std::string path;  ///< absolute: the HDR map (.hdr, .exr), or the first of `photos`
     double north_azimuth_in_image_deg = 0.0;
+    /// 8-bit photos of one view (an exposure bracket when more than one); empty for an HDR map.
+    std::vector<SkyPhotoConfig> photos;
 };
 
 enum class SlotSky { Sunny, Overcast };
