@@ -1,8 +1,10 @@
 # `cmake --install BUILD --prefix P` installs what an app links, as the CMake package "gusuku" (find_package):
-#   component runtime  gusuku_maths, gusuku_gpu and gusuku_runtime (static), their headers (gusuku/maths/,
-#                      gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h among them), the
-#                      licence and the package files;
-#                      find_package(gusuku) gives gusuku::runtime, which needs Vulkan and glm only
+#   component runtime  gusuku_maths, gusuku_gpu, gusuku_runtime and gusuku_pack_loader (static), their headers
+#                      (gusuku/maths/, gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h
+#                      among them; of gusuku/loader/ the pack reader's runtime_pack.h and the C gusuku_loader.h,
+#                      whose gusuku_bakeset_load_pack it defines), the licence and the package files;
+#                      find_package(gusuku) gives gusuku::runtime and gusuku::pack_loader, which need Vulkan and
+#                      glm only: a phone app reads the bake set's runtime pack without the tools' I/O stack
 #   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
 #                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
 #                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
@@ -25,7 +27,11 @@ foreach(runtime_library gusuku_maths gusuku_gpu gusuku_runtime)
   target_compile_features(${runtime_library} INTERFACE cxx_std_17)
 endforeach()
 
-install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime EXPORT gusukuRuntimeTargets
+# gusuku_pack_loader (the runtime pack's reader, standard library only) is the phone's loader, so it ships with the
+# runtime; gusuku_loader (the EXR bake set, the I/O stack) links it.
+set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
+target_compile_features(gusuku_pack_loader INTERFACE cxx_std_17)
+install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
@@ -34,20 +40,24 @@ foreach(library maths gpu runtime)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
           COMPONENT runtime FILES_MATCHING PATTERN "*.h")
 endforeach()
+set(GUSUKU_PACK_LOADER_HEADERS runtime_pack.h gusuku_loader.h)
+foreach(header ${GUSUKU_PACK_LOADER_HEADERS})
+  install(FILES ${PROJECT_SOURCE_DIR}/engine/include/gusuku/loader/${header}
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku/loader COMPONENT runtime)
+endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
 
 if(NOT GUSUKU_RUNTIME_ONLY)
   set_target_properties(gusuku_assets PROPERTIES EXPORT_NAME assets)
   set_target_properties(gusuku_loader PROPERTIES EXPORT_NAME loader)
-  # gusuku_pack_loader (the runtime pack's reader, standard library only) goes with the loader, which links it.
-  set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
-  install(TARGETS gusuku_assets gusuku_pack_loader gusuku_loader EXPORT gusukuLoaderTargets
+  install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   foreach(library assets loader)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library}
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku COMPONENT loader FILES_MATCHING PATTERN "*.h")
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku COMPONENT loader FILES_MATCHING PATTERN "*.h"
+            PATTERN runtime_pack.h EXCLUDE PATTERN gusuku_loader.h EXCLUDE)  # the runtime component's
   endforeach()
   install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
   # The package config recreates GeographicLib::GeographicLib with it (the exported link names that target).

@@ -44,7 +44,7 @@ fail() {
 }
 
 # The static libraries: every object inside is AArch64 ELF (readelf -h reads each member of an archive).
-for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a; do
+for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a; do
   archive="$work/prefix/lib/$library"
   [ -f "$archive" ] || { fail "$library is missing from the installed prefix"; continue; }
   file "$archive" | grep -q "ar archive" || fail "$library: not an ar archive: $(file -b "$archive")"
@@ -58,7 +58,7 @@ done
 
 # The programs: AArch64 ELF executables that need libvulkan and the C/C++ runtime only.
 allowed_needed='^(libvulkan\.so\.1|libstdc\+\+\.so\.6|libm\.so\.6|libgcc_s\.so\.1|libc\.so\.6|ld-linux-aarch64\.so\.1)$'
-for program in consumer_runtime consumer_runtime_cxx17; do
+for program in consumer_runtime consumer_runtime_cxx17 consumer_pack; do
   binary="$work/build/$program"
   [ -f "$binary" ] || { fail "$program was not built"; continue; }
   description=$(file -b "$binary")

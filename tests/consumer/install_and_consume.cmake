@@ -32,12 +32,14 @@ endfunction()
 run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/staging)
 file(RENAME ${WORK_DIR}/staging ${prefix})  # the package is used where it was not installed
 set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h
+                   include/gusuku/loader/runtime_pack.h include/gusuku/loader/gusuku_loader.h
+                   lib/libgusuku_pack_loader.a
                    lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
 if(WITH_LOADER)
   list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)
 else()
   foreach(absent lib/libgusuku_assets.a lib/libgusuku_loader.a lib/cmake/gusuku/gusukuLoaderTargets.cmake
-          include/gusuku/assets include/gusuku/loader include/gusuku/tools)
+          include/gusuku/assets include/gusuku/loader/weather_service.h include/gusuku/tools)
     if(EXISTS ${prefix}/${absent})
       message(FATAL_ERROR "install: ${absent} is in the prefix of a runtime-only build")
     endif()
@@ -84,8 +86,18 @@ foreach(absent lib/libgusuku_assets.a lib/libgusuku_loader.a lib/cmake/gusuku/gu
     message(FATAL_ERROR "install --component runtime: ${absent} belongs to the loader component")
   endif()
 endforeach()
-if(NOT EXISTS ${WORK_DIR}/runtime_only/lib/libgusuku_runtime.a)
-  message(FATAL_ERROR "install --component runtime: lib/libgusuku_runtime.a is missing")
+foreach(library runtime pack_loader)
+  if(NOT EXISTS ${WORK_DIR}/runtime_only/lib/libgusuku_${library}.a)
+    message(FATAL_ERROR "install --component runtime: lib/libgusuku_${library}.a is missing")
+  endif()
+endforeach()
+# Of gusuku/loader/, the pack reader's two headers and nothing else (the EXR loader's are the loader component's).
+file(GLOB runtime_only_loader_headers RELATIVE ${WORK_DIR}/runtime_only/include/gusuku/loader
+     ${WORK_DIR}/runtime_only/include/gusuku/loader/*)
+list(SORT runtime_only_loader_headers)
+if(NOT runtime_only_loader_headers STREQUAL "gusuku_loader.h;runtime_pack.h")
+  message(FATAL_ERROR "install --component runtime: include/gusuku/loader/ holds '${runtime_only_loader_headers}', "
+                      "not the pack reader's gusuku_loader.h and runtime_pack.h")
 endif()
 # Headers by library: the runtime component carries the headers of the libraries it installs and no others.
 foreach(folder maths gpu runtime)
@@ -94,7 +106,7 @@ foreach(folder maths gpu runtime)
   endif()
 endforeach()
 file(GLOB runtime_only_entries RELATIVE ${WORK_DIR}/runtime_only/include/gusuku ${WORK_DIR}/runtime_only/include/gusuku/*)
-list(REMOVE_ITEM runtime_only_entries maths gpu runtime)
+list(REMOVE_ITEM runtime_only_entries maths gpu runtime loader)
 if(runtime_only_entries)
   message(FATAL_ERROR "install --component runtime: include/gusuku/ also holds ${runtime_only_entries}, "
                       "headers of libraries the component does not install")
@@ -127,6 +139,7 @@ run_step("build the consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 if(RUN_CONSUMERS)
   run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
   run_step("run consumer_runtime_cxx17" ${WORK_DIR}/build/consumer_runtime_cxx17)
+  run_step("run consumer_pack" ${WORK_DIR}/build/consumer_pack)
   if(WITH_LOADER)
     run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
   endif()
