@@ -88,6 +88,20 @@ GroundMatchView viewFor(const CameraPose& pose) {
     return view;
 }
 
+// The view the runtime drew a frame with, from what its FrameInfo reports: the sun, the exposure and the slots
+// with their blend weights.
+GroundMatchView viewReportedBy(const CameraPose& pose, const FrameInfo& info, double exposure) {
+    GroundMatchView view = viewFor(pose);
+    view.sun_direction_enu = info.sun_direction_enu;
+    view.sun_irradiance_rgb = info.sun_irradiance_rgb;
+    view.exposure = exposure;
+    view.slots[0] = info.slot_a;
+    view.weights[0] = info.slot_b >= 0 ? 1.0f - info.slot_b_weight : 1.0f;
+    view.slots[1] = info.slot_b;
+    view.weights[1] = info.slot_b >= 0 ? info.slot_b_weight : 0.0f;
+    return view;
+}
+
 // A camera 3 m up looking north and down: the ground fills the lower part, sky the upper.
 CameraPose groundPose() { return CameraPose::lookingAt({0.3, -9.0, 3.0}, {0.0, 2.0, 0.0}); }
 // The same camera looking at the sky: no ray reaches the ground.
@@ -394,14 +408,7 @@ TEST_F(GroundMatchGpu, RuntimeDrawsTheBuildingAtGainsTimesItsUnmatchedColour) {
     const FrameInfo info = runtime->renderFrame(frame, unmatched.data());
     ASSERT_TRUE(info.sun_above_horizon);
     // The runtime's own view and light, from what it reports.
-    GroundMatchView view = viewFor(pose);
-    view.sun_direction_enu = info.sun_direction_enu;
-    view.sun_irradiance_rgb = info.sun_irradiance_rgb;
-    view.exposure = frame.exposure;
-    view.slots[0] = info.slot_a;
-    view.weights[0] = info.slot_b >= 0 ? 1.0f - info.slot_b_weight : 1.0f;
-    view.slots[1] = info.slot_b;
-    view.weights[1] = info.slot_b >= 0 ? info.slot_b_weight : 0.0f;
+    const GroundMatchView view = viewReportedBy(pose, info, frame.exposure);
     const dvec3 gains(1.2, 1.0, 0.75);
     const SynthesisedFrame camera = synthesise(scene_, view, gains);
     frame.camera_rgba8 = camera.rgba.data();
@@ -483,14 +490,7 @@ TEST_F(GroundMatchGpu, TheCameraIsMeasuredOneFrameInTheIntervalWithTheSmoothingI
     std::vector<uint8_t> placeholder(size_t(kWidth) * kHeight * 4, 128), output(placeholder.size());
     frame.camera_rgba8 = placeholder.data();
     const FrameInfo info = runtime->renderFrame(frame, output.data());
-    GroundMatchView view = viewFor(pose);  // the runtime's own view and light, as RuntimeDrawsTheBuilding... reads them
-    view.sun_direction_enu = info.sun_direction_enu;
-    view.sun_irradiance_rgb = info.sun_irradiance_rgb;
-    view.exposure = frame.exposure;
-    view.slots[0] = info.slot_a;
-    view.weights[0] = info.slot_b >= 0 ? 1.0f - info.slot_b_weight : 1.0f;
-    view.slots[1] = info.slot_b;
-    view.weights[1] = info.slot_b >= 0 ? info.slot_b_weight : 0.0f;
+    const GroundMatchView view = viewReportedBy(pose, info, frame.exposure);  // the runtime's own view and light
     const dvec3 gain_a(1.0), gain_b(1.2, 1.0, 0.8);
     const SynthesisedFrame camera_a = synthesise(scene_, view, gain_a), camera_b = synthesise(scene_, view, gain_b);
     frame.colour_match = ColourMatch::kGround;
