@@ -47,4 +47,13 @@ void expectSameBakeSets(const std::string& expected_dir, const std::string& actu
     }
 }
 
+void expectSameMeshGeometry(const BakeSetMesh& actual, const BakeSetMesh& expected) {
+    EXPECT_EQ(actual.positions, expected.positions);
+    EXPECT_EQ(actual.normals, expected.normals);
+    EXPECT_EQ(actual.uv0, expected.uv0);
+    EXPECT_EQ(actual.uv1, expected.uv1);
+    EXPECT_EQ(actual.indices, expected.indices);
+    EXPECT_EQ(actual.triangle_material, expected.triangle_material);
+}
+
 }  // namespace gusuku::testing
