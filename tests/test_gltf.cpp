@@ -490,6 +490,8 @@ TEST_F(GltfTest, WriteGlbRoundTrip) {
     lamp.name = "lamp";
     lamp.emissive_factor = {0.5f, 0.4f, 0.3f};
     lamp.double_sided = true;
+    lamp.alpha_masked = true;  // an export keeps alphaMode MASK and its cutoff
+    lamp.alpha_cutoff = 0.25f;
     mesh.materials = {wall, lamp};
     gusuku::ImageRGBA texture;
     texture.width = 3;
@@ -523,6 +525,8 @@ TEST_F(GltfTest, WriteGlbRoundTrip) {
         EXPECT_EQ(loaded.materials[m].base_color_factor, mesh.materials[m].base_color_factor);
         EXPECT_EQ(loaded.materials[m].emissive_factor, mesh.materials[m].emissive_factor);
         EXPECT_EQ(loaded.materials[m].double_sided, mesh.materials[m].double_sided);
+        EXPECT_EQ(loaded.materials[m].alpha_masked, mesh.materials[m].alpha_masked);
+        EXPECT_EQ(loaded.materials[m].alpha_cutoff, mesh.materials[m].alpha_masked ? 0.25f : 0.5f);
     }
     ASSERT_EQ(loaded.textures.size(), 1u);
     EXPECT_EQ(loaded.materials[0].base_color_texture, 0);
@@ -674,6 +678,50 @@ TEST_F(GltfTest, EmissionBeyondFloatRangeIsRefused) {
     builder.document()["materials"][0]["emissiveFactor"] = {0, 0, -1};
     EXPECT_EQ(expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "glow"), {}); }).field(),
               "materials[0].emissiveFactor[2]");
+}
+
+// alphaMode (issue 21 item 3): OPAQUE (the default) ignores alpha; MASK cuts at alphaCutoff (default 0.5); BLEND
+// is read as MASK with a warning that says so; anything else, or a cutoff outside [0, 1], is refused by field.
+TEST_F(GltfTest, AlphaModeMaskAndCutoffAreReadAndBlendIsMaskWithWarning) {
+    GltfBuilder builder;
+    const int mesh = builder.addTriangleMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 0, 0, 6, 0, 0, 5, 1, 0, 9, 0, 0, 10, 0, 0, 9, 1, 0,
+                                              12, 0, 0, 13, 0, 0, 12, 1, 0});
+    builder.document()["meshes"][0]["primitives"] = json::array();
+    for (int m = 0; m < 4; ++m)  // one primitive a material, each on its own triangle of the same positions
+        builder.document()["meshes"][0]["primitives"].push_back(
+            {{"attributes", {{"POSITION", 0}}}, {"indices", builder.addAccessorOf(std::vector<uint32_t>{
+                                                   uint32_t(3 * m), uint32_t(3 * m + 1), uint32_t(3 * m + 2)},
+                                                   kUnsignedInt, "SCALAR", 1)}, {"material", m}});
+    builder.document()["materials"] = {{{"name", "wall"}},
+                                       {{"name", "leaves"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.3}},
+                                       {{"name", "fence"}, {"alphaMode", "MASK"}},
+                                       {{"name", "thatch"}, {"alphaMode", "BLEND"}, {"alphaCutoff", 0.75}}};
+    builder.setScene({builder.addNode({{"mesh", mesh}})});
+    std::vector<std::string> warnings;
+    const TriangleMesh loaded = gusuku::loadGltf(builder.write(dir_, "alpha"), {}, &warnings);
+    ASSERT_EQ(loaded.materials.size(), 4u);
+    EXPECT_FALSE(loaded.materials[0].alpha_masked);
+    EXPECT_TRUE(loaded.materials[1].alpha_masked);
+    EXPECT_EQ(loaded.materials[1].alpha_cutoff, 0.3f);
+    EXPECT_TRUE(loaded.materials[2].alpha_masked);
+    EXPECT_EQ(loaded.materials[2].alpha_cutoff, 0.5f);
+    EXPECT_TRUE(loaded.materials[3].alpha_masked);
+    EXPECT_EQ(loaded.materials[3].alpha_cutoff, 0.75f);
+    int blend_warnings = 0;
+    for (const std::string& warning : warnings)
+        blend_warnings += warning.find("materials[3].alphaMode: BLEND is treated as MASK") != std::string::npos;
+    EXPECT_EQ(blend_warnings, 1) << "one warning names the BLEND material and says it is read as MASK";
+    EXPECT_EQ(warnings.size(), 1u);
+
+    builder.document()["materials"][1]["alphaMode"] = "CUTOUT";
+    InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "alpha"), {}); });
+    EXPECT_EQ(error.field(), "materials[1].alphaMode");
+    EXPECT_EQ(error.problem(), "\"CUTOUT\" is not OPAQUE, MASK or BLEND");
+    builder.document()["materials"][1]["alphaMode"] = "MASK";
+    builder.document()["materials"][1]["alphaCutoff"] = -0.5;
+    error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "alpha"), {}); });
+    EXPECT_EQ(error.field(), "materials[1].alphaCutoff");
+    EXPECT_EQ(error.problem(), "-0.5 is not a number in [0, 1]");
 }
 
 TEST_F(GltfTest, RequiredExtensionsAreNamedAsUnsupported) {

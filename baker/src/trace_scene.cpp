@@ -23,6 +23,11 @@ TraceScene makeTraceScene(const TriangleMesh& building, const TriangleMesh* site
     scene.triangle_flags.assign(scene.mesh.triangleCount(), 0u);
     std::fill(scene.triangle_flags.begin(), scene.triangle_flags.begin() + long(scene.building_triangle_count),
               kTriangleFlagBuilding);
+    for (size_t t = 0; t < scene.mesh.triangle_material.size() && t < scene.triangle_flags.size(); ++t) {
+        const uint32_t material = scene.mesh.triangle_material[t];
+        if (material < scene.mesh.materials.size() && scene.mesh.materials[material].alpha_masked)
+            scene.triangle_flags[t] |= kTriangleFlagAlphaMasked;
+    }
     return scene;
 }
 
@@ -90,7 +95,7 @@ PackedSceneShading packSceneShading(const TriangleMesh& mesh, int max_texture_si
     for (const Material& material : mesh.materials) {
         MaterialGpu gpu;
         gpu.base_color_factor = material.base_color_factor;
-        gpu.emission = glm::vec4(material.emissive_factor, 0.0f);
+        gpu.emission = glm::vec4(material.emissive_factor, material.alpha_masked ? material.alpha_cutoff : 0.0f);
         if (material.base_color_texture >= 0 && size_t(material.base_color_texture) < mesh.textures.size()) {
             gpu.texture_first_word = texture_first_word[size_t(material.base_color_texture)];
             gpu.texture_width = uint32_t(texture_size[size_t(material.base_color_texture)].x);

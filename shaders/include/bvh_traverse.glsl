@@ -6,7 +6,8 @@
 // then include.
 //   bool bvhTraceClosest(origin, direction, t_max, skip_flags, out BvhHit hit): closest hit, 0 < t < t_max.
 //   bool bvhOccluded(origin, direction, t_max, skip_flags): any hit, 0 < t < t_max.
-// Triangles with (flags & skip_flags) != 0 are ignored. Both faces are hit (no culling). Among hits at exactly
+// Triangles with (flags & skip_flags) != 0 are ignored, and so are hits in the holes of alpha-masked triangles
+// (bvh_alpha_mask.glsl). Both faces are hit (no culling). Among hits at exactly
 // the same t, the one with the smallest source triangle index is the closest. t is in units of
 // |direction|. hit.front_face = dot(cross(edge1, edge2), direction) < 0. Barycentrics: position =
 // v0 + u*edge1 + v*edge2, attributes interpolate as (1-u-v)*a0 + u*a1 + v*a2 in the source vertex order.
@@ -15,6 +16,7 @@
 #define GUSUKU_BVH_TRAVERSE_GLSL
 
 #include "bvh_layout.glsl"
+#include "bvh_alpha_mask.glsl"  // bvhHitIsOpaque: the alpha test of masked triangles
 
 // The builder bounds the tree depth by kBvhMaxDepth (bvh.h), and nearest-first traversal pushes at most one
 // child per inner level, so this stack cannot overflow on a BVH from buildBvh.
@@ -140,6 +142,7 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
             if (!bvhIntersectTriangle(uintBitsToFloat(v0_index.xyz), edge1, edge2, origin, direction, t, u, v))
                 continue;
             if (!(t < t_closest || (t == t_closest && v0_index.w < closest_index))) continue;
+            if ((edge1_flags.w & BVH_TRIANGLE_FLAG_ALPHA_MASKED) != 0u && !bvhHitIsOpaque(v0_index.w, u, v)) continue;
             found = true;
             t_closest = t;
             closest_index = v0_index.w;

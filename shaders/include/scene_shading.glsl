@@ -20,7 +20,7 @@ struct TriangleShadingGpu {
 
 struct MaterialGpu {
     vec4 base_color_factor;  // linear RGBA
-    vec4 emission;           // linear emitted radiance, xyz
+    vec4 emission;           // linear emitted radiance, xyz; w: the alpha cutoff of a masked material (else 0)
     uvec4 texture_info;      // x: first word in the texture buffer, y: width, z: height (0: no texture),
                              // w: bit 0 double-sided
 };
@@ -70,6 +70,26 @@ vec3 sampleBaseColorTexture(uvec4 info, vec2 uv) {
     vec3 bottom = mix(fetchTexel(info, x0, y1), fetchTexel(info, x1, y1), weight.x);
     return mix(top, bottom, weight.y);
 }
+
+// The texture's alpha (stored linear in the word's top byte), bilinear with repeat wrapping as the colour.
+float fetchTexelAlpha(uvec4 info, int x, int y) {
+    return float(texelFetch(texture_word_texels, int(info.x + uint(y) * info.y + uint(x))).x >> 24u) / 255.0;
+}
+
+float sampleBaseColorAlpha(uvec4 info, vec2 uv) {
+    vec2 texel_coordinate = uv * vec2(info.yz) - 0.5;
+    vec2 base = floor(texel_coordinate);
+    vec2 weight = texel_coordinate - base;
+    int w = int(info.y), h = int(info.z);
+    int x0 = int(mod(base.x, float(w))), y0 = int(mod(base.y, float(h)));
+    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
+    float top = mix(fetchTexelAlpha(info, x0, y0), fetchTexelAlpha(info, x1, y0), weight.x);
+    float bottom = mix(fetchTexelAlpha(info, x0, y1), fetchTexelAlpha(info, x1, y1), weight.x);
+    return mix(top, bottom, weight.y);
+}
+
+// Below this base-colour alpha a masked material is a hole (bvh_alpha_mask.glsl).
+float materialAlphaCutoff(MaterialGpu material) { return material.emission.w; }
 
 struct SurfacePoint {
     vec3 shading_normal;    // interpolated, flipped to the side the ray came from

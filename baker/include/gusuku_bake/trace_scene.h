@@ -17,6 +17,10 @@ struct Bvh;
 
 /// Triangle flag: the triangle belongs to the building (skipped by "without building" passes).
 constexpr uint32_t kTriangleFlagBuilding = 1u;
+/// Triangle flag: the triangle's material is alpha-masked (Material::alpha_masked): a ray passes through where
+/// its base colour's alpha is below the cutoff (shaders/include/bvh_alpha_mask.glsl). Set by makeTraceScene;
+/// unflagged triangles are never alpha-tested, so an opaque scene traces as it did before masks existed.
+constexpr uint32_t kTriangleFlagAlphaMasked = 2u;
 
 struct TraceScene {
     TriangleMesh mesh;                     ///< building triangles first, then the site's
@@ -44,7 +48,7 @@ static_assert(sizeof(TriangleShadingGpu) == 80);
 
 struct MaterialGpu {
     glm::vec4 base_color_factor;
-    glm::vec4 emission;
+    glm::vec4 emission;           ///< xyz emitted radiance; w the alpha cutoff when masked, else 0
     uint32_t texture_first_word = 0;
     uint32_t texture_width = 0;
     uint32_t texture_height = 0;  ///< 0: no texture

@@ -712,6 +712,7 @@ private:
                 material.emissive_factor =
                     glm::vec3(source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]);
             material.double_sided = source.doubleSided;
+            readAlphaMode(source, field, material);
             if (pbr.baseColorTexture.index >= 0) {
                 const std::string texture_field = field + ".pbrMetallicRoughness.baseColorTexture";
                 if (pbr.baseColorTexture.texCoord != 0)
@@ -724,6 +725,25 @@ private:
         mesh_.materials.push_back(std::move(material));
         material_of_gltf_[gltf_material] = index;
         return index;
+    }
+
+    // alphaMode MASK cuts holes at alphaCutoff. BLEND has no order-independent meaning for a lightmap bake or a
+    // depth-tested frame, so it is read as MASK at the cutoff (what a foliage card exported as BLEND means).
+    void readAlphaMode(const tinygltf::Material& source, const std::string& field, Material& material) {
+        if (source.alphaMode == "OPAQUE") return;
+        if (source.alphaMode != "MASK" && source.alphaMode != "BLEND")
+            fail(field + ".alphaMode", "\"" + source.alphaMode + "\" is not OPAQUE, MASK or BLEND");
+        const float cutoff = float(source.alphaCutoff);
+        if (!(std::isfinite(cutoff) && cutoff >= 0.0f && cutoff <= 1.0f)) {
+            std::ostringstream problem;
+            problem << source.alphaCutoff << " is not a number in [0, 1]";
+            fail(field + ".alphaCutoff", problem.str());
+        }
+        if (source.alphaMode == "BLEND")
+            warn(field + ".alphaMode: BLEND is treated as MASK with alphaCutoff " + std::to_string(cutoff) +
+                 " (no blending: texels below it are holes, the rest opaque)");
+        material.alpha_masked = true;
+        material.alpha_cutoff = cutoff;
     }
 
     // Colour factors become floats (and emission is radiance the tracer adds up): each must be finite and >= 0

@@ -170,6 +170,10 @@ void writeGlb(const std::string& path, const TriangleMesh& mesh, const glm::dmat
         }
         out.emissiveFactor = {material.emissive_factor.x, material.emissive_factor.y, material.emissive_factor.z};
         out.doubleSided = material.double_sided;
+        if (material.alpha_masked) {  // an opaque material keeps glTF's defaults, so its bytes are as before
+            out.alphaMode = "MASK";
+            out.alphaCutoff = material.alpha_cutoff;
+        }
         model.materials.push_back(out);
     }
 

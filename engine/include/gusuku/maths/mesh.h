@@ -21,6 +21,11 @@ struct Material {
     int base_color_texture = -1;        ///< index into TriangleMesh::textures, -1 for none
     glm::vec3 emissive_factor{0.0f};    ///< linear emitted radiance (glTF emissiveFactor)
     bool double_sided = false;
+    /// glTF alphaMode MASK (BLEND is read as MASK): the surface is a hole where the base colour's alpha
+    /// (factor times texture, at the point's uv0) is below alpha_cutoff. The baker's rays pass through holes and
+    /// the runtime discards them. False: opaque, alpha ignored (glTF OPAQUE).
+    bool alpha_masked = false;
+    float alpha_cutoff = 0.5f;  ///< glTF alphaCutoff, in [0, 1]; read only when alpha_masked
 };
 
 struct TriangleMesh {
