@@ -62,6 +62,30 @@ TEST(PackGeometry, RoundTripsAndLaysOutItsHeaderAsDocumented) {
     EXPECT_EQ(back.occluder.indices, original.occluder.indices);
 }
 
+// An alpha-masked material (issue 21 item 3) makes the file GSKPACK2, four bytes more a material (its cutoff, -1
+// for the opaque one), and comes back masked at its cutoff; a cutoff above 1 is refused by field.
+TEST(PackGeometry, AlphaMaskedMaterialsRoundTripAsVersion2) {
+    PackGeometry geometry = quadWithTwoMaterials();
+    geometry.building.materials[1].alpha_masked = true;
+    geometry.building.materials[1].alpha_cutoff = 0.375f;
+    std::vector<uint8_t> file = encodePackGeometry(geometry);
+    EXPECT_EQ(file.size(), encodePackGeometry(quadWithTwoMaterials()).size() + 2 * 4);
+    EXPECT_EQ(std::string(file.begin(), file.begin() + 8), "GSKPACK2");
+    const PackGeometry back = decodePackGeometry(file.data(), file.size(), "pack.bin");
+    ASSERT_EQ(back.building.materials.size(), 2u);
+    EXPECT_FALSE(back.building.materials[0].alpha_masked);
+    EXPECT_TRUE(back.building.materials[1].alpha_masked);
+    EXPECT_EQ(back.building.materials[1].alpha_cutoff, 0.375f);
+    geometry.building.materials[1].alpha_cutoff = 1.5f;
+    file = encodePackGeometry(geometry);
+    try {
+        decodePackGeometry(file.data(), file.size(), "pack.bin");
+        ADD_FAILURE() << "a cutoff of 1.5 was read";
+    } catch (const InputError& error) {
+        EXPECT_STREQ(error.what(), "pack.bin: materials[1].alpha_cutoff: 1.500000 is above 1");
+    }
+}
+
 std::string refusal(const std::vector<uint8_t>& file) {
     try {
         decodePackGeometry(file.data(), file.size(), "pack.bin");
@@ -82,7 +106,7 @@ TEST(PackGeometry, BadFilesAreRefusedNamingTheField) {
     EXPECT_EQ(refusal(std::vector<uint8_t>(good.begin(), good.begin() + 30)).rfind("pack.bin: header: the file has 30 bytes", 0), 0u);
     std::vector<uint8_t> magic = good;
     magic[0] = 'X';
-    EXPECT_EQ(refusal(magic), "pack.bin: magic: is not GSKPACK1 (not a gusuku pack.bin)");
+    EXPECT_EQ(refusal(magic), "pack.bin: magic: is neither GSKPACK1 nor GSKPACK2 (not a gusuku pack.bin)");
     EXPECT_EQ(refusal(std::vector<uint8_t>(good.begin(), good.end() - 1)).rfind("pack.bin: counts: their arrays take", 0), 0u);
     EXPECT_EQ(with([](PackGeometry& g) { g.building.indices[4] = 9; }),
               "pack.bin: indices[4]: 9 is not below the 4 positions");

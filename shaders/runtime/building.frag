@@ -31,8 +31,15 @@ layout(location = 3) centroid in vec2 lightmap_uv;
 
 layout(location = 0) out vec4 out_colour;  // linear; the sRGB attachment encodes it
 
+// An alpha-masked material's pipeline (issue 21 item 3) sets this: fragments whose base colour alpha is below
+// the cutoff are holes. A specialisation constant, so the opaque materials' pipeline has no discard at all (a
+// discard can cost early depth testing on tile-based GPUs).
+layout(constant_id = 0) const bool kAlphaMasked = false;
+
 void main() {
-    vec3 albedo = texture(base_colour, base_colour_uv).rgb * material.base_colour_factor.rgb;
+    vec4 base_colour_texel = texture(base_colour, base_colour_uv);
+    if (kAlphaMasked && base_colour_texel.a * material.base_colour_factor.a < material.alpha_cutoff) discard;
+    vec3 albedo = base_colour_texel.rgb * material.base_colour_factor.rgb;
     vec3 normal = normalize(normal_enu);
     // Two-sided: a face seen from behind is lit as its front (thin walls, eaves).
     if (!gl_FrontFacing) normal = -normal;

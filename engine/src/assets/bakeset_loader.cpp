@@ -73,7 +73,8 @@ BakeSetMesh loadBuilding(const std::string& path) {
     building.indices = std::move(mesh.indices);
     building.triangle_material = std::move(mesh.triangle_material);
     for (const Material& material : mesh.materials)
-        building.materials.push_back({material.base_color_factor, material.base_color_texture});
+        building.materials.push_back(
+            {material.base_color_factor, material.base_color_texture, material.alpha_masked, material.alpha_cutoff});
     for (const ImageRGBA& texture : mesh.textures) building.textures.push_back(texture8(texture));
     return building;
 }

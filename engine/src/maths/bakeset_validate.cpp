@@ -124,6 +124,8 @@ Problem checkBuilding(const BakeSetMesh& mesh) {
         const BakeSetMaterial& material = mesh.materials[m];
         const std::string field = "building.materials[" + std::to_string(m) + "]";
         if (!finite(material.base_color_factor)) return field + ".base_color_factor: is not finite";
+        if (material.alpha_masked && !(material.alpha_cutoff >= 0.0f && material.alpha_cutoff <= 1.0f))
+            return field + ".alpha_cutoff: " + std::to_string(material.alpha_cutoff) + " is not in [0, 1]";
         if (material.base_color_texture < -1 || material.base_color_texture >= int(mesh.textures.size()))
             return field + ".base_color_texture: " + std::to_string(material.base_color_texture) +
                    " is neither -1 nor a texture (" + std::to_string(mesh.textures.size()) + " textures)";

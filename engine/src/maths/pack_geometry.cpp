@@ -10,7 +10,12 @@
 namespace gusuku {
 namespace {
 
+// Version 1: opaque materials of 20 bytes. Version 2 (alpha-masked materials, issue 21 item 3) appends each
+// material's alpha cutoff (negative: opaque), 24 bytes; the writer writes version 1 while every material is opaque,
+// so a pack of an opaque building keeps its bytes, and either version is read.
 constexpr char kMagic[8] = {'G', 'S', 'K', 'P', 'A', 'C', 'K', '1'};
+constexpr char kMagicMasked[8] = {'G', 'S', 'K', 'P', 'A', 'C', 'K', '2'};
+constexpr uint64_t kMaskedMaterialBytes = 24;
 constexpr uint32_t kLargestTextureSide = 16384;
 constexpr int kCountFields = 10;
 const char* const kCountNames[kCountFields] = {"positions", "normals", "uv0", "uv1", "indices",
@@ -66,7 +71,7 @@ private:
 
 std::string indexed(const char* array, size_t index) { return std::string(array) + "[" + std::to_string(index) + "]"; }
 
-void readBuilding(Reader& reader, const uint32_t counts[kCountFields], BakeSetMesh& mesh) {
+void readBuilding(Reader& reader, const uint32_t counts[kCountFields], bool with_alpha_cutoffs, BakeSetMesh& mesh) {
     for (uint32_t i = 0; i < counts[0]; ++i)
         mesh.positions.push_back({reader.f32(indexed("positions", i)), reader.f32(indexed("positions", i)),
                                   reader.f32(indexed("positions", i))});
@@ -94,6 +99,13 @@ void readBuilding(Reader& reader, const uint32_t counts[kCountFields], BakeSetMe
         if (material.base_color_texture < -1 || material.base_color_texture >= int(counts[7]))
             reader.fail(indexed("materials", i) + ".texture", std::to_string(material.base_color_texture) +
                                                                   " is not -1 or below the " + std::to_string(counts[7]) + " textures");
+        if (with_alpha_cutoffs) {
+            const float cutoff = reader.f32(indexed("materials", i) + ".alpha_cutoff");
+            if (cutoff > 1.0f)
+                reader.fail(indexed("materials", i) + ".alpha_cutoff", std::to_string(cutoff) + " is above 1");
+            material.alpha_masked = cutoff >= 0.0f;
+            if (material.alpha_masked) material.alpha_cutoff = cutoff;
+        }
         mesh.materials.push_back(material);
     }
     for (uint32_t i = 0; i < counts[7]; ++i) {
@@ -112,8 +124,10 @@ void readBuilding(Reader& reader, const uint32_t counts[kCountFields], BakeSetMe
 
 std::vector<uint8_t> encodePackGeometry(const PackGeometry& geometry) {
     const BakeSetMesh& mesh = geometry.building;
+    bool any_masked = false;
+    for (const BakeSetMaterial& material : mesh.materials) any_masked |= material.alpha_masked;
     Writer writer;
-    writer.bytes(kMagic, sizeof kMagic);
+    writer.bytes(any_masked ? kMagicMasked : kMagic, sizeof kMagic);
     writer.f32(geometry.lightmap_scale);
     const size_t counts[kCountFields] = {mesh.positions.size(), mesh.normals.size(), mesh.uv0.size(),
                                          mesh.uv1.size(), mesh.indices.size(), mesh.triangle_material.size(),
@@ -129,6 +143,7 @@ std::vector<uint8_t> encodePackGeometry(const PackGeometry& geometry) {
     for (const BakeSetMaterial& material : mesh.materials) {
         for (int c = 0; c < 4; ++c) writer.f32(material.base_color_factor[c]);
         writer.u32(uint32_t(int32_t(material.base_color_texture)));
+        if (any_masked) writer.f32(material.alpha_masked ? material.alpha_cutoff : -1.0f);
     }
     for (const BakeSetTexture& texture : mesh.textures) {
         writer.u32(uint32_t(texture.width));
@@ -145,7 +160,9 @@ PackGeometry decodePackGeometry(const uint8_t* bytes, size_t size, const std::st
     if (size < header_bytes)
         reader.fail("header", "the file has " + std::to_string(size) + " bytes, fewer than the " +
                                   std::to_string(header_bytes) + " of its header (truncated?)");
-    if (std::memcmp(bytes, kMagic, sizeof kMagic) != 0) reader.fail("magic", "is not GSKPACK1 (not a gusuku pack.bin)");
+    const bool with_alpha_cutoffs = std::memcmp(bytes, kMagicMasked, sizeof kMagicMasked) == 0;
+    if (!with_alpha_cutoffs && std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
+        reader.fail("magic", "is neither GSKPACK1 nor GSKPACK2 (not a gusuku pack.bin)");
     PackGeometry geometry;
     geometry.lightmap_scale = reader.f32("lightmap_scale");
     int exponent = 0;
@@ -155,7 +172,9 @@ PackGeometry decodePackGeometry(const uint8_t* bytes, size_t size, const std::st
     uint64_t expected = header_bytes;  // at most 10 x 2^32 x 20 bytes: no overflow in 64 bits
     for (int field = 0; field < kCountFields; ++field) {
         counts[field] = reader.u32();
-        expected += uint64_t(counts[field]) * kElementBytes[field];
+        const bool materials = field == 6;
+        expected += uint64_t(counts[field]) *
+                    (materials && with_alpha_cutoffs ? kMaskedMaterialBytes : kElementBytes[field]);
     }
     if (expected != size)
         reader.fail("counts", "their arrays take " + std::to_string(expected) + " bytes with the header, but the file has " +
@@ -169,7 +188,7 @@ PackGeometry decodePackGeometry(const uint8_t* bytes, size_t size, const std::st
         reader.fail("triangle_materials", std::to_string(counts[5]) + " is not one per triangle (" +
                                               std::to_string(counts[4] / 3) + ")");
     if (counts[9] % 3 != 0) reader.fail("occluder_indices", std::to_string(counts[9]) + " is not three per triangle");
-    readBuilding(reader, counts, geometry.building);
+    readBuilding(reader, counts, with_alpha_cutoffs, geometry.building);
     for (uint32_t i = 0; i < counts[8]; ++i)
         geometry.occluder.positions.push_back({reader.f32(indexed("occluder_positions", i)),
                                                reader.f32(indexed("occluder_positions", i)),

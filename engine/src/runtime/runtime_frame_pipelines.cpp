@@ -5,11 +5,14 @@
 
 #include "building_frag_spv.h"
 #include "building_vert_spv.h"
+#include "depth_masked_frag_spv.h"
+#include "depth_masked_vert_spv.h"
 #include "depth_only_vert_spv.h"
 #include "ground_frag_spv.h"
 #include "ground_vert_spv.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "runtime_impl.h"
+#include "runtime_masked_depth_push.h"
 #include "runtime_material_push.h"
 #include "runtime_pipelines.h"
 
@@ -17,6 +20,7 @@ namespace gusuku::runtime_detail {
 
 using shader_interface::DepthOnlyPushConstants;
 using shader_interface::FrameUniforms;
+using shader_interface::MaskedDepthPushConstants;
 using shader_interface::MaterialPushConstants;
 
 void RuntimeImpl::createPipelines() {
@@ -80,6 +84,7 @@ void RuntimeImpl::createPipelines() {
     building.vertex_input = building_vertex;
     building.stencil = StencilUse::kMarkBuilding;  // the ground ratio leaves these pixels alone
     building_pipeline_ = createGraphicsPipeline(device, building);
+    createMaskedPipelines(building, shadow);
 
     GraphicsPipelineDescription ground;
     ground.vertex_input.stride = sizeof(float);  // per cell: the building's shadow may fall here this frame
@@ -108,6 +113,42 @@ void RuntimeImpl::createPipelines() {
     ground_baked_pipeline_ = createGraphicsPipeline(device, ground);
     specialization.pData = variants[2];
     ground_sunless_pipeline_ = createGraphicsPipeline(device, ground);
+}
+
+// Only a bake set with an alpha-masked material gets these (an opaque one creates what it did before).
+void RuntimeImpl::createMaskedPipelines(const GraphicsPipelineDescription& building,
+                                        const GraphicsPipelineDescription& shadow) {
+    bool any_masked = false;
+    for (float cutoff : scene_.alpha_cutoffs) any_masked |= cutoff >= 0.0f;
+    if (!any_masked) return;
+    const VkDevice device = gpu_.device;
+    const VkBool32 masked = VK_TRUE;  // building.frag's kAlphaMasked
+    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof masked, &masked};
+    GraphicsPipelineDescription building_masked = building;
+    building_masked.fragment_specialization = &specialization;
+    building_masked_pipeline_ = createGraphicsPipeline(device, building_masked);
+
+    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                             sizeof(MaskedDepthPushConstants)};
+    VkPipelineLayoutCreateInfo layout{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout.setLayoutCount = 1;
+    layout.pSetLayouts = &material_set_layout_;
+    layout.pushConstantRangeCount = 1;
+    layout.pPushConstantRanges = &push;
+    checkVk(vkCreatePipelineLayout(device, &layout, nullptr, &masked_depth_layout_), "vkCreatePipelineLayout");
+    GraphicsPipelineDescription masked_shadow = shadow;
+    masked_shadow.layout = masked_depth_layout_;
+    masked_shadow.vertex_spirv = kDepthMaskedVertSpirv;
+    masked_shadow.vertex_spirv_bytes = sizeof(kDepthMaskedVertSpirv);
+    masked_shadow.fragment_spirv = kDepthMaskedFragSpirv;
+    masked_shadow.fragment_spirv_bytes = sizeof(kDepthMaskedFragSpirv);
+    masked_shadow.vertex_input.stride = sizeof(BuildingVertex);
+    masked_shadow.vertex_input.attributes = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(BuildingVertex, position)},
+        {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(BuildingVertex, base_colour_uv)},
+    };
+    masked_shadow_pipeline_ = createGraphicsPipeline(device, masked_shadow);
 }
 
 }  // namespace gusuku::runtime_detail

@@ -31,6 +31,8 @@
 
 namespace gusuku::runtime_detail {
 
+struct GraphicsPipelineDescription;  // runtime_pipelines.h
+
 inline RuntimeError deviceError(const std::exception& error) {
     return RuntimeError(RuntimeErrorCode::kDevice, std::string("gusuku runtime: ") + error.what());
 }
@@ -93,6 +95,7 @@ private:
     void recordFrameStart(VkCommandBuffer cmd, const FrameInput& frame);
     void recordStatistics(VkCommandBuffer cmd, const FrameInput& frame);
     void recordShadows(VkCommandBuffer cmd);
+    void recordMaskedShadows(VkCommandBuffer cmd);
     void recordOccluder(VkCommandBuffer cmd);
     void recordBuilding(VkCommandBuffer cmd);
     void recordGround(VkCommandBuffer cmd);
@@ -159,14 +162,20 @@ private:
     std::vector<VkDescriptorSet> material_sets_;
     VkPipelineLayout depth_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout shading_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout masked_depth_layout_ = VK_NULL_HANDLE;  // the material set alone, MaskedDepthPushConstants
     VkPipeline shadow_pipeline_ = VK_NULL_HANDLE;       // the building into a shadow map
     VkPipeline site_shadow_pipeline_ = VK_NULL_HANDLE;  // the occluder into a shadow map (its own vertex stride)
     VkPipeline occluder_pipeline_ = VK_NULL_HANDLE;
     VkPipeline building_pipeline_ = VK_NULL_HANDLE;
+    // Alpha-masked materials (issue 21 item 3), made only when the bake set has one: the building with its
+    // discard, and the building's shadow map with depth_masked.frag's alpha test.
+    VkPipeline building_masked_pipeline_ = VK_NULL_HANDLE;
+    VkPipeline masked_shadow_pipeline_ = VK_NULL_HANDLE;
     VkPipeline ground_pipeline_ = VK_NULL_HANDLE;          // quads the building's shadow may reach
     VkPipeline ground_baked_pipeline_ = VK_NULL_HANDLE;    // quads only its baked light changes: no building shadow
     VkPipeline ground_sunless_pipeline_ = VK_NULL_HANDLE;  // the same with no sun at all: no shadow-map reads
     VkCommandPool command_pool_ = VK_NULL_HANDLE;
+    void createMaskedPipelines(const GraphicsPipelineDescription& building, const GraphicsPipelineDescription& shadow);
 
     // This frame's CPU-side state, filled by prepareFrame.
     shader_interface::FrameUniforms uniforms_{};

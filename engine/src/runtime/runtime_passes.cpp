@@ -4,12 +4,14 @@
 
 #include "gusuku/gpu/gpu_compute.h"
 #include "runtime_impl.h"
+#include "runtime_masked_depth_push.h"
 #include "runtime_material_push.h"
 #include "runtime_pipelines.h"
 
 namespace gusuku::runtime_detail {
 
 using shader_interface::DepthOnlyPushConstants;
+using shader_interface::MaskedDepthPushConstants;
 using shader_interface::MaterialPushConstants;
 
 // Outside any render pass, before the others: this frame's uniforms into their buffer (in the command buffer,
@@ -65,18 +67,39 @@ void RuntimeImpl::recordShadows(VkCommandBuffer cmd) {
         const VkBuffer vertex_buffer = vertices.handle();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
         vkCmdBindIndexBuffer(cmd, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        if (index_count > 0) vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+        if (&vertices == &scene_.building_vertices) recordMaskedShadows(cmd);
         vkCmdEndRenderPass(cmd);
     };
     if (render_building_shadow_) {
         shadowPass(building_shadow_framebuffer_, shadow_push_, shadow_pipeline_, scene_.building_vertices,
-                   scene_.building_indices, scene_.building_index_count);
+                   scene_.building_indices, scene_.opaque_index_count);
         building_shadow_valid_ = true;
     }
     if (render_site_shadow_) {
         shadowPass(site_shadow_framebuffer_, shadow_push_, site_shadow_pipeline_, scene_.occluder_vertices,
                    scene_.occluder_indices, scene_.occluder_index_count);
         site_shadow_valid_ = true;
+    }
+}
+
+// Inside the building's shadow pass, after its opaque materials: each alpha-masked material with its alpha test
+// (depth_masked.frag). Nothing when every material is opaque.
+void RuntimeImpl::recordMaskedShadows(VkCommandBuffer cmd) {
+    if (scene_.opaque_index_count == scene_.building_index_count) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, masked_shadow_pipeline_);
+    for (const MaterialDraw& draw : scene_.draws) {
+        const float cutoff = scene_.alpha_cutoffs[draw.material];
+        if (cutoff < 0.0f) continue;
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, masked_depth_layout_, 0, 1,
+                                &material_sets_[draw.material], 0, nullptr);
+        MaskedDepthPushConstants push{};
+        push.enu_to_clip = shadow_push_.enu_to_clip;
+        push.base_colour_alpha = scene_.base_colour_factors[draw.material].a;
+        push.alpha_cutoff = cutoff;
+        vkCmdPushConstants(cmd, masked_depth_layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof push, &push);
+        vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
     }
 }
 
@@ -116,11 +139,18 @@ void RuntimeImpl::recordBuilding(VkCommandBuffer cmd) {
     const VkBuffer vertex_buffer = scene_.building_vertices.handle();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
     vkCmdBindIndexBuffer(cmd, scene_.building_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    bool masked_bound = false;
     for (const MaterialDraw& draw : scene_.draws) {
+        // The masked materials come last (runtime_scene.h): one switch of pipeline, same layout.
+        const float cutoff = scene_.alpha_cutoffs[draw.material];
+        if (cutoff >= 0.0f && !masked_bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, building_masked_pipeline_);
+            masked_bound = true;
+        }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shading_layout_, RUNTIME_MATERIAL_SET, 1,
                                 &material_sets_[draw.material], 0, nullptr);
         const glm::vec4& factor = scene_.base_colour_factors[draw.material];
-        const MaterialPushConstants push{{{factor.r, factor.g, factor.b, factor.a}}};
+        const MaterialPushConstants push{{{factor.r, factor.g, factor.b, factor.a}}, cutoff};
         vkCmdPushConstants(cmd, shading_layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
         vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
     }

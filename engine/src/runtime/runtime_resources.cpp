@@ -265,9 +265,9 @@ void RuntimeImpl::destroy() noexcept {
     if (command_pool_) vkDestroyCommandPool(device, command_pool_, nullptr);
     for (VkPipeline pipeline :
          {shadow_pipeline_, site_shadow_pipeline_, occluder_pipeline_, building_pipeline_, ground_pipeline_,
-          ground_baked_pipeline_, ground_sunless_pipeline_})
+          ground_baked_pipeline_, ground_sunless_pipeline_, building_masked_pipeline_, masked_shadow_pipeline_})
         if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
-    for (VkPipelineLayout layout : {depth_layout_, shading_layout_})
+    for (VkPipelineLayout layout : {depth_layout_, shading_layout_, masked_depth_layout_})
         if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
     if (descriptor_pool_) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     for (VkDescriptorSetLayout layout : {frame_set_layout_, material_set_layout_})
@@ -281,8 +281,9 @@ void RuntimeImpl::destroy() noexcept {
     if (shadow_pass_) vkDestroyRenderPass(device, shadow_pass_, nullptr);
     command_pool_ = VK_NULL_HANDLE;
     shadow_pipeline_ = site_shadow_pipeline_ = occluder_pipeline_ = building_pipeline_ = ground_pipeline_ =
-        ground_baked_pipeline_ = ground_sunless_pipeline_ = VK_NULL_HANDLE;
-    depth_layout_ = shading_layout_ = VK_NULL_HANDLE;
+        ground_baked_pipeline_ = ground_sunless_pipeline_ = building_masked_pipeline_ = masked_shadow_pipeline_ =
+            VK_NULL_HANDLE;
+    depth_layout_ = shading_layout_ = masked_depth_layout_ = VK_NULL_HANDLE;
     descriptor_pool_ = VK_NULL_HANDLE;
     frame_set_layout_ = material_set_layout_ = VK_NULL_HANDLE;
     linear_sampler_ = shadow_sampler_ = shadow_depth_sampler_ = texture_sampler_ = VK_NULL_HANDLE;

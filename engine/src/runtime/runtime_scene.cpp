@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/gtc/packing.hpp>
@@ -73,7 +74,14 @@ void uploadBuilding(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sce
     auto materialOf = [&](uint32_t triangle) {
         return triangle < mesh.triangle_material.size() ? mesh.triangle_material[triangle] : 0u;
     };
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return materialOf(a) < materialOf(b); });
+    // Opaque materials first (issue 21 item 3), so the shadow pass draws them all at once without an alpha test.
+    auto maskedOf = [&](uint32_t triangle) {
+        const uint32_t material = materialOf(triangle);
+        return material < mesh.materials.size() && mesh.materials[material].alpha_masked;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return std::make_pair(maskedOf(a), materialOf(a)) < std::make_pair(maskedOf(b), materialOf(b));
+    });
     std::vector<uint32_t> indices;
     indices.reserve(mesh.indices.size());
     for (uint32_t triangle : order) {
@@ -82,6 +90,7 @@ void uploadBuilding(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sce
             scene.draws.push_back({uint32_t(indices.size()), 0, material});
         for (int corner = 0; corner < 3; ++corner) indices.push_back(mesh.indices[size_t(triangle) * 3 + corner]);
         scene.draws.back().index_count += 3;
+        if (!maskedOf(triangle)) scene.opaque_index_count = uint32_t(indices.size());
     }
     scene.building_vertices = deviceBuffer(gpu, vertices, kVertexUsage);
     scene.building_indices = deviceBuffer(gpu, indices, kIndexUsage);
@@ -93,10 +102,12 @@ void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sc
     for (const BakeSetMaterial& material : mesh.materials) {
         scene.base_colour_factors.push_back(material.base_color_factor);
         scene.material_texture.push_back(material.base_color_texture);
+        scene.alpha_cutoffs.push_back(material.alpha_masked ? material.alpha_cutoff : -1.0f);
     }
     if (scene.base_colour_factors.empty()) {
         scene.base_colour_factors.push_back(glm::vec4(1.0f));
         scene.material_texture.push_back(-1);
+        scene.alpha_cutoffs.push_back(-1.0f);
     }
     const MipChainMaker maker =
         canBlitMipChain(gpu, VK_FORMAT_R8G8B8A8_SRGB) ? MipChainMaker::kGpuBlit : MipChainMaker::kCpuBoxFilter;

@@ -39,7 +39,12 @@ struct GpuScene {
     GpuBuffer building_vertices;  ///< BuildingVertex, device-local
     GpuBuffer building_indices;   ///< uint32, sorted by material
     uint32_t building_index_count = 0;
-    std::vector<MaterialDraw> draws;
+    std::vector<MaterialDraw> draws;  ///< the opaque materials' first, then the alpha-masked ones'
+    /// Indices [0, this) are of opaque materials (one depth-only draw in the shadow pass); the rest are of
+    /// alpha-masked ones (drawn per material with the alpha test).
+    uint32_t opaque_index_count = 0;
+    /// Per material: the alpha cutoff of an alpha-masked material, or a negative value for an opaque one.
+    std::vector<float> alpha_cutoffs;
     std::vector<glm::vec4> base_colour_factors;  ///< per material
     std::vector<int> material_texture;           ///< per material: index into textures, or -1 (white)
     std::vector<GpuImage> textures;              ///< RGBA8 sRGB base colour textures, full mip chains

@@ -27,6 +27,11 @@ struct BakeSetTexture {
 struct BakeSetMaterial {
     glm::vec4 base_color_factor{1.0f};  ///< linear RGBA, multiplies the texture
     int base_color_texture = -1;        ///< index into BakeSetMesh::textures, -1 for none
+    /// glTF alphaMode MASK (gusuku/maths/mesh.h, Material): the runtime discards fragments whose base colour
+    /// alpha (factor times texture) is below alpha_cutoff, in the building's pass and its shadow map. False:
+    /// opaque, alpha ignored.
+    bool alpha_masked = false;
+    float alpha_cutoff = 0.5f;  ///< in [0, 1]; read only when alpha_masked
 };
 
 /// The building as the runtime draws it: ENU metres, counter-clockwise front faces, one material per triangle.

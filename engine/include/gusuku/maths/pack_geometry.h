@@ -6,7 +6,9 @@
 // decoders. Standard library and glm only.
 //
 // Layout (every number little-endian; f32 IEEE 754):
-//   8 bytes   "GSKPACK1"
+//   8 bytes   "GSKPACK1", or "GSKPACK2" when a material is alpha-masked (then each material also has an f32 alpha
+//             cutoff after its texture: negative for an opaque material, else in [0, 1]; the writer writes
+//             GSKPACK1 while all are opaque, so an opaque pack's bytes are those of before)
 //   f32       lightmap_scale: the lightmaps' stored RGB times this is the bake set's irradiance (a power of 2, >= 1)
 //   u32 x 10  counts: positions, normals, uv0, uv1, indices, triangle materials, materials, textures,
 //             occluder positions, occluder indices
