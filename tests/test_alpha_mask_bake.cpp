@@ -4,14 +4,22 @@
 // - sunlight through a fence of masked slats reaches the ground in proportion to the open fraction;
 // - under an infinite black masked roof with open fraction f, the ground sees f of the sky: E = f pi L
 //   (sky shadow rays and cosine-sampled bounce rays alike pass the holes);
-// - the same geometry unmasked casts a solid shadow (the flag, not the texture, decides).
+// - the same geometry unmasked casts a solid shadow (the flag, not the texture, decides);
+// - the shared house's tree (material "WhiteAlpha", alphaMode MASK) casts a dappled shadow: under an overhead sun
+//   some points beneath its canopy are lit, where read as opaque almost none are (skipped without ../shared).
 #include <cmath>
+#include <algorithm>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
+#include "gusuku/assets/gltf_loader.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/sky_light.h"
 #include "gusuku_bake/trace_scene.h"
@@ -145,6 +153,75 @@ TEST_F(AlphaMaskBakeTest, UniformSkyThroughMaskedRoofIsTheOpenFraction) {
                 << (masked ? "masked" : "opaque") << ", sky sampling " << int(sky_sampling);
         }
     }
+}
+
+// Points 5 cm below the tree's crown, over its bounding box's footprint (its corners outside the crown), sun
+// straight overhead: the share lit, with the tree's mask and with it read as opaque.
+TEST_F(AlphaMaskBakeTest, SharedHousesTreeCastsADappledShadow) {
+    GUSUKU_REQUIRE_SHARED_DATA();
+    GltfLoadOptions options;
+    options.enu_from_model = enuFromGltfYUp() * glm::dmat4(glm::dmat3(16.0));  // as the bench's site: scale 16
+    options.max_texture_size = 512;
+    TriangleMesh house =
+        loadGltf(gusuku::testing::sharedDataDir() + "/building/playcanvas_house_lightmapUV/house.glb", options);
+    // The masked material textures the whole diorama from one atlas of cut-outs (vines, flowers, the tree's
+    // crown). The crown's cards: the largest triangle with a transparent corner, and every masked triangle whose
+    // uv centre falls in that triangle's uv box (the crown is crossed cards of the same picture).
+    const auto alphaAt = [&](const Material& material, glm::vec2 uv) {
+        const ImageRGBA& texture = house.textures[size_t(material.base_color_texture)];
+        const int x = std::clamp(int((uv.x - std::floor(uv.x)) * float(texture.width)), 0, texture.width - 1);
+        const int y = std::clamp(int((uv.y - std::floor(uv.y)) * float(texture.height)), 0, texture.height - 1);
+        return texture.texel(x, y)[3];
+    };
+    const auto corner = [&](size_t t, int c) { return house.indices[3 * t + size_t(c)]; };
+    size_t largest = house.triangleCount();
+    float largest_area = 0.0f;
+    for (size_t t = 0; t < house.triangleCount(); ++t) {
+        const Material& material = house.materials[house.triangle_material[t]];
+        if (!material.alpha_masked || material.base_color_texture < 0) continue;
+        bool transparent_corner = false;
+        for (int c = 0; c < 3; ++c) transparent_corner |= alphaAt(material, house.uv0[corner(t, c)]) < material.alpha_cutoff;
+        const float area = glm::length(glm::cross(house.positions[corner(t, 1)] - house.positions[corner(t, 0)],
+                                                  house.positions[corner(t, 2)] - house.positions[corner(t, 0)]));
+        if (transparent_corner && area > largest_area) largest = t, largest_area = area;
+    }
+    ASSERT_LT(largest, house.triangleCount()) << "the shared house has no cut-out card";
+    glm::vec2 uv_min(1e30f), uv_max(-1e30f);
+    for (int c = 0; c < 3; ++c) {
+        uv_min = glm::min(uv_min, house.uv0[corner(largest, c)]);
+        uv_max = glm::max(uv_max, house.uv0[corner(largest, c)]);
+    }
+    Bounds3 tree;
+    for (size_t t = 0; t < house.triangleCount(); ++t) {
+        if (!house.materials[house.triangle_material[t]].alpha_masked) continue;
+        glm::vec2 uv(0.0f);
+        for (int c = 0; c < 3; ++c) uv += house.uv0[corner(t, c)] / 3.0f;
+        if (glm::any(glm::lessThan(uv, uv_min)) || glm::any(glm::greaterThan(uv, uv_max))) continue;
+        for (int c = 0; c < 3; ++c) tree.extend(house.positions[corner(t, c)]);
+    }
+    const glm::vec3 middle = 0.5f * (tree.min + tree.max), half = 0.5f * (tree.max - tree.min);
+    std::vector<glm::vec3> positions;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            positions.push_back({middle.x + half.x * (float(x) / 15.5f - 1.0f),
+                                 middle.y + half.y * (float(y) / 15.5f - 1.0f), tree.min.z - 0.05f});
+    double lit_share[2] = {0.0, 0.0};
+    for (const bool masked : {true, false}) {
+        for (Material& material : house.materials) material.alpha_masked &= masked;
+        const TraceScene scene = makeTraceScene(house, nullptr);
+        IrradianceTracer tracer(context(), scene,
+                                buildSkySamplingTables(gusuku::testing::uniformSky(16, 8, glm::vec3(1.0f)), 0.0));
+        const std::vector<glm::vec3> irradiance = tracer.traceIrradiance(upFacing(positions), 4, sunOnly({0, 0, 1}));
+        int lit = 0;
+        for (const glm::vec3& e : irradiance) lit += e.r > 500.0f;
+        lit_share[masked ? 0 : 1] = double(lit) / double(positions.size());
+    }
+    std::printf("foliage bounds (%.2f, %.2f, %.2f) to (%.2f, %.2f, %.2f) m\n", tree.min.x, tree.min.y, tree.min.z,
+                tree.max.x, tree.max.y, tree.max.z);
+    std::printf("under the shared house's tree: %.3f of the points lit with its mask, %.3f read as opaque\n",
+                lit_share[0], lit_share[1]);
+    EXPECT_GT(lit_share[0], lit_share[1] + 0.1) << "the mask's holes let the sun through";
+    EXPECT_LT(lit_share[0], 0.95) << "the canopy still shades: dappled, not gone";
 }
 
 }  // namespace
