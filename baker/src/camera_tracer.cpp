@@ -75,7 +75,7 @@ CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int ma
     ray_counter_ = GpuBuffer(gpu, 16);
     trace_pipeline_ = std::make_unique<ComputePipeline>(gpu, kCameraTraceCompSpirv, sizeof(kCameraTraceCompSpirv),
                                                         CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)),
-                                                        traceInputTexelBindings());
+                                                        traceInputTexelBindings(), traceKernelSpecialization(scene_));
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,

@@ -62,7 +62,7 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     setSky(sky);
     pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
                                                   BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)),
-                                                  traceInputTexelBindings());
+                                                  traceInputTexelBindings(), traceKernelSpecialization(scene_));
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));

@@ -33,7 +33,12 @@ TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, in
     uploaded.texture_words = uploadedBuffer(gpu, shading.texture_words, kTexel);
     uploaded.triangle_count = scene.mesh.triangleCount();
     uploaded.dropped_triangle_count = bvh.dropped_triangle_count;
+    for (uint32_t flags : scene.triangle_flags) uploaded.has_alpha_masks |= (flags & kTriangleFlagAlphaMasked) != 0;
     return uploaded;
+}
+
+std::vector<uint32_t> traceKernelSpecialization(const TraceSceneGpu& scene) {
+    return {scene.has_alpha_masks ? 1u : 0u};
 }
 
 SkyTablesGpu uploadSkyTables(const GpuDevice& gpu, const SkySamplingTables& sky) {

@@ -2,7 +2,8 @@
 // BVH_TRIANGLE_FLAG_ALPHA_MASKED (baker/include/gusuku_bake/trace_scene.h, kTriangleFlagAlphaMasked) is a hole
 // where its base colour's alpha (factor times the texture's, bilinear at the hit's uv0) is below the material's
 // cutoff: bvhTraverse skips such a hit, so bounces, sun and sky shadow rays and camera rays all pass through.
-// Only flagged triangles pay for the lookup; an opaque scene traces exactly as without it.
+// Only a scene with a masked triangle compiles the test in (BVH_ALPHA_MASKS below), and only flagged triangles run
+// it; an opaque scene traces exactly as without it.
 //
 // With SHADING_TRIANGLE_BINDING defined (the includer traces a scene with materials: the bake and camera
 // kernels), the test reads scene_shading.glsl's buffers; without (a probe of the BVH alone) every hit is opaque.
@@ -11,6 +12,13 @@
 #define GUSUKU_BVH_ALPHA_MASK_GLSL
 
 const uint BVH_TRIANGLE_FLAG_ALPHA_MASKED = 2u;
+
+// Set by the tracer (traceKernelSpecialization, baker/include/gusuku_bake/trace_inputs_gpu.h) only for a scene
+// with a masked triangle. Why a specialisation constant and not the flag test alone: llvmpipe runs a branch's
+// body masked for the whole SIMD group even when no lane takes it, so the alpha test's fetches inside the
+// traversal loop cost every candidate hit (the opaque sample traced 1.6x slower); a false constant folds the
+// test away, and an opaque scene runs the kernel it ran before masks existed.
+layout(constant_id = 0) const bool BVH_ALPHA_MASKS = false;
 
 #ifdef SHADING_TRIANGLE_BINDING
 #include "scene_shading.glsl"

@@ -142,7 +142,9 @@ bool bvhTraverse(vec3 origin, vec3 direction, float t_max, uint skip_flags, bool
             if (!bvhIntersectTriangle(uintBitsToFloat(v0_index.xyz), edge1, edge2, origin, direction, t, u, v))
                 continue;
             if (!(t < t_closest || (t == t_closest && v0_index.w < closest_index))) continue;
-            if ((edge1_flags.w & BVH_TRIANGLE_FLAG_ALPHA_MASKED) != 0u && !bvhHitIsOpaque(v0_index.w, u, v)) continue;
+            if (BVH_ALPHA_MASKS && (edge1_flags.w & BVH_TRIANGLE_FLAG_ALPHA_MASKED) != 0u &&
+                !bvhHitIsOpaque(v0_index.w, u, v))
+                continue;
             found = true;
             t_closest = t;
             closest_index = v0_index.w;

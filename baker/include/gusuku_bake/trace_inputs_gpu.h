@@ -24,7 +24,13 @@ struct TraceSceneGpu {
     GpuBuffer texture_words;
     size_t triangle_count = 0;          ///< the scene's triangles
     size_t dropped_triangle_count = 0;  ///< left out of the BVH (degenerate or not finite)
+    bool has_alpha_masks = false;       ///< a triangle is flagged kTriangleFlagAlphaMasked
 };
+
+/// The trace kernels' specialisation constants for this scene: constant_id 0 is BVH_ALPHA_MASKS
+/// (shaders/include/bvh_alpha_mask.glsl), 1 only when the scene has a masked triangle, so an opaque scene runs
+/// a kernel without the alpha test at all.
+std::vector<uint32_t> traceKernelSpecialization(const TraceSceneGpu& scene);
 
 /// Builds the BVH (or takes scene.bvh when the scene carries one) and packs the shading (textures box-downsampled to max_texture_size), then uploads both.
 /// Throws what buildBvh, packSceneShading and GpuBuffer throw.

@@ -169,7 +169,8 @@ void GpuBuffer::copyThroughStaging(void* host_bytes, size_t byte_count, size_t o
 
 ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes,
                                  uint32_t buffer_count, uint32_t push_constant_bytes,
-                                 const std::vector<TexelBufferBinding>& texel_buffers)
+                                 const std::vector<TexelBufferBinding>& texel_buffers,
+                                 const std::vector<uint32_t>& specialization)
     : gpu_(gpu), storage_buffer_count_(buffer_count), push_constant_bytes_(push_constant_bytes),
       binding_formats_(buffer_count, VK_FORMAT_UNDEFINED), bound_views_(buffer_count) {
     for (const TexelBufferBinding& texel : texel_buffers) {
@@ -233,6 +234,12 @@ ComputePipeline::ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, si
         pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
         pipeline_info.stage.module = module_;
         pipeline_info.stage.pName = "main";
+        std::vector<VkSpecializationMapEntry> entries;
+        for (uint32_t id = 0; id < specialization.size(); ++id)
+            entries.push_back({id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)});
+        const VkSpecializationInfo specialization_info{uint32_t(entries.size()), entries.data(),
+                                                       specialization.size() * sizeof(uint32_t), specialization.data()};
+        if (!specialization.empty()) pipeline_info.stage.pSpecializationInfo = &specialization_info;
         pipeline_info.layout = pipeline_layout_;
         checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline_),
                 "vkCreateComputePipelines");

@@ -88,10 +88,13 @@ struct TexelBufferBinding {
 
 /// A compute pipeline from embedded SPIR-V with `buffer_count` buffers at set 0, bindings 0..count-1 (storage
 /// buffers, except those listed in texel_buffers), and a push-constant block of push_constant_bytes (<= 128).
+/// specialization: 32-bit values of the shader's constant_id 0, 1, ... (a bool's is 0 or 1); empty: the shader's
+/// defaults.
 class ComputePipeline {
 public:
     ComputePipeline(const GpuDevice& gpu, const uint32_t* spirv, size_t spirv_bytes, uint32_t buffer_count,
-                    uint32_t push_constant_bytes, const std::vector<TexelBufferBinding>& texel_buffers = {});
+                    uint32_t push_constant_bytes, const std::vector<TexelBufferBinding>& texel_buffers = {},
+                    const std::vector<uint32_t>& specialization = {});
     ~ComputePipeline();
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
