@@ -7,7 +7,7 @@
 //
 // With SHADING_TRIANGLE_BINDING defined (the includer traces a scene with materials: the bake and camera
 // kernels), the test reads scene_shading.glsl's buffers; without (a probe of the BVH alone) every hit is opaque.
-// Mirrors bvhHitIsOpaqueCpu (baker/src/bvh_alpha_mask_cpu.cpp).
+// The CPU traversal (baker/src/bvh_cpu_trace.cpp) has no alpha test yet: docs/baker.md says where that shows.
 #ifndef GUSUKU_BVH_ALPHA_MASK_GLSL
 #define GUSUKU_BVH_ALPHA_MASK_GLSL
 
