@@ -10,6 +10,7 @@
 //     option) draws ground quads that the default 1/255 and the 0.1 options leave alone, so a library that took
 //     zeros for the missing fields would fail;
 //   - sizes no layout has (the 0.1 size minus 4, today's plus 8) are refused naming the struct and the sizes.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -142,8 +143,10 @@ static_assert(offsetof(gusuku_runtime_options, msaa_samples) == 68);
 static_assert(offsetof(gusuku_runtime_options, max_anisotropy) == 72);
 static_assert(sizeof(VulkanDevice01) == 48 && sizeof(gusuku_vulkan_device) == 56);
 static_assert(offsetof(gusuku_vulkan_device, instance_api_version) == 48);
-static_assert(sizeof(BakeSetDesc01) == 224 && sizeof(gusuku_bakeset_desc) == 240);
+static_assert(sizeof(BakeSetDesc01) == 224 && sizeof(gusuku_bakeset_desc) == 248);
 static_assert(offsetof(gusuku_bakeset_desc, ground_albedo) == 224);
+// API version 2 (alpha-masked materials).
+static_assert(offsetof(gusuku_bakeset_desc, material_alpha_cutoffs) == 240);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
 static_assert(offsetof(gusuku_frame_input, camera_luma) == 232 && sizeof(gusuku_frame_input) == 312);
@@ -265,6 +268,31 @@ protected:
         return rendered;
     }
 };
+
+// API version 2's field: material_alpha_cutoffs is read (a cutoff in [0, 1] or a negative one, opaque, is accepted;
+// above 1 or NaN is refused naming the material); an older layout reads it as NULL (the test below).
+TEST_F(CApiVersionsTest, MaterialAlphaCutoffsAreReadAndCheckedFromVersion2) {
+    const WallScene scene;
+    gusuku_bakeset_desc desc;
+    std::memset(&desc, 0, sizeof desc);
+    const BakeSetDesc01 old = scene.desc();
+    std::memcpy(&desc, &old, sizeof old);
+    desc.struct_size = sizeof desc;
+    for (const float cutoff : {0.25f, -1.0f}) {
+        desc.material_alpha_cutoffs = &cutoff;
+        gusuku_bakeset* bake_set = nullptr;
+        ASSERT_EQ(gusuku_bakeset_create(&desc, &bake_set), GUSUKU_OK) << gusuku_last_error_message();
+        EXPECT_EQ(gusuku_bakeset_free(bake_set), GUSUKU_OK);
+    }
+    for (const float bad : {1.5f, NAN}) {
+        desc.material_alpha_cutoffs = &bad;
+        gusuku_bakeset* bake_set = nullptr;
+        EXPECT_EQ(gusuku_bakeset_create(&desc, &bake_set), GUSUKU_ERROR_INVALID_BAKE_SET);
+        EXPECT_NE(std::string(gusuku_last_error_message()).find("building.materials[0].alpha_cutoff: "),
+                  std::string::npos)
+            << gusuku_last_error_message();
+    }
+}
 
 TEST_F(CApiVersionsTest, TheOldestLayoutsGiveTodaysFrameWithTodaysDefaults) {
     const WallScene scene;

@@ -115,6 +115,12 @@ DescProblem convertBuilding(const gusuku_bakeset_desc& desc, gusuku::BakeSetMesh
         mesh.materials.push_back({glm::vec4(material.base_color_factor[0], material.base_color_factor[1],
                                             material.base_color_factor[2], material.base_color_factor[3]),
                                   material.base_color_texture});
+        // API version 2; an older app's desc reads NULL here (gusuku_c_api_sizes.h, readSized).
+        const float cutoff = desc.material_alpha_cutoffs != nullptr ? desc.material_alpha_cutoffs[m] : -1.0f;
+        if (!(cutoff < 0.0f)) {  // NaN and values above 1 are masked here and refused by findBakeSetProblem
+            mesh.materials.back().alpha_masked = true;
+            mesh.materials.back().alpha_cutoff = cutoff;
+        }
     }
     for (uint32_t t = 0; t < desc.texture_count; ++t) {
         const gusuku_texture& source = desc.textures[t];

@@ -54,6 +54,7 @@ struct StructLayouts<gusuku_bakeset_desc> {
     static constexpr StructLayout layouts[] = {
         GUSUKU_STRUCT_LAYOUT(gusuku_bakeset_desc, latitude_deg, slot_count),
         GUSUKU_STRUCT_LAYOUT(gusuku_bakeset_desc, ground_albedo, ground_albedo),
+        GUSUKU_STRUCT_LAYOUT(gusuku_bakeset_desc, material_alpha_cutoffs, material_alpha_cutoffs),
     };
 };
 

@@ -10,7 +10,7 @@
  *     gusuku_runtime_close(rt);
  *
  * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
- * 1 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * 2 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
  * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
  * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
  * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
@@ -111,7 +111,7 @@ const char* gusuku_version(void);
 
 /* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
  * fields or functions. */
-#define GUSUKU_API_VERSION 1u
+#define GUSUKU_API_VERSION 2u
 
 /* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
  * gusuku_api_version() is N or more. O(1). */
@@ -205,6 +205,12 @@ typedef struct gusuku_bakeset_desc {
     /* The ground's linear albedo, columns x rows: RGB albedo, A 1 where there is ground. Needed by
      * GUSUKU_COLOUR_MATCH_GROUND only; may be empty (0 x 0, rgba NULL): such a bake set refuses that match. */
     gusuku_image ground_albedo;
+
+    /* API version 2: */
+    /* Alpha-masked materials (glTF alphaMode MASK): one cutoff per material, or NULL for all opaque. A value >= 0
+     * masks that material (fragments whose base colour alpha, factor times texture, is below it are holes in the
+     * building and its shadow); a negative value keeps it opaque; above 1 or NaN: INVALID_BAKE_SET. */
+    const float* material_alpha_cutoffs;
 } gusuku_bakeset_desc;
 
 /* A bake set held in host memory, made by gusuku_bakeset_create or gusuku_bakeset_load (gusuku_loader.h). */
