@@ -8,6 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev
   libopenimageio-dev openimageio-tools libopencolorio-dev libgeographiclib-dev libmeshoptimizer-dev
+  libastcenc-dev  # the baker encodes the pack's ASTC 4x4 HDR lightmaps with Arm's astcenc
   libgtest-dev
   universal-ctags  # the function-length check lists the sources' functions with it
 )

@@ -89,6 +89,48 @@ TEST(Ktx2, EveryPackFormatRoundTrips) {
     }
 }
 
+// ASTC 4x4 HDR: a 5 x 3 image is 2 x 1 blocks of 16 bytes; typeSize 1 (block-compressed), the DFD one ASTC-model
+// sample over the 128-bit block, signed float, with 4 x 4 texel blocks.
+TEST(Ktx2, AstcBlocksLieWhereTheSpecificationPutsThem) {
+    Ktx2Image image{Ktx2Format::kAstc4x4Sfloat, 5, 3, std::vector<uint8_t>(2 * 16)};
+    for (size_t byte = 0; byte < image.texels.size(); ++byte) image.texels[byte] = uint8_t(byte * 29 + 3);
+    EXPECT_EQ(ktx2LevelBytes(Ktx2Format::kAstc4x4Sfloat, 5, 3), 32u);
+    EXPECT_EQ(ktx2LevelBytes(Ktx2Format::kAstc4x4Sfloat, 284, 284), 71u * 71u * 16u);
+    const std::vector<uint8_t> file = encodeKtx2(image);
+    EXPECT_EQ(u32At(file, 12), 1000066000u);  // vkFormat VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK
+    EXPECT_EQ(u32At(file, 16), 1u);           // typeSize of a block-compressed format
+    EXPECT_EQ(u32At(file, 20), 5u);           // pixelWidth and pixelHeight in texels, not blocks
+    EXPECT_EQ(u32At(file, 24), 3u);
+    EXPECT_EQ(u32At(file, 40), 1u);           // levelCount: no mips (docs/runtime.md says why)
+    EXPECT_EQ(u32At(file, 52), 44u);          // DFD: 4 + 24 + one sample of 16
+    EXPECT_EQ(u32At(file, 112), 2u | 40u << 16);
+    EXPECT_EQ(u32At(file, 116), 162u | 1u << 8 | 1u << 16);  // KHR_DF_MODEL_ASTC, BT.709, linear
+    EXPECT_EQ(u32At(file, 120), 3u | 3u << 8);               // texelBlockDimension0/1: 4 - 1
+    EXPECT_EQ(u32At(file, 124), 16u);                        // bytesPlane0: 16 bytes a block
+    EXPECT_EQ(u32At(file, 132), 0u | 127u << 16 | 0xC0u << 24);  // bits 0-127, ASTC_DATA, float | signed
+    EXPECT_EQ(u32At(file, 140), 0xBF800000u);                    // sampleLower -1.0
+    const uint64_t level_offset = u64At(file, 80);
+    EXPECT_EQ(level_offset % 16, 0u);  // lcm(block size 16, 4)
+    EXPECT_EQ(u64At(file, 88), 32u);
+    EXPECT_EQ(file.size(), level_offset + 32);
+    const Ktx2Image back = decodeKtx2(file.data(), file.size(), "building_noon_astc.ktx2", Ktx2Format::kAstc4x4Sfloat);
+    EXPECT_EQ(back.width, 5u);
+    EXPECT_EQ(back.height, 3u);
+    EXPECT_EQ(back.texels, image.texels);
+    std::vector<uint8_t> short_level = file;
+    setU64(short_level, 88, 16);
+    setU64(short_level, 96, 16);
+    short_level.resize(level_offset + 16);
+    try {
+        decodeKtx2(short_level.data(), short_level.size(), "building_noon_astc.ktx2", Ktx2Format::kAstc4x4Sfloat);
+        ADD_FAILURE() << "a level of one block for 2 x 1 blocks was read";
+    } catch (const InputError& error) {
+        EXPECT_EQ(std::string(error.what()).rfind("building_noon_astc.ktx2: levels[0].byteLength: 16 is not 5 x 3 texels "
+                                                  "in 4 x 4 blocks of 16 bytes (32)", 0), 0u) << error.what();
+    }
+    EXPECT_THROW(encodeKtx2({Ktx2Format::kAstc4x4Sfloat, 5, 3, std::vector<uint8_t>(5 * 3)}), std::invalid_argument);
+}
+
 // The one-line message reading `file` gives, or "" when it reads.
 std::string refusal(const std::vector<uint8_t>& file, Ktx2Format expected = Ktx2Format::kE5b9g9r9Ufloat) {
     try {

@@ -149,7 +149,9 @@ std::string refusal(const std::string& folder) {
 std::string firstLightmap(const std::string& pack) {
     for (const auto& entry : fs::directory_iterator(pack)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind("building_", 0) == 0 && name.find("_valid") == std::string::npos) return entry.path().string();
+        if (name.rfind("building_", 0) == 0 && name.find("_valid") == std::string::npos &&
+            name.find("_astc") == std::string::npos)
+            return entry.path().string();
     }
     return "";
 }

@@ -3,6 +3,7 @@
 #include "gusuku_bake/runtime_pack.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "gusuku/maths/ktx2.h"
 #include "gusuku/maths/pack_geometry.h"
 #include "gusuku/maths/shared_exponent.h"
+#include "gusuku_bake/astc_lightmap.h"
 
 namespace gusuku::bake {
 namespace {
@@ -24,6 +26,12 @@ namespace fs = std::filesystem;
 std::string packName(const std::string& exr_name) {
     const size_t dot = exr_name.rfind('.');
     return (dot == std::string::npos ? exr_name : exr_name.substr(0, dot)) + ".ktx2";
+}
+
+// building_noon.exr -> building_noon_valid.ktx2, building_noon_astc.ktx2: the lightmap's companion files.
+std::string lightmapCompanionName(const std::string& exr_name, const char* suffix) {
+    const std::string base = packName(exr_name);
+    return base.substr(0, base.size() - 5) + suffix + ".ktx2";
 }
 
 // The smallest power of 2 (>= 1) that brings every lightmap's RGB within E5B9G9R9's range: dividing by a power
@@ -55,6 +63,13 @@ Ktx2Image validityMask(const BakeSetImage& image) {
     for (size_t texel = 0; texel < image.rgba.size() / 4; ++texel)
         out.texels.push_back(image.rgba[texel * 4 + 3] > 0.0f ? 255 : 0);
     return out;
+}
+
+// The lightmap's RGB / scale as ASTC 4x4 HDR blocks (the same scale as the E5B9G9R9 file, so pack.bin's
+// lightmap_scale serves both; HDR ASTC's largest, 65504, is above E5B9G9R9's 65408).
+Ktx2Image astcLightmap(const BakeSetImage& image, float inverse_scale) {
+    return {Ktx2Format::kAstc4x4Sfloat, uint32_t(image.width), uint32_t(image.height),
+            encodeAstcLightmap(image, inverse_scale)};
 }
 
 Ktx2Image floatImage(const BakeSetImage& image) {
@@ -117,8 +132,12 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
         report.lightmap_bytes +=
             files.writeKtx2(packName(entry.building_irradiance),
                             sharedExponentLightmap(images.building, 1.0f / report.lightmap_scale));
-        const std::string base = packName(entry.building_irradiance);
-        files.writeKtx2(base.substr(0, base.size() - 5) + "_valid.ktx2", validityMask(images.building));
+        files.writeKtx2(lightmapCompanionName(entry.building_irradiance, "_valid"), validityMask(images.building));
+        const auto encode_start = std::chrono::steady_clock::now();
+        const Ktx2Image astc = astcLightmap(images.building, 1.0f / report.lightmap_scale);
+        report.astc_encode_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
+        report.astc_lightmap_bytes += files.writeKtx2(lightmapCompanionName(entry.building_irradiance, "_astc"), astc);
         files.writeKtx2(packName(entry.ground_irradiance_with_building), floatImage(images.ground_with));
         files.writeKtx2(packName(entry.ground_irradiance_without_building), floatImage(images.ground_without));
     }
@@ -132,7 +151,13 @@ bool runtimePackIsUpToDate(const std::string& bake_set_folder) {
     const std::string packed = bake_set_folder + "/" + kRuntimePackFolder + "/manifest.json";
     if (!fs::exists(packed)) return false;
     try {
-        return readWholeFile(packed) == packManifestText(readBakeSetManifest(bake_set_folder + "/manifest.json"));
+        const BakeSetManifest manifest = readBakeSetManifest(bake_set_folder + "/manifest.json");
+        // A pack written before the ASTC lightmaps has none: writing it again adds them.
+        for (const BakeSetSlot& slot : manifest.slots)
+            if (!fs::exists(bake_set_folder + "/" + kRuntimePackFolder + "/" +
+                            lightmapCompanionName(slot.building_irradiance, "_astc")))
+                return false;
+        return readWholeFile(packed) == packManifestText(manifest);
     } catch (const std::exception&) {
         return false;
     }

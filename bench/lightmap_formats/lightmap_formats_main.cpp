@@ -2,22 +2,27 @@
 // set: the lightmaps' GPU memory, and the composite's CIEDE2000 against the float32 lightmaps' composite, per slot.
 //
 // Usage: gusuku-lightmap-formats BAKESET [--size WxH] [--position E,N,U --look-at E,N,U] [--fov DEG]
+//                                [--astc-quality Q[,Q...]]
 // The camera frame is a flat mid grey (the composite passes it through where the building changes nothing, so
 // only the building's and its ground effect's pixels can differ); the exposure puts a sunlit face of albedo 0.5
 // at display value 0.6; no colour match (exposure known). Without --position the camera stands south-east of the
 // building's bounds, 1.8 radii out and 0.6 up, looking at their centre. Each slot is drawn at its own instant
 // (overcast slots at the first sunny slot's, with cloud cover 1). "region" is the pixels where the float32
-// composite differs from the camera frame; "frame" is every pixel. With astcenc (libastcenc-dev) the lightmaps are
-// also encoded as ASTC 4x4 HDR (astcenc's medium quality), decoded on the CPU and drawn as float32: what a device
-// that samples ASTC HDR would show, at its 1 byte a texel.
+// composite differs from the camera frame; "frame" is every pixel. ASTC 4x4 HDR, which lavapipe cannot sample:
+// the runtime pack's blocks (BAKESET/pack/building_<slot>_astc.ktx2, read by loadRuntimePack), decoded on the CPU
+// by astcenc and drawn as float32, which is what a device that samples ASTC HDR shows at its 1 byte a texel; and
+// with --astc-quality, the EXR lightmaps encoded at each astcenc quality given (timed), decoded and drawn alike.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -25,8 +30,9 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/time_utc.h"
+#include "gusuku/loader/runtime_pack.h"
 #include "gusuku/runtime/runtime.h"
-#include "astc_lightmap.h"
+#include "gusuku_bake/astc_lightmap.h"
 #include "image_metrics.h"
 
 using namespace gusuku;
@@ -39,6 +45,7 @@ struct Request {
     bool placed = false;
     glm::dvec3 position{0.0}, look_at{0.0};
     double fov_deg = 55.0;
+    std::vector<float> astc_qualities;  // astcenc qualities to encode the EXR lightmaps at (none: the pack's only)
 };
 
 glm::dvec3 parsePoint(const std::string& option, const char* text) {
@@ -65,6 +72,15 @@ Request readRequest(int argc, char** argv) {
             request.look_at = parsePoint(argument, value);
         } else if (argument == "--fov") {
             request.fov_deg = std::atof(value);
+        } else if (argument == "--astc-quality") {
+            for (const char* at = value; *at != '\0';) {
+                char* end = nullptr;
+                const float quality = std::strtof(at, &end);
+                if (end == at || !(quality >= 0.0f && quality <= 100.0f))
+                    throw std::invalid_argument(std::string("--astc-quality: '") + value + "' is not Q[,Q...] in [0, 100]");
+                request.astc_qualities.push_back(quality);
+                at = *end == ',' ? end + 1 : end;
+            }
         } else if (request.folder.empty() && argument.rfind("--", 0) != 0) {
             request.folder = argument;
             continue;
@@ -101,7 +117,7 @@ double meanLightmapLuminance(const BakeSetImage& image) {
 }
 
 struct FormatRun {
-    const char* name;
+    std::string name;
     uint32_t bytes_per_texel_x16;  // GPU bytes a texel, times 16 (ASTC 4x4: 16 bytes a block, 1 a texel)
     uint64_t device_bytes = 0;
     std::vector<std::vector<uint8_t>> composites;  // one per slot
@@ -145,7 +161,7 @@ void report(const BakeSetData& bake_set, const Request& request, const std::vect
                 request.look_at.z, request.width, request.height);
     for (const FormatRun& run : runs) {
         std::printf("%-16s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB; ASTC: drawn from decoded floats)\n",
-                    run.name,
+                    run.name.c_str(),
                     double(texels * run.bytes_per_texel_x16) / 16.0 / 1048576.0, double(run.device_bytes) / 1048576.0);
         for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
             const std::vector<uint8_t>& reference = runs[0].composites[slot];
@@ -159,6 +175,48 @@ void report(const BakeSetData& bake_set, const Request& request, const std::vect
                         bake_set.manifest.slots[slot].name.c_str(), in_region.mean_de00, in_region.p95_de00,
                         in_region.pixel_count, whole.mean_de00);
         }
+    }
+}
+
+// The bake set with each slot's lightmap RGB replaced by its ASTC blocks decoded (times `scale`), alpha kept.
+BakeSetData withDecodedAstc(const BakeSetData& bake_set, const std::vector<std::vector<uint8_t>>& blocks, float scale) {
+    BakeSetData decoded = bake_set;
+    for (size_t slot = 0; slot < decoded.slots.size(); ++slot) {
+        BakeSetImage& lightmap = decoded.slots[slot].building;
+        const BakeSetImage texels = bake::decodeAstcLightmap(blocks[slot], lightmap.width, lightmap.height);
+        for (size_t index = 0; index < texels.rgba.size(); ++index)
+            if (index % 4 != 3) lightmap.rgba[index] = texels.rgba[index] * scale;
+    }
+    return decoded;
+}
+
+// ASTC 4x4 HDR: the pack's blocks when it has them, and the EXR lightmaps encoded at each --astc-quality.
+void addAstcRuns(const BakeSetData& bake_set, const Request& request, const std::string& sunny_utc,
+                 const std::vector<uint8_t>& camera, std::vector<FormatRun>& runs) {
+    if (std::filesystem::exists(request.folder + "/pack/manifest.json")) {
+        const BakeSetData pack = loadRuntimePack(request.folder);
+        std::vector<std::vector<uint8_t>> blocks;
+        for (const BakeSetSlotImages& slot : pack.slots) blocks.push_back(slot.building_astc);
+        if (!blocks.empty() && !blocks[0].empty()) {
+            runs.push_back({"astc (pack)", 16});
+            drawSlots(withDecodedAstc(bake_set, blocks, pack.building_astc_scale), LightmapFormat::kRgba32f, request,
+                      sunny_utc, camera, runs.back());
+        } else {
+            std::printf("the pack has no ASTC lightmaps (written before them: gusuku-bake pack %s adds them)\n",
+                        request.folder.c_str());
+        }
+    }
+    for (const float quality : request.astc_qualities) {
+        std::vector<std::vector<uint8_t>> blocks;
+        const auto start = std::chrono::steady_clock::now();
+        for (const BakeSetSlotImages& slot : bake_set.slots) blocks.push_back(bake::encodeAstcLightmap(slot.building, 1.0f, quality));
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char name[64];
+        std::snprintf(name, sizeof name, "astc q%g", double(quality));
+        std::printf("%s: %zu slots encoded in %.2f s (%u threads)\n", name, blocks.size(), seconds,
+                    std::max(1u, std::thread::hardware_concurrency()));
+        runs.push_back({name, 16});
+        drawSlots(withDecodedAstc(bake_set, blocks, 1.0f), LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
     }
 }
 
@@ -177,12 +235,7 @@ int main(int argc, char** argv) {
         std::vector<FormatRun> runs = {{"rgba32f", 256}, {"rgba16f", 128}, {"e5b9g9r9", 64}};
         const LightmapFormat formats[3] = {LightmapFormat::kRgba32f, LightmapFormat::kRgba16f, LightmapFormat::kE5b9g9r9};
         for (int index = 0; index < 3; ++index) drawSlots(bake_set, formats[index], request, sunny_utc, camera, runs[index]);
-        if (bench::astcAvailable()) {
-            BakeSetData astc = bake_set;
-            for (BakeSetSlotImages& slot : astc.slots) slot.building = bench::astcRoundTrip(slot.building, 60.0f);
-            runs.push_back({"astc4x4 hdr", 16});
-            drawSlots(astc, LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
-        }
+        addAstcRuns(bake_set, request, sunny_utc, camera, runs);
         report(bake_set, request, camera, runs);
         return 0;
     } catch (const std::exception& error) {

@@ -14,7 +14,9 @@ inline constexpr const char* kRuntimePackFolder = "pack";
 struct RuntimePackReport {
     std::string folder;     ///< BAKESET/pack
     uint64_t bytes = 0;     ///< all its files
-    uint64_t lightmap_bytes = 0;  ///< its building_<slot>.ktx2 files
+    uint64_t lightmap_bytes = 0;  ///< its building_<slot>.ktx2 files (E5B9G9R9)
+    uint64_t astc_lightmap_bytes = 0;  ///< its building_<slot>_astc.ktx2 files (ASTC 4x4 HDR)
+    double astc_encode_seconds = 0.0;  ///< wall time astcenc took for all slots
     float lightmap_scale = 1.0f;  ///< pack.bin's lightmap_scale
 };
 

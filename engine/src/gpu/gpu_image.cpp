@@ -28,6 +28,11 @@ uint32_t bytesPerTexel(VkFormat format) {
     }
 }
 
+size_t levelByteCount(VkFormat format, uint32_t width, uint32_t height) {
+    if (format == VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK) return (size_t(width) + 3) / 4 * ((size_t(height) + 3) / 4) * 16;
+    return size_t(width) * height * bytesPerTexel(format);
+}
+
 namespace {
 
 uint32_t levelSide(uint32_t side, uint32_t level) { return std::max(1u, side >> level); }
@@ -171,7 +176,7 @@ void GpuImage::upload(const void* bytes, size_t byte_count, uint32_t layer, VkIm
         throw std::invalid_argument("GpuImage::upload: level " + std::to_string(level) + " of an image with " +
                                     std::to_string(description_.mip_levels) + " levels");
     const uint32_t width = levelSide(description_.width, level), height = levelSide(description_.height, level);
-    const size_t expected = size_t(width) * height * bytesPerTexel(description_.format);
+    const size_t expected = levelByteCount(description_.format, width, height);
     if (expected == 0 || byte_count != expected || layer >= description_.layers)
         throw std::invalid_argument("GpuImage::upload: " + std::to_string(byte_count) + " bytes for layer " +
                                     std::to_string(layer) + " level " + std::to_string(level) +

@@ -159,6 +159,22 @@ Problem checkOccluder(const BakeSetOccluder& occluder, const BakeSetManifest& ma
     return std::nullopt;
 }
 
+// A slot's ASTC blocks: none, or 16 bytes for each started 4 x 4 block of the lightmap; every slot or none has
+// them (the runtime holds one array of one format).
+Problem checkAstcBlocks(const BakeSetData& bake_set, size_t slot, const std::string& lightmap_size) {
+    const size_t bytes = bake_set.slots[slot].building_astc.size();
+    const size_t side = size_t(bake_set.manifest.building.lightmap_resolution);
+    const size_t expected = (side + 3) / 4 * ((side + 3) / 4) * 16;
+    const std::string field = "slots[" + std::to_string(slot) + "].building_astc";
+    if (bytes != 0 && bytes != expected)
+        return field + ": " + std::to_string(bytes) + " bytes, not the " + std::to_string(expected) +
+               " of 4 x 4 blocks (" + lightmap_size + ")";
+    if ((bytes == 0) != bake_set.slots[0].building_astc.empty())
+        return field + ": " + (bytes == 0 ? "missing" : "present") + ", but slots[0].building_astc is " +
+               (bytes == 0 ? "present" : "missing") + " (every slot or none has ASTC blocks)";
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> findBakeSetProblem(const BakeSetData& bake_set) {
@@ -196,7 +212,10 @@ std::optional<std::string> findBakeSetProblem(const BakeSetData& bake_set) {
         if (Problem p = checkImage(slot.ground_without, field + ".ground_without", grid.columns, grid.rows, grid_size,
                                    true))
             return p;
+        if (Problem p = checkAstcBlocks(bake_set, s, lightmap_size)) return p;
     }
+    if (!(bake_set.building_astc_scale > 0.0f && std::isfinite(bake_set.building_astc_scale)))
+        return "building_astc_scale: " + std::to_string(bake_set.building_astc_scale) + " is not a positive number";
     return std::nullopt;
 }
 

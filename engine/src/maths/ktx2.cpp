@@ -19,22 +19,27 @@ constexpr size_t kDfdOffset = kHeaderBytes + kLevelEntryBytes;
 constexpr char kWriter[] = "gusuku runtime pack";
 
 // Data Format Specification 1.3 values.
-constexpr uint32_t kModelRgbsda = 1, kPrimariesBt709 = 1, kTransferLinear = 1, kTransferSrgb = 2;
+constexpr uint32_t kModelRgbsda = 1, kModelAstc = 162, kPrimariesBt709 = 1, kTransferLinear = 1, kTransferSrgb = 2;
 constexpr uint32_t kChannelAlpha = 15, kQualifierLinear = 0x10, kQualifierExponent = 0x20;
 constexpr uint32_t kQualifierSigned = 0x40, kQualifierFloat = 0x80;
 constexpr uint32_t kFloatMinusOne = 0xBF800000u, kFloatOne = 0x3F800000u;
+// The limits the Data Format Specification's float block formats (BC6H, ASTC HDR) are described with.
+constexpr uint32_t kBlockFloatUpper = 0x7F800000u;
 
 struct Sample {
     uint32_t bit_offset, bit_length, channel_type, lower, upper;
 };
 
+// Block-compressed formats have a typeSize of 1 (the KTX 2.0 specification, "typeSize").
 uint32_t typeSizeOf(Ktx2Format format) {
-    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb ? 1u : 4u;
+    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb || format == Ktx2Format::kAstc4x4Sfloat
+               ? 1u
+               : 4u;
 }
 
 bool isKnown(uint32_t vk_format) {
     for (Ktx2Format format : {Ktx2Format::kR8Unorm, Ktx2Format::kR8g8b8a8Srgb, Ktx2Format::kR32g32b32a32Sfloat,
-                              Ktx2Format::kE5b9g9r9Ufloat})
+                              Ktx2Format::kE5b9g9r9Ufloat, Ktx2Format::kAstc4x4Sfloat})
         if (uint32_t(format) == vk_format) return true;
     return false;
 }
@@ -61,6 +66,10 @@ std::vector<Sample> samplesOf(Ktx2Format format) {
             }
             return samples;
         }
+        case Ktx2Format::kAstc4x4Sfloat:
+            // One sample over the 128-bit block, channel ASTC_DATA (0), signed float (the Data Format
+            // Specification's compressed-format table for the HDR ASTC formats).
+            return {{0, 128, 0 | kQualifierFloat | kQualifierSigned, kFloatMinusOne, kBlockFloatUpper}};
     }
     return {};
 }
@@ -70,9 +79,11 @@ std::vector<uint32_t> dfdWords(Ktx2Format format) {
     const std::vector<Sample> samples = samplesOf(format);
     const uint32_t block_bytes = 24 + 16 * uint32_t(samples.size());
     const uint32_t transfer = format == Ktx2Format::kR8g8b8a8Srgb ? kTransferSrgb : kTransferLinear;
+    const bool astc = format == Ktx2Format::kAstc4x4Sfloat;
+    const uint32_t block_dimensions = astc ? (4 - 1) | (4 - 1) << 8 : 0;  // texelBlockDimension0..3, each minus 1
     std::vector<uint32_t> words = {4 + block_bytes, 0, 2u | block_bytes << 16,
-                                   kModelRgbsda | kPrimariesBt709 << 8 | transfer << 16, 0,
-                                   ktx2TexelBytes(format), 0};
+                                   (astc ? kModelAstc : kModelRgbsda) | kPrimariesBt709 << 8 | transfer << 16,
+                                   block_dimensions, ktx2TexelBytes(format), 0};
     for (const Sample& sample : samples) {
         words.push_back(sample.bit_offset | (sample.bit_length - 1) << 16 | sample.channel_type << 24);
         words.push_back(0);  // sample position 0, 0, 0, 0
@@ -124,6 +135,7 @@ std::string ktx2FormatName(uint32_t vk_format) {
         case uint32_t(Ktx2Format::kR8g8b8a8Srgb): return "VK_FORMAT_R8G8B8A8_SRGB";
         case uint32_t(Ktx2Format::kR32g32b32a32Sfloat): return "VK_FORMAT_R32G32B32A32_SFLOAT";
         case uint32_t(Ktx2Format::kE5b9g9r9Ufloat): return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
+        case uint32_t(Ktx2Format::kAstc4x4Sfloat): return "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK";
         default: return "VkFormat " + std::to_string(vk_format);
     }
 }
@@ -132,15 +144,22 @@ uint32_t ktx2TexelBytes(Ktx2Format format) {
     switch (format) {
         case Ktx2Format::kR8Unorm: return 1;
         case Ktx2Format::kR32g32b32a32Sfloat: return 16;
+        case Ktx2Format::kAstc4x4Sfloat: return 16;
         default: return 4;
     }
 }
 
+uint64_t ktx2LevelBytes(Ktx2Format format, uint32_t width, uint32_t height) {
+    if (format == Ktx2Format::kAstc4x4Sfloat)
+        return (uint64_t(width) + 3) / 4 * ((uint64_t(height) + 3) / 4) * ktx2TexelBytes(format);
+    return uint64_t(width) * height * ktx2TexelBytes(format);
+}
+
 std::vector<uint8_t> encodeKtx2(const Ktx2Image& image) {
     if (!isKnown(uint32_t(image.format))) throw std::invalid_argument("encodeKtx2: unknown format");
-    const size_t level_bytes = size_t(image.width) * image.height * ktx2TexelBytes(image.format);
+    const size_t level_bytes = size_t(ktx2LevelBytes(image.format, image.width, image.height));
     if (image.width == 0 || image.height == 0 || image.texels.size() != level_bytes)
-        throw std::invalid_argument("encodeKtx2: texels are not width x height texels of the format");
+        throw std::invalid_argument("encodeKtx2: texels are not width x height texels (or blocks) of the format");
     const std::vector<uint32_t> dfd = dfdWords(image.format);
     const std::vector<uint8_t> kvd = keyValueData();
     const size_t kvd_offset = kDfdOffset + dfd.size() * 4;
@@ -255,10 +274,11 @@ public:
     Ktx2Image level(Ktx2Format format, size_t parts_end) const {
         Ktx2Image image{format, u32(20), u32(24), {}};
         const uint64_t offset = u64(kHeaderBytes), length = u64(kHeaderBytes + 8);
-        const uint64_t expected = uint64_t(image.width) * image.height * ktx2TexelBytes(format);
+        const uint64_t expected = ktx2LevelBytes(format, image.width, image.height);
+        const char* unit = format == Ktx2Format::kAstc4x4Sfloat ? " texels in 4 x 4 blocks of " : " texels of ";
         if (length != expected)
             fail("levels[0].byteLength", std::to_string(length) + " is not " + std::to_string(image.width) + " x " +
-                                             std::to_string(image.height) + " texels of " +
+                                             std::to_string(image.height) + unit +
                                              std::to_string(ktx2TexelBytes(format)) + " bytes (" +
                                              std::to_string(expected) + ")");
         if (u64(kHeaderBytes + 16) != length)

@@ -82,6 +82,15 @@ BakeSetImage lightmapImage(const std::string& path, uint32_t resolution, float s
     return out;
 }
 
+// The slot's ASTC 4x4 HDR blocks (building_<slot>_astc.ktx2) when the pack has them; a pack written before them
+// has none, and the runtime then draws the E5B9G9R9 lightmap.
+std::vector<uint8_t> astcLightmapBlocks(const std::string& lightmap_path, uint32_t resolution) {
+    const std::string path = lightmap_path.substr(0, lightmap_path.size() - 5) + "_astc.ktx2";
+    std::error_code error;
+    if (!fs::exists(path, error)) return {};
+    return readKtx2(path, Ktx2Format::kAstc4x4Sfloat, resolution, resolution).texels;
+}
+
 std::string packFolderOf(const std::string& folder) {
     std::error_code error;
     if (!fs::exists(folder + "/pack.bin", error) && fs::exists(folder + "/pack/pack.bin", error)) return folder + "/pack";
@@ -122,9 +131,10 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
         const BakeSetSlot& entry = manifest.slots[slot];
         const std::string pointer = "/slots/" + std::to_string(slot) + "/";
         BakeSetSlotImages images;
-        images.building = lightmapImage(packFileOf(folder, manifest_path, pointer + "building_irradiance",
-                                                   entry.building_irradiance),
-                                        resolution, geometry.lightmap_scale);
+        const std::string lightmap_path =
+            packFileOf(folder, manifest_path, pointer + "building_irradiance", entry.building_irradiance);
+        images.building = lightmapImage(lightmap_path, resolution, geometry.lightmap_scale);
+        images.building_astc = astcLightmapBlocks(lightmap_path, resolution);
         images.ground_with = floatImage(packFileOf(folder, manifest_path, pointer + "ground_irradiance_with_building",
                                                    entry.ground_irradiance_with_building),
                                         columns, rows);
@@ -133,6 +143,7 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
                                            columns, rows);
         data.slots.push_back(std::move(images));
     }
+    data.building_astc_scale = geometry.lightmap_scale;
     if (const std::optional<std::string> problem = findBakeSetProblem(data))
         throw InputError(folder, "bake set", *problem);
     return data;

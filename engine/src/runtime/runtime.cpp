@@ -9,6 +9,7 @@
 #include "gusuku/gpu/vulkan_context.h"
 #include "gusuku/maths/bakeset_validate.h"
 #include "device_requirements.h"
+#include "lightmap_format_choice.h"
 #include "runtime_impl.h"
 
 namespace gusuku {
@@ -64,10 +65,10 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "options.msaa_samples: " + std::to_string(samples) + " is not 1, 2, 4 or 8");
-    if (uint32_t(options.lightmap_format) > uint32_t(LightmapFormat::kRgba32f))
+    if (uint32_t(options.lightmap_format) > uint32_t(LightmapFormat::kAuto))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "options.lightmap_format: " + std::to_string(uint32_t(options.lightmap_format)) +
-                               " is not e5b9g9r9, rgba16f or rgba32f");
+                               " is not e5b9g9r9, rgba16f, rgba32f, astc 4x4 hdr or auto");
     const uint32_t camera_format = uint32_t(options.camera_format);
     if (camera_format > uint32_t(CameraFormat::kNv21))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.camera_format: " + std::to_string(camera_format) +
@@ -113,9 +114,10 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     if (const std::optional<std::string> problem = findBakeSetProblem(bake_set))
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
     slot_colour_statistics_ = slotColourStatistics(manifest_);
+    options_.lightmap_format = chooseLightmapFormat(gpu_, bake_set, options_);
     checkDeviceRequirements(gpu_, options_);
     try {
-        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options.lightmap_format);
+        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format);
         createGroundSelectionArrays();
         createTargets();
         // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
@@ -164,6 +166,7 @@ using runtime_detail::RuntimeImpl;
 // (VulkanContext enables it where the device has it), so anisotropy is turned off, not made invalid, without it.
 RuntimeOptions optionsForContext(const VulkanContext& context, RuntimeOptions options) {
     if (!context.enabledFeatures().samplerAnisotropy && options.max_anisotropy > 1.0f) options.max_anisotropy = 1.0f;
+    options.texture_compression_astc_hdr = false;  // VulkanContext does not enable it
     return options;
 }
 
@@ -185,6 +188,7 @@ public:
     void resetColourStatistics() override { runtime_.resetColourStatistics(); }
     void invalidateShadowMaps() override { runtime_.invalidateShadowMaps(); }
     uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }
+    LightmapFormat lightmapFormat() const override { return runtime_.lightmapFormat(); }
 
 private:
     VulkanContext context_;

@@ -70,6 +70,7 @@ public:
     }
     void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
+    LightmapFormat lightmapFormat() const override { return options_.lightmap_format; }
 
 private:
     // runtime_resources.cpp and runtime_frame_pipelines.cpp

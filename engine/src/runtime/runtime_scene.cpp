@@ -148,7 +148,8 @@ std::vector<glm::vec3> slotMeanIndirect(const std::vector<BakeSetSlotImages>& sl
     return means;
 }
 
-// The scale that makes the largest irradiance of the lightmaps and ground terms fit a half float.
+}  // namespace
+
 float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots) {
     float largest = 0.0f;
     for (const BakeSetSlotImages& slot : slots)
@@ -156,6 +157,8 @@ float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots) {
                             largestRgb(slot.ground_without)});
     return largest > kLargestStoredHalf ? largest / kLargestStoredHalf : 1.0f;
 }
+
+namespace {
 
 // One slot's lightmap RGB / irradiance scale in `format`'s texel layout (alpha, the bake set's validity, is not
 // read by the shaders: 1 in the 16- and 32-bit formats, absent in E5B9G9R9).
@@ -202,7 +205,10 @@ void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float in
     description.array_view = true;
     scene.lightmaps = GpuImage(gpu, description);
     for (uint32_t slot = 0; slot < slot_count; ++slot) {
-        const std::vector<uint8_t> texels = lightmapTexels(bake_set.slots[slot].building, inverse_scale, format);
+        // ASTC: the blocks as the bake encoded them (chooseLightmapFormat made sure their scale is the runtime's).
+        const std::vector<uint8_t> texels = format == LightmapFormat::kAstc4x4Hdr
+                                                ? bake_set.slots[slot].building_astc
+                                                : lightmapTexels(bake_set.slots[slot].building, inverse_scale, format);
         scene.lightmaps.upload(texels.data(), texels.size(), slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 }
@@ -326,6 +332,7 @@ VkFormat lightmapVkFormat(LightmapFormat format) {
     switch (format) {
         case LightmapFormat::kRgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
         case LightmapFormat::kRgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
+        case LightmapFormat::kAstc4x4Hdr: return VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK;
         default: return VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
     }
 }
@@ -334,6 +341,7 @@ const char* lightmapFormatName(LightmapFormat format) {
     switch (format) {
         case LightmapFormat::kRgba16f: return "R16G16B16A16_SFLOAT";
         case LightmapFormat::kRgba32f: return "R32G32B32A32_SFLOAT";
+        case LightmapFormat::kAstc4x4Hdr: return "ASTC_4x4_SFLOAT_BLOCK";
         default: return "E5B9G9R9_UFLOAT_PACK32";
     }
 }

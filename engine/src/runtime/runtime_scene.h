@@ -87,6 +87,10 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
                      LightmapFormat lightmap_format);
 
 /// The Vulkan format that holds lightmaps in `format`, and its name for messages.
+/// The scale the runtime stores lightmaps and ground terms at: the largest irradiance over 30000 (so it fits a
+/// half float), or 1 when it is smaller. Stored values times it are the bake set's.
+float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots);
+/// The VkFormat of a resolved format (kAuto is resolved first: chooseLightmapFormat).
 VkFormat lightmapVkFormat(LightmapFormat format);
 const char* lightmapFormatName(LightmapFormat format);
 

@@ -66,6 +66,12 @@ struct BakeSetSlotImages {
     BakeSetImage building;
     BakeSetImage ground_with;
     BakeSetImage ground_without;
+    /// Optional: `building`'s RGB as ASTC 4x4 HDR blocks (VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK, alpha 1), encoded at
+    /// bake time, which a device that samples ASTC HDR draws as they are (RuntimeOptions::lightmap_format). 16
+    /// bytes for each started 4 x 4 block of the lightmap, blocks row by row from the top; the decoded RGB times
+    /// BakeSetData::building_astc_scale is `building`'s. Empty: none (the runtime then uses E5B9G9R9). The
+    /// runtime pack carries them; loadBakeSet (the EXRs) leaves them empty.
+    std::vector<uint8_t> building_astc;
 };
 
 struct BakeSetData {
@@ -77,6 +83,8 @@ struct BakeSetData {
     /// names no ground_grid.albedo (an older bake set).
     BakeSetImage ground_albedo;
     std::vector<BakeSetSlotImages> slots;   ///< one per manifest.slots entry, same order
+    /// The slots' building_astc, decoded, times this are the bake set's irradiance (the pack's lightmap_scale).
+    float building_astc_scale = 1.0f;
 };
 
 }  // namespace gusuku

@@ -1,7 +1,8 @@
 #pragma once
 // KTX 2.0 containers (Khronos KTX File Format Specification 2.0, with the Khronos Data Format Specification 1.3's
 // basic descriptor block) for the runtime pack (docs/bakeset.md, "The runtime pack"): one 2D image, one level, no
-// array layers, one face, no supercompression, in one of the few formats the pack uses. Standard library only, so
+// array layers, one face, no supercompression, in one of the few formats the pack uses (ASTC 4x4 HDR blocks
+// included: the file carries them as they are; nothing here encodes or decodes ASTC). Standard library only, so
 // a phone app's loader reads them without an image library.
 //
 // Written: the 12-byte identifier, the header, the index, one level index entry, the DFD (what the format's texels
@@ -22,14 +23,21 @@ enum class Ktx2Format : uint32_t {
     kR8g8b8a8Srgb = 43,        ///< VK_FORMAT_R8G8B8A8_SRGB: base-colour textures (A linear)
     kR32g32b32a32Sfloat = 109, ///< VK_FORMAT_R32G32B32A32_SFLOAT: the ground terms, geometry and albedo
     kE5b9g9r9Ufloat = 123,     ///< VK_FORMAT_E5B9G9R9_UFLOAT_PACK32: the lightmaps (gusuku/maths/shared_exponent.h)
+    /// VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK (VK_EXT_texture_compression_astc_hdr, core in Vulkan 1.3): the lightmaps
+    /// for devices that sample ASTC HDR. 16 bytes a 4 x 4 block, blocks row by row from the top left.
+    kAstc4x4Sfloat = 1000066000,
 };
 
 /// "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32" and so on, for messages; "VkFormat N" for any other value.
 std::string ktx2FormatName(uint32_t vk_format);
-/// Bytes a texel of `format` takes.
+/// Bytes a texel of `format` takes; for a block-compressed format, the bytes of one block.
 uint32_t ktx2TexelBytes(Ktx2Format format);
+/// Bytes one width x height level of `format` takes: texels times ktx2TexelBytes, or for ASTC 4x4 16 bytes for
+/// every started 4 x 4 block.
+uint64_t ktx2LevelBytes(Ktx2Format format, uint32_t width, uint32_t height);
 
-/// A decoded container: level 0's texels, width * height * ktx2TexelBytes(format) bytes, row 0 at the top.
+/// A decoded container: level 0's texels (ktx2LevelBytes(format, width, height) bytes, row 0 at the top; for ASTC
+/// the blocks as they are).
 struct Ktx2Image {
     Ktx2Format format = Ktx2Format::kR8Unorm;
     uint32_t width = 0;
@@ -37,7 +45,7 @@ struct Ktx2Image {
     std::vector<uint8_t> texels;
 };
 
-/// The file's bytes. std::invalid_argument when texels is not width * height texels or a side is 0.
+/// The file's bytes. std::invalid_argument when texels is not ktx2LevelBytes long or a side is 0.
 std::vector<uint8_t> encodeKtx2(const Ktx2Image& image);
 
 /// Reads a container written as encodeKtx2 writes, whose format must be `expected`; `file` names it in errors.

@@ -150,9 +150,16 @@ enum class YcbcrRange { kNarrow = 0, kFull = 1 };
 /// How the runtime holds the building's lightmaps on the GPU (docs/runtime.md, "Lightmap formats"). The RGB is
 /// all the shaders read; the bake set's validity alpha stays on the CPU.
 enum class LightmapFormat {
-    kE5b9g9r9 = 0,  ///< shared exponent, 4 bytes a texel; every Vulkan device samples and filters it (default)
+    kE5b9g9r9 = 0,  ///< shared exponent, 4 bytes a texel; every Vulkan device samples and filters it
     kRgba16f = 1,   ///< half floats, 8 bytes a texel (the runtime's format before kE5b9g9r9)
     kRgba32f = 2,   ///< float32, 16 bytes a texel: the reference; needs linear filtering of R32G32B32A32_SFLOAT
+    /// ASTC 4x4 HDR (VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK), 1 byte a texel: the bake set's building_astc blocks (the
+    /// runtime pack's, encoded at bake time) as they are. Needs RuntimeOptions::texture_compression_astc_hdr.
+    kAstc4x4Hdr = 3,
+    /// kAstc4x4Hdr where the app enabled textureCompressionASTC_HDR (texture_compression_astc_hdr), the device
+    /// samples and filters the format, and the bake set carries the blocks at the runtime's irradiance scale;
+    /// else kE5b9g9r9 (the default). Runtime::lightmapFormat() says which.
+    kAuto = 4,
 };
 
 /// Options fixed when the runtime opens.
@@ -213,9 +220,16 @@ struct RuntimeOptions {
     /// framebufferDepthSampleCounts; lavapipe has 1 and 4), else open() throws kDevice naming msaa_samples.
     /// 1: one sample per pixel and no resolve, the runtime's path before this option.
     uint32_t msaa_samples = 4;
-    /// The lightmaps' GPU format. A device without the format's SAMPLED_IMAGE_FILTER_LINEAR (only kRgba32f can
-    /// lack it) fails open() with kDevice naming lightmap_format.
-    LightmapFormat lightmap_format = LightmapFormat::kE5b9g9r9;
+    /// The lightmaps' GPU format; kAuto chooses (above). A format forced here that the device cannot sample and
+    /// filter (kRgba32f or kAstc4x4Hdr can lack it) fails open() with kDevice naming lightmap_format, as does
+    /// kAstc4x4Hdr without texture_compression_astc_hdr; kAstc4x4Hdr on a bake set without its blocks (or with
+    /// blocks at another scale than the runtime's) fails with kInvalidBakeSet.
+    LightmapFormat lightmap_format = LightmapFormat::kAuto;
+    /// True when the app enabled textureCompressionASTC_HDR on its device (VkPhysicalDeviceTextureCompression-
+    /// ASTCHDRFeatures of VK_EXT_texture_compression_astc_hdr, or VkPhysicalDeviceVulkan13Features): the runtime
+    /// cannot ask a device which features it was created with. openHeadless's own device does not enable it
+    /// (and sets this false).
+    bool texture_compression_astc_hdr = false;
 };
 
 /// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary
@@ -352,6 +366,9 @@ public:
 
     /// Device memory the runtime holds, bytes (buffers and images, all allocated at open).
     virtual uint64_t deviceMemoryBytes() const = 0;
+
+    /// The format the lightmaps are held in: RuntimeOptions::lightmap_format, kAuto resolved.
+    virtual LightmapFormat lightmapFormat() const = 0;
 
     /// Where an ENU point lands in the frame for these intrinsics and pose (the camera convention above);
     /// nothing when it is behind the camera. Pure maths, for apps and tests.
