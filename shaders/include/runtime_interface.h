@@ -42,6 +42,11 @@ GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFO
     float irradiance_scale;        // stored lightmaps and ground terms times this are the bake set's irradiance
     vec3 direct_only_ambient;      // direct-only mode's ambient irradiance (bake set units)
     float direct_only_shadow_darkening;  // direct-only mode: the ground's ratio in the building's full shadow
+    // The shadow maps' frame constants (ShadowFit), here so no fragment derives them from enu_to_shadow_clip:
+    vec3 shadow_map_x_enu;         // unit ENU vector along the maps' x (texel columns; ShadowFit::right_enu)
+    float shadow_texel_m;          // one texel's side, metres (ShadowFit::texel_size_m)
+    vec3 shadow_map_y_enu;         // unit ENU vector along the maps' y (texel rows, down: -ShadowFit::up_enu)
+    float shadow_texel_depth;      // one texel's side in map depth (texel_size_m / depth_range_m)
     float shadow_texel_uv;         // 1 / shadow map size
     float shadow_depth_bias;       // depth bias per unit tan(angle), in the map's depth units
     float shadow_pcf_radius;       // 0: hard building shadow; r: the sun's penumbra, blocker search 2 + r texels out

@@ -1,6 +1,6 @@
 // The runtime's shadow lookups. Needs FrameUniforms; the includer declares the building map's two samplers:
 // `building_shadow` (sampler2DShadow, bilinear compare) and `building_shadow_depths` (sampler2D, nearest).
-//   - The building's shadow (buildingSunVisibility): V in [0, 1] (1 lit) with the penumbra the sun's real disc
+//   - The building's shadow (buildingSunVisibility, at the point shadowLookup placed): V in [0, 1] (1 lit) with the penumbra the sun's real disc
 //     casts (angular radius 0.2675 degrees: 2 d tan of it wide at d metres from the caster), in three steps:
 //       1. blocker search, fixed taps (no noise from frame to frame, bounded cost): the 4 x 4 texels about the
 //          point and four 2 x 2 blocks on a ring (2 + shadow_pcf_radius) texels out, 8 gathers of the stored
@@ -43,7 +43,6 @@ const float kRingTexels = 2.0;
 // bias. Its 10-90 % width, 1.1 texels, is the sun's disc's (1.37 radii) at this radius, so the step is smooth.
 const float kContactTexels = 0.8;
 const int kDiscTaps = 12;
-const float kGoldenAngle = 2.39996323;
 
 // The point's shadow-map coordinates and biased depth for the site's map; false outside the fitted window
 // (nothing of the building can shade it there).
@@ -57,39 +56,29 @@ bool shadowLookup(vec3 position_enu, vec3 normal_enu, out vec2 uv, out float dep
     return true;
 }
 
-// The receiver as the building's map sees it. The map's matrix is orthographic with orthogonal rows
-// (shadow_fit.h): |row x| = 2 / window side, |row z| = 1 / depth range.
+// The receiver as the building's map sees it, from the frame's constants (FrameUniforms: the maps' axes, texel
+// side and texel depth, computed once on the CPU rather than from the matrix in every fragment).
 struct ShadowReceiver {
     vec2 texel;           // position in texels (texel i's centre at i + 0.5)
     float depth;          // the offset point's map depth, less the margin
     vec2 plane_gradient;  // the receiver plane's map depth per texel step in x and y
-    float texel_m;        // one texel's side, metres
-    float depth_range_m;  // map depth 0 to 1, metres
-    float guard_per_texel;  // kConcaveGuardSlope texels' side in map depth
 };
 
-bool shadowReceiver(vec3 position_enu, vec3 normal_enu, out ShadowReceiver receiver) {
-    mat4 m = frame.enu_to_shadow_clip;
-    vec3 row_x = vec3(m[0][0], m[1][0], m[2][0]);
-    vec3 row_y = vec3(m[0][1], m[1][1], m[2][1]);
-    vec3 row_z = vec3(m[0][2], m[1][2], m[2][2]);
-    receiver.texel_m = 2.0 * frame.shadow_texel_uv / length(row_x);
-    receiver.depth_range_m = 1.0 / length(row_z);
-    float cosine = clamp(dot(normal_enu, frame.sun_direction), kShadowMinCosine, 1.0);
+// `cosine`: n . s held to kShadowMinCosine (shadowLookup's).
+bool shadowReceiver(vec3 position_enu, vec3 normal_enu, float cosine, out ShadowReceiver receiver) {
     float sine = sqrt(1.0 - cosine * cosine);
-    vec3 offset_enu = position_enu + normal_enu * (kNormalOffsetTexels * receiver.texel_m * sine);
-    vec4 clip = m * vec4(offset_enu, 1.0);
+    vec3 offset_enu = position_enu + normal_enu * (kNormalOffsetTexels * frame.shadow_texel_m * sine);
+    vec4 clip = frame.enu_to_shadow_clip * vec4(offset_enu, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
     receiver.texel = uv / frame.shadow_texel_uv;
-    receiver.depth = clip.z - kPlaneMarginTexels * receiver.texel_m / receiver.depth_range_m;
-    receiver.guard_per_texel = kConcaveGuardSlope * receiver.texel_m / receiver.depth_range_m;
+    receiver.depth = clip.z - kPlaneMarginTexels * frame.shadow_texel_depth;
     // Along the plane, a step of one texel in map x moves the depth by -(n.x / n.z) texel_m (n in the map's
     // unit axes, n.z = -cosine towards the sun), held to the same grazing limit as the site's bias.
-    vec2 slope = vec2(dot(normalize(row_x), normal_enu), dot(normalize(row_y), normal_enu)) / cosine;
+    vec2 slope = vec2(dot(frame.shadow_map_x_enu, normal_enu), dot(frame.shadow_map_y_enu, normal_enu)) / cosine;
     float steepest = length(slope);
     if (steepest > kShadowMaxBiasTangent) slope *= kShadowMaxBiasTangent / steepest;
-    receiver.plane_gradient = slope * (receiver.texel_m / receiver.depth_range_m);
+    receiver.plane_gradient = slope * frame.shadow_texel_depth;
     return true;
 }
 
@@ -107,54 +96,64 @@ vec2 blockerSums(ShadowReceiver receiver, vec2 corner, vec4 stored) {
     vec4 offset_y = first.y + vec4(0.5, 0.5, -0.5, -0.5);
     vec4 plane_depth = receiver.depth + receiver.plane_gradient.x * offset_x + receiver.plane_gradient.y * offset_y;
     vec4 lateral = sqrt(offset_x * offset_x + offset_y * offset_y);
-    vec4 limit = min(plane_depth, receiver.depth - lateral * receiver.guard_per_texel);
+    vec4 limit = min(plane_depth, receiver.depth - lateral * (kConcaveGuardSlope * frame.shadow_texel_depth));
     vec4 blocks = vec4(lessThan(stored, limit));
     return vec2(dot(blocks, receiver.depth - stored), dot(blocks, vec4(1.0)));
 }
 
-vec4 gatherDepths(vec2 corner) { return textureGather(building_shadow_depths, corner * frame.shadow_texel_uv, 0); }
+// The 2 x 2 block about `corner`: its blockers' sums.
+vec2 blockSums(ShadowReceiver receiver, vec2 corner) {
+    return blockerSums(receiver, corner, textureGather(building_shadow_depths, corner * frame.shadow_texel_uv, 0));
+}
+
+// The Vogel disc of kDiscTaps taps on the unit disc (tap i at radius sqrt((i + 0.5) / kDiscTaps), angle i times
+// the golden angle), worked out once here rather than with a sqrt, a cos and a sin per tap and fragment:
+// x, y and the radius.
+const vec3 kDiscTapsUnit[kDiscTaps] = vec3[](
+    vec3(0.2041241, 0.0000000, 0.2041241), vec3(-0.2606993, 0.2388219, 0.3535534),
+    vec3(0.0399042, -0.4546878, 0.4564355), vec3(0.3285945, 0.4285934, 0.5400617),
+    vec3(-0.6030114, -0.1066642, 0.6123724), vec3(0.5712250, -0.3633666, 0.6770032),
+    vec3(-0.1910636, 0.7107470, 0.7359801), vec3(-0.3643790, -0.7015896, 0.7905694),
+    vec3(0.7905567, 0.2887100, 0.8416254), vec3(-0.8224425, 0.3394923, 0.8897565),
+    vec3(0.3964716, -0.8472368, 0.9354143), vec3(0.2929824, 0.9340742, 0.9789450));
 
 // The wide penumbra: bilinear compare taps on a disc of `radius` texels, each against the plane at the tap less
 // the plane's depth change across the hardware's 2 x 2 footprint.
 float discVisibility(ShadowReceiver receiver, float radius) {
     float footprint = 0.5 * (abs(receiver.plane_gradient.x) + abs(receiver.plane_gradient.y));
+    float guard_per_texel = kConcaveGuardSlope * frame.shadow_texel_depth;
     float lit = 0.0;
     for (int tap = 0; tap < kDiscTaps; ++tap) {
-        float r = radius * sqrt((float(tap) + 0.5) / float(kDiscTaps));
-        float angle = float(tap) * kGoldenAngle;
-        vec2 offset = r * vec2(cos(angle), sin(angle));
-        float depth = min(receiver.depth + dot(receiver.plane_gradient, offset),
-                          receiver.depth - r * receiver.guard_per_texel) - footprint;
+        vec2 offset = radius * kDiscTapsUnit[tap].xy;
+        float r = radius * kDiscTapsUnit[tap].z;
+        float depth = min(receiver.depth + dot(receiver.plane_gradient, offset), receiver.depth - r * guard_per_texel) -
+                      footprint;
         lit += texture(building_shadow, vec3((receiver.texel + offset) * frame.shadow_texel_uv, depth));
     }
     return lit / float(kDiscTaps);
 }
 
-float buildingSunVisibility(vec3 position_enu, vec3 normal_enu) {
-    vec2 uv;
-    float depth;
-    if (!shadowLookup(position_enu, normal_enu, uv, depth)) return 1.0;
+// The building's shadow at a point shadowLookup placed (its uv and biased depth, so that a shader that also reads
+// the site's map, which shares the matrix, projects the point once).
+float buildingSunVisibility(vec3 position_enu, vec3 normal_enu, vec2 uv, float depth) {
     // shadow_pcf_radius 0: hard shadows, the contact tap alone (the cheapest).
     if (frame.shadow_pcf_radius <= 0.0) return texture(building_shadow, vec3(uv, depth));
     ShadowReceiver receiver;
-    if (!shadowReceiver(position_enu, normal_enu, receiver)) return 1.0;
+    float cosine = clamp(dot(normal_enu, frame.sun_direction), kShadowMinCosine, 1.0);
+    if (!shadowReceiver(position_enu, normal_enu, cosine, receiver)) return 1.0;
     // Step 2. The 4 x 4 block about the texel corner nearest the point, then the ring.
     float ring = kRingTexels + frame.shadow_pcf_radius;
-    vec2 blocks[8] = vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0), vec2(-ring, 0.0),
-                            vec2(ring, 0.0), vec2(0.0, -ring), vec2(0.0, ring));
     vec2 centre = floor(receiver.texel + 0.5);
-    vec2 sums = vec2(0.0);
-    for (int block = 0; block < 4; ++block)
-        sums += blockerSums(receiver, centre + blocks[block], gatherDepths(centre + blocks[block]));
+    vec2 sums = blockSums(receiver, centre + vec2(-1.0, -1.0)) + blockSums(receiver, centre + vec2(1.0, -1.0)) +
+                blockSums(receiver, centre + vec2(-1.0, 1.0)) + blockSums(receiver, centre + vec2(1.0, 1.0));
     // Nothing blocks within 2 texels: lit (most fragments stop here, after 4 gathers). What this gives up: the
     // outermost rim of a penumbra wider than about 2 texels of radius, where V is above 0.9 anyway.
     if (sums.y == 0.0) return 1.0;
-    for (int block = 4; block < 8; ++block)
-        sums += blockerSums(receiver, centre + blocks[block], gatherDepths(centre + blocks[block]));
-    // Step 3. The penumbra's radius from the blockers' mean distance, at most what the ring reaches less a texel
-    // for the taps' own footprint.
-    float distance_m = sums.x / sums.y * receiver.depth_range_m;
-    float radius = min(distance_m * kSunRadiusTangent / receiver.texel_m, ring - 1.0);
+    sums += blockSums(receiver, centre + vec2(-ring, 0.0)) + blockSums(receiver, centre + vec2(ring, 0.0)) +
+            blockSums(receiver, centre + vec2(0.0, -ring)) + blockSums(receiver, centre + vec2(0.0, ring));
+    // Step 3. The penumbra's radius from the blockers' mean distance (in map depth; over the texel's depth it is
+    // in texels), at most what the ring reaches less a texel for the taps' own footprint.
+    float radius = min(sums.x / sums.y / frame.shadow_texel_depth * kSunRadiusTangent, ring - 1.0);
     if (radius > kContactTexels) return discVisibility(receiver, radius);
     return texture(building_shadow, vec3(uv, depth));
 }

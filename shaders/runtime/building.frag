@@ -62,14 +62,15 @@ void main() {
     vec3 sun_irradiance = vec3(0.0);
     float cosine = dot(normal, frame.sun_direction);
     if (frame.sun_shines != 0u && cosine > 0.0) {
-        // The blocker search settles most fragments (fully lit); only the rest pay for the penumbra's filter.
-        float visibility = buildingSunVisibility(position_enu, normal);
-        // The real site's shadow on the building: one bilinear compare tap (its edges come from far away and
-        // are soft in the camera image anyway).
-        if (frame.site_shadows != 0u && visibility > 0.0) {
-            vec2 uv;
-            float depth;
-            if (shadowLookup(position_enu, normal, uv, depth)) visibility *= texture(site_shadow, vec3(uv, depth));
+        // Both maps share the matrix: the point is projected once. The blocker search settles most fragments
+        // (fully lit); only the rest pay for the penumbra's filter. The real site's shadow on the building: one
+        // bilinear compare tap (its edges come from far away and are soft in the camera image anyway).
+        float visibility = 1.0;
+        vec2 uv;
+        float depth;
+        if (shadowLookup(position_enu, normal, uv, depth)) {
+            visibility = buildingSunVisibility(position_enu, normal, uv, depth);
+            if (frame.site_shadows != 0u && visibility > 0.0) visibility *= texture(site_shadow, vec3(uv, depth));
         }
         sun_irradiance = frame.sun_irradiance * (visibility * cosine);
     }

@@ -55,9 +55,13 @@ void main() {
     bool sun_shines = kSunShines && frame.sun_shines != 0u && dot(normal, frame.sun_direction) > 0.0;
     // Only cells the CPU found in the building's shadow reach read the building's shadow map at all; there the
     // blocker search settles most fragments (lit) before any filter.
+    // Both maps share the matrix: the point is projected once.
+    vec2 shadow_uv;
+    float shadow_depth;
+    bool in_shadow_window = sun_shines && shadowLookup(position_enu, normal, shadow_uv, shadow_depth);
     float building_visibility = 1.0;
-    if (kBuildingShadow && sun_shines && shadow_candidate > 0.0)
-        building_visibility = buildingSunVisibility(position_enu, normal);
+    if (kBuildingShadow && in_shadow_window && shadow_candidate > 0.0)
+        building_visibility = buildingSunVisibility(position_enu, normal, shadow_uv, shadow_depth);
     if (building_visibility >= 1.0 && !baked_change) {
         out_ratio = kUnchanged;
         return;
@@ -69,11 +73,8 @@ void main() {
     } else {
         // The real scene's own shadow only decides whether the sun adds to this point: one bilinear compare tap.
         float scene_visibility = 1.0;
-        if (sun_shines && frame.site_shadows != 0u) {
-            vec2 uv;
-            float depth;
-            if (shadowLookup(position_enu, normal, uv, depth)) scene_visibility = texture(site_shadow, vec3(uv, depth));
-        }
+        if (in_shadow_window && frame.site_shadows != 0u)
+            scene_visibility = texture(site_shadow, vec3(shadow_uv, shadow_depth));
         vec3 e_sun = sun_shines ? sun_irradiance * scene_visibility : vec3(0.0);
         ratio = groundShadowRatio(irradiance_with, irradiance_without, e_sun, building_visibility);
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -38,8 +39,22 @@ void writeSlots(const FrameLighting& lighting, const SlotBlend& blend, const Run
     u.direct_only_shadow_darkening = options.direct_only_shadow_darkening;
 }
 
+// std140 puts each vec3 at a 16-byte offset with the scalar after it in its tail (interface_types.h).
+static_assert(offsetof(FrameUniforms, shadow_map_x_enu) == 224 && offsetof(FrameUniforms, shadow_texel_m) == 236);
+static_assert(offsetof(FrameUniforms, shadow_map_y_enu) == 240 && offsetof(FrameUniforms, shadow_texel_depth) == 252);
+
+// The maps' constants from the matrix itself (orthographic with orthogonal rows, shadow_fit.h: |row x| = 2 /
+// window side, |row z| = 1 / depth range), so they agree with what the shaders project with.
 void writeShadow(const ShadowFit& fit, const RuntimeOptions& options, FrameUniforms& u) {
     toShader(fit.enu_to_clip, u.enu_to_shadow_clip);
+    const glm::dmat4& m = fit.enu_to_clip;
+    const glm::dvec3 row_x(m[0][0], m[1][0], m[2][0]), row_y(m[0][1], m[1][1], m[2][1]);
+    const glm::dvec3 row_z(m[0][2], m[1][2], m[2][2]);
+    const double texel_m = 2.0 / (double(options.shadow_map_size) * glm::length(row_x));
+    toShader(glm::normalize(row_x), u.shadow_map_x_enu);
+    toShader(glm::normalize(row_y), u.shadow_map_y_enu);
+    u.shadow_texel_m = float(texel_m);
+    u.shadow_texel_depth = float(texel_m * glm::length(row_z));
     u.shadow_texel_uv = 1.0f / float(options.shadow_map_size);
     u.shadow_depth_bias = float(shadowDepthBias(options.shadow_bias_texels, fit));
     u.shadow_pcf_radius = float(options.shadow_pcf_radius);
