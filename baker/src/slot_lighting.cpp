@@ -39,6 +39,18 @@ std::string luxText(double lux) {
     return text;
 }
 
+/// What the clear-sky fallback's warning adds: how the user can do better than the model.
+std::string clearSkyFallbackAdvice(const SkyConfig& sky, const SunDiscEstimate& disc) {
+    if (sky.photos.empty()) return "";  // an HDR map: its units are its own, a lux reading cannot scale it
+    if (!disc.found)
+        return sky.global_horizontal_lux ? "; /skies/sunny/global_horizontal_lux not used: the photos show no sun "
+                                           "disc to place the capture's sun"
+                                         : "";
+    return ": one photo cannot hold the sun's strength (the model assumes a clear sky's turbidity and overestimates "
+           "a sun veiled by cloud); give a bracket whose darkest photo holds the disc unclipped, or the lux meter's "
+           "reading at the capture as /skies/sunny/global_horizontal_lux";
+}
+
 }  // namespace
 
 PreparedSky prepareSky(const SkyConfig& sky) {
@@ -121,13 +133,8 @@ SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const Prepa
             calibratedClearSkySunRgb(sunny.diffuse_horizontal_rgb, calibration_elevation, elevation);
         lighting.sun_irradiance_source = disc.found ? "clear-sky model (map's sun disc is clipped)"
                                                     : "clear-sky model (no sun disc in the map)";
-        lighting.warnings.push_back(
-            "slot " + slot.name + ": E_sun from the " + lighting.sun_irradiance_source +
-            (disc.found ? ": one photo cannot hold the sun's strength (the model assumes a clear sky's turbidity and "
-                          "overestimates a sun veiled by cloud); give a bracket whose darkest photo holds the disc "
-                          "unclipped, or the lux meter's reading at the capture as "
-                          "/skies/sunny/global_horizontal_lux"
-                        : ""));
+        lighting.warnings.push_back("slot " + slot.name + ": E_sun from the " + lighting.sun_irradiance_source +
+                                    clearSkyFallbackAdvice(site.sunny_sky, disc));
     }
     return lighting;
 }
