@@ -264,6 +264,10 @@ TEST_F(SiteJson, EightBitSkyPhotoAndBracket) {
     EXPECT_EQ(config.overcast_sky->path, (fs::path(directory_) / "dark.jpg").string());
     EXPECT_FALSE(config.overcast_sky->photos[0].ev100.has_value());  // from its EXIF
     EXPECT_EQ(config.overcast_sky->photos[1].ev100, 9.0);
+    EXPECT_FALSE(config.sunny_sky.global_horizontal_lux.has_value());
+
+    document_["skies"]["sunny"]["global_horizontal_lux"] = 86000;
+    EXPECT_EQ(load().sunny_sky.global_horizontal_lux, 86000.0);
 }
 
 TEST_F(SiteJson, BadSkyPhotoFieldsAreNamed) {
@@ -284,6 +288,12 @@ TEST_F(SiteJson, BadSkyPhotoFieldsAreNamed) {
                 "does not end in .jpg or .jpeg or .png");
     expectError({{"bracket", json::array({{{"path", "theta.jpg"}, {"ev", 3}}})}}, "/skies/sunny/bracket/0/ev", "");
     expectError({{"path", "sky.txt"}}, "/skies/sunny/path", "does not end in .hdr or .exr or .jpg");
+    expectError({{"path", "sky.hdr"}, {"global_horizontal_lux", 50000}}, "/skies/sunny/global_horizontal_lux",
+                "applies to an 8-bit photo");
+    expectError({{"path", "theta.jpg"}, {"global_horizontal_lux", 0}}, "/skies/sunny/global_horizontal_lux",
+                "is outside (0, 200000]");
+    expectError({{"bracket", json::array({{{"path", "theta.jpg"}, {"global_horizontal_lux", 9}}})}},
+                "/skies/sunny/bracket/0/global_horizontal_lux", "");
 }
 
 TEST_F(SiteJson, PositionAndOffsetBothGiven) {

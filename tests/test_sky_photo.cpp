@@ -26,8 +26,11 @@
 #include "gusuku/assets/sky_photo.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/equirect.h"
+#include "gusuku/maths/exposure.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/sun_air_mass.h"
+#include "gusuku/maths/sun_irradiance.h"
+#include "gusuku_bake/sky_model.h"
 #include "gusuku_bake/slot_lighting.h"
 
 namespace {
@@ -203,38 +206,193 @@ double bakeSunLuminance(const gusuku::bake::PreparedSky& sky, bool* from_model) 
     return gusuku::luminanceRec709(rgb);
 }
 
-TEST(SkyPhoto, ClippedSunComesFromTheClearSkyModelOnTheUnclippedDiffuseLight) {
-    REQUIRE_SHARED_SKY();
-    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_sun");
+/// A shared sunny sky and its photo at the sky exposure, both prepared as the bake prepares them.
+struct PhotographedSharedSky {
+    gusuku::bake::PreparedSky hdr, photo;
+    double elevation_deg = 0.0;      ///< the HDR's sun
+    double measured = 0.0;           ///< the HDR's E_sun, luminance
+};
+
+std::optional<PhotographedSharedSky> photographSharedSky(const char* file, const std::string& dir) {
+    const std::string path = gusuku::testing::sharedDataDir() + "/env/" + file;
+    if (gusuku::testing::sharedDataDir().empty() || !std::filesystem::exists(path)) return std::nullopt;
     const TestCamera camera = skyCamera();
-    writePhoto(dir + "/sky.png", gusuku::readRadianceMap(sharedSkyPath()), camera);
+    writePhoto(dir + "/sky.png", gusuku::readRadianceMap(path), camera);
+    PhotographedSharedSky sky;
     SkyConfig hdr_sky;
-    hdr_sky.path = sharedSkyPath();
-    const gusuku::bake::PreparedSky hdr = gusuku::bake::prepareSky(hdr_sky);
-    ASSERT_TRUE(hdr.disc.found && !hdr.disc.clipped);
+    hdr_sky.path = path;
+    sky.hdr = gusuku::bake::prepareSky(hdr_sky);
     SkyConfig photo_sky;
     photo_sky.path = dir + "/sky.png";
     photo_sky.photos = {SkyPhotoConfig{photo_sky.path, camera.ev100()}};
-    const gusuku::bake::PreparedSky photo = gusuku::bake::prepareSky(photo_sky);
+    sky.photo = gusuku::bake::prepareSky(photo_sky);
+    sky.elevation_deg = std::asin(sky.hdr.disc.direction_enu.z) * 180.0 / std::numbers::pi;
+    sky.measured = gusuku::luminanceRec709(sky.hdr.disc.irradiance_rgb);
+    return sky;
+}
+
+double elevationDeg(const gusuku::bake::SunDiscEstimate& disc) {
+    return std::asin(disc.direction_enu.z) * 180.0 / std::numbers::pi;
+}
+
+// The two sunny shared skies: rooitou_park clear with a low sun, immenstadter_horn partly cloudy with its sun
+// veiled (its disc holds 0.64x the diffuse light; a clear sun holds 7-10x).
+constexpr const char* kSunnySharedSkies[] = {"rooitou_park_1k.hdr", "immenstadter_horn_1k.hdr"};
+
+TEST(SkyPhoto, ClippedSunComesFromTheClearSkyModelOnTheUnclippedDiffuseLight) {
+    REQUIRE_SHARED_SKY();
+    for (const char* file : kSunnySharedSkies) {
+        const std::optional<PhotographedSharedSky> sky =
+            photographSharedSky(file, gusuku::testing::makeTemporaryDirectory("sky_photo_sun"));
+        ASSERT_TRUE(sky) << file;
+        ASSERT_TRUE(sky->hdr.disc.found && !sky->hdr.disc.clipped) << file;
+        ASSERT_TRUE(sky->photo.disc.found) << file;
+        EXPECT_TRUE(sky->photo.disc.clipped) << file;
+        EXPECT_LT(glm::degrees(std::acos(glm::dot(sky->photo.disc.direction_enu, sky->hdr.disc.direction_enu))), 1.0);
+        bool from_model = false;
+        const double photo_sun = bakeSunLuminance(sky->photo, &from_model);
+        EXPECT_TRUE(from_model);
+        // The same model on the HDR's own diffuse light: what the photo can at best give.
+        const double h = sky->elevation_deg;
+        const double model_on_hdr = gusuku::luminanceRec709(
+            gusuku::calibratedClearSkySunRgb(sky->hdr.diffuse_horizontal_rgb, h, h));
+        std::printf("%s: sun at %.2f deg: measured in the HDR %.2f; clear-sky model on the photo %.2f (x%.3f), on "
+                    "the HDR %.2f (x%.3f); diffuse horizontal luminance photo / HDR %.4f\n",
+                    file, h, sky->measured, photo_sun, photo_sun / sky->measured, model_on_hdr,
+                    model_on_hdr / sky->measured,
+                    sky->photo.diffuse_horizontal_luminance / sky->hdr.diffuse_horizontal_luminance);
+        // The 8-bit photo loses no more than 10 % against the model on the HDR.
+        EXPECT_NEAR(photo_sun / model_on_hdr, 1.0, 0.10) << file;
+        // The model itself stands within the 1.4x that test_sun_colour allows a clear-sky fallback on the clear
+        // sky (1.32x measured). On the veiled sun it is far off (13.8x): reported, not asserted.
+        if (std::string(file) == "rooitou_park_1k.hdr") {
+            EXPECT_NEAR(photo_sun / sky->measured, 1.0, 0.40);
+        }
+    }
+}
+
+// With the lux meter's reading at the capture (here the HDR's own global horizontal illuminance: its diffuse light
+// plus its measured sun on the horizontal, at 179 lm per unit), one clipped photo's sun comes back by energy.
+TEST(SkyPhoto, ClippedSunFromALuxReadingIsWithinTenPercentOfTheMeasuredSun) {
+    REQUIRE_SHARED_SKY();
+    for (const char* file : kSunnySharedSkies) {
+        const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_lux");
+        const std::optional<PhotographedSharedSky> sky = photographSharedSky(file, dir);
+        ASSERT_TRUE(sky && sky->photo.disc.found && sky->photo.disc.clipped) << file;
+        const double h_photo = elevationDeg(sky->photo.disc);
+        const double lux = gusuku::kRadianceWhiteEfficacy *
+                           (sky->hdr.diffuse_horizontal_luminance +
+                            sky->measured * std::sin(sky->elevation_deg * std::numbers::pi / 180.0));
+        const glm::dvec3 sun = gusuku::bake::sunFromGlobalHorizontalLux(sky->photo, lux, h_photo, h_photo, "site.json");
+        const double ratio = gusuku::luminanceRec709(sun) / sky->measured;
+        std::printf("%s: global horizontal %.1f lux: sun from the reading x%.4f the HDR's\n", file, lux, ratio);
+        EXPECT_NEAR(ratio, 1.0, 0.10) << file;
+        // Its colour is the clear-sky fallback's.
+        const glm::dvec3 model = gusuku::calibratedClearSkySunRgb(sky->photo.diffuse_horizontal_rgb, h_photo, h_photo);
+        EXPECT_NEAR(sun.r / sun.b, model.r / model.b, 1e-9 * model.r / model.b);
+    }
+    // A reading at or below the photo's own diffuse light is a shaded meter or a wrong exposure.
+    const std::optional<PhotographedSharedSky> sky =
+        photographSharedSky(kSunnySharedSkies[0], gusuku::testing::makeTemporaryDirectory("sky_photo_lux_low"));
+    const double diffuse_lux = gusuku::kRadianceWhiteEfficacy * sky->photo.diffuse_horizontal_luminance;
+    const std::string error = expectInputError(
+        [&] { gusuku::bake::sunFromGlobalHorizontalLux(sky->photo, 0.5 * diffuse_lux, 10.0, 10.0, "site.json"); });
+    EXPECT_EQ(error.rfind("site.json: /skies/sunny/global_horizontal_lux: ", 0), 0u) << error;
+    EXPECT_NE(error.find("is not above the photos' own diffuse horizontal illuminance"), std::string::npos) << error;
+}
+
+// The estimators on a sky known in closed form: the CIE standard clear sky (its circumsolar indicatrix the
+// aureole) with a sun disc whose DNI / DHI is ESRA's clear-sky ratio at its elevation, so the clear-sky fallback's
+// premise holds exactly. Photographed so that the disc clips, both estimators recover the beam: the clear-sky model
+// from the photo's diffuse light and the lux reading by energy. Tolerance 3 %: the disc's removal replaces the
+// aureole's texels around it with its ring's mean, and the sky's darker texels are held by a few 8-bit codes.
+/// The analytic clear sky below, photographed, with what the estimators should give.
+struct AnalyticPhoto {
+    SkyConfig config;
+    gusuku::bake::PreparedSky photo;
+    double beam = 0.0;                     ///< the spec's DNI (the sun's colour has luminance 1)
+    double global_horizontal_lux = 0.0;    ///< what a lux meter under it reads
+    double diffuse_horizontal = 0.0;       ///< the spec's DHI
+};
+
+AnalyticPhoto photographAnalyticClearSky(const std::string& dir) {
+    const double elevation = 30.0;
+    gusuku::bake::ClearSkySpec spec;
+    const double e = glm::radians(elevation);
+    spec.sun_direction = glm::dvec3(0.0, std::cos(e), std::sin(e));
+    spec.direct_normal_to_diffuse_horizontal = gusuku::clearSkyDirectToDiffuseRatio(elevation);
+    const gusuku::bake::ClearSkyModel model(spec);
+    // The exposure that saturates at 1.5x the brightest channel of the sky 0.5 deg from the sun: the disc clips,
+    // the aureole does not (the CIE sky's circumsolar brightening is broad, its luminance halving only from 0.5 to
+    // 12 deg, so a clip taking part of it would leave a bright core wider than extractSunDisc takes for a sun).
+    const double off = glm::radians(elevation + 0.5);
+    const glm::dvec3 aureole = model.radiance(glm::dvec3(0.0, std::cos(off), std::sin(off)));
+    const double saturating = 1.5 * std::max({aureole.r, aureole.g, aureole.b});
+    const TestCamera camera{1.2 * 64.0 / (179.0 * saturating), 8.0, 100.0};
+    writePhoto(dir + "/sky.png", gusuku::bake::renderClearSky(spec, 1024, 512, 0.0), camera);
+    AnalyticPhoto analytic;
+    analytic.config.path = dir + "/sky.png";
+    analytic.config.photos = {SkyPhotoConfig{analytic.config.path, camera.ev100()}};
+    analytic.photo = gusuku::bake::prepareSky(analytic.config);
+    analytic.beam = model.directNormalIrradiance();
+    analytic.global_horizontal_lux = gusuku::kRadianceWhiteEfficacy * model.globalHorizontalIrradiance();
+    analytic.diffuse_horizontal = spec.diffuse_horizontal_irradiance;
+    return analytic;
+}
+
+// The estimators on a sky known in closed form: the CIE standard clear sky (its circumsolar indicatrix the
+// aureole) with a sun disc whose DNI / DHI is ESRA's clear-sky ratio at its elevation (30 deg), so the clear-sky
+// fallback's premise holds exactly. Photographed so that the disc clips, both estimators recover the beam: the
+// clear-sky model from the photo's diffuse light and the lux reading by energy. Tolerance 1 % (0.06 % measured):
+// the disc's removal replaces the aureole's texels around it with its ring's mean, and the sky's darker texels are
+// held by a few 8-bit codes.
+TEST(SkyPhoto, ClippedSunOfAnAnalyticClearSkyIsRecoveredByBothEstimators) {
+    const AnalyticPhoto analytic = photographAnalyticClearSky(gusuku::testing::makeTemporaryDirectory("sky_analytic"));
+    const gusuku::bake::PreparedSky& photo = analytic.photo;
     ASSERT_TRUE(photo.disc.found);
-    EXPECT_TRUE(photo.disc.clipped);
-    EXPECT_LT(glm::degrees(std::acos(glm::dot(photo.disc.direction_enu, hdr.disc.direction_enu))), 1.0);
-    bool from_model = false;
-    const double measured = gusuku::luminanceRec709(hdr.disc.irradiance_rgb);
-    const double photo_sun = bakeSunLuminance(photo, &from_model);
-    EXPECT_TRUE(from_model);
-    // The same model on the HDR's own diffuse light: what the photo can at best give.
-    const double elevation = std::asin(hdr.disc.direction_enu.z) * 180.0 / std::numbers::pi;
-    const double model_on_hdr = gusuku::luminanceRec709(
-        gusuku::calibratedClearSkySunRgb(hdr.diffuse_horizontal_rgb, elevation, elevation));
-    std::printf("sun at %.2f deg: measured in the HDR %.1f; clear-sky model on the photo %.1f (x%.3f), on the HDR "
-                "%.1f (x%.3f); diffuse horizontal luminance photo / HDR %.4f\n",
-                elevation, measured, photo_sun, photo_sun / measured, model_on_hdr, model_on_hdr / measured,
-                photo.diffuse_horizontal_luminance / hdr.diffuse_horizontal_luminance);
-    // The 8-bit photo loses no more than 10 % against the model on the HDR; the model itself stands within the
-    // 1.4x that test_sun_colour allows a clear-sky fallback on this sky (1.32x measured).
-    EXPECT_NEAR(photo_sun / model_on_hdr, 1.0, 0.10);
-    EXPECT_NEAR(photo_sun / measured, 1.0, 0.40);
+    ASSERT_TRUE(photo.disc.clipped);
+    const double h = elevationDeg(photo.disc);
+    EXPECT_NEAR(h, 30.0, 0.3);
+    const double from_model =
+        gusuku::luminanceRec709(gusuku::calibratedClearSkySunRgb(photo.diffuse_horizontal_rgb, h, h));
+    const double from_lux = gusuku::luminanceRec709(
+        gusuku::bake::sunFromGlobalHorizontalLux(photo, analytic.global_horizontal_lux, h, h, "site.json"));
+    std::printf("analytic clear sky, sun at %.2f deg, DNI %.3f, removed texels %d: clear-sky model x%.4f, lux "
+                "x%.4f; diffuse horizontal photo / spec %.4f\n",
+                h, analytic.beam, photo.disc.texel_count, from_model / analytic.beam, from_lux / analytic.beam,
+                photo.diffuse_horizontal_luminance / analytic.diffuse_horizontal);
+    EXPECT_NEAR(from_model / analytic.beam, 1.0, 0.01);
+    EXPECT_NEAR(from_lux / analytic.beam, 1.0, 0.01);
+}
+
+// A sunny slot of a site whose photo clips the sun takes the lux reading when site.json gives one, and says how to
+// do better when it does not.
+TEST(SkyPhoto, SlotTakesTheLuxReadingForAClippedSun) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_analytic_slot");
+    const AnalyticPhoto analytic = photographAnalyticClearSky(dir);
+    gusuku::SiteConfig site = gusuku::testing::loadMiniSite(dir, 4);
+    site.sunny_sky = analytic.config;
+    const gusuku::BakeSlot& slot = site.bake.slots.front();
+    ASSERT_EQ(slot.sky, gusuku::SlotSky::Sunny);
+    const gusuku::bake::SlotLighting without = gusuku::bake::lightSlot(site, slot, analytic.photo, nullptr);
+    ASSERT_TRUE(without.sun.present);
+    EXPECT_EQ(without.sun_irradiance_source, "clear-sky model (map's sun disc is clipped)");
+    ASSERT_EQ(without.warnings.size(), 1u);
+    EXPECT_NE(without.warnings[0].find("/skies/sunny/global_horizontal_lux"), std::string::npos) << without.warnings[0];
+
+    site.sunny_sky.global_horizontal_lux = analytic.global_horizontal_lux;
+    const gusuku::bake::SlotLighting with = gusuku::bake::lightSlot(site, slot, analytic.photo, nullptr);
+    EXPECT_EQ(with.sun_irradiance_source.rfind("global_horizontal_lux less the photos' diffuse light", 0), 0u);
+    EXPECT_TRUE(with.warnings.empty());
+    const double h = elevationDeg(analytic.photo.disc);
+    const glm::dvec3 expected = gusuku::bake::sunFromGlobalHorizontalLux(
+        analytic.photo, analytic.global_horizontal_lux, h, with.sun_position.apparent_elevation_deg, site.file);
+    EXPECT_EQ(with.sun.irradiance_rgb, expected);
+
+    // A shaded meter's reading (under the sky's own diffuse light) is refused, naming site.json and the field.
+    site.sunny_sky.global_horizontal_lux = 0.9 * gusuku::kRadianceWhiteEfficacy * analytic.diffuse_horizontal;
+    const std::string error = expectInputError([&] { gusuku::bake::lightSlot(site, slot, analytic.photo, nullptr); });
+    EXPECT_EQ(error.rfind(site.file + ": /skies/sunny/global_horizontal_lux: ", 0), 0u) << error;
 }
 
 /// Three exposures of one view, about 7 stops apart (EV100 9.91, 16.88, 24.0): the brightest holds the shade,

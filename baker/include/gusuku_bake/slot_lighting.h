@@ -33,6 +33,8 @@ PreparedSky prepareSky(const SkyConfig& sky);
 ///  - the map's disc found, unclipped and above 0.5 deg: the measured disc carried from the photo's sun elevation
 ///    to the slot's by air mass (gusuku/maths/sun_air_mass.h carryMeasuredSunRgb: Rayleigh plus a fitted aerosol depth,
 ///    per channel; identity when the slot's sun stands where the photo's did);
+///  - the disc found but clipped, above 0.5 deg, and the sky's global_horizontal_lux given: E_sun by energy from
+///    that reading (sunFromGlobalHorizontalLux);
 ///  - else the clear-sky fallback calibrated on the map's own diffuse light (calibratedClearSkySunRgb: aerosol
 ///    depth from the diffuse light's colour, luminance from ESRA's clear-sky direct/diffuse ratio), evaluated at
 ///    the clipped disc's elevation when the map shows one, else at the slot's own elevation.
@@ -44,6 +46,18 @@ struct SlotLighting {
     const PreparedSky* sky = nullptr;
     std::vector<std::string> warnings;
 };
+
+/// E_sun (direct normal, the map's units, per channel) at to_elevation_deg from a lux meter's reading taken
+/// with 8-bit photos, whose exposure puts them in absolute units (kRadianceWhiteEfficacy cd m^-2 per unit of
+/// luminance; gusuku/maths/exposure.h). The reading less the photos' own diffuse horizontal illuminance (the
+/// sky with its sun removed, sky.diffuse_horizontal_luminance x 179) is the direct beam on the horizontal; over
+/// sin(photo_sun_elevation_deg) it is the beam's normal illuminance at the photo's sun. Colour and the carry to
+/// to_elevation_deg are the clear-sky fallback's (calibratedClearSkySunRgb), scaled to that luminance. Throws
+/// InputError(site_file, "/skies/sunny/global_horizontal_lux", ...) when the reading is not above the diffuse
+/// illuminance (a shaded meter, or a wrong exposure). photo_sun_elevation_deg must be > 0.
+glm::dvec3 sunFromGlobalHorizontalLux(const PreparedSky& sky, double global_horizontal_lux,
+                                      double photo_sun_elevation_deg, double to_elevation_deg,
+                                      const std::string& site_file);
 
 SlotLighting lightSlot(const SiteConfig& site, const BakeSlot& slot, const PreparedSky& sunny,
                        const PreparedSky* overcast);

@@ -44,6 +44,8 @@ constexpr NumberRange kNorthAzimuth{0.0, 360.0, false, true};
 constexpr NumberRange kEv100{-10.0, 30.0};
 // A bracket of one view: cameras shoot 3 to 9; beyond 16 it is more likely a folder of different photos.
 constexpr size_t kMaxBracketPhotos = 16;
+// Global horizontal illuminance under the sky: the clearest high-altitude noon stays under about 150 klux.
+constexpr NumberRange kGlobalHorizontalLux{0.0, 200000.0, true, false};
 constexpr NumberRange kTexelsPerMetre{0.0, 1000.0, true, false};
 constexpr NumberRange kGroundCell{0.0, 100.0, true, false};
 constexpr int kMaxUtcOffsetMinutes = 14 * 60;
@@ -203,7 +205,8 @@ SkyPhotoConfig readSkyPhoto(const ObjectReader& reader, const fs::path& base_dir
 
 /// An HDR map or one 8-bit photo in `path`, or an exposure bracket of 8-bit photos in `bracket`.
 SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::path& base_directory) {
-    const ObjectReader reader = skies.object(name, {"path", "ev100", "bracket", "north_azimuth_in_image_deg"});
+    const ObjectReader reader =
+        skies.object(name, {"path", "ev100", "bracket", "north_azimuth_in_image_deg", "global_horizontal_lux"});
     SkyConfig sky;
     const bool has_path = reader.has("path");
     if (has_path == reader.has("bracket"))
@@ -217,8 +220,10 @@ SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::
             sky.path = sky.photos.front().path;
         } else {
             sky.path = readFilePath(reader, "path", base_directory, {".hdr", ".exr", ".jpg", ".jpeg", ".png"});
-            if (reader.has("ev100"))
-                reader.fail("ev100", "applies to an 8-bit photo (.jpg, .jpeg, .png); an HDR map holds radiance");
+            for (const char* field : {"ev100", "global_horizontal_lux"})
+                if (reader.has(field))
+                    reader.fail(field, "applies to an 8-bit photo (.jpg, .jpeg, .png), whose exposure makes its "
+                                       "radiance absolute; an HDR map holds radiance in its own units");
         }
     } else {
         if (reader.has("ev100"))
@@ -236,6 +241,7 @@ SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::
     }
     sky.north_azimuth_in_image_deg =
         reader.number("north_azimuth_in_image_deg", kNorthAzimuth, sky.north_azimuth_in_image_deg);
+    sky.global_horizontal_lux = reader.optionalNumber("global_horizontal_lux", kGlobalHorizontalLux);
     return sky;
 }
 

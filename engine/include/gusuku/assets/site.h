@@ -71,6 +71,10 @@ struct SkyConfig {
     double north_azimuth_in_image_deg = 0.0;
     /// 8-bit photos of one view (an exposure bracket when more than one); empty for an HDR map.
     std::vector<SkyPhotoConfig> photos;
+    /// Photos only: the global horizontal illuminance a lux meter lying flat read when the photos were taken
+    /// (lux). When the photos clip the sun's disc it sets E_sun by energy (the reading less the photos' diffuse
+    /// horizontal illuminance, over the sine of the clipped disc's elevation) in place of the clear-sky model.
+    std::optional<double> global_horizontal_lux;
 };
 
 enum class SlotSky { Sunny, Overcast };
