@@ -134,7 +134,7 @@ GUSUKU_SAME_OFFSET(FrameInfo01, gusuku_frame_info, overcast_weight);
 
 // API version 1's layouts on LP64 (x86_64, aarch64): the 0.1 prefixes' sizes and the appended fields' offsets.
 #if UINTPTR_MAX == UINT64_MAX
-static_assert(sizeof(RuntimeOptions01) == 44 && sizeof(gusuku_runtime_options) == 76);
+static_assert(sizeof(RuntimeOptions01) == 44);
 static_assert(offsetof(gusuku_runtime_options, shadow_sun_step_deg) == 44);
 static_assert(offsetof(gusuku_runtime_options, ground_change_threshold) == 48);
 static_assert(offsetof(gusuku_runtime_options, camera_format) == 52);
@@ -147,6 +147,9 @@ static_assert(sizeof(BakeSetDesc01) == 224 && sizeof(gusuku_bakeset_desc) == 248
 static_assert(offsetof(gusuku_bakeset_desc, ground_albedo) == 224);
 // API version 2 (alpha-masked materials).
 static_assert(offsetof(gusuku_bakeset_desc, material_alpha_cutoffs) == 240);
+static_assert(offsetof(gusuku_runtime_options, lightmap_format) == 76 &&
+              offsetof(gusuku_runtime_options, texture_compression_astc_hdr) == 80 &&
+              sizeof(gusuku_runtime_options) == 84);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
 static_assert(offsetof(gusuku_frame_input, camera_luma) == 232 && sizeof(gusuku_frame_input) == 312);
@@ -294,6 +297,59 @@ TEST_F(CApiVersionsTest, MaterialAlphaCutoffsAreReadAndCheckedFromVersion2) {
     }
 }
 
+// API version 2's options: lightmap_format and texture_compression_astc_hdr are read and checked, and
+// gusuku_runtime_lightmap_format reports what open chose; a version-1 layout, whose bytes past it are kBeyond
+// (0x7F7F7F7F would be refused as a format), takes the default, AUTO, which is E5B9G9R9 on a device that does not
+// sample ASTC HDR or a bake set without its blocks (this one).
+TEST_F(CApiVersionsTest, LightmapFormatIsReadFromVersion2AndDefaultsBeforeIt) {
+    const WallScene scene;
+    const OldInBuffer<BakeSetDesc01, gusuku_bakeset_desc> old_desc(scene.desc());
+    gusuku_bakeset* set = nullptr;
+    ASSERT_EQ(gusuku_bakeset_create(old_desc.today(), &set), GUSUKU_OK) << gusuku_last_error_message();
+    const gusuku_vulkan_device vulkan = device();
+    const auto formatOpened = [&](const gusuku_runtime_options* options, gusuku_lightmap_format* format) {
+        gusuku_runtime* runtime = nullptr;
+        const gusuku_result result = gusuku_runtime_open(&vulkan, set, options, &runtime);
+        if (result == GUSUKU_OK) {
+            EXPECT_EQ(gusuku_runtime_lightmap_format(runtime, format), GUSUKU_OK);
+            EXPECT_EQ(gusuku_runtime_lightmap_format(runtime, nullptr), GUSUKU_ERROR_INVALID_ARGUMENT);
+            EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
+        }
+        return result;
+    };
+    gusuku_runtime_options options;
+    ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    EXPECT_EQ(options.lightmap_format, GUSUKU_LIGHTMAP_AUTO);
+    EXPECT_EQ(options.texture_compression_astc_hdr, 0u);
+    options.frame_width = options.frame_height = kSize;
+    options.shadow_map_size = 64;
+
+    gusuku_lightmap_format format = GUSUKU_LIGHTMAP_RGBA32F;
+    std::vector<uint8_t> version1(sizeof options + 64, kBeyond);
+    std::memcpy(version1.data(), &options, offsetof(gusuku_runtime_options, lightmap_format));
+    reinterpret_cast<gusuku_runtime_options*>(version1.data())->struct_size =
+        uint32_t(offsetof(gusuku_runtime_options, lightmap_format));
+    EXPECT_EQ(formatOpened(reinterpret_cast<const gusuku_runtime_options*>(version1.data()), &format), GUSUKU_OK)
+        << gusuku_last_error_message();
+    EXPECT_EQ(format, GUSUKU_LIGHTMAP_E5B9G9R9);
+
+    options.lightmap_format = GUSUKU_LIGHTMAP_RGBA16F;
+    EXPECT_EQ(formatOpened(&options, &format), GUSUKU_OK) << gusuku_last_error_message();
+    EXPECT_EQ(format, GUSUKU_LIGHTMAP_RGBA16F);
+
+    // ASTC without the app's word that it enabled the feature, and a value past the enum: refused by name.
+    options.lightmap_format = GUSUKU_LIGHTMAP_ASTC_4X4_HDR;
+    EXPECT_EQ(formatOpened(&options, &format), GUSUKU_ERROR_DEVICE);
+    EXPECT_NE(std::string(gusuku_last_error_message()).find("options.lightmap_format: "), std::string::npos)
+        << gusuku_last_error_message();
+    options.lightmap_format = gusuku_lightmap_format(9);
+    EXPECT_EQ(formatOpened(&options, &format), GUSUKU_ERROR_INVALID_FRAME);
+    EXPECT_NE(std::string(gusuku_last_error_message()).find("options.lightmap_format: 9"), std::string::npos)
+        << gusuku_last_error_message();
+    EXPECT_EQ(gusuku_runtime_lightmap_format(nullptr, &format), GUSUKU_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(gusuku_bakeset_free(set), GUSUKU_OK);
+}
+
 TEST_F(CApiVersionsTest, TheOldestLayoutsGiveTodaysFrameWithTodaysDefaults) {
     const WallScene scene;
     std::vector<uint8_t> camera(size_t(kSize) * kSize * 4, 30);
@@ -395,7 +451,7 @@ TEST_F(CApiVersionsTest, AnOldFrameInfoIsWrittenOnlyAsFarAsItsSize) {
               GUSUKU_ERROR_INVALID_ARGUMENT);
     const std::string message = gusuku_last_error_message();
     EXPECT_NE(message.find("options.struct_size: 40 is not the size of any gusuku_runtime_options this library "
-                           "knows (44 or 76 bytes)"),
+                           "knows (44, 76 or 84 bytes)"),
               std::string::npos)
         << message;
 }

@@ -347,6 +347,16 @@ gusuku_result gusuku_runtime_forget_camera_image(gusuku_runtime* runtime, VkImag
     }
 }
 
+gusuku_result gusuku_runtime_lightmap_format(const gusuku_runtime* runtime, gusuku_lightmap_format* out_format) {
+    if (runtime == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_lightmap_format: runtime: is NULL");
+    if (out_format == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_lightmap_format: out_format: is NULL",
+                    &runtime->last_error);
+    *out_format = gusuku_lightmap_format(runtime->runtime->lightmapFormat());
+    return GUSUKU_OK;
+}
+
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes) {
     if (runtime == nullptr)
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_device_memory_bytes: runtime: is NULL");

@@ -9,6 +9,15 @@
 
 namespace gusuku::c_api_detail {
 
+// The C enums are the C++ ones by value (the conversions below cast), pinned here where both are in view.
+static_assert(GUSUKU_LIGHTMAP_E5B9G9R9 == int(LightmapFormat::kE5b9g9r9) &&
+              GUSUKU_LIGHTMAP_RGBA16F == int(LightmapFormat::kRgba16f) &&
+              GUSUKU_LIGHTMAP_RGBA32F == int(LightmapFormat::kRgba32f) &&
+              GUSUKU_LIGHTMAP_ASTC_4X4_HDR == int(LightmapFormat::kAstc4x4Hdr) &&
+              GUSUKU_LIGHTMAP_AUTO == int(LightmapFormat::kAuto));
+static_assert(GUSUKU_CAMERA_RGBA8 == int(CameraFormat::kRgba8) && GUSUKU_CAMERA_BGRA8 == int(CameraFormat::kBgra8) &&
+              GUSUKU_CAMERA_NV12 == int(CameraFormat::kNv12) && GUSUKU_CAMERA_NV21 == int(CameraFormat::kNv21));
+
 namespace {
 
 /// "104 or 112" / "44, 52 or 60": the sizes of a struct's layouts, for a message.
@@ -61,6 +70,8 @@ gusuku_runtime_options defaultOptions() {
     options.frames_in_flight = defaults.frames_in_flight;
     options.msaa_samples = defaults.msaa_samples;
     options.max_anisotropy = defaults.max_anisotropy;
+    options.lightmap_format = gusuku_lightmap_format(defaults.lightmap_format);
+    options.texture_compression_astc_hdr = defaults.texture_compression_astc_hdr ? 1u : 0u;
     return options;
 }
 
@@ -104,6 +115,8 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.frames_in_flight = options.frames_in_flight;
     converted.msaa_samples = options.msaa_samples;
     converted.max_anisotropy = options.max_anisotropy;
+    converted.lightmap_format = LightmapFormat(options.lightmap_format);
+    converted.texture_compression_astc_hdr = options.texture_compression_astc_hdr != 0;
     return converted;
 }
 

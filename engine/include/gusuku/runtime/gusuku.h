@@ -259,6 +259,15 @@ typedef enum gusuku_camera_format {
 } gusuku_camera_format;
 typedef enum gusuku_ycbcr_model { GUSUKU_YCBCR_BT601 = 0, GUSUKU_YCBCR_BT709 = 1 } gusuku_ycbcr_model;
 typedef enum gusuku_ycbcr_range { GUSUKU_YCBCR_NARROW = 0, GUSUKU_YCBCR_FULL = 1 } gusuku_ycbcr_range;
+/* How the runtime holds the lightmaps on the GPU (runtime.h's LightmapFormat; docs/runtime.md "Lightmap formats"). */
+typedef enum gusuku_lightmap_format {
+    GUSUKU_LIGHTMAP_E5B9G9R9 = 0,      /* shared exponent, 4 bytes a texel, sampled and filtered everywhere */
+    GUSUKU_LIGHTMAP_RGBA16F = 1,       /* 8 bytes a texel */
+    GUSUKU_LIGHTMAP_RGBA32F = 2,       /* 16 bytes a texel, the reference (needs linear filtering of it) */
+    GUSUKU_LIGHTMAP_ASTC_4X4_HDR = 3,  /* 1 byte a texel, the bake's blocks; needs texture_compression_astc_hdr */
+    GUSUKU_LIGHTMAP_AUTO = 4           /* the default: ASTC_4X4_HDR where the app enabled it and the device and the
+                                          bake set have it, else E5B9G9R9 (gusuku_runtime_lightmap_format says) */
+} gusuku_lightmap_format;
 
 typedef struct gusuku_runtime_options {
     uint32_t struct_size;                 /* sizeof(gusuku_runtime_options) as the app's header declares it */
@@ -288,6 +297,12 @@ typedef struct gusuku_runtime_options {
                                              (else GUSUKU_ERROR_DEVICE); 1 turns it off; default 4 */
     float max_anisotropy;                 /* anisotropic filtering of textures, [1, 16] (1: off; above 1 the app
                                              enabled samplerAnisotropy on its device); default 1 */
+
+    /* API version 2: */
+    gusuku_lightmap_format lightmap_format;  /* default GUSUKU_LIGHTMAP_AUTO; a format the device cannot sample
+                                                and filter: GUSUKU_ERROR_DEVICE naming options.lightmap_format */
+    uint32_t texture_compression_astc_hdr;   /* nonzero: the app enabled textureCompressionASTC_HDR on its device
+                                                (VK_EXT_texture_compression_astc_hdr or Vulkan 1.3); default 0 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
@@ -467,6 +482,9 @@ gusuku_result gusuku_runtime_reset_colour_statistics(gusuku_runtime* runtime);
 
 /* Makes the next frame redraw the shadow maps even if the sun has not moved a step (for profiling). O(1). */
 gusuku_result gusuku_runtime_invalidate_shadow_maps(gusuku_runtime* runtime);
+
+/* The format the lightmaps are held in: options.lightmap_format with AUTO resolved at open (API version 2). O(1). */
+gusuku_result gusuku_runtime_lightmap_format(const gusuku_runtime* runtime, gusuku_lightmap_format* out_format);
 
 /* Device memory the runtime holds, bytes (buffers and images, all allocated at open). O(1). */
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes);
