@@ -285,6 +285,97 @@ TEST(SkySampling, SampledPdfAgreesWithPdfLookupAndTexelConvention) {
         }
 }
 
+/// The row a direction lies in, as the lookups find it (theta = atan2(|xy|, z), row = int(theta / pi * height)).
+int rowOfDirection(const SkySamplingTables& tables, const glm::dvec3& d) {
+    const double theta = std::atan2(std::hypot(d.x, d.y), d.z);
+    return std::clamp(int(theta / pi * tables.height), 0, tables.height - 1);
+}
+
+// The rows a surface's next-event draw is confined to (skyRowsFacingCpu) hold every direction above its plane,
+// and drop the other half of the sphere's rows for a level surface: the ground's for a floor, the sky's for a
+// ceiling.
+TEST(SkySampling, RowsFacingANormalHoldEveryDirectionAboveItsPlane) {
+    const SkySamplingTables tables = buildSkySamplingTables(patchSky(256, 128), 45.0);
+    std::mt19937 rng(21);
+    std::normal_distribution<double> gaussian(0.0, 1.0);
+    std::vector<glm::dvec3> normals = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0},
+                                       glm::normalize(glm::dvec3(1, 2, 1e-9))};
+    for (int k = 0; k < 200; ++k)
+        normals.push_back(glm::normalize(glm::dvec3(gaussian(rng), gaussian(rng), gaussian(rng))));
+    for (const glm::dvec3& normal : normals) {
+        const SkyRows rows = skyRowsFacingCpu(tables, normal);
+        SCOPED_TRACE(::testing::Message() << "normal (" << normal.x << ", " << normal.y << ", " << normal.z << ")");
+        ASSERT_LE(rows.first, rows.last);
+        for (int k = 0; k < 500; ++k) {
+            glm::dvec3 d = glm::normalize(glm::dvec3(gaussian(rng), gaussian(rng), gaussian(rng)));
+            if (glm::dot(d, normal) < 0.0) d = -d;
+            if (k == 0) d = glm::normalize(glm::cross(normal, glm::dvec3(0.3, 0.5, 0.8)) + 1e-9 * normal);  // grazing
+            const int row = rowOfDirection(tables, d);
+            EXPECT_GE(row, rows.first);
+            EXPECT_LE(row, rows.last);
+        }
+    }
+    EXPECT_EQ(skyRowsFacingCpu(tables, {0, 0, 1}).first, 0);
+    EXPECT_EQ(skyRowsFacingCpu(tables, {0, 0, 1}).last, 65);  // the row below the horizon, and one more
+    EXPECT_EQ(skyRowsFacingCpu(tables, {0, 0, -1}).first, 63);
+    EXPECT_EQ(skyRowsFacingCpu(tables, {0, 0, -1}).last, 127);
+}
+
+// The draw conditioned on those rows is the map's density renormalised over them: every sample inside, its pdf
+// the whole map's over the rows' probability, and an unbiased irradiance on each plane (against quadrature).
+TEST(SkySampling, RowConditionedSamplingIsTheMapRenormalisedOverTheRows) {
+    const ImageRGBA sky = patchSky(256, 128);
+    const double north_deg = 45.0;
+    const SkySamplingTables tables = buildSkySamplingTables(sky, north_deg);
+    const glm::dvec3 normals[] = {{0, 0, 1}, {0, 0, -1}, glm::normalize(glm::dvec3(0.3, -0.5, 0.8)), {0, 1, 0}};
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    for (const glm::dvec3& normal : normals) {
+        SCOPED_TRACE(::testing::Message() << "normal (" << normal.x << ", " << normal.y << ", " << normal.z << ")");
+        const SkyRows rows = skyRowsFacingCpu(tables, normal);
+        const float probability = skyRowsProbabilityCpu(tables, rows);
+        ASSERT_GT(probability, 0.0f);
+        glm::dvec3 quadrature(0.0);
+        for (int y = 0; y < sky.height; ++y)
+            for (int x = 0; x < sky.width; ++x) {
+                const glm::dvec3 d =
+                    gusuku::equirectDirection((x + 0.5) / sky.width, (y + 0.5) / sky.height, north_deg);
+                const float* t = sky.texel(x, y);
+                quadrature += glm::dvec3(t[0], t[1], t[2]) * std::max(0.0, glm::dot(normal, d)) *
+                              gusuku::equirectTexelSolidAngle(y, sky.width, sky.height);
+            }
+        constexpr int kStrata = 300;
+        glm::dvec3 estimate(0.0);
+        for (int j = 0; j < kStrata; ++j)
+            for (int i = 0; i < kStrata; ++i) {
+                const float xi1 = (float(i) + jitter(rng)) / kStrata, xi2 = (float(j) + jitter(rng)) / kStrata;
+                const SkySample s = sampleSkyInRowsCpu(tables, rows, xi1, xi2);
+                ASSERT_GT(s.pdf_solid_angle, 0.0);
+                const int row = rowOfDirection(tables, s.direction_enu);
+                ASSERT_GE(row, rows.first);
+                ASSERT_LE(row, rows.last);
+                if ((i + j) % 97 == 0)
+                    EXPECT_NEAR(s.pdf_solid_angle, skyPdfCpu(tables, s.direction_enu) / probability,
+                                1e-6 * s.pdf_solid_angle);
+                estimate += skyRadianceCpu(tables, s.direction_enu) *
+                            std::max(0.0, glm::dot(normal, s.direction_enu)) / s.pdf_solid_angle;
+            }
+        estimate /= double(kStrata) * kStrata;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << "channel " << c;
+    }
+    // Rows that hold no light, or none at all: no draw (pdf 0), never a NaN.
+    ImageRGBA dark_top = patchSky(64, 32);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 64; ++x) std::fill(dark_top.texel(x, y), dark_top.texel(x, y) + 3, 0.0f);
+    const SkySamplingTables dark_tables = buildSkySamplingTables(dark_top, 0.0);
+    EXPECT_EQ(skyRowsProbabilityCpu(dark_tables, {0, 9}), 0.0f);
+    EXPECT_EQ(sampleSkyInRowsCpu(dark_tables, {0, 9}, 0.5f, 0.5f).pdf_solid_angle, 0.0);
+    EXPECT_EQ(sampleSkyInRowsCpu(dark_tables, {5, 4}, 0.5f, 0.5f).pdf_solid_angle, 0.0);
+    // xi at the top end stays in the last row with light, not the dark row after it.
+    const SkySample top = sampleSkyInRowsCpu(dark_tables, {10, 12}, 1.0f, 0.5f);
+    EXPECT_EQ(rowOfDirection(dark_tables, top.direction_enu), 12);
+}
+
 // The guide tables (sky_light.h) narrow each CDF search without changing its answer: on a map of dark runs and
 // one bright texel (long stretches of nearly equal CDF entries, then one jump), every guide entry is the largest
 // interval whose CDF start is <= k / cells, and every sample lands in the texel a search of the whole CDF picks,
@@ -418,6 +509,16 @@ TEST_F(SkySamplingGpu, ProbeMatchesCpuTwins) {
         // The one-load lookup is the pair of lookups, bit for bit (the texel's density is stored as computed).
         EXPECT_EQ(gpu[i].combined_radiance, gpu[i].radiance_at_direction);
         EXPECT_EQ(gpu[i].combined_pdf, gpu[i].pdf_at_direction);
+        // The direction as a normal: its rows (float acos on the GPU: a row's give at a band's edge), their
+        // probability and the draw in them.
+        const SkyRows rows = skyRowsFacingCpu(tables, direction);
+        EXPECT_NEAR(gpu[i].rows.first, rows.first, 1);
+        EXPECT_NEAR(gpu[i].rows.last, rows.last, 1);
+        EXPECT_EQ(gpu[i].rows_probability, skyRowsProbabilityCpu(tables, gpu[i].rows));
+        const SkySample in_rows = sampleSkyInRowsCpu(tables, gpu[i].rows, xi[i].x, xi[i].y);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(gpu[i].rows_sampled_direction_enu[c], in_rows.direction_enu[c], 1e-5);
+        EXPECT_NEAR(gpu[i].rows_sampled_pdf, in_rows.pdf_solid_angle, 1e-4 * in_rows.pdf_solid_angle);
     }
 }
 

@@ -60,15 +60,24 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
     : context_(context), scene_(uploadTraceScene(context, scene, max_texture_size)) {
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
-    pipeline_ = std::make_unique<ComputePipeline>(context, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv),
-                                                  BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)),
-                                                  traceInputTexelBindings(), traceKernelSpecialization(scene_));
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv), BAKE_ACCUMULATE_BINDING_COUNT,
                                                              uint32_t(sizeof(AccumulatePushConstants)));
 }
 
 IrradianceTracer::~IrradianceTracer() = default;
+
+ComputePipeline& IrradianceTracer::pipelineFor(bool sky_next_event) {
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[sky_next_event ? 1 : 0];
+    if (!pipeline) {
+        std::vector<uint32_t> specialization = traceKernelSpecialization(scene_);
+        specialization.push_back(sky_next_event ? 1u : 0u);  // constant_id 1: BAKE_SKY_NEXT_EVENT
+        pipeline = std::make_unique<ComputePipeline>(
+            context_, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv), BAKE_IRRADIANCE_BINDING_COUNT,
+            uint32_t(sizeof(BakePushConstants)), traceInputTexelBindings(), specialization);
+    }
+    return *pipeline;
+}
 
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
     sky_ = uploadSkyTables(context_, sky);
@@ -108,7 +117,8 @@ uint64_t IrradianceTracer::dispatchRange(PointAccumulator& accumulator, BakePush
     const size_t scratch_bytes = size_t(point_count) * size_t(sample_count) * sizeof(glm::vec4);
     if (sample_estimates_.size() < scratch_bytes) sample_estimates_ = GpuBuffer(context_, scratch_bytes);
     static_assert(BAKE_QUERY_POINT_BINDING == 7 && BAKE_SAMPLE_ESTIMATE_BINDING == 8 && BAKE_RAY_COUNTER_BINDING == 9);
-    pipeline_->bindBuffers(traceInputBuffers(scene_, sky_, {&accumulator.points, &sample_estimates_, &ray_counter_}));
+    ComputePipeline& pipeline = pipelineFor(push.sky_next_event != 0u);
+    pipeline.bindBuffers(traceInputBuffers(scene_, sky_, {&accumulator.points, &sample_estimates_, &ray_counter_}));
     accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums, &accumulator.luminance_square_sums});
     push.point_count = point_count;
     push.first_point = first_point;
@@ -119,7 +129,7 @@ uint64_t IrradianceTracer::dispatchRange(PointAccumulator& accumulator, BakePush
     ray_counter_.upload(zero_counter, sizeof zero_counter);
     const uint32_t point_groups = (point_count + kWorkgroupSize - 1) / kWorkgroupSize;
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        pipeline_->recordDispatch(cmd, &push, point_groups, sample_count);
+        pipeline.recordDispatch(cmd, &push, point_groups, sample_count);
         recordComputeBarrier(cmd);
         accumulate_pipeline_->recordDispatch(cmd, &accumulate_push, point_groups);
         recordComputeBarrier(cmd);

@@ -285,6 +285,35 @@ SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2) {
     return sample;
 }
 
+SkyRows skyRowsFacingCpu(const SkySamplingTables& tables, const glm::dvec3& unit_normal) {
+    checkTables(tables);
+    const double v_normal = std::acos(std::clamp(unit_normal.z, -1.0, 1.0)) / pi;
+    const int first = int(std::floor((v_normal - 0.5) * tables.height)) - 1;
+    const int last = int(std::floor((v_normal + 0.5) * tables.height)) + 1;
+    return {std::clamp(first, 0, tables.height - 1), std::clamp(last, 0, tables.height - 1)};
+}
+
+float skyRowsProbabilityCpu(const SkySamplingTables& tables, SkyRows rows) {
+    checkTables(tables);
+    if (rows.first > rows.last) return 0.0f;
+    if (rows.first < 0 || rows.last >= tables.height)
+        throw std::invalid_argument("skyRowsProbabilityCpu: rows outside the map");
+    const float* marginal = tables.table.data() + marginalOffset();
+    return marginal[rows.last + 1] - marginal[rows.first];
+}
+
+SkySample sampleSkyInRowsCpu(const SkySamplingTables& tables, SkyRows rows, float xi1, float xi2) {
+    const float probability = skyRowsProbabilityCpu(tables, rows);
+    if (!(probability > 0.0f)) return SkySample{{0.0, 0.0, 1.0}, 0.0};
+    const float* marginal = tables.table.data() + marginalOffset();
+    const float low = marginal[rows.first];
+    const float high = marginal[rows.last + 1];
+    const float row_xi = std::min(low + std::clamp(xi1, 0.0f, 1.0f) * probability, std::nextafter(high, 0.0f));
+    SkySample sample = sampleSkyCpu(tables, row_xi, xi2);
+    sample.pdf_solid_angle /= double(probability);
+    return sample;
+}
+
 double skyPdfCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu) {
     checkTables(tables);
     const TexelIndex index = texelOf(tables, direction_enu);

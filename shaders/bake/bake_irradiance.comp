@@ -15,6 +15,12 @@
 
 layout(local_size_x = BAKE_WORKGROUP_SIZE) in;
 
+// constant_id 1, false only in the pipeline the tracer makes for passes that gather the sky with the cosine lobe
+// alone (IrradianceTracer::pipelineFor): llvmpipe runs the map's next-event block masked for the whole SIMD group
+// even when the push constant turns it off (its draws, CDF searches and one pass of the shadow ray's traversal
+// loops at every vertex), so that pipeline compiles it out. With it true the push constant decides, as before.
+layout(constant_id = 1) const bool BAKE_SKY_NEXT_EVENT = true;
+
 #define BVH_NODE_BINDING BAKE_BVH_NODE_BINDING
 #define BVH_TRIANGLE_BINDING BAKE_BVH_TRIANGLE_BINDING
 #define SHADING_TRIANGLE_BINDING BAKE_SHADING_TRIANGLE_BINDING
@@ -61,7 +67,7 @@ void main() {
         settings.sun_cos_max = pc.sun_direction_cos_max.w;
         settings.sun_irradiance = pc.sun_irradiance_ray_offset.xyz;
         settings.ray_offset = pc.sun_irradiance_ray_offset.w;
-        settings.sky_next_event = pc.sky_next_event != 0u;
+        settings.sky_next_event = BAKE_SKY_NEXT_EVENT && pc.sky_next_event != 0u;
         g_bounces_before_roulette = max(pc.bounces_before_roulette, 1u);
         g_sky_rays_at_point = max(pc.sky_rays_at_point, 1u);
 

@@ -96,12 +96,20 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         // Sky by importance sampling the map, weighted against the cosine lobe (power heuristic). Skipped for
         // smooth skies (the caller decides from the map): there the cosine lobe alone is nearly as good per
         // sample and costs one ray per vertex instead of two.
+        // The map is drawn from only in the rows that can hold a direction above both the shading and the face
+        // plane (sky_sampling.glsl), and both strategies' MIS weights use that conditioned density.
         uint sky_rays = depth == 0u ? g_sky_rays_at_point : 1u;
+        ivec2 sky_rows = ivec2(0);
+        float sky_rows_probability = 0.0;
         if (settings.sky_next_event) {
+            ivec2 shading_rows = skyRowsFacing(vertex_normal);
+            ivec2 face_rows = skyRowsFacing(vertex_face_normal);
+            sky_rows = ivec2(max(shading_rows.x, face_rows.x), min(shading_rows.y, face_rows.y));
+            sky_rows_probability = skyRowsProbability(sky_rows);
             for (uint k = 0u; k < sky_rays; ++k) {
                 float sky_pdf;
                 vec2 draw = sky_rays == 1u ? rngNext2(rng) : rngNext2Split(rng, k, sky_rays);
-                vec3 sky_direction = sampleSkyDirection(draw, sky_pdf);
+                vec3 sky_direction = sampleSkyDirectionInRows(draw, sky_rows, sky_pdf);
                 float sky_cos = dot(vertex_normal, sky_direction);
                 if (sky_cos > 0.0 && sky_pdf > 0.0 && dot(vertex_face_normal, sky_direction) > 0.0 &&
                     !traceOccluded(origin, sky_direction, settings)) {
@@ -127,7 +135,10 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         if (!bvhTraceClosest(origin, direction, 1e30, settings.skip_flags, hit)) {
             float sky_pdf;
             vec3 sky_radiance = skyRadianceAndPdf(direction, sky_pdf);
-            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, float(sky_rays) * sky_pdf) : 1.0;
+            // The direction is above both planes, so inside sky_rows: the conditioned density is this over the
+            // rows' probability (none when they hold no light: the map strategy drew nothing there).
+            float map_pdf = sky_rows_probability > 0.0 ? sky_pdf / sky_rows_probability : 0.0;
+            float mis = settings.sky_next_event ? powerHeuristic(cos_pdf, float(sky_rays) * map_pdf) : 1.0;
             irradiance += path_weight * kPi * sky_radiance * mis;
             break;
         }

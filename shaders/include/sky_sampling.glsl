@@ -12,6 +12,9 @@
 //   vec3  sampleSkyDirection(vec2 xi, out float pdf_solid_angle) xi in [0, 1)^2; pdf per steradian
 //   float skyPdf(vec3 direction_enu)                            density of sampleSkyDirection per steradian
 //   vec3  skyRadianceAndPdf(vec3 direction_enu, out float pdf)   both of the above from one texel load
+//   ivec2 skyRowsFacing(vec3 normal)                            rows holding every direction above the plane
+//   float skyRowsProbability(ivec2 rows)                        sampleSkyDirection's chance of those rows
+//   vec3  sampleSkyDirectionInRows(vec2 xi, ivec2 rows, out float pdf)  sampleSkyDirection conditioned on them
 // Equirect convention (gusuku/maths/equirect.h): azimuth = 360 u - north_azimuth_in_image_deg, v = theta / pi.
 #ifndef GUSUKU_SKY_SAMPLING_GLSL
 #define GUSUKU_SKY_SAMPLING_GLSL
@@ -146,6 +149,43 @@ vec3 sampleSkyDirection(vec2 xi, out float pdf_solid_angle) {
     float azimuth_rad = radians(360.0 * u - skyNorthAzimuthDeg());
     vec3 direction_enu = vec3(sin_theta * sin(azimuth_rad), sin_theta * cos(azimuth_rad), sin((0.5 - v) * kPi));
     pdf_solid_angle = skySolidAnglePdf(skyUnitSquareDensity(x, y), sin_theta);
+    return direction_enu;
+}
+
+// The map conditioned on a band of rows (a hemisphere's): a surface can take light only from above its plane, and
+// a draw below it is a shadow ray's lane left idle while the others of its SIMD group trace (on the shrine
+// site, 45 % of the map's rejected draws lay in rows no direction above the texel's plane reaches). The rows of
+// the open hemisphere dot(normal, d) > 0 are those within 90 deg of the normal's polar angle, widened by one row
+// at each end so that rounding never leaves a direction above the plane outside them.
+ivec2 skyRowsFacing(vec3 normal) {
+    int height = skyHeight();
+    float v_normal = acos(clamp(normal.z, -1.0, 1.0)) / kPi;
+    int first = int(floor((v_normal - 0.5) * float(height))) - 1;
+    int last = int(floor((v_normal + 0.5) * float(height))) + 1;
+    return ivec2(clamp(first, 0, height - 1), clamp(last, 0, height - 1));
+}
+
+// The marginal CDF's mass over rows [rows.x, rows.y]: 0 when they hold no light (or rows.x > rows.y).
+float skyRowsProbability(ivec2 rows) {
+    if (rows.x > rows.y) return 0.0;
+    return skyTable(skyMarginalOffset() + rows.y + 1) - skyTable(skyMarginalOffset() + rows.x);
+}
+
+// sampleSkyDirection restricted to rows [rows.x, rows.y]: xi.x is mapped into those rows' part of the marginal
+// CDF (kept below its upper end, so the search stays inside), so the density is skyPdf / skyRowsProbability
+// there and 0 elsewhere. pdf 0 (and the zenith) when the rows hold no light: the caller traces nothing.
+vec3 sampleSkyDirectionInRows(vec2 xi, ivec2 rows, out float pdf_solid_angle) {
+    float probability = skyRowsProbability(rows);
+    if (!(probability > 0.0)) {
+        pdf_solid_angle = 0.0;
+        return vec3(0.0, 0.0, 1.0);
+    }
+    float low = skyTable(skyMarginalOffset() + rows.x);
+    float high = skyTable(skyMarginalOffset() + rows.y + 1);
+    float below_high = uintBitsToFloat(floatBitsToUint(high) - 1u);  // high > 0 here
+    float row_xi = min(low + clamp(xi.x, 0.0, 1.0) * probability, below_high);
+    vec3 direction_enu = sampleSkyDirection(vec2(row_xi, xi.y), pdf_solid_angle);
+    pdf_solid_angle /= probability;
     return direction_enu;
 }
 

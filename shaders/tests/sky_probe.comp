@@ -3,7 +3,8 @@
 // list of inputs, so tests can compare them with the CPU twins (gusuku_bake/sky_light.h, runSkyProbeGpu).
 // Bindings: 0 sky radiance, 1 sky table (uniform texel buffers, RGBA32F and R32F), 2 inputs (per probe: vec4(xi, 0, 0), vec4(direction, 0)),
 // 3 outputs (per probe: vec4(sampled direction, pdf), vec4(radiance(direction), pdf(direction)),
-// vec4(radiance(sampled), pdf(sampled)), vec4(skyRadianceAndPdf(direction)).
+// vec4(radiance(sampled), pdf(sampled)), vec4(skyRadianceAndPdf(direction)), vec4(skyRowsFacing(direction) as
+// floats, skyRowsProbability of them, 0), vec4(sampleSkyDirectionInRows(xi, those rows), its pdf)).
 #extension GL_GOOGLE_include_directive : require
 
 #define SKY_RADIANCE_BINDING 0
@@ -24,10 +25,16 @@ void main() {
 
     float sampled_pdf;
     vec3 sampled_direction = sampleSkyDirection(xi, sampled_pdf);
-    probe_outputs[4 * i] = vec4(sampled_direction, sampled_pdf);
-    probe_outputs[4 * i + 1] = vec4(skyRadiance(direction_enu), skyPdf(direction_enu));
-    probe_outputs[4 * i + 2] = vec4(skyRadiance(sampled_direction), skyPdf(sampled_direction));
+    probe_outputs[6 * i] = vec4(sampled_direction, sampled_pdf);
+    probe_outputs[6 * i + 1] = vec4(skyRadiance(direction_enu), skyPdf(direction_enu));
+    probe_outputs[6 * i + 2] = vec4(skyRadiance(sampled_direction), skyPdf(sampled_direction));
     float combined_pdf;
     vec3 combined_radiance = skyRadianceAndPdf(direction_enu, combined_pdf);
-    probe_outputs[4 * i + 3] = vec4(combined_radiance, combined_pdf);
+    probe_outputs[6 * i + 3] = vec4(combined_radiance, combined_pdf);
+    // The direction taken as a surface's normal: the rows above its plane, and the map drawn in them.
+    ivec2 rows = skyRowsFacing(direction_enu);
+    probe_outputs[6 * i + 4] = vec4(float(rows.x), float(rows.y), skyRowsProbability(rows), 0.0);
+    float rows_pdf;
+    vec3 rows_direction = sampleSkyDirectionInRows(xi, rows, rows_pdf);
+    probe_outputs[6 * i + 5] = vec4(rows_direction, rows_pdf);
 }

@@ -16,7 +16,7 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
         throw std::invalid_argument("runSkyProbeGpu: xi and directions_enu differ in size");
     if (xi.empty()) return {};
     constexpr uint32_t kLocalSize = 64;  // local_size_x in sky_probe.comp
-    constexpr size_t kFloatsPerProbe = 16;  // four vec4 outputs per probe
+    constexpr size_t kFloatsPerProbe = 24;  // six vec4 outputs per probe
 
     std::vector<float> inputs;
     inputs.reserve(xi.size() * 8);
@@ -52,6 +52,10 @@ std::vector<SkyProbeResult> runSkyProbeGpu(VulkanContext& context, const SkySamp
         results[i].pdf_at_sample = o[11];
         results[i].combined_radiance = {o[12], o[13], o[14]};
         results[i].combined_pdf = o[15];
+        results[i].rows = {int(o[16]), int(o[17])};
+        results[i].rows_probability = o[18];
+        results[i].rows_sampled_direction_enu = {o[20], o[21], o[22]};
+        results[i].rows_sampled_pdf = o[23];
     }
     return results;
 }

@@ -26,6 +26,10 @@ struct SkyProbeResult {
     float pdf_at_sample = 0.0f;             ///< skyPdf(sampled direction)
     glm::vec3 combined_radiance{0.0f};      ///< skyRadianceAndPdf(direction): its radiance
     float combined_pdf = 0.0f;              ///< and its pdf out-parameter
+    SkyRows rows;                           ///< skyRowsFacing(direction), the direction taken as a normal
+    float rows_probability = 0.0f;          ///< skyRowsProbability(rows)
+    glm::vec3 rows_sampled_direction_enu{0.0f};  ///< sampleSkyDirectionInRows(xi, rows)
+    float rows_sampled_pdf = 0.0f;               ///< its pdf_solid_angle out-parameter
 };
 
 /// Runs shaders/tests/sky_probe.comp for xi[i] and directions[i] (equal sizes, else std::invalid_argument).

@@ -165,8 +165,13 @@ private:
     uint64_t dispatchRange(PointAccumulator& accumulator, shader_interface::BakeIrradiancePushConstants push,
                            uint32_t first_point, uint32_t point_count, uint32_t first_sample, uint32_t sample_count);
 
+    /// The bake kernel for passes with or without the sky map's next-event rays, made on first use: the one
+    /// without has that block compiled out (BAKE_SKY_NEXT_EVENT false, bake_irradiance.comp).
+    ComputePipeline& pipelineFor(bool sky_next_event);
+
     VulkanContext& context_;
-    std::unique_ptr<ComputePipeline> pipeline_;             ///< bake_irradiance.comp: one path per invocation
+    /// bake_irradiance.comp, one path per invocation: [0] the cosine lobe alone, [1] with the sky map.
+    std::unique_ptr<ComputePipeline> pipelines_[2];
     std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums
     GpuBuffer sample_estimates_;                            ///< one chunk's per-sample estimates
     TraceSceneGpu scene_;  ///< bindings 0-4

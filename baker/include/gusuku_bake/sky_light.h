@@ -168,6 +168,29 @@ SkySample sampleSkyCpu(const SkySamplingTables& tables, float xi1, float xi2);
 /// skyRadianceCpu); sin theta = |xy| / |direction|, floored at 1e-7.
 double skyPdfCpu(const SkySamplingTables& tables, const glm::dvec3& direction_enu);
 
+/// Rows [first, last] of a sky map, both included; empty when first > last.
+struct SkyRows {
+    int first = 0;
+    int last = -1;
+};
+
+/// CPU twin of skyRowsFacing(): the rows that hold every direction of the open hemisphere dot(normal, d) > 0,
+/// those whose polar angles come within 90 deg of the unit normal's, widened by one row at each end (so that
+/// float rounding on the GPU never leaves such a direction out), clamped to the map. Why: the tracer draws the
+/// map's next-event direction in those rows only, as a direction below a surface's plane brings it no light
+/// and leaves its SIMD lane idle while the others trace. Computed in double; the GLSL, in float, may differ by
+/// a row where the normal's band edge falls on a row boundary.
+SkyRows skyRowsFacingCpu(const SkySamplingTables& tables, const glm::dvec3& unit_normal);
+
+/// CPU twin of skyRowsProbability(): the chance sampleSkyCpu lands in the rows, M[last + 1] - M[first] of the
+/// marginal CDF in float; 0 for empty rows.
+float skyRowsProbabilityCpu(const SkySamplingTables& tables, SkyRows rows);
+
+/// CPU twin of sampleSkyDirectionInRows(): sampleSkyCpu conditioned on the rows. xi1 is mapped into the rows' part
+/// of the marginal CDF, M[first] + xi1 * probability (in float), kept one float below M[last + 1], so the density
+/// is skyPdfCpu / skyRowsProbabilityCpu inside them and 0 outside. When the rows hold no light: pdf 0, the zenith.
+SkySample sampleSkyInRowsCpu(const SkySamplingTables& tables, SkyRows rows, float xi1, float xi2);
+
 /// CPU twin of skyRadiance(): the texel containing the direction, no filtering. u from the azimuth as in
 /// equirect.h (azimuth 0 where x = y = 0), v = theta / pi with theta = atan2(|xy|, z); x = min(int(u w), w-1),
 /// y = min(int(v h), h-1).
