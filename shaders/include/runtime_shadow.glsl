@@ -22,12 +22,6 @@
 #ifndef GUSUKU_RUNTIME_SHADOW_GLSL
 #define GUSUKU_RUNTIME_SHADOW_GLSL
 
-// The slope-scaled bias grows with tan(angle between the normal and the sun), which is unbounded at grazing
-// light: the cosine is held at or above this (about 87 degrees) so the tangent stays finite...
-const float kShadowMinCosine = 0.05;
-// ... and the tangent's share of the bias is capped at this (about 84 degrees): a larger bias would detach the
-// shadow from the contact line of the surfaces that cast it, for a gain only on surfaces nearly edge-on to the sun.
-const float kShadowMaxBiasTangent = 10.0;
 // tan(the sun's mean apparent angular radius, 0.2675 degrees): the penumbra's half-width per metre from the caster.
 const float kSunRadiusTangent = 0.0046688;
 // The normal offset, in texels at sin(normal, sun) = 1 (step 1).
@@ -44,16 +38,15 @@ const float kRingTexels = 2.0;
 const float kContactTexels = 0.8;
 const int kDiscTaps = 12;
 
+#include "runtime_shadow_coordinates.glsl"
+
 // The point's shadow-map coordinates and biased depth for the site's map; false outside the fitted window
 // (nothing of the building can shade it there).
 bool shadowLookup(vec3 position_enu, vec3 normal_enu, out vec2 uv, out float depth) {
-    vec4 clip = frame.enu_to_shadow_clip * vec4(position_enu, 1.0);
-    uv = clip.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
-    float cosine = clamp(dot(normal_enu, frame.sun_direction), kShadowMinCosine, 1.0);
-    float tangent = sqrt(1.0 - cosine * cosine) / cosine;
-    depth = clip.z - frame.shadow_depth_bias * (1.0 + min(tangent, kShadowMaxBiasTangent));
-    return true;
+    vec3 coordinates = siteShadowCoordinates(position_enu, normal_enu);
+    uv = coordinates.xy;
+    depth = coordinates.z;
+    return insideShadowWindow(uv);
 }
 
 // The receiver as the building's map sees it, from the frame's constants (FrameUniforms: the maps' axes, texel

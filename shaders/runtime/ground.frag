@@ -24,6 +24,7 @@ layout(location = 3) in vec3 irradiance_without;
 layout(location = 4) in float ground_present;
 layout(location = 5) in vec3 sun_irradiance;     // I_sun max(0, n . s), interpolated from the cell centres
 layout(location = 6) in float shadow_candidate;  // > 0 where the building's shadow may fall (a shadow map read)
+layout(location = 7) in vec3 site_shadow_coordinates;  // the site's map's uv and biased depth (ground.vert)
 
 layout(location = 0) out vec4 out_ratio;
 
@@ -40,6 +41,16 @@ const float kPresentOnEveryCorner = 0.999;
 // ... and above 1 by more than the same margin, a corner that is marked 2.
 const float kBakedChangeOnACorner = 1.001;
 
+// The ratio through the blend: destination x source x 2 (source and destination factors DST_COLOR and
+// SRC_COLOR), so a ratio up to 2 (light the building bounces onto the ground) survives the attachment's [0, 1]
+// clamp; within the pass-through threshold of 1 in every channel, exactly 1 (the camera's own byte).
+void writeRatio(vec3 ratio) {
+    if (any(isnan(ratio))) ratio = vec3(1.0);
+    ratio = clamp(ratio, vec3(0.0), vec3(2.0));
+    if (all(lessThan(abs(ratio - 1.0), vec3(frame.pass_through_threshold)))) ratio = vec3(1.0);
+    out_ratio = vec4(0.5 * ratio, 1.0);
+}
+
 void main() {
     const vec4 kUnchanged = vec4(0.5, 0.5, 0.5, 1.0);  // ratio 1 through the blend's factor of 2
     // Between a cell with ground and one without, the interpolated presence falls below 1: no ratio there.
@@ -51,6 +62,22 @@ void main() {
     // its shadow can change the pixel, so a surely lit fragment there is left alone at once.
     bool direct_only = frame.render_mode == RUNTIME_RENDER_MODE_DIRECT_ONLY;
     bool baked_change = ground_present > kBakedChangeOnACorner && !direct_only;
+    if (!kBuildingShadow) {
+        // The quads only the baked change brings (most of the ratio pass's fragments on a wide view): the light
+        // the building changes, under the site's own shadow, with no projection here (the vertices made the map
+        // coordinates) and no normal (E_sun is already 0 per vertex where the sun is behind the ground).
+        if (!baked_change) {
+            out_ratio = kUnchanged;
+            return;
+        }
+        float scene_visibility = 1.0;
+        if (kSunShines && frame.sun_shines != 0u && frame.site_shadows != 0u &&
+            insideShadowWindow(site_shadow_coordinates.xy))
+            scene_visibility = texture(site_shadow, site_shadow_coordinates);
+        vec3 e_sun = kSunShines && frame.sun_shines != 0u ? sun_irradiance * scene_visibility : vec3(0.0);
+        writeRatio(groundShadowRatio(irradiance_with, irradiance_without, e_sun, 1.0));
+        return;
+    }
     vec3 normal = normalize(normal_enu);
     bool sun_shines = kSunShines && frame.sun_shines != 0u && dot(normal, frame.sun_direction) > 0.0;
     // Only cells the CPU found in the building's shadow reach read the building's shadow map at all; there the
@@ -60,7 +87,7 @@ void main() {
     float shadow_depth;
     bool in_shadow_window = sun_shines && shadowLookup(position_enu, normal, shadow_uv, shadow_depth);
     float building_visibility = 1.0;
-    if (kBuildingShadow && in_shadow_window && shadow_candidate > 0.0)
+    if (in_shadow_window && shadow_candidate > 0.0)
         building_visibility = buildingSunVisibility(position_enu, normal, shadow_uv, shadow_depth);
     if (building_visibility >= 1.0 && !baked_change) {
         out_ratio = kUnchanged;
@@ -78,10 +105,5 @@ void main() {
         vec3 e_sun = sun_shines ? sun_irradiance * scene_visibility : vec3(0.0);
         ratio = groundShadowRatio(irradiance_with, irradiance_without, e_sun, building_visibility);
     }
-    if (any(isnan(ratio))) ratio = vec3(1.0);
-    // The blend computes destination x source x 2 (source and destination factors DST_COLOR and SRC_COLOR), so
-    // a ratio up to 2 (light the building bounces onto the ground) survives the attachment's [0, 1] clamp.
-    ratio = clamp(ratio, vec3(0.0), vec3(2.0));
-    if (all(lessThan(abs(ratio - 1.0), vec3(frame.pass_through_threshold)))) ratio = vec3(1.0);
-    out_ratio = vec4(0.5 * ratio, 1.0);
+    writeRatio(ratio);
 }

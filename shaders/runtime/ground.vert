@@ -7,6 +7,7 @@
 // Pulled a little towards the camera so the occluder mesh it was sampled from does not hide it (docs/design.md 8).
 #extension GL_GOOGLE_include_directive : require
 #include "runtime_interface.h"
+#include "runtime_shadow_coordinates.glsl"
 
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_GROUND_GEOMETRY_BINDING) uniform sampler2D ground_geometry;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_GROUND_IRRADIANCE_BINDING) uniform sampler2DArray ground_irradiance;
@@ -20,6 +21,11 @@ layout(location = 3) out vec3 out_irradiance_without;  // E_without, the same
 layout(location = 4) out float out_ground_present;     // 0 no ground, 1 ground, 2 ground the building changes
 layout(location = 5) out vec3 out_sun_irradiance;      // I_sun max(0, n . s): E_sun before the real scene's shadow
 layout(location = 6) out float out_shadow_candidate;
+// The site's shadow-map uv and biased depth at the cell centre: the quads the building's shadow cannot reach read
+// them interpolated instead of projecting every fragment (the map is orthographic, so uv and depth interpolate
+// exactly; the slope bias comes from the cell's normal rather than the fragment's interpolated one, and the sample's
+// composites measured, four views and lights, are byte-identical: docs/measurements.md).
+layout(location = 7) out vec3 out_site_shadow_coordinates;
 
 vec3 slotIrradiance(ivec2 cell, float slot_layer, float weight, bool with_building) {
     if (weight <= 0.0) return vec3(0.0);
@@ -56,6 +62,7 @@ void main() {
                              ? frame.sun_irradiance * max(0.0, dot(geometry.rgb, frame.sun_direction))
                              : vec3(0.0);
     out_shadow_candidate = shadow_candidate;
+    out_site_shadow_coordinates = siteShadowCoordinates(position, geometry.rgb);
     vec3 towards_camera = frame.camera_position - position;
     float distance_to_camera = length(towards_camera);
     vec3 pulled = position + towards_camera / max(distance_to_camera, kMinPullDistanceM) *
