@@ -260,25 +260,25 @@ void planeBasis(const glm::dvec3& normal, glm::dvec3* tangent, glm::dvec3* bitan
     *bitangent = glm::cross(normal, *tangent);
 }
 
-// Where to start a chart of `extent` texels inside its `inner` texels (inner > extent): as far as the slack
-// allows from putting either chart edge on a row of texel centres, so that float noise in the projection cannot
-// flip whether a border row of centres is covered (a 1 m face at 8 texels/m then covers exactly 8 x 8 centres).
-// Keeps a tenth of a texel (or half the slack) clear of the inner rectangle's sides.
-double marginAwayFromCentres(double extent, int inner) {
-    const double slack = double(inner) - extent;
-    const double guard = std::min(0.1, 0.5 * slack);
-    auto distanceFromCentre = [](double coordinate) { return std::abs(coordinate - std::floor(coordinate) - 0.5); };
-    double best_margin = 0.5 * slack, best_distance = -1.0;
-    constexpr int kSteps = 32;
-    for (int step = 0; step <= kSteps; ++step) {
-        const double margin = guard + (slack - 2.0 * guard) * step / kSteps;
-        const double distance = std::min(distanceFromCentre(margin), distanceFromCentre(margin + extent));
-        if (distance > best_distance + 1e-9) {
-            best_distance = distance;
-            best_margin = margin;
-        }
-    }
-    return best_margin;
+// Where a chart of `extent` texels starts inside its frame, and the frame's texels, along one axis: placed so
+// that its bilinear lookups read as few texels as an extent can, floor(extent) + 2 (they read the texels whose
+// centre lies less than a texel from it; a badly placed extent reads one more). That holds when the chart starts
+// up to 1 - frac(extent) past a row of texel centres; starting halfway there keeps both its edges (1 -
+// frac(extent)) / 2 clear of rows of centres, so float noise cannot flip which centres it covers or reads (a 1 m
+// face at 8 texels/m covers exactly 8 centres and reads 10 texels). Where that clearance would be under
+// kEdgeClearanceTexels (an extent just under a whole number) the chart reads one texel more, with both edges half
+// a texel from the centres. The frame is exactly the texels the chart reads.
+constexpr double kEdgeClearanceTexels = 0.05;
+
+struct AxisFrame {
+    int texels = 1;
+    double margin = 0.0;
+};
+
+AxisFrame axisFrameForFewestReads(double extent) {
+    const double whole = std::floor(extent), fraction = extent - whole;
+    if (0.5 * (1.0 - fraction) >= kEdgeClearanceTexels) return {int(whole) + 2, 1.0 - 0.5 * fraction};
+    return {int(whole) + 3, 2.0 - fraction};
 }
 
 // A chart: its triangles and where their corners lie flattened (metres). A chart grown across gentle edges is
@@ -868,19 +868,18 @@ std::vector<glm::dvec2> fitChartRectangles(const std::vector<TriangleInfo>& tria
     return extents;
 }
 
-// A chart's vertex in texels of its unturned inner rectangle at `scale` texels per metre: flattened, moved to the
-// rectangle's corner and offset by the margin that keeps its edges clear of rows of texel centres.
+// A chart's vertex in texels of its unturned frame at `scale` texels per metre: flattened, moved to the
+// rectangle's corner and offset by the margin that makes it read the fewest texels (axisFrameForFewestReads).
 struct ChartFrame {
     glm::ivec2 inner{1, 1};
     glm::dvec2 margin{0.0};
 };
 
 ChartFrame chartFrame(const glm::dvec2& extent, double scale) {
+    const AxisFrame x = axisFrameForFewestReads(extent.x * scale), y = axisFrameForFewestReads(extent.y * scale);
     ChartFrame frame;
-    frame.inner = detail::innerTexelSize(extent, scale);
-    const glm::dvec2 extent_texels = extent * scale;
-    frame.margin = glm::dvec2(marginAwayFromCentres(extent_texels.x, frame.inner.x),
-                              marginAwayFromCentres(extent_texels.y, frame.inner.y));
+    frame.inner = glm::ivec2(x.texels, y.texels);
+    frame.margin = glm::dvec2(x.margin, y.margin);
     return frame;
 }
 
@@ -888,30 +887,13 @@ glm::dvec2 localTexel(const Chart& chart, const ChartFrame& frame, double scale,
     return (corner - chart.min) * scale + frame.margin;
 }
 
-// Whether a triangle (texel units) overlaps the texel square [x, x + 1] x [y, y + 1] by more than a touch along
-// an edge line: separating axes (the square's own axes are the caller's bounding-box loop). A zero-area triangle
-// meets every texel of its bounding box, conservatively.
-bool triangleMeetsTexel(const detail::UvTriangle& triangle, int x, int y) {
-    const double orientation = detail::signedDoubleArea(triangle);
-    if (!(std::abs(orientation) > 1e-12)) return true;
-    for (int edge = 0; edge < 3; ++edge) {
-        const glm::dvec2& start = triangle[edge];
-        const glm::dvec2& end = triangle[(edge + 1) % 3];
-        // Inward normal of the edge; the square is separated when all its corners lie on the outer side.
-        const glm::dvec2 inward = orientation > 0.0 ? glm::dvec2(start.y - end.y, end.x - start.x)
-                                                    : glm::dvec2(end.y - start.y, start.x - end.x);
-        double most_inside = -INFINITY;
-        for (int corner = 0; corner < 4; ++corner) {
-            const glm::dvec2 point(x + (corner & 1), y + (corner >> 1));
-            most_inside = std::max(most_inside, glm::dot(point - start, inward));
-        }
-        if (most_inside <= 1e-9 * glm::length(inward)) return false;
-    }
-    return true;
-}
-
-// Phase 7: what the packer needs of each chart at a density: which texels of its inner rectangle its triangles
-// touch (overlap by any area; a zero-area triangle touches every texel of its bounding box).
+// Phase 7: what the packer needs of each chart at a density: which texels its bilinear lookups read (the texels
+// whose centre lies less than a texel from one of its triangles on both axes; a zero-area triangle reads every
+// texel around its bounding box), in the chart's read frame: its inner rectangle with one texel more on every
+// side cut to the texels it can read (axisFrameForFewestReads). Packing these sets apart, rather than the
+// touched texels with a ring of gutter each, lets two charts share the one gutter texel that only one of them
+// reads: the rule that keeps bilinear filtering (and the chart-aware dilation) from mixing charts, at half the
+// gutter of the touched rule on thin parts.
 std::vector<detail::ChartShape> chartShapes(const std::vector<Chart>& charts,
                                             const std::vector<glm::dvec2>& extents, double scale) {
     std::vector<detail::ChartShape> shapes(charts.size());
@@ -920,19 +902,21 @@ std::vector<detail::ChartShape> chartShapes(const std::vector<Chart>& charts,
         const ChartFrame frame = chartFrame(extents[chart_index], scale);
         detail::ChartShape& shape = shapes[chart_index];
         shape.inner = frame.inner;
-        shape.touched.assign(size_t(frame.inner.x) * size_t(frame.inner.y), 0);
+        shape.occupied.assign(size_t(shape.inner.x) * size_t(shape.inner.y), 0);
         for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
             detail::UvTriangle local;
             for (int i = 0; i < 3; ++i) local[i] = localTexel(chart, frame, scale, chart.corners[slot * 3 + size_t(i)]);
             const glm::dvec2 low = glm::min(local[0], glm::min(local[1], local[2]));
             const glm::dvec2 high = glm::max(local[0], glm::max(local[1], local[2]));
-            const int first_x = std::clamp(int(std::floor(low.x)), 0, frame.inner.x - 1);
-            const int last_x = std::clamp(int(std::floor(high.x)), 0, frame.inner.x - 1);
-            const int first_y = std::clamp(int(std::floor(low.y)), 0, frame.inner.y - 1);
-            const int last_y = std::clamp(int(std::floor(high.y)), 0, frame.inner.y - 1);
+            // Texels whose centre lies within (low - 1, high + 1); the frame holds them all.
+            const int first_x = std::clamp(int(std::floor(low.x - 1.5)), 0, shape.inner.x - 1);
+            const int last_x = std::clamp(int(std::floor(high.x + 0.5)), 0, shape.inner.x - 1);
+            const int first_y = std::clamp(int(std::floor(low.y - 1.5)), 0, shape.inner.y - 1);
+            const int last_y = std::clamp(int(std::floor(high.y + 0.5)), 0, shape.inner.y - 1);
             for (int y = first_y; y <= last_y; ++y)
                 for (int x = first_x; x <= last_x; ++x)
-                    if (triangleMeetsTexel(local, x, y)) shape.touched[size_t(y) * size_t(frame.inner.x) + size_t(x)] = 1;
+                    if (detail::bilinearReadsTexel(local, x, y))
+                        shape.occupied[size_t(y) * size_t(shape.inner.x) + size_t(x)] = 1;
         }
     }
     return shapes;
@@ -1006,7 +990,8 @@ FittedCharts growAndFitCharts(const TriangleMesh& mesh, double texels_per_metre,
     FittedCharts fitted;
     fitted.charts = growCharts(mesh, analysis, snap_tolerance, chart_of);
     attachDegenerateTriangles(mesh, analysis.triangles, chart_of, fitted.charts);
-    unfoldAcrossSharpEdges(analysis, chart_of, fitted.charts, texels_per_metre, padding_texels, snap_tolerance);
+    // A chart's read set reaches about one texel beyond its inner rectangle: joins are judged with that ring.
+    unfoldAcrossSharpEdges(analysis, chart_of, fitted.charts, texels_per_metre, padding_texels + 1, snap_tolerance);
     fitted.extents = fitChartRectangles(analysis.triangles, fitted.charts, snap_tolerance);
     return fitted;
 }

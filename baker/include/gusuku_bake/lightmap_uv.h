@@ -73,7 +73,7 @@ std::vector<uint32_t> lightmapUvCharts(const TriangleMesh& mesh);
 /// runtime's bilinear lookups, which read at most one texel beyond the touched ones (the lightmap has no mip
 /// levels), and for dilation, whose first ring then fills each gutter texel from its own chart only (two
 /// charts' touched texels are at least three apart).
-inline constexpr int kLightmapPaddingTexels = 1;
+inline constexpr int kLightmapPaddingTexels = 0;
 
 /// The result of generateLightmapCharts.
 struct LightmapCharts {
