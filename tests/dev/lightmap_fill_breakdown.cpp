@@ -1,4 +1,4 @@
-// Charts that fill on detailed models (issue 21, item 4): breakdown of where the lightmap's texels go.
+// Development aid, not a test (no assertions; not built): where the lightmap texels go per chart (issue 21 item 4). Copy to tests/test_*.cpp to run.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -106,7 +106,34 @@ void printBreakdown(const char* name, const LightmapCharts& charts) {
             }
         for (int c : {10, 12, 13, 86}) std::printf("chart %d box %.4f %.4f .. %.4f %.4f\n", c, box[c].x, box[c].y, box[c].z, box[c].w);
     }
-    const size_t claimed = rasterizeLightmapTexels(mesh, r).size();
+    const std::vector<LightmapTexel> claimed_texels = rasterizeLightmapTexels(mesh, r);
+    const size_t claimed = claimed_texels.size();
+    {
+        std::vector<size_t> per_chart(charts.chart_count, 0), read_per_chart(charts.chart_count, 0);
+        for (const LightmapTexel& texel : claimed_texels) ++per_chart[charts.triangle_chart[texel.triangle]];
+        for (int owner : read_by) if (owner >= 0) ++read_per_chart[size_t(owner)];
+        std::vector<glm::ivec4> rbox(charts.chart_count, glm::ivec4(1 << 30, 1 << 30, -1, -1));
+        for (size_t at = 0; at < read_by.size(); ++at)
+            if (read_by[at] >= 0) {
+                glm::ivec4& b = rbox[size_t(read_by[at])];
+                const int x = int(at % r), y = int(at / r);
+                b = glm::ivec4(std::min(b.x, x), std::min(b.y, y), std::max(b.z, x), std::max(b.w, y));
+            }
+        int hist[8] = {0};
+        for (size_t k = 0; k < charts.chart_count; ++k)
+            if (per_chart[k] >= 16 && per_chart[k] < 64)
+                ++hist[std::min(7, std::min(rbox[k].z - rbox[k].x, rbox[k].w - rbox[k].y) + 1)];
+        std::printf("  [16,64) read short side:");
+        for (int h = 0; h < 8; ++h) std::printf(" %d:%d", h, hist[h]);
+        std::printf("\n");
+        const size_t bounds[] = {0, 4, 16, 64, 256, 1024, 1u << 30};
+        for (int b = 0; b + 1 < 7; ++b) {
+            size_t n = 0, c = 0, rd = 0;
+            for (size_t k = 0; k < charts.chart_count; ++k)
+                if (per_chart[k] >= bounds[b] && per_chart[k] < bounds[b + 1]) ++n, c += per_chart[k], rd += read_per_chart[k];
+            std::printf("  claimed in [%zu, %zu): %zu charts, claimed %zu, read %zu\n", bounds[b], bounds[b + 1], n, c, rd);
+        }
+    }
     const double all = double(r) * r;
     std::printf("%s: %zu charts at %.2f t/m in %d^2: claimed %.1f %%, touched %.1f %%, touched+1 ring %.1f %%, "
                 "read %.1f %% (%zu read twice), padded rectangles %.1f %%, thin charts (<=2 texels across) %zu holding %.1f %% (+ring); shared %zu\n",
