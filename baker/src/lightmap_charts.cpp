@@ -890,35 +890,45 @@ glm::dvec2 localTexel(const Chart& chart, const ChartFrame& frame, double scale,
 }
 
 // The texels of a chart's frame its bilinear lookups read (`read`, frame.inner.x * frame.inner.y, row-major: the
-// texels whose centre lies less than a texel from one of its triangles on both axes; a zero-area triangle reads every
-// texel around its bounding box), and how many texels it claims by lightmap_uv.h's coverage rule (the centres its
-// triangles cover, and the texel under the UV centroid of a triangle that covers none): the texels traced for it.
-size_t rasteriseChartFrame(const Chart& chart, const ChartFrame& frame, double scale, std::vector<uint8_t>& read,
+// texels whose centre lies less than a texel from one of its triangles on both axes, by kReadSlackTexels
+// conservatively; a zero-area triangle reads every texel around its bounding box), and how many texels it claims by
+// lightmap_uv.h's coverage rule (the centres its triangles cover, and the texel under the UV centroid of a triangle
+// that covers none): the texels traced for it. The frame is then cut (or grown) to the read texels' bounding box:
+// a read found only through the slack (a corner of an unfolded net that lands on a row of centres) may lie a texel
+// outside axisFrames' frame, and must still be kept from other charts.
+size_t rasteriseChartFrame(const Chart& chart, ChartFrame& frame, double scale, std::vector<uint8_t>& read,
                            std::vector<uint8_t>& claimed) {
-    const size_t cells = size_t(frame.inner.x) * size_t(frame.inner.y);
-    read.assign(cells, 0);
+    // A grid with one texel more on every side than the frame.
+    const glm::ivec2 grid = frame.inner + 2;
+    const glm::dvec2 grid_margin = frame.margin + 1.0;
+    const size_t cells = size_t(grid.x) * size_t(grid.y);
+    std::vector<uint8_t> grid_read(cells, 0);
     claimed.assign(cells, 0);
     size_t claimed_count = 0;
     auto claim = [&](int x, int y) {
-        uint8_t& cell = claimed[size_t(y) * size_t(frame.inner.x) + size_t(x)];
+        uint8_t& cell = claimed[size_t(y) * size_t(grid.x) + size_t(x)];
         claimed_count += cell ? 0 : 1;
         cell = 1;
     };
+    const ChartFrame grid_frame{grid, grid_margin};
+    glm::ivec2 low_cell(grid), high_cell(-1);
     for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
         detail::UvTriangle local;
-        for (int i = 0; i < 3; ++i) local[i] = localTexel(chart, frame, scale, chart.corners[slot * 3 + size_t(i)]);
+        for (int i = 0; i < 3; ++i) local[i] = localTexel(chart, grid_frame, scale, chart.corners[slot * 3 + size_t(i)]);
         const glm::dvec2 low = glm::min(local[0], glm::min(local[1], local[2]));
         const glm::dvec2 high = glm::max(local[0], glm::max(local[1], local[2]));
-        // Texels whose centre lies within (low - 1, high + 1); the frame holds them all.
-        const int first_x = std::clamp(int(std::floor(low.x - 1.5)), 0, frame.inner.x - 1);
-        const int last_x = std::clamp(int(std::floor(high.x + 0.5)), 0, frame.inner.x - 1);
-        const int first_y = std::clamp(int(std::floor(low.y - 1.5)), 0, frame.inner.y - 1);
-        const int last_y = std::clamp(int(std::floor(high.y + 0.5)), 0, frame.inner.y - 1);
+        // Texels whose centre lies within (low - 1, high + 1), with the slack; the grid holds them all.
+        const int first_x = std::clamp(int(std::floor(low.x - 1.5 - detail::kReadSlackTexels)), 0, grid.x - 1);
+        const int last_x = std::clamp(int(std::floor(high.x + 0.5 + detail::kReadSlackTexels)), 0, grid.x - 1);
+        const int first_y = std::clamp(int(std::floor(low.y - 1.5 - detail::kReadSlackTexels)), 0, grid.y - 1);
+        const int last_y = std::clamp(int(std::floor(high.y + 0.5 + detail::kReadSlackTexels)), 0, grid.y - 1);
         bool covers_a_centre = false;
         for (int y = first_y; y <= last_y; ++y)
             for (int x = first_x; x <= last_x; ++x) {
                 if (!detail::bilinearReadsTexel(local, x, y)) continue;
-                read[size_t(y) * size_t(frame.inner.x) + size_t(x)] = 1;
+                grid_read[size_t(y) * size_t(grid.x) + size_t(x)] = 1;
+                low_cell = glm::min(low_cell, glm::ivec2(x, y));
+                high_cell = glm::max(high_cell, glm::ivec2(x, y));
                 if (detail::containsPoint(local, glm::dvec2(x + 0.5, y + 0.5))) {
                     claim(x, y);
                     covers_a_centre = true;
@@ -926,10 +936,18 @@ size_t rasteriseChartFrame(const Chart& chart, const ChartFrame& frame, double s
             }
         if (!covers_a_centre) {
             const glm::dvec2 centroid = (local[0] + local[1] + local[2]) / 3.0;
-            claim(std::clamp(int(std::floor(centroid.x)), 0, frame.inner.x - 1),
-                  std::clamp(int(std::floor(centroid.y)), 0, frame.inner.y - 1));
+            claim(std::clamp(int(std::floor(centroid.x)), 0, grid.x - 1),
+                  std::clamp(int(std::floor(centroid.y)), 0, grid.y - 1));
         }
     }
+    if (high_cell.x < 0) low_cell = high_cell = glm::ivec2(1);  // reads nothing (cannot happen): keep one texel
+    frame.inner = high_cell - low_cell + 1;
+    frame.margin = grid_margin - glm::dvec2(low_cell);
+    read.assign(size_t(frame.inner.x) * size_t(frame.inner.y), 0);
+    for (int y = 0; y < frame.inner.y; ++y)
+        for (int x = 0; x < frame.inner.x; ++x)
+            read[size_t(y) * size_t(frame.inner.x) + size_t(x)] =
+                grid_read[size_t(y + low_cell.y) * size_t(grid.x) + size_t(x + low_cell.x)];
     return claimed_count;
 }
 
@@ -948,7 +966,7 @@ ChartFrame chooseChartFrame(const Chart& chart, const glm::dvec2& extent, double
     std::vector<uint8_t> candidate_read, claimed;
     for (const AxisFrame& x : along_x)
         for (const AxisFrame& y : along_y) {
-            const ChartFrame frame{glm::ivec2(x.texels, y.texels), glm::dvec2(x.margin, y.margin)};
+            ChartFrame frame{glm::ivec2(x.texels, y.texels), glm::dvec2(x.margin, y.margin)};
             const size_t claimed_count = rasteriseChartFrame(chart, frame, scale, candidate_read, claimed);
             const size_t read_count = size_t(std::count(candidate_read.begin(), candidate_read.end(), uint8_t(1)));
             const double score = double(claimed_count) - kTargetClaimedPerRead * double(read_count);

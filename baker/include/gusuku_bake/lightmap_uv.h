@@ -214,4 +214,21 @@ std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint
 /// vector does not hold resolution^2 texels.
 void dilateLightmap(std::vector<glm::vec4>& rgba_texels, int resolution, int iterations);
 
+/// Per lightmap texel, the chart whose bilinear lookups read it (some point of one of its triangles gives the texel's
+/// centre a weight above zero, conservatively by 2e-3 texel for float uv1): the chart's index, kNoReaderChart when
+/// no chart reads it, kSharedReaderChart when two do (a glTF's own UVs may; generated charts never). triangle_chart
+/// is lightmapUvCharts' numbering. O(texels the triangles read). Throws InputError as rasterizeLightmapTexels does,
+/// or when triangle_chart does not hold one chart per triangle.
+inline constexpr int32_t kNoReaderChart = -1;
+inline constexpr int32_t kSharedReaderChart = -2;
+std::vector<int32_t> lightmapTexelReaderCharts(const TriangleMesh& mesh_with_uv1,
+                                               const std::vector<uint32_t>& triangle_chart, int resolution);
+
+/// dilateLightmap that keeps charts apart: a texel one chart reads (reader_charts, lightmapTexelReaderCharts) is
+/// filled only from valid neighbours that chart also reads, so no chart's light reaches another chart's lookups even
+/// where their read texels touch; a texel no chart (or two charts) reads is filled from any valid neighbour, as
+/// dilateLightmap does. Throws InputError when the vectors do not hold resolution^2 texels.
+void dilateLightmapWithinCharts(std::vector<glm::vec4>& rgba_texels, const std::vector<int32_t>& reader_charts,
+                                int resolution, int iterations);
+
 }  // namespace gusuku::bake
