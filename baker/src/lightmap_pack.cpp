@@ -288,11 +288,12 @@ PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<
     return result;
 }
 
-// One texel per chart: what must fit even at the lowest density.
+// 2 x 2 texels per chart: what must fit even at the lowest density (bilinear lookups on a point read the four texels
+// around it; a chart reads at least two texels along each axis), so the density search below always ends.
 std::vector<ChartShape> pointShapes(size_t count) {
     ChartShape point;
-    point.inner = {1, 1};
-    point.occupied = {1};
+    point.inner = {2, 2};
+    point.occupied = {1, 1, 1, 1};
     return std::vector<ChartShape>(count, point);
 }
 
@@ -337,7 +338,7 @@ ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_m
         throw InputError("lightmap", "resolution",
                          std::to_string(shapes.size()) + " charts with " + std::to_string(padding) +
                              " texels of padding do not fit in " + std::to_string(resolution) + "^2 texels even at " +
-                             "one texel each; raise the lightmap resolution");
+                             "2 x 2 texels each; raise the lightmap resolution");
 
     // Bracket the largest density that fits, then bisect it.
     double failing_density = texels_per_metre;

@@ -47,7 +47,7 @@ using ChartShapesAt = std::function<std::vector<ChartShape>(double texels_per_me
 /// where it ends lowest, any of four turns, or a small chart into the lowest hole left under a bigger one, its
 /// occupied texels grown by `padding` never meeting another's occupied texels grown by `padding`), lowering
 /// the density (bisection, 12 steps after a bracket is found) until everything fits in resolution^2. Throws
-/// InputError when even the smallest footprints (1 + 2 * padding texels square) do not fit.
+/// InputError when even the smallest footprints (2 + 2 * padding texels square) do not fit.
 ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_metre, int resolution, int padding);
 
 /// A side (a multiple of 4, at most max_resolution rounded down to 4) within 1.6 % of the smallest whose square
