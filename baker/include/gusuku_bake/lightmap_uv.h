@@ -69,10 +69,9 @@ UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution);
 /// filter's chart stop (lightmap_denoise.h). O(triangles). Throws InputError without usable uv1.
 std::vector<uint32_t> lightmapUvCharts(const TriangleMesh& mesh);
 
-/// The gutter the bake uses: one empty texel on every side of a chart's touched texels. Enough for the
-/// runtime's bilinear lookups, which read at most one texel beyond the touched ones (the lightmap has no mip
-/// levels), and for dilation, whose first ring then fills each gutter texel from its own chart only (two
-/// charts' touched texels are at least three apart).
+/// Empty texels the bake adds around each chart's bilinear read set: none. Charts are packed so that no texel is
+/// read by two charts (lightmap_charts.cpp), which is all the runtime's bilinear lookups (no mip levels) and
+/// dilateLightmapWithinCharts need; a positive padding grows every read set by that many texels.
 inline constexpr int kLightmapPaddingTexels = 0;
 
 /// The result of generateLightmapCharts.
