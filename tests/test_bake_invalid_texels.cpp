@@ -116,10 +116,12 @@ TEST_F(BakeInvalidTexelsTest, APavilionOfDoubleSidedFacesHasNoInvalidTexelInTheO
                 invalid.closed_double_sided, invalid.unexplained);
     EXPECT_EQ(invalid.one_sided_backs, 0u) << "no material is one-sided";
     // The platform's sides 0.3 m below the ground (9.6 m^2 at 16 texels a m^2: about 154 texels) and the columns'
-    // feet inside the platform (4 x 4 x 0.3 x 0.2 m^2 and their ends: about 18 texels).
+    // feet inside the platform (4 x 4 x 0.3 x 0.2 m^2 and their ends: about 18 texels' area, but a foot is 1.2 texels
+    // tall, so how many texel centres it holds depends on where its chart lies against them: 4 since each chart is
+    // placed to claim the most texels for its reads, a few more before).
     EXPECT_GT(invalid.under_ground, 100u);
     EXPECT_LT(invalid.under_ground, 220u);
-    EXPECT_GT(invalid.closed_double_sided, 5u);
+    EXPECT_GT(invalid.closed_double_sided, 2u);
     EXPECT_LT(invalid.closed_double_sided, 60u);
     EXPECT_LE(invalid.unexplained, invalid.total / 20);
 

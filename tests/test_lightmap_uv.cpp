@@ -198,8 +198,8 @@ TEST(LightmapCharts, LowersTheDensityWhenTheChartsDoNotFitAndReportsIt) {
 }
 
 TEST(LightmapCharts, RejectsWhatCannotBeCharted) {
-    // Six charts of at least 1 + 2 * 2 texels square cannot fit in 8^2.
-    EXPECT_THROW(generateLightmapCharts(unitCube(), kCubeDensity, 8), gusuku::InputError);
+    // Six charts reading at least 2 x 2 texels each cannot fit in 4^2.
+    EXPECT_THROW(generateLightmapCharts(unitCube(), kCubeDensity, 4), gusuku::InputError);
     EXPECT_THROW(generateLightmapCharts(TriangleMesh{}, kCubeDensity, 64), gusuku::InputError);
     EXPECT_THROW(generateLightmapCharts(unitCube(), -1.0, 64), gusuku::InputError);
     TriangleMesh bad_index = unitCube();

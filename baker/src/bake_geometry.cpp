@@ -107,6 +107,7 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
     geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
     const std::vector<uint32_t> triangle_chart = lightmapUvCharts(geometry.building);
     for (const LightmapTexel& texel : geometry.texels) geometry.texel_chart.push_back(triangle_chart[texel.triangle]);
+    geometry.texel_reader_chart = lightmapTexelReaderCharts(geometry.building, triangle_chart, geometry.lightmap_resolution);
 
     const Bounds3 building_bounds = meshBounds(geometry.building);
     const TriangleMesh site_mesh = loadSiteMeshOrStandIn(site, building_bounds, max_texture_size, geometry.warnings,

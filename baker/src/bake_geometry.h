@@ -21,6 +21,8 @@ struct BakeGeometry {
     double effective_texels_per_metre = 0.0;
     std::vector<LightmapTexel> texels;     ///< the building's lightmap texels
     std::vector<uint32_t> texel_chart;     ///< per texel, its uv1 chart (lightmapUvCharts), for the filter
+    /// per lightmap texel (resolution^2), the chart whose lookups read it (lightmapTexelReaderCharts), for dilation
+    std::vector<int32_t> texel_reader_chart;
     bool site_mesh_is_stand_in = false;    ///< no sfm_mesh in site.json: a flat ground plane was used
     TraceScene scene;                      ///< building + site, with its BVH (scene.bvh, never null here)
     GroundRegion ground_region;

@@ -72,11 +72,15 @@ ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const st
         const LightmapTexel& texel = geometry.texels[i];
         result.per_texel[i] = result.image[size_t(texel.y) * size_t(resolution) + size_t(texel.x)];
     }
-    // Invalid texels inside charts and the padding around them take their valid neighbours' values, so bilinear
-    // filtering at chart edges never reads black; alpha then marks only the texels that were traced and valid.
+    // Invalid texels inside charts and the gutter around them take their valid neighbours' values, so bilinear
+    // filtering at chart edges never reads black, each from its own chart only (a chart's read texels may touch
+    // another's); alpha then marks only the texels that were traced and valid.
     std::vector<bool> traced_valid(result.image.size());
     for (size_t i = 0; i < result.image.size(); ++i) traced_valid[i] = result.image[i].a > 0.0f;
-    dilateLightmap(result.image, resolution, 8);
+    if (geometry.texel_reader_chart.size() == result.image.size())
+        dilateLightmapWithinCharts(result.image, geometry.texel_reader_chart, resolution, 8);
+    else
+        dilateLightmap(result.image, resolution, 8);
     for (size_t i = 0; i < result.image.size(); ++i) result.image[i].a = traced_valid[i] ? 1.0f : 0.0f;
     return result;
 }

@@ -260,25 +260,33 @@ void planeBasis(const glm::dvec3& normal, glm::dvec3* tangent, glm::dvec3* bitan
     *bitangent = glm::cross(normal, *tangent);
 }
 
-// Where to start a chart of `extent` texels inside its `inner` texels (inner > extent): as far as the slack
-// allows from putting either chart edge on a row of texel centres, so that float noise in the projection cannot
-// flip whether a border row of centres is covered (a 1 m face at 8 texels/m then covers exactly 8 x 8 centres).
-// Keeps a tenth of a texel (or half the slack) clear of the inner rectangle's sides.
-double marginAwayFromCentres(double extent, int inner) {
-    const double slack = double(inner) - extent;
-    const double guard = std::min(0.1, 0.5 * slack);
-    auto distanceFromCentre = [](double coordinate) { return std::abs(coordinate - std::floor(coordinate) - 0.5); };
-    double best_margin = 0.5 * slack, best_distance = -1.0;
-    constexpr int kSteps = 32;
-    for (int step = 0; step <= kSteps; ++step) {
-        const double margin = guard + (slack - 2.0 * guard) * step / kSteps;
-        const double distance = std::min(distanceFromCentre(margin), distanceFromCentre(margin + extent));
-        if (distance > best_distance + 1e-9) {
-            best_distance = distance;
-            best_margin = margin;
-        }
-    }
-    return best_margin;
+// Where a chart of `extent` texels may start inside its frame, and the frame's texels, along one axis. Bilinear
+// lookups on the chart read the texels whose centre lies less than a texel from it: every centre it covers plus one
+// beyond each end, wherever it lies (an open unit interval holds one centre). Placement decides how many centres it
+// covers, n = floor(extent) or n + 1, and so reads n + 2 or n + 3 texels. Each placement keeps both chart edges and
+// both ends of the read span at least kEdgeClearanceTexels clear of rows of centres, so float noise cannot flip
+// which centres it covers or reads; the frame is exactly the texels it reads.
+// - Fewer: the chart starts half of 1 - frac(extent) past a centre and covers n (a 1 m face at 8 texels/m covers 8
+//   centres, reads 10); possible while frac <= 1 - 2 * clearance.
+// - More: it starts frac / 2 before a centre and covers n + 1 (a 1.5 m face at 2 texels/m covers 4, reads 6);
+//   possible while frac >= 2 * clearance.
+// Which fills better depends on the chart (chooseChartFrame): n + 1 of n + 3 beats n of n + 2 on a rectangle, but a
+// thin, finely cut strip claims a texel under each triangle that covers no centre (lightmap_uv.h's fallback), so
+// covering no row of centres may claim as many texels for fewer reads.
+constexpr double kEdgeClearanceTexels = 0.05;
+
+struct AxisFrame {
+    int texels = 1;
+    double margin = 0.0;
+};
+
+// The placements along one axis that keep the clearance: one or both.
+std::vector<AxisFrame> axisFrames(double extent) {
+    const double whole = std::floor(extent), fraction = extent - whole;
+    std::vector<AxisFrame> frames;
+    if (0.5 * (1.0 - fraction) >= kEdgeClearanceTexels) frames.push_back({int(whole) + 2, 1.0 - 0.5 * fraction});
+    if (0.5 * fraction >= kEdgeClearanceTexels) frames.push_back({int(whole) + 3, 1.5 - 0.5 * fraction});
+    return frames;
 }
 
 // A chart: its triangles and where their corners lie flattened (metres). A chart grown across gentle edges is
@@ -868,72 +876,120 @@ std::vector<glm::dvec2> fitChartRectangles(const std::vector<TriangleInfo>& tria
     return extents;
 }
 
-// A chart's vertex in texels of its unturned inner rectangle at `scale` texels per metre: flattened, moved to the
-// rectangle's corner and offset by the margin that keeps its edges clear of rows of texel centres.
+// Where a chart lies in its frame: the frame's texels and the offset of the chart's rectangle inside it, per axis
+// one of axisFrames' placements.
 struct ChartFrame {
     glm::ivec2 inner{1, 1};
     glm::dvec2 margin{0.0};
 };
 
-ChartFrame chartFrame(const glm::dvec2& extent, double scale) {
-    ChartFrame frame;
-    frame.inner = detail::innerTexelSize(extent, scale);
-    const glm::dvec2 extent_texels = extent * scale;
-    frame.margin = glm::dvec2(marginAwayFromCentres(extent_texels.x, frame.inner.x),
-                              marginAwayFromCentres(extent_texels.y, frame.inner.y));
-    return frame;
-}
-
+// A chart's vertex in texels of its unturned frame at `scale` texels per metre: flattened, moved to the
+// rectangle's corner and offset by the frame's margin.
 glm::dvec2 localTexel(const Chart& chart, const ChartFrame& frame, double scale, const glm::dvec2& corner) {
     return (corner - chart.min) * scale + frame.margin;
 }
 
-// Whether a triangle (texel units) overlaps the texel square [x, x + 1] x [y, y + 1] by more than a touch along
-// an edge line: separating axes (the square's own axes are the caller's bounding-box loop). A zero-area triangle
-// meets every texel of its bounding box, conservatively.
-bool triangleMeetsTexel(const detail::UvTriangle& triangle, int x, int y) {
-    const double orientation = detail::signedDoubleArea(triangle);
-    if (!(std::abs(orientation) > 1e-12)) return true;
-    for (int edge = 0; edge < 3; ++edge) {
-        const glm::dvec2& start = triangle[edge];
-        const glm::dvec2& end = triangle[(edge + 1) % 3];
-        // Inward normal of the edge; the square is separated when all its corners lie on the outer side.
-        const glm::dvec2 inward = orientation > 0.0 ? glm::dvec2(start.y - end.y, end.x - start.x)
-                                                    : glm::dvec2(end.y - start.y, start.x - end.x);
-        double most_inside = -INFINITY;
-        for (int corner = 0; corner < 4; ++corner) {
-            const glm::dvec2 point(x + (corner & 1), y + (corner >> 1));
-            most_inside = std::max(most_inside, glm::dot(point - start, inward));
+// The texels of a chart's frame its bilinear lookups read (`read`, frame.inner.x * frame.inner.y, row-major: the
+// texels whose centre lies less than a texel from one of its triangles on both axes, by kReadSlackTexels
+// conservatively; a zero-area triangle reads every texel around its bounding box), and how many texels it claims by
+// lightmap_uv.h's coverage rule (the centres its triangles cover, and the texel under the UV centroid of a triangle
+// that covers none): the texels traced for it. The frame is then cut (or grown) to the read texels' bounding box:
+// a read found only through the slack (a corner of an unfolded net that lands on a row of centres) may lie a texel
+// outside axisFrames' frame, and must still be kept from other charts.
+size_t rasteriseChartFrame(const Chart& chart, ChartFrame& frame, double scale, std::vector<uint8_t>& read,
+                           std::vector<uint8_t>& claimed) {
+    // A grid with one texel more on every side than the frame.
+    const glm::ivec2 grid = frame.inner + 2;
+    const glm::dvec2 grid_margin = frame.margin + 1.0;
+    const size_t cells = size_t(grid.x) * size_t(grid.y);
+    std::vector<uint8_t> grid_read(cells, 0);
+    claimed.assign(cells, 0);
+    size_t claimed_count = 0;
+    auto claim = [&](int x, int y) {
+        uint8_t& cell = claimed[size_t(y) * size_t(grid.x) + size_t(x)];
+        claimed_count += cell ? 0 : 1;
+        cell = 1;
+    };
+    const ChartFrame grid_frame{grid, grid_margin};
+    glm::ivec2 low_cell(grid), high_cell(-1);
+    for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
+        detail::UvTriangle local;
+        for (int i = 0; i < 3; ++i) local[i] = localTexel(chart, grid_frame, scale, chart.corners[slot * 3 + size_t(i)]);
+        const glm::dvec2 low = glm::min(local[0], glm::min(local[1], local[2]));
+        const glm::dvec2 high = glm::max(local[0], glm::max(local[1], local[2]));
+        // Texels whose centre lies within (low - 1, high + 1), with the slack; the grid holds them all.
+        const int first_x = std::clamp(int(std::floor(low.x - 1.5 - detail::kReadSlackTexels)), 0, grid.x - 1);
+        const int last_x = std::clamp(int(std::floor(high.x + 0.5 + detail::kReadSlackTexels)), 0, grid.x - 1);
+        const int first_y = std::clamp(int(std::floor(low.y - 1.5 - detail::kReadSlackTexels)), 0, grid.y - 1);
+        const int last_y = std::clamp(int(std::floor(high.y + 0.5 + detail::kReadSlackTexels)), 0, grid.y - 1);
+        bool covers_a_centre = false;
+        for (int y = first_y; y <= last_y; ++y)
+            for (int x = first_x; x <= last_x; ++x) {
+                if (!detail::bilinearReadsTexel(local, x, y)) continue;
+                grid_read[size_t(y) * size_t(grid.x) + size_t(x)] = 1;
+                low_cell = glm::min(low_cell, glm::ivec2(x, y));
+                high_cell = glm::max(high_cell, glm::ivec2(x, y));
+                if (detail::containsPoint(local, glm::dvec2(x + 0.5, y + 0.5))) {
+                    claim(x, y);
+                    covers_a_centre = true;
+                }
+            }
+        if (!covers_a_centre) {
+            const glm::dvec2 centroid = (local[0] + local[1] + local[2]) / 3.0;
+            claim(std::clamp(int(std::floor(centroid.x)), 0, grid.x - 1),
+                  std::clamp(int(std::floor(centroid.y)), 0, grid.y - 1));
         }
-        if (most_inside <= 1e-9 * glm::length(inward)) return false;
     }
-    return true;
+    if (high_cell.x < 0) low_cell = high_cell = glm::ivec2(1);  // reads nothing (cannot happen): keep one texel
+    frame.inner = high_cell - low_cell + 1;
+    frame.margin = grid_margin - glm::dvec2(low_cell);
+    read.assign(size_t(frame.inner.x) * size_t(frame.inner.y), 0);
+    for (int y = 0; y < frame.inner.y; ++y)
+        for (int x = 0; x < frame.inner.x; ++x)
+            read[size_t(y) * size_t(frame.inner.x) + size_t(x)] =
+                grid_read[size_t(y + low_cell.y) * size_t(grid.x) + size_t(x + low_cell.x)];
+    return claimed_count;
 }
 
-// Phase 7: what the packer needs of each chart at a density: which texels of its inner rectangle its triangles
-// touch (overlap by any area; a zero-area triangle touches every texel of its bounding box).
+// The claimed texels per read texel the bake's charts reach: choosing each chart's frame to maximise claimed -
+// kTargetClaimedPerRead * read maximises the lightmap's claimed share over all charts' reads when the target is that
+// share (the packer then keeps the reads' share of the lightmap near 90 %).
+constexpr double kTargetClaimedPerRead = 0.65;
+
+// The chart's frame among the placements axisFrames allows per axis (up to four) that claims the most texels for
+// its reads (kTargetClaimedPerRead; ties: fewer reads, then the first), with its read texels in `read`.
+ChartFrame chooseChartFrame(const Chart& chart, const glm::dvec2& extent, double scale, std::vector<uint8_t>& read) {
+    const std::vector<AxisFrame> along_x = axisFrames(extent.x * scale), along_y = axisFrames(extent.y * scale);
+    ChartFrame best;
+    double best_score = -INFINITY;
+    size_t best_read = 0;
+    std::vector<uint8_t> candidate_read, claimed;
+    for (const AxisFrame& x : along_x)
+        for (const AxisFrame& y : along_y) {
+            ChartFrame frame{glm::ivec2(x.texels, y.texels), glm::dvec2(x.margin, y.margin)};
+            const size_t claimed_count = rasteriseChartFrame(chart, frame, scale, candidate_read, claimed);
+            const size_t read_count = size_t(std::count(candidate_read.begin(), candidate_read.end(), uint8_t(1)));
+            const double score = double(claimed_count) - kTargetClaimedPerRead * double(read_count);
+            if (score > best_score || (score == best_score && read_count < best_read)) {
+                best = frame;
+                best_score = score;
+                best_read = read_count;
+                read.swap(candidate_read);
+            }
+        }
+    return best;
+}
+
+// Phase 7: what the packer needs of each chart at a density: which texels of its frame (chooseChartFrame) its
+// bilinear lookups read. Packing these sets apart, rather than the touched texels with a ring of gutter each, lets
+// two charts share the one gutter texel that only one of them reads: the rule that keeps bilinear filtering (and
+// the chart-aware dilation) from mixing charts, at half the gutter of the touched rule on thin parts.
 std::vector<detail::ChartShape> chartShapes(const std::vector<Chart>& charts,
                                             const std::vector<glm::dvec2>& extents, double scale) {
     std::vector<detail::ChartShape> shapes(charts.size());
     for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
-        const Chart& chart = charts[chart_index];
-        const ChartFrame frame = chartFrame(extents[chart_index], scale);
         detail::ChartShape& shape = shapes[chart_index];
-        shape.inner = frame.inner;
-        shape.touched.assign(size_t(frame.inner.x) * size_t(frame.inner.y), 0);
-        for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
-            detail::UvTriangle local;
-            for (int i = 0; i < 3; ++i) local[i] = localTexel(chart, frame, scale, chart.corners[slot * 3 + size_t(i)]);
-            const glm::dvec2 low = glm::min(local[0], glm::min(local[1], local[2]));
-            const glm::dvec2 high = glm::max(local[0], glm::max(local[1], local[2]));
-            const int first_x = std::clamp(int(std::floor(low.x)), 0, frame.inner.x - 1);
-            const int last_x = std::clamp(int(std::floor(high.x)), 0, frame.inner.x - 1);
-            const int first_y = std::clamp(int(std::floor(low.y)), 0, frame.inner.y - 1);
-            const int last_y = std::clamp(int(std::floor(high.y)), 0, frame.inner.y - 1);
-            for (int y = first_y; y <= last_y; ++y)
-                for (int x = first_x; x <= last_x; ++x)
-                    if (triangleMeetsTexel(local, x, y)) shape.touched[size_t(y) * size_t(frame.inner.x) + size_t(x)] = 1;
-        }
+        shape.inner = chooseChartFrame(charts[chart_index], extents[chart_index], scale, shape.occupied).inner;
     }
     return shapes;
 }
@@ -964,7 +1020,8 @@ LightmapCharts writeChartedMesh(const TriangleMesh& mesh, const std::vector<Char
     for (size_t chart_index = 0; chart_index < charts.size(); ++chart_index) {
         const Chart& chart = charts[chart_index];
         const detail::ChartPlacement& placement = packing.placements[chart_index];
-        const ChartFrame frame = chartFrame(extents[chart_index], scale);
+        std::vector<uint8_t> read;
+        const ChartFrame frame = chooseChartFrame(chart, extents[chart_index], scale, read);
         copies.clear();
         for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
             const uint32_t triangle = chart.triangles[slot];
@@ -1006,7 +1063,8 @@ FittedCharts growAndFitCharts(const TriangleMesh& mesh, double texels_per_metre,
     FittedCharts fitted;
     fitted.charts = growCharts(mesh, analysis, snap_tolerance, chart_of);
     attachDegenerateTriangles(mesh, analysis.triangles, chart_of, fitted.charts);
-    unfoldAcrossSharpEdges(analysis, chart_of, fitted.charts, texels_per_metre, padding_texels, snap_tolerance);
+    // A chart's read set reaches about one texel beyond its inner rectangle: joins are judged with that ring.
+    unfoldAcrossSharpEdges(analysis, chart_of, fitted.charts, texels_per_metre, padding_texels + 1, snap_tolerance);
     fitted.extents = fitChartRectangles(analysis.triangles, fitted.charts, snap_tolerance);
     return fitted;
 }

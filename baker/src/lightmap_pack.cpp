@@ -54,12 +54,12 @@ TurnedFootprint turnedFootprint(const ChartShape& shape, int quarter_turns, int 
     footprint.height = inner_height + 2 * padding;
     footprint.bottom.assign(size_t(footprint.width), footprint.height);
     footprint.top.assign(size_t(footprint.width), 0);
-    // Per turned inner column, the touched rows' span; the padding grows it by `padding` every way.
+    // Per turned inner column, the occupied rows' span; the padding grows it by `padding` every way.
     for (int column = 0; column < inner_width; ++column) {
         int first = -1, last = -1;
         for (int row = 0; row < inner_height; ++row) {
             const glm::ivec2 cell = unturnedCell(shape.inner, quarter_turns, column, row);
-            if (!shape.touched[size_t(cell.y) * size_t(shape.inner.x) + size_t(cell.x)]) continue;
+            if (!shape.occupied[size_t(cell.y) * size_t(shape.inner.x) + size_t(cell.x)]) continue;
             if (first < 0) first = row;
             last = row;
         }
@@ -87,7 +87,7 @@ std::vector<std::vector<TurnedFootprint>> turnedFootprints(const std::vector<Cha
     std::vector<std::vector<TurnedFootprint>> footprints(shapes.size());
     for (size_t chart = 0; chart < shapes.size(); ++chart) {
         const ChartShape& shape = shapes[chart];
-        const bool full = std::all_of(shape.touched.begin(), shape.touched.end(), [](uint8_t cell) { return cell != 0; });
+        const bool full = std::all_of(shape.occupied.begin(), shape.occupied.end(), [](uint8_t cell) { return cell != 0; });
         for (int turns = 0; turns < (full ? 2 : 4); ++turns)
             footprints[chart].push_back(turnedFootprint(shape, turns, padding));
     }
@@ -288,11 +288,12 @@ PackResult skylinePack(const std::vector<ChartShape>& shapes, const std::vector<
     return result;
 }
 
-// One texel per chart: what must fit even at the lowest density.
+// 2 x 2 texels per chart: what must fit even at the lowest density (bilinear lookups on a point read the four texels
+// around it; a chart reads at least two texels along each axis), so the density search below always ends.
 std::vector<ChartShape> pointShapes(size_t count) {
     ChartShape point;
-    point.inner = {1, 1};
-    point.touched = {1};
+    point.inner = {2, 2};
+    point.occupied = {1, 1, 1, 1};
     return std::vector<ChartShape>(count, point);
 }
 
@@ -337,7 +338,7 @@ ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_m
         throw InputError("lightmap", "resolution",
                          std::to_string(shapes.size()) + " charts with " + std::to_string(padding) +
                              " texels of padding do not fit in " + std::to_string(resolution) + "^2 texels even at " +
-                             "one texel each; raise the lightmap resolution");
+                             "2 x 2 texels each; raise the lightmap resolution");
 
     // Bracket the largest density that fits, then bisect it.
     double failing_density = texels_per_metre;
@@ -368,10 +369,10 @@ ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_m
 
 int smallestFittingResolution(const std::vector<ChartShape>& shapes, int max_resolution, int padding) {
     const int capped_maximum = max_resolution / 4 * 4;
-    double touched_area = 0.0;
+    double occupied_area = 0.0;
     int longest_side = 1;
     for (const ChartShape& shape : shapes) {
-        for (uint8_t cell : shape.touched) touched_area += cell ? 1.0 : 0.0;
+        for (uint8_t cell : shape.occupied) occupied_area += cell ? 1.0 : 0.0;
         longest_side = std::max(longest_side, std::max(shape.inner.x, shape.inner.y) + 2 * padding);
     }
     const std::vector<std::vector<TurnedFootprint>> footprints = turnedFootprints(shapes, padding);
@@ -380,9 +381,9 @@ int smallestFittingResolution(const std::vector<ChartShape>& shapes, int max_res
             if (skylinePack(shapes, footprints, resolution, padding, rule).fits) return true;
         return false;
     };
-    // Multiples of 4 from the touched area's bound: grow by an eighth until one fits, then bisect down to within
+    // Multiples of 4 from the occupied area's bound: grow by an eighth until one fits, then bisect down to within
     // 1.6 % of the smallest (packing is nearly monotone in the side; the answer returned always fits).
-    int low = std::max(4, (std::max(int(std::ceil(std::sqrt(touched_area))), longest_side) + 3) / 4 * 4);
+    int low = std::max(4, (std::max(int(std::ceil(std::sqrt(occupied_area))), longest_side) + 3) / 4 * 4);
     if (low >= capped_maximum) return capped_maximum;
     if (fits(low)) return low;
     int high = low;

@@ -9,14 +9,16 @@
 
 namespace gusuku::bake::detail {
 
-/// A chart as the packer sees it: the rectangle of texels its triangles may touch, and which of them they do.
+/// A chart as the packer sees it: a rectangle of texels, and which of them the chart needs for itself. The
+/// charting code gives each chart's bilinear read set (lightmap_charts.cpp, phase 7): the packer keeps these sets,
+/// grown by the padding, apart.
 struct ChartShape {
-    glm::ivec2 inner{1, 1};        ///< texels, as charted (before any turn)
-    std::vector<uint8_t> touched;  ///< inner.x * inner.y, row-major: 1 where a triangle touches the texel
+    glm::ivec2 inner{1, 1};         ///< texels, as charted (before any turn)
+    std::vector<uint8_t> occupied;  ///< inner.x * inner.y, row-major: 1 where the chart needs the texel
 };
 
-/// Where one chart went. Its triangles live in the inner rectangle [x, x + inner_width] x [y, y + inner_height]
-/// (texels, after the turn); `padding` empty texels surround its touched texels inside the lightmap.
+/// Where one chart went. Its shape's rectangle is [x, x + inner_width] x [y, y + inner_height] (texels, after the
+/// turn); `padding` texels no other chart occupies surround its occupied texels inside the lightmap.
 struct ChartPlacement {
     int x = 0;
     int y = 0;
@@ -43,9 +45,9 @@ using ChartShapesAt = std::function<std::vector<ChartShape>(double texels_per_me
 
 /// Packs the charts at `texels_per_metre` (lightmap_pack.cpp: a skyline of column heights, each chart dropped
 /// where it ends lowest, any of four turns, or a small chart into the lowest hole left under a bigger one, its
-/// touched texels grown by `padding` never meeting another's), lowering
+/// occupied texels grown by `padding` never meeting another's occupied texels grown by `padding`), lowering
 /// the density (bisection, 12 steps after a bracket is found) until everything fits in resolution^2. Throws
-/// InputError when even the smallest footprints (1 + 2 * padding texels square) do not fit.
+/// InputError when even the smallest footprints (2 + 2 * padding texels square) do not fit.
 ChartPacking packChartShapes(const ChartShapesAt& shapes_at, double texels_per_metre, int resolution, int padding);
 
 /// A side (a multiple of 4, at most max_resolution rounded down to 4) within 1.6 % of the smallest whose square

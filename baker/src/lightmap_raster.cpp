@@ -2,6 +2,7 @@
 
 #include "lightmap_raster.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -58,6 +59,32 @@ bool containsPoint(const UvTriangle& triangle, const glm::dvec2& point) {
         const double side = runs_low_to_high ? canonical : -canonical;
         if (orientation * side < 0.0) return false;
         if (side == 0.0 && !runs_low_to_high) return false;
+    }
+    return true;
+}
+
+bool triangleMeetsSquare(const UvTriangle& triangle, double x0, double y0, double side) {
+    constexpr double kTouch = 1e-9;  // overlaps thinner than this (texels) are touches
+    const double low_x = std::min({triangle[0].x, triangle[1].x, triangle[2].x});
+    const double high_x = std::max({triangle[0].x, triangle[1].x, triangle[2].x});
+    const double low_y = std::min({triangle[0].y, triangle[1].y, triangle[2].y});
+    const double high_y = std::max({triangle[0].y, triangle[1].y, triangle[2].y});
+    if (!(high_x > x0 + kTouch && low_x < x0 + side - kTouch && high_y > y0 + kTouch && low_y < y0 + side - kTouch))
+        return false;
+    const double orientation = signedDoubleArea(triangle);
+    if (!(std::abs(orientation) > 1e-12)) return true;
+    for (int edge = 0; edge < 3; ++edge) {
+        const glm::dvec2& start = triangle[edge];
+        const glm::dvec2& end = triangle[(edge + 1) % 3];
+        // Inward normal of the edge; the square is separated when all its corners lie on the outer side.
+        const glm::dvec2 inward = orientation > 0.0 ? glm::dvec2(start.y - end.y, end.x - start.x)
+                                                    : glm::dvec2(end.y - start.y, start.x - end.x);
+        double most_inside = -INFINITY;
+        for (int corner = 0; corner < 4; ++corner) {
+            const glm::dvec2 point(x0 + side * double(corner & 1), y0 + side * double(corner >> 1));
+            most_inside = std::max(most_inside, glm::dot(point - start, inward));
+        }
+        if (most_inside <= kTouch * glm::length(inward)) return false;
     }
     return true;
 }

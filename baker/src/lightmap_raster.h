@@ -30,6 +30,23 @@ bool containsPoint(const UvTriangle& triangle, const glm::dvec2& point);
 /// Area of the triangle inside the unit texel square [x, x+1] x [y, y+1] (Sutherland-Hodgman clipping).
 double areaInsideTexel(const UvTriangle& triangle, int x, int y);
 
+/// True when the triangle overlaps the open square (x0, x0 + side) x (y0, y0 + side) by some area (more than a
+/// touch along an edge or a corner, within 1e-9 of a texel): separating axes, the square's two and the
+/// triangle's three. A zero-area triangle meets every square its bounding box overlaps, conservatively.
+bool triangleMeetsSquare(const UvTriangle& triangle, double x0, double y0, double side);
+
+/// True when bilinear filtering at some point of the triangle reads texel (x, y), i.e. gives its centre
+/// (x + 0.5, y + 0.5) a weight above zero: the centre lies less than one texel from the point on both axes, so the
+/// triangle meets the open 2 x 2 square around the centre. The texels a chart's triangles read are the texels
+/// that must hold that chart's value (its bilinear read set); a chart reads at most one texel beyond the texels
+/// it touches. Conservative by kReadSlackTexels: uv1 is stored in float (an ulp is 2.4e-4 texel at 4096^2), so a
+/// chart edge exactly one texel from a centre (a chart corner on a row of centres) may land just inside.
+inline constexpr double kReadSlackTexels = 2e-3;
+inline bool bilinearReadsTexel(const UvTriangle& triangle, int x, int y) {
+    return triangleMeetsSquare(triangle, double(x) - 0.5 - kReadSlackTexels, double(y) - 0.5 - kReadSlackTexels,
+                               2.0 + 2.0 * kReadSlackTexels);
+}
+
 /// Barycentric weights of the point of the triangle nearest `point` (the point itself when inside); for a
 /// zero-area triangle, the nearest point on its longest edge.
 glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& point);

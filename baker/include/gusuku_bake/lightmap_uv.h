@@ -69,11 +69,10 @@ UvCheckReport checkLightmapUvs(const TriangleMesh& mesh, int resolution);
 /// filter's chart stop (lightmap_denoise.h). O(triangles). Throws InputError without usable uv1.
 std::vector<uint32_t> lightmapUvCharts(const TriangleMesh& mesh);
 
-/// The gutter the bake uses: one empty texel on every side of a chart's touched texels. Enough for the
-/// runtime's bilinear lookups, which read at most one texel beyond the touched ones (the lightmap has no mip
-/// levels), and for dilation, whose first ring then fills each gutter texel from its own chart only (two
-/// charts' touched texels are at least three apart).
-inline constexpr int kLightmapPaddingTexels = 1;
+/// Empty texels the bake adds around each chart's bilinear read set: none. Charts are packed so that no texel is
+/// read by two charts (lightmap_charts.cpp), which is all the runtime's bilinear lookups (no mip levels) and
+/// dilateLightmapWithinCharts need; a positive padding grows every read set by that many texels.
+inline constexpr int kLightmapPaddingTexels = 0;
 
 /// The result of generateLightmapCharts.
 struct LightmapCharts {
@@ -213,5 +212,22 @@ std::vector<glm::vec4> texelSumsFromFootprint(const LightmapFootprint& footprint
 /// never change. Stops early when nothing changes. O(iterations * resolution^2). Throws InputError when the
 /// vector does not hold resolution^2 texels.
 void dilateLightmap(std::vector<glm::vec4>& rgba_texels, int resolution, int iterations);
+
+/// Per lightmap texel, the chart whose bilinear lookups read it (some point of one of its triangles gives the texel's
+/// centre a weight above zero, conservatively by 2e-3 texel for float uv1): the chart's index, kNoReaderChart when
+/// no chart reads it, kSharedReaderChart when two do (a glTF's own UVs may; generated charts never). triangle_chart
+/// is lightmapUvCharts' numbering. O(texels the triangles read). Throws InputError as rasterizeLightmapTexels does,
+/// or when triangle_chart does not hold one chart per triangle.
+inline constexpr int32_t kNoReaderChart = -1;
+inline constexpr int32_t kSharedReaderChart = -2;
+std::vector<int32_t> lightmapTexelReaderCharts(const TriangleMesh& mesh_with_uv1,
+                                               const std::vector<uint32_t>& triangle_chart, int resolution);
+
+/// dilateLightmap that keeps charts apart: a texel one chart reads (reader_charts, lightmapTexelReaderCharts) is
+/// filled only from valid neighbours that chart also reads, so no chart's light reaches another chart's lookups even
+/// where their read texels touch; a texel no chart (or two charts) reads is filled from any valid neighbour, as
+/// dilateLightmap does. Throws InputError when the vectors do not hold resolution^2 texels.
+void dilateLightmapWithinCharts(std::vector<glm::vec4>& rgba_texels, const std::vector<int32_t>& reader_charts,
+                                int resolution, int iterations);
 
 }  // namespace gusuku::bake
