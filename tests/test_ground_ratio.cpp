@@ -309,7 +309,9 @@ TEST_F(GroundRatioGpu, GlslTwinMatchesTheCpp) {
             ++outside;
         }
         EXPECT_EQ(g.inside, gusuku::groundCellInside(grid, p.cell));
-        if (gusuku::groundCellInside(grid, p.cell)) EXPECT_EQ(size_t(g.index), gusuku::groundCellIndex(grid, p.cell));
+        if (gusuku::groundCellInside(grid, p.cell)) {
+            EXPECT_EQ(size_t(g.index), gusuku::groundCellIndex(grid, p.cell));
+        }
         EXPECT_EQ(g.from_index, gusuku::groundCellFromIndex(grid, size_t(p.index)));
         const glm::vec3 e_sun = gusuku::groundSunIrradiance(p.sun_irradiance, p.normal, p.sun_direction,
                                                              p.scene_visibility);
