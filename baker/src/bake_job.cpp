@@ -403,6 +403,9 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     std::filesystem::create_directories(checkpoint_dir);
 
     IrradianceTracer tracer(context, geometry.scene, sunny.tables, options.max_texture_size);
+    report.alpha_tested_triangles = tracer.alphaTestedTriangleCount();
+    for (uint32_t flags : geometry.scene.triangle_flags)
+        report.masked_triangles += (flags & kTriangleFlagAlphaMasked) != 0 ? 1u : 0u;
     SetTracer set_tracer(tracer, progress, options, trace_hash, checkpoint_dir);
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();

@@ -118,6 +118,10 @@ int runBakeCommand(const std::vector<std::string>& args) {
     std::printf("building:        %zu lightmap texels (%dx%d, charts fill %.1f %%)\n", report.building_texels,
                 report.lightmap_resolution, report.lightmap_resolution,
                 lightmap_texels > 0.0 ? 100.0 * double(report.building_texels) / lightmap_texels : 0.0);
+    if (report.masked_triangles > 0)
+        std::printf("alpha masks:     %zu of %zu masked triangles alpha-tested (the rest read no texel below the "
+                    "cutoff)\n",
+                    report.alpha_tested_triangles, report.masked_triangles);
     for (const bake::InvalidTexelCounts& invalid : report.invalid_texels)
         std::printf("invalid texels:  %s %zu (%.1f %%): %zu one-sided backs, %zu under the ground, %zu inside closed "
                     "double-sided parts, %zu unexplained\n",

@@ -6,6 +6,7 @@
 
 #include "bake_irradiance_interface.h"
 #include "camera_trace_interface.h"
+#include "gusuku_bake/alpha_mask_footprint.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {
@@ -24,16 +25,27 @@ TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, in
     if (!built) built = std::make_shared<const Bvh>(buildBvh(scene.mesh, scene.triangle_flags));
     const Bvh& bvh = *built;
     const PackedSceneShading shading = packSceneShading(scene.mesh, max_texture_size);
+    // Only triangles whose footprint holds a texel below the cutoff run the alpha test: the flags the BVH's leaf
+    // records carry are narrowed here, where the texture as uploaded is known (the tree's shape does not depend
+    // on the flags, so the records are patched rather than the tree rebuilt).
+    const std::vector<uint32_t> flags = narrowAlphaMaskFlags(shading, scene.triangle_flags);
+    std::vector<BvhTriangleGpu> leaf_triangles = bvh.triangles;
+    for (BvhTriangleGpu& leaf : leaf_triangles)
+        if (leaf.triangle_index < flags.size()) leaf.flags = flags[leaf.triangle_index];
     constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     TraceSceneGpu uploaded;
     uploaded.bvh_nodes = uploadedBuffer(gpu, bvh.nodes, kTexel);
-    uploaded.bvh_triangles = uploadedBuffer(gpu, bvh.triangles, kTexel);
+    uploaded.bvh_triangles = uploadedBuffer(gpu, leaf_triangles, kTexel);
     uploaded.shading_triangles = uploadedBuffer(gpu, shading.triangles, kTexel);
     uploaded.materials = uploadedBuffer(gpu, shading.materials, kTexel);
     uploaded.texture_words = uploadedBuffer(gpu, shading.texture_words, kTexel);
     uploaded.triangle_count = scene.mesh.triangleCount();
     uploaded.dropped_triangle_count = bvh.dropped_triangle_count;
-    for (uint32_t flags : scene.triangle_flags) uploaded.has_alpha_masks |= (flags & kTriangleFlagAlphaMasked) != 0;
+    for (uint32_t triangle_flags : flags) {
+        const bool tested = (triangle_flags & kTriangleFlagAlphaMasked) != 0;
+        uploaded.has_alpha_masks |= tested;
+        uploaded.alpha_tested_triangle_count += tested ? 1u : 0u;
+    }
     return uploaded;
 }
 

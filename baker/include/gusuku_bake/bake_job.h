@@ -55,6 +55,8 @@ struct BakeReport {
     std::string manifest_path;
     uint32_t samples_per_point = 0;
     size_t building_texels = 0;
+    size_t masked_triangles = 0;       ///< triangles of alpha-masked materials
+    size_t alpha_tested_triangles = 0; ///< of those, the ones whose footprint holds a hole (the tracer tests these)
     size_t ground_cells = 0;
     int lightmap_resolution = 0;
     uint64_t rays_traced = 0;       ///< this run's rays (not those of resumed work)

@@ -128,6 +128,10 @@ public:
     /// for 0, kSkyRaysAtPointWithoutSun without a sun (a sun-direct pass counts as with one) and 1 with one.
     uint32_t resolvedSkyRaysAtPoint(const TracePass& pass) const;
 
+    /// Triangles of alpha-masked materials that run the alpha test, and all of them (the others' footprints read
+    /// no texel below the cutoff: narrowAlphaMaskFlags, alpha_mask_footprint.h).
+    size_t alphaTestedTriangleCount() const { return scene_.alpha_tested_triangle_count; }
+
     PointAccumulator createAccumulator(const std::vector<QueryPointGpu>& points);
 
     /// Adds `sample_count` samples per point: samples [samples_done, samples_done + sample_count) of each

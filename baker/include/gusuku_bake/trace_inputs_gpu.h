@@ -24,7 +24,8 @@ struct TraceSceneGpu {
     GpuBuffer texture_words;
     size_t triangle_count = 0;          ///< the scene's triangles
     size_t dropped_triangle_count = 0;  ///< left out of the BVH (degenerate or not finite)
-    bool has_alpha_masks = false;       ///< a triangle is flagged kTriangleFlagAlphaMasked
+    bool has_alpha_masks = false;       ///< a triangle runs the alpha test (narrowAlphaMaskFlags kept its flag)
+    size_t alpha_tested_triangle_count = 0;  ///< triangles that run it: those whose footprint holds a hole
 };
 
 /// The trace kernels' specialisation constants for this scene: constant_id 0 is BVH_ALPHA_MASKS
