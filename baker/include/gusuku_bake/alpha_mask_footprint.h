@@ -1,9 +1,9 @@
 #pragma once
 // Which alpha-masked triangles can show a hole to the tracer. A masked material's flag makes every hit on its
 // triangles run the alpha test (shaders/include/bvh_alpha_mask.glsl: a texture fetch and a bilinear mix inside the
-// traversal loop), but a masked material usually covers far more than its cut-outs: the shared house's atlas
-// material covers 6,343 of its 10,497 triangles, of which only the tree's leaves have holes. A triangle whose
-// bilinear footprint reads no texel below the cutoff can never be a hole, so it need not be tested.
+// traversal loop), and a masked material may cover far more than its cut-outs (an atlas marked MASK for one
+// foliage card). A triangle whose bilinear footprint reads no texel below the cutoff can never be a hole, so it
+// need not be tested. (On the shared house 3,269 of 4,462 masked triangles do read one: docs/measurements.md.)
 
 #include <cstdint>
 #include <vector>
