@@ -3,7 +3,8 @@
 # (../shared/data/building, CC-BY-4.0: see their SOURCE.md) on the sample terrace under the shared photographed
 # skies (../shared/data/env), beside the sample itself, each read by gusuku-bench's site section from the same
 # visitor poses: the composite's and direct-only's error against the path-traced truth at a baked instant and 1.5
-# hours from it, the frame time of both at 1280x720, and the real model's frame against the sample's.
+# hours from it, the frame time of both at 1280x720, and the real model's frame against the sample's (timed in the
+# same run, interleaved: --sample-bakeset).
 #
 # Usage: scripts/bench-sites.sh [--quick] [WORK_DIR [GUSUKU_BENCH_OPTION...]]   (default WORK_DIR: out/sites, outside
 # git's view; options after it go to every gusuku-bench run, e.g. --accuracy-size 320x180 --truth-samples 256)
@@ -47,10 +48,10 @@ for site in sample shrine house; do
   echo "scripts/bench-sites.sh: $site baked (or up to date) in $((SECONDS - start)) s"
 done
 for site in sample shrine house; do
-  sample_results=()
-  [[ "$site" != sample ]] && sample_results=(--sample-results "$work/sample/bench/results.json")
+  sample_reference=()
+  [[ "$site" != sample ]] && sample_reference=(--sample-bakeset "$work/sample/bakeset")
   "$bench" "$work/$site/bakeset" -o "$work/$site/bench" --cache "$work/bench-cache" --only site --views "$views" \
-    "${sample_results[@]}" "${quick[@]}" "${bench_options[@]}" > "$work/$site/bench.log"
+    "${sample_reference[@]}" "${quick[@]}" "${bench_options[@]}" > "$work/$site/bench.log"
   echo "scripts/bench-sites.sh: $site benched ($work/$site/bench/summary.md)"
 done
 python3 scripts/bench-sites-table.py "$work" sample shrine house > "$work/summary.md.tmp"

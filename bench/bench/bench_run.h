@@ -43,6 +43,9 @@ struct Settings {
     // The site section (--views): the visitor poses, and the sample's results.json to compare the frame with.
     std::vector<NamedView> views;
     std::optional<std::string> sample_results;
+    // The sample's bake set (--sample-bakeset): its frame is timed in the same run, interleaved with the site's
+    // frames from the same pose, so that "over the sample's" is a ratio of one run (the machine is shared).
+    std::optional<std::string> sample_bake_set;
     // The runtime's anti-aliasing and texture filtering (--msaa, --anisotropy), so that a run can measure what
     // each costs and buys. The bench's own device enables samplerAnisotropy where the device has it (the runtime
     // clamps to it), so it asks for the most, as an app that enables the feature would: on the shrine's quick

@@ -79,6 +79,9 @@ const char* const kUsage =
     "  --anisotropy N    the runtime's texture anisotropy (RuntimeOptions::max_anisotropy, default 16,\n"
     "                    clamped to what the bench's own device has)\n"
     "  --views LIST      the site section's visitor poses, NAME:E,N,U:E,N,U (eye, look-at) separated by ';'\n"
+    "  --sample-bakeset DIR\n"
+    "                    the sample's bake set: the site section times its frame from each pose in the same\n"
+    "                    run, interleaved with the site's (preferred over --sample-results)\n"
     "  --sample-results FILE\n"
     "                    the sample's results.json: the site section reads the frame against the sample's\n"
     "  --cycles-truth DIR\n"
@@ -99,6 +102,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     settings.photographed_bake_set = line.text("--photographed-skies");
     const std::optional<std::string> cache = line.text("--cache");
     settings.sample_results = line.text("--sample-results");
+    settings.sample_bake_set = line.text("--sample-bakeset");
     settings.cycles_truth = line.text("--cycles-truth");
     if (const auto views = line.text("--views")) {
         try {
@@ -145,6 +149,7 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
         settings.accuracy_width = width, settings.accuracy_height = height;
     }
     if (settings.sample_results && settings.views.empty()) line.fail("--sample-results needs --views (see --help)");
+    if (settings.sample_bake_set && settings.views.empty()) line.fail("--sample-bakeset needs --views (see --help)");
     if (settings.cycles_truth && settings.views.empty()) line.fail("--cycles-truth needs --views (see --help)");
     if (!settings.views.empty() && !settings.only.empty() && !settings.wants("site"))
         line.fail("--views is for the site section, which --only leaves out (see --help)");

@@ -3,9 +3,11 @@
 // CIEDE2000 against the path-traced truth over the pixels the building or its shadow changes, at a baked instant
 // and 1.5 hours before it (half way between two slots), the truth's own noise beside; the frame time of both at
 // 1280x720 (modes interleaved, the same multisampling) with the proposed method's per-pass profile; and, given the
-// sample's results (--sample-results), the frame against the sample's from the same pose.
+// sample's bake set (--sample-bakeset: timed in the same run) or results (--sample-results: another run's), the
+// frame against the sample's from the same pose.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "bench_run.h"
 #include "camera_response.h"
 #include "cycles_truth.h"
+#include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/maths/time_utc.h"
 #include "runtime_modes.h"
 
@@ -116,12 +119,14 @@ PoseAccuracy measurePose(Bench& bench, const NamedView& named, const SiteInstant
 
 struct PoseFrame {
     Spread proposed, direct;
-    PassTimings passes;  // the proposed method's, medians
+    PassTimings passes;             // the proposed method's, medians
+    std::optional<Spread> sample;  // the sample's proposed frame from the same pose, timed in turn with these
 };
 
 // Both modes' fenced frames at 1280x720, interleaved, from the pose's camera frame at the baked instant; then the
-// proposed method's per-pass profile (shadow maps redrawn each profiled frame, as when the sun moves a step).
-PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& baked) {
+// proposed method's per-pass profile (shadow maps redrawn each profiled frame, as when the sun moves a step). With
+// the sample's runtime, its proposed frame from the same pose, camera frame and instant is timed in turn with both.
+PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& baked, Runtime* sample_runtime) {
     const Settings& settings = bench.settings;
     const uint32_t width = 1280, height = 720;
     const std::vector<uint8_t> camera =
@@ -137,8 +142,9 @@ PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& bak
     for (uint32_t frame = 0; frame < settings.warm_up_frames; ++frame) {
         runtime.renderFrame(direct, out.data());
         runtime.renderFrame(proposed, out.data());
+        if (sample_runtime != nullptr) sample_runtime->renderFrame(proposed, out.data());
     }
-    std::vector<double> proposed_ms, direct_ms;
+    std::vector<double> proposed_ms, direct_ms, sample_ms;
     for (uint32_t frame = 0; frame < settings.timed_frames; ++frame) {
         Clock::time_point start = Clock::now();
         runtime.renderFrame(direct, out.data());
@@ -146,13 +152,19 @@ PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& bak
         start = Clock::now();
         runtime.renderFrame(proposed, out.data());
         proposed_ms.push_back(millisecondsSince(start));
+        if (sample_runtime != nullptr) {
+            start = Clock::now();
+            sample_runtime->renderFrame(proposed, out.data());
+            sample_ms.push_back(millisecondsSince(start));
+        }
     }
     std::vector<PassTimings> profiled(std::max(5u, settings.timed_frames / 2));
     for (PassTimings& passes : profiled) {
         runtime.invalidateShadowMaps();
         runtime.renderFrameProfiled(proposed, out.data(), passes);
     }
-    PoseFrame timed{spreadOf(proposed_ms), spreadOf(direct_ms), {}};
+    PoseFrame timed{spreadOf(proposed_ms), spreadOf(direct_ms), {}, {}};
+    if (!sample_ms.empty()) timed.sample = spreadOf(sample_ms);
     for (double PassTimings::*field : {&PassTimings::upload_ms, &PassTimings::shadow_ms, &PassTimings::occluder_ms,
                                        &PassTimings::building_ms, &PassTimings::ground_ms,
                                        &PassTimings::statistics_ms, &PassTimings::readback_ms,
@@ -316,7 +328,17 @@ void runSiteGoals(Bench& bench) {
     const CameraResponse response = benchCameraResponses()[0];
     const std::vector<SiteInstant> instants = siteInstants(bench);
     std::map<std::string, double> sample_ms;
-    if (settings.sample_results) sample_ms = sampleFrameTimesFrom(*settings.sample_results);
+    if (settings.sample_results && !settings.sample_bake_set) sample_ms = sampleFrameTimesFrom(*settings.sample_results);
+    // The sample's runtime at the timing size, on the bench's device, with the bench's options.
+    std::unique_ptr<Runtime> sample_runtime;
+    if (settings.sample_bake_set) {
+        RuntimeOptions options;
+        options.frame_width = 1280;
+        options.frame_height = 720;
+        options.msaa_samples = settings.msaa_samples;
+        options.max_anisotropy = settings.max_anisotropy;
+        sample_runtime = Runtime::open(*bench.context, loadBakeSet(*settings.sample_bake_set), options);
+    }
     const std::string site_name = bench.renderer->site().site.name;
     const size_t triangles = bench.bake_set.building.indices.size() / 3;
     bench.say("");
@@ -342,22 +364,26 @@ void runSiteGoals(Bench& bench) {
     if (settings.cycles_truth) reportCyclesTruth(bench, measured, views);
     bench.say("");
     bench.say("frame 1280x720, ms (median [p10, p90] of " + std::to_string(settings.timed_frames) +
-              " fenced frames, modes interleaved; passes: the proposed method's profile)");
+              " fenced frames, modes interleaved; passes: the proposed method's profile; the sample's " +
+              (sample_runtime ? std::string("timed in turn with them, same pose, camera frame and instant)")
+                              : std::string("from --sample-results, another run)")));
     bench.say("| pose | proposed | direct-only | proposed / direct-only | sample's proposed | over the sample's | "
               "passes shadow / occluder / building / ground / total |");
     bench.say("| --- | --- | --- | --- | --- | --- | --- |");
     for (size_t index = 0; index < settings.views.size(); ++index) {
         const NamedView& named = settings.views[index];
+        const PoseFrame timed = timePose(bench, named, measured[index][0], sample_runtime.get());
         const auto sample = sample_ms.find(named.name);
-        const std::optional<double> reference =
+        std::optional<double> reference =
             sample == sample_ms.end() ? std::nullopt : std::optional<double>(sample->second);
-        views[index]["frame_1280x720"] =
-            reportPoseFrame(bench, named, timePose(bench, named, measured[index][0]), reference, worst);
+        if (timed.sample) reference = timed.sample->median;
+        views[index]["frame_1280x720"] = reportPoseFrame(bench, named, timed, reference, worst);
     }
     bench.results["site"] = {{"name", site_name}, {"building_triangles", triangles},
                              {"size", std::to_string(settings.accuracy_width) + "x" + std::to_string(settings.accuracy_height)},
                              {"truth_samples", settings.truth_samples},
                              {"sample_results", settings.sample_results ? Json(*settings.sample_results) : Json()},
+                             {"sample_bakeset", settings.sample_bake_set ? Json(*settings.sample_bake_set) : Json()},
                              {"views", views}, {"goals", reportSiteGoals(bench, worst)}};
 }
 
