@@ -28,19 +28,8 @@
 namespace gusuku::bake {
 namespace {
 
+using gusuku::testing::alphaMask;
 using gusuku::testing::GpuTest;
-
-// A white texture whose alpha is open(x, y) ? 0 : 1 (x, y texel indices, row 0 the top: v = 0).
-template <typename Open>
-ImageRGBA alphaMask(int width, int height, Open open) {
-    ImageRGBA image;
-    image.width = width;
-    image.height = height;
-    image.texels.assign(size_t(width) * size_t(height) * 4, 1.0f);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) image.texel(x, y)[3] = open(x, y) ? 0.0f : 1.0f;
-    return image;
-}
 
 // A one-quad mesh (corners a, b, c, d as addQuad takes them: uv0 (0,0) at a, (1,0) at b, (0,1) at d) textured
 // with `mask`, uv0 scaled by `repeats` (the sampler repeats), black unless given an albedo, masked or not.

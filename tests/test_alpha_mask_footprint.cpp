@@ -20,17 +20,7 @@
 namespace gusuku::bake {
 namespace {
 
-// A white texture whose alpha is 0 on the texels `hole` picks, 1 elsewhere.
-template <typename Hole>
-ImageRGBA maskTexture(int width, int height, Hole hole) {
-    ImageRGBA image;
-    image.width = width;
-    image.height = height;
-    image.texels.assign(size_t(width) * size_t(height) * 4, 1.0f);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) image.texel(x, y)[3] = hole(x, y) ? 0.0f : 1.0f;
-    return image;
-}
+using gusuku::testing::alphaMask;
 
 // A masked (cutoff 0.5) mesh of one material with `texture`, and one triangle per uv0 triple.
 TriangleMesh maskedTriangles(const ImageRGBA& texture, const std::vector<std::array<glm::vec2, 3>>& uvs) {
@@ -90,7 +80,7 @@ bool someHoleUnder(const ImageRGBA& texture, const std::array<glm::vec2, 3>& uv)
 // A 16 x 16 texture with one hole texel at (8, 8): texel centre (8.5, 8.5), read by bilinear lookups at texel
 // coordinates within one texel of it, i.e. uv in (7.5, 9.5) / 16 on both axes.
 TEST(AlphaMaskFootprint, KeepsTheTestOnlyWhereALookupCanReadAHole) {
-    const ImageRGBA texture = maskTexture(16, 16, [](int x, int y) { return x == 8 && y == 8; });
+    const ImageRGBA texture = alphaMask(16, 16, [](int x, int y) { return x == 8 && y == 8; });
     const auto at = [](float x, float y) { return glm::vec2(x / 16.0f, y / 16.0f); };  // texel units
     const std::vector<std::array<glm::vec2, 3>> uvs = {
         {at(1, 1), at(5, 1), at(1, 5)},              // far from the hole: dropped
@@ -137,7 +127,7 @@ TEST(AlphaMaskFootprint, UntexturedMaterialsAreDecidedByTheirFactor) {
 TEST(AlphaMaskFootprint, DroppedTestsNeverHideAHoleOnRandomTriangles) {
     std::mt19937 random(20261202u);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    const ImageRGBA texture = maskTexture(32, 32, [&](int, int) { return unit(random) < 0.03f; });
+    const ImageRGBA texture = alphaMask(32, 32, [&](int, int) { return unit(random) < 0.03f; });
     std::vector<std::array<glm::vec2, 3>> uvs;
     for (int t = 0; t < 2000; ++t) {
         const glm::vec2 corner(unit(random) * 3.0f - 1.0f, unit(random) * 3.0f - 1.0f);  // across repeats

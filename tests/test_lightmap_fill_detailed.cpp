@@ -45,11 +45,12 @@ bool triangleMeetsOpenSquare(const glm::dvec2 t[3], double x0, double y0, double
     return true;
 }
 
-// Per texel, the charts whose bilinear lookups read it (found from the uv1 alone, as above).
-std::vector<std::vector<uint32_t>> readersOfTexels(const LightmapCharts& charts) {
+// Calls read(texel index, chart) for every texel some bilinear lookup on a triangle reads (found from the uv1
+// alone, as above), once per triangle; the read square widened by `slack` texels.
+template <typename Read>
+void forEachTexelRead(const LightmapCharts& charts, double slack, Read read) {
     const int r = charts.resolution;
     const TriangleMesh& mesh = charts.mesh;
-    std::vector<std::vector<uint32_t>> readers(size_t(r) * size_t(r));
     for (size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
         glm::dvec2 t[3];
         for (int i = 0; i < 3; ++i) t[i] = glm::dvec2(mesh.uv1[mesh.indices[triangle * 3 + i]]) * double(r);
@@ -59,13 +60,19 @@ std::vector<std::vector<uint32_t>> readersOfTexels(const LightmapCharts& charts)
         const int y0 = std::max(0, int(std::floor(std::min({t[0].y, t[1].y, t[2].y}) - 1.0)));
         const int y1 = std::min(r - 1, int(std::floor(std::max({t[0].y, t[1].y, t[2].y}) + 1.0)));
         for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                std::vector<uint32_t>& list = readers[size_t(y) * size_t(r) + size_t(x)];
-                if (triangleMeetsOpenSquare(t, x - 0.5, y - 0.5, 2.0) &&
-                    std::find(list.begin(), list.end(), chart) == list.end())
-                    list.push_back(chart);
-            }
+            for (int x = x0; x <= x1; ++x)
+                if (triangleMeetsOpenSquare(t, x - 0.5 - slack, y - 0.5 - slack, 2.0 + 2.0 * slack))
+                    read(size_t(y) * size_t(r) + size_t(x), chart);
     }
+}
+
+// Per texel, the charts whose bilinear lookups read it.
+std::vector<std::vector<uint32_t>> readersOfTexels(const LightmapCharts& charts) {
+    std::vector<std::vector<uint32_t>> readers(size_t(charts.resolution) * size_t(charts.resolution));
+    forEachTexelRead(charts, 0.0, [&](size_t texel, uint32_t chart) {
+        std::vector<uint32_t>& list = readers[texel];
+        if (std::find(list.begin(), list.end(), chart) == list.end()) list.push_back(chart);
+    });
     return readers;
 }
 
@@ -79,7 +86,6 @@ struct FillMeasure {
 
 FillMeasure measureFill(const LightmapCharts& charts) {
     const int r = charts.resolution;
-    const TriangleMesh& mesh = charts.mesh;
     // 1e-3 texel of slack: uv1 is float, and a chart edge meant to lie on a texel's read boundary may land inside.
     constexpr double kSlack = 1e-3;
     std::vector<int64_t> reader(size_t(r) * size_t(r), -1);
@@ -87,29 +93,18 @@ FillMeasure measureFill(const LightmapCharts& charts) {
     measure.resolution = r;
     measure.charts = charts.chart_count;
     size_t read = 0;
-    for (size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
-        glm::dvec2 t[3];
-        for (int i = 0; i < 3; ++i) t[i] = glm::dvec2(mesh.uv1[mesh.indices[triangle * 3 + i]]) * double(r);
-        const int64_t chart = charts.triangle_chart[triangle];
-        const int x0 = std::max(0, int(std::floor(std::min({t[0].x, t[1].x, t[2].x}) - 1.0)));
-        const int x1 = std::min(r - 1, int(std::floor(std::max({t[0].x, t[1].x, t[2].x}) + 1.0)));
-        const int y0 = std::max(0, int(std::floor(std::min({t[0].y, t[1].y, t[2].y}) - 1.0)));
-        const int y1 = std::min(r - 1, int(std::floor(std::max({t[0].y, t[1].y, t[2].y}) + 1.0)));
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                if (!triangleMeetsOpenSquare(t, x - 0.5 - kSlack, y - 0.5 - kSlack, 2.0 + 2.0 * kSlack)) continue;
-                int64_t& first = reader[size_t(y) * size_t(r) + size_t(x)];
-                if (first < 0) {
-                    first = chart;
-                    ++read;
-                } else if (first != chart) {
-                    ++measure.read_by_two;
-                    first = chart;  // count each further chart once more, at most
-                }
-            }
-    }
+    forEachTexelRead(charts, kSlack, [&](size_t texel, uint32_t chart) {
+        int64_t& first = reader[texel];
+        if (first < 0) {
+            first = chart;
+            ++read;
+        } else if (first != int64_t(chart)) {
+            ++measure.read_by_two;
+            first = chart;  // count each further chart once more, at most
+        }
+    });
     const double all = double(r) * double(r);
-    measure.claimed = double(rasterizeLightmapTexels(mesh, r).size()) / all;
+    measure.claimed = double(rasterizeLightmapTexels(charts.mesh, r).size()) / all;
     measure.read = double(read) / all;
     return measure;
 }

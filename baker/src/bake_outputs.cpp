@@ -77,10 +77,7 @@ ProcessedLightmap processBuildingLightmap(const BakeGeometry& geometry, const st
     // another's); alpha then marks only the texels that were traced and valid.
     std::vector<bool> traced_valid(result.image.size());
     for (size_t i = 0; i < result.image.size(); ++i) traced_valid[i] = result.image[i].a > 0.0f;
-    if (geometry.texel_reader_chart.size() == result.image.size())
-        dilateLightmapWithinCharts(result.image, geometry.texel_reader_chart, resolution, 8);
-    else
-        dilateLightmap(result.image, resolution, 8);
+    dilateLightmapWithinCharts(result.image, geometry.texel_reader_chart, resolution, 8);
     for (size_t i = 0; i < result.image.size(); ++i) result.image[i].a = traced_valid[i] ? 1.0f : 0.0f;
     return result;
 }

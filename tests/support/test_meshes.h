@@ -25,4 +25,17 @@ TriangleMesh closedBox(const glm::vec3& min, const glm::vec3& max, bool facing_i
 /// An equirect map of constant radiance (both hemispheres).
 ImageRGBA uniformSky(int width, int height, const glm::vec3& radiance);
 
+/// A white texture for alpha masks: alpha 0 on the texels where open(x, y) (x, y texel indices, row 0 the top:
+/// v = 0), 1 elsewhere.
+template <typename Open>
+ImageRGBA alphaMask(int width, int height, Open open) {
+    ImageRGBA image;
+    image.width = width;
+    image.height = height;
+    image.texels.assign(size_t(width) * size_t(height) * 4, 1.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) image.texel(x, y)[3] = open(x, y) ? 0.0f : 1.0f;
+    return image;
+}
+
 }  // namespace gusuku::testing
