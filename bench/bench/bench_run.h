@@ -164,17 +164,19 @@ struct Bench {
     void note(const std::string& line) {
         std::fprintf(stderr, "gusuku-bench: %s\n", line.c_str());
     }
+    /// The runtime's options at this frame size, with the run's multisampling and anisotropy.
+    RuntimeOptions runtimeOptions(uint32_t width, uint32_t height) const {
+        RuntimeOptions options;
+        options.frame_width = width;
+        options.frame_height = height;
+        options.msaa_samples = settings.msaa_samples;
+        options.max_anisotropy = settings.max_anisotropy;
+        return options;
+    }
     Runtime& runtimeFor(uint32_t width, uint32_t height) {
         const std::string key = std::to_string(width) + "x" + std::to_string(height);
         auto& runtime = runtimes[key];
-        if (!runtime) {
-            RuntimeOptions options;
-            options.frame_width = width;
-            options.frame_height = height;
-            options.msaa_samples = settings.msaa_samples;
-            options.max_anisotropy = settings.max_anisotropy;
-            runtime = Runtime::open(*context, bake_set, options);
-        }
+        if (!runtime) runtime = Runtime::open(*context, bake_set, runtimeOptions(width, height));
         return *runtime;
     }
     std::string localTime(double utc) const { return formatIso8601(utc, utc_offset_minutes).substr(11, 5); }

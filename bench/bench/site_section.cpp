@@ -28,6 +28,7 @@ constexpr double kBetweenErrorGoal = 3.0;   // mean dE00 1.5 hours from one
 constexpr double kErrorRatioGoal = 1.0 / 3.0;  // of direct-only's, below
 constexpr double kFrameRatioLimit = 1.10, kFrameRatioGoal = 1.05;  // over direct-only at 1280x720
 constexpr double kOverSampleLimit = 2.0;   // the real model's frame over the sample's
+constexpr uint32_t kTimingWidth = 1280, kTimingHeight = 720;  // the frame the goals time (the size)
 
 struct SiteInstant {
     std::string label;  // "baked" or "between"
@@ -128,7 +129,7 @@ struct PoseFrame {
 // the sample's runtime, its proposed frame from the same pose, camera frame and instant is timed in turn with both.
 PoseFrame timePose(Bench& bench, const NamedView& named, const PoseAccuracy& baked, Runtime* sample_runtime) {
     const Settings& settings = bench.settings;
-    const uint32_t width = 1280, height = 720;
+    const uint32_t width = kTimingWidth, height = kTimingHeight;
     const std::vector<uint8_t> camera =
         resizeNearest(baked.camera, settings.accuracy_width, settings.accuracy_height, width, height);
     const CameraIntrinsics intrinsics = CameraIntrinsics::fromFieldOfView(width, height, named.view.horizontal_fov_deg);
@@ -331,14 +332,9 @@ void runSiteGoals(Bench& bench) {
     if (settings.sample_results && !settings.sample_bake_set) sample_ms = sampleFrameTimesFrom(*settings.sample_results);
     // The sample's runtime at the timing size, on the bench's device, with the bench's options.
     std::unique_ptr<Runtime> sample_runtime;
-    if (settings.sample_bake_set) {
-        RuntimeOptions options;
-        options.frame_width = 1280;
-        options.frame_height = 720;
-        options.msaa_samples = settings.msaa_samples;
-        options.max_anisotropy = settings.max_anisotropy;
-        sample_runtime = Runtime::open(*bench.context, loadBakeSet(*settings.sample_bake_set), options);
-    }
+    if (settings.sample_bake_set)
+        sample_runtime = Runtime::open(*bench.context, loadBakeSet(*settings.sample_bake_set),
+                                       bench.runtimeOptions(kTimingWidth, kTimingHeight));
     const std::string site_name = bench.renderer->site().site.name;
     const size_t triangles = bench.bake_set.building.indices.size() / 3;
     bench.say("");
