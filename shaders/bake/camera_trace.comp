@@ -11,7 +11,8 @@
 //     rho / pi * (E_sun + E_ind) + emission,
 // E_sun by sunIrradianceAt and E_ind by estimateIndirectIrradiance: the bake's own estimators
 // (irradiance_paths.glsl), so the truth and a bake agree by construction where they should. The back of a
-// one-sided surface is black (the ray is inside a solid). The sample position inside the pixel is the path's
+// one-sided face of a closed part is black (the ray is inside a solid); an open one-sided face (a cut-out card)
+// is lit on both sides, as Cycles and the runtime draw it. The sample position inside the pixel is the path's
 // first 2D Sobol draw (anti-aliasing by stratified jitter).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -80,7 +81,9 @@ void main() {
         bool lit_side = false;
         if (surface_hit) {
             surface = evaluateSurface(hit.triangle_index, hit.barycentric_u, hit.barycentric_v, direction);
-            lit_side = surface.front_face || surface.double_sided;
+            // Only a closed part's one-sided back is dark (the inside of a solid); an open one-sided face is a
+            // sheet lit on both sides (irradiance_paths.glsl).
+            lit_side = surface.front_face || surface.double_sided || !surface.closed_part;
         }
 
         if (guide_pass) {
@@ -100,7 +103,7 @@ void main() {
                     SurfacePoint sub = evaluateSurface(sub_hit.triangle_index, sub_hit.barycentric_u,
                                                        sub_hit.barycentric_v, sub_direction);
                     float cos_sun = dot(sub.shading_normal, settings.sun_direction);
-                    if (!(sub.front_face || sub.double_sided) || cos_sun <= 0.0 ||
+                    if (!(sub.front_face || sub.double_sided || !sub.closed_part) || cos_sun <= 0.0 ||
                         dot(sub.geometric_normal, settings.sun_direction) <= 0.0)
                         continue;
                     vec3 position = origin + sub_direction * sub_hit.t + sub.geometric_normal * settings.ray_offset;

@@ -144,9 +144,14 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         }
         SurfacePoint surface = evaluateSurface(hit.triangle_index, hit.barycentric_u, hit.barycentric_v, direction);
         if (!surface.front_face && !surface.double_sided) {
-            // Inside a closed solid: no light arrives from here.
+            // A one-sided back is evidence of lying inside geometry (a wall's inside, the ground from below), so the
+            // validity score counts it whatever the part. Its light: a closed part's back is the inside of a solid,
+            // and no light arrives from there; an open part's back (a one-sided cut-out card, a leaf, a sign) is
+            // the sheet's other side, shaded as a double-sided face's, as Cycles shades it and as the runtime
+            // draws it (both faces lit). Ending such paths dark made the house's vine and tree cards black from
+            // behind in the camera tracer and darkened the wall behind them in the bake.
             if (depth == 0u) backface_score = 1.0;
-            break;
+            if (surface.closed_part) break;
         }
         // A double-sided face's back is evidence only on a closed part: an open sheet's back is its other side.
         if (depth == 0u && !surface.front_face && surface.closed_part) backface_score = kDoubleSidedBackfaceScore;
