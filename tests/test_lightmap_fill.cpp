@@ -9,8 +9,10 @@
 // unfolded across edges up to 90 degrees (a beam's faces one strip) and small charts packed into the holes under
 // bigger ones: sample 65.5 % (160^2, 16765 texels), shrine 61.2 % (488^2, 902 charts), house 73.0 % (1172^2).
 // Since charts pack their bilinear read sets (issue 21 item 4): sample 66.0 % (160^2, 16897 texels), shrine
-// 65.4 % (472^2), house 76.2 % (1148^2). The bench's coarser densities, where a thin part's read set is most of
-// it, are in test_lightmap_fill_detailed.cpp (55-59 %).
+// 65.4 % (472^2), house 76.2 % (1148^2). With spanned frames (a chart stretched to end on its last rows of
+// centres, lightmap_uv.h): sample 74.4 % (156^2, 18102 texels), shrine 72.9 % (464^2), house 78.6 % (1140^2). The
+// bench's coarser densities, where a thin part's read set is most of it, are in test_lightmap_fill_detailed.cpp
+// (67-86 %).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -58,9 +60,12 @@ void expectChartsKeepTheDensity(const char* name, const LightmapCharts& charts) 
     }
     std::printf("%s: uv1 area / (world area * density^2): all charts %.4f, each in [%.4f, %.4f]\n", name,
                 total_uv / total_world, lowest, highest);
-    EXPECT_NEAR(total_uv / total_world, 1.0, 1e-3) << name;
-    EXPECT_GE(lowest, 0.995) << name;
-    EXPECT_LE(highest, 1.005) << name;
+    // Spanned frames (lightmap_uv.h) stretch a chart along an axis until it ends on rows of centres: its area
+    // grows by under a texel per axis (a thin chart's most), it never shrinks by more than 0.5 % an axis, and
+    // over all charts the area stays within a few percent of the density's.
+    EXPECT_GE(total_uv / total_world, 1.0 - 1e-3) << name;
+    EXPECT_LE(total_uv / total_world, 1.06) << name;
+    EXPECT_GE(lowest, 0.99) << name;
 }
 
 // Texels whose centre a chart claims (the texels the bake traces), over the lightmap's texels.

@@ -189,8 +189,12 @@ TEST(LightmapCharts, LowersTheDensityWhenTheChartsDoNotFitAndReportsIt) {
             low = glm::min(low, uv);
             high = glm::max(high, uv);
         }
-        EXPECT_NEAR(high.x - low.x, charts.texels_per_metre, 1e-3) << "face " << face;
-        EXPECT_NEAR(high.y - low.y, charts.texels_per_metre, 1e-3) << "face " << face;
+        // Spanned frames (lightmap_uv.h) stretch a face to end just inside a row of centres: by under one texel,
+        // and never shrink it by more than 0.5 %.
+        for (int axis = 0; axis < 2; ++axis) {
+            EXPECT_GE(high[axis] - low[axis], 0.995 * charts.texels_per_metre - 1e-3) << "face " << face;
+            EXPECT_LT(high[axis] - low[axis], charts.texels_per_metre + 1.0) << "face " << face;
+        }
     }
     const UvCheckReport report = checkLightmapUvs(charts.mesh, resolution);
     EXPECT_TRUE(report.ok) << report.message;
@@ -228,10 +232,11 @@ TEST(LightmapTexels, CubeTexelsLieOnTheirFacesAtTheRequestedDensity) {
         EXPECT_NEAR(glm::dot(texel.geometric_normal, face_normal), 1.0f, 1e-5f);
         EXPECT_NEAR(glm::dot(texel.shading_normal, face_normal), 1.0f, 1e-5f);
     }
-    // 1 m x 1 m at 8 texels/m: about 64 texels per face.
+    // 1 m x 1 m at 8 texels/m: 8 x 8 centres covered, or 9 x 9 when the face is spanned (lightmap_uv.h: it ends
+    // on a row of centres at each side, which the near-claim rule traces).
     for (int face = 0; face < 6; ++face) {
         EXPECT_GE(texels_per_face[face], 48) << "face " << face;
-        EXPECT_LE(texels_per_face[face], 80) << "face " << face;
+        EXPECT_LE(texels_per_face[face], 81) << "face " << face;
     }
 }
 

@@ -275,17 +275,34 @@ void planeBasis(const glm::dvec3& normal, glm::dvec3* tangent, glm::dvec3* bitan
 // covering no row of centres may claim as many texels for fewer reads.
 constexpr double kEdgeClearanceTexels = 0.05;
 
+// - Spanned: the chart is stretched along the axis (shrunk by kSpannedMaxShrink at most: a 1 m wall at 8 texels/m
+//   spans 9 centres, not 10) so that its ends lie kSpannedInsetTexels inside the first and last of
+//   m = ceil(extent (1 - kSpannedMaxShrink) + 2 inset) + 1 centres. It reads exactly those
+//   m texels (the next centre out lies a texel and the inset away, beyond the read slack), and claims the two end
+//   centres too, by lightmap_raster.h's near-claim rule (a centre within kNearClaimTexels of a triangle and in
+//   none): every texel it reads is traced, so a rectangle's read ring costs nothing. A 4 cm baluster's faces
+//   (2.56 texels at 16 texels/m) read 4 texels across instead of 5 and claim all 4 instead of 3.
+constexpr double kSpannedInsetTexels = 0.01;
+constexpr double kSpannedMaxShrink = 0.005;
+static_assert(kSpannedInsetTexels > detail::kReadSlackTexels && 2.0 * kSpannedInsetTexels <= detail::kNearClaimTexels,
+              "the spanned frame must read no texel beyond its end centres and claim both");
+
 struct AxisFrame {
     int texels = 1;
     double margin = 0.0;
+    double stretch = 1.0;  // texels of the frame per texel of the chart at the density
 };
 
-// The placements along one axis that keep the clearance: one or both.
+// The placements along one axis that keep the clearance: one or both, and the spanned one.
 std::vector<AxisFrame> axisFrames(double extent) {
     const double whole = std::floor(extent), fraction = extent - whole;
     std::vector<AxisFrame> frames;
     if (0.5 * (1.0 - fraction) >= kEdgeClearanceTexels) frames.push_back({int(whole) + 2, 1.0 - 0.5 * fraction});
     if (0.5 * fraction >= kEdgeClearanceTexels) frames.push_back({int(whole) + 3, 1.5 - 0.5 * fraction});
+    if (extent > 1e-6) {
+        const double spans = std::max(1.0, std::ceil(extent * (1.0 - kSpannedMaxShrink) + 2.0 * kSpannedInsetTexels));
+        frames.push_back({int(spans) + 1, 0.5 + kSpannedInsetTexels, (spans - 2.0 * kSpannedInsetTexels) / extent});
+    }
     return frames;
 }
 
@@ -881,12 +898,13 @@ std::vector<glm::dvec2> fitChartRectangles(const std::vector<TriangleInfo>& tria
 struct ChartFrame {
     glm::ivec2 inner{1, 1};
     glm::dvec2 margin{0.0};
+    glm::dvec2 stretch{1.0};  // per axis: 1, or a spanned frame's stretch (axisFrames)
 };
 
 // A chart's vertex in texels of its unturned frame at `scale` texels per metre: flattened, moved to the
-// rectangle's corner and offset by the frame's margin.
+// rectangle's corner, stretched and offset by the frame's margin.
 glm::dvec2 localTexel(const Chart& chart, const ChartFrame& frame, double scale, const glm::dvec2& corner) {
-    return (corner - chart.min) * scale + frame.margin;
+    return (corner - chart.min) * scale * frame.stretch + frame.margin;
 }
 
 // The texels of a chart's frame its bilinear lookups read (`read`, frame.inner.x * frame.inner.y, row-major: the
@@ -910,7 +928,7 @@ size_t rasteriseChartFrame(const Chart& chart, ChartFrame& frame, double scale, 
         claimed_count += cell ? 0 : 1;
         cell = 1;
     };
-    const ChartFrame grid_frame{grid, grid_margin};
+    const ChartFrame grid_frame{grid, grid_margin, frame.stretch};
     glm::ivec2 low_cell(grid), high_cell(-1);
     for (size_t slot = 0; slot < chart.triangles.size(); ++slot) {
         detail::UvTriangle local;
@@ -932,6 +950,8 @@ size_t rasteriseChartFrame(const Chart& chart, ChartFrame& frame, double scale, 
                 if (detail::containsPoint(local, glm::dvec2(x + 0.5, y + 0.5))) {
                     claim(x, y);
                     covers_a_centre = true;
+                } else if (detail::nearClaimsCentre(local, glm::dvec2(x + 0.5, y + 0.5))) {
+                    claim(x, y);  // the bake claims it unless another triangle contains it (lightmap_texels.cpp)
                 }
             }
         if (!covers_a_centre) {
@@ -956,7 +976,7 @@ size_t rasteriseChartFrame(const Chart& chart, ChartFrame& frame, double scale, 
 // share (the packer then keeps the reads' share of the lightmap near 90 %).
 constexpr double kTargetClaimedPerRead = 0.65;
 
-// The chart's frame among the placements axisFrames allows per axis (up to four) that claims the most texels for
+// The chart's frame among the placements axisFrames allows per axis (up to nine) that claims the most texels for
 // its reads (kTargetClaimedPerRead; ties: fewer reads, then the first), with its read texels in `read`.
 ChartFrame chooseChartFrame(const Chart& chart, const glm::dvec2& extent, double scale, std::vector<uint8_t>& read) {
     const std::vector<AxisFrame> along_x = axisFrames(extent.x * scale), along_y = axisFrames(extent.y * scale);
@@ -966,7 +986,8 @@ ChartFrame chooseChartFrame(const Chart& chart, const glm::dvec2& extent, double
     std::vector<uint8_t> candidate_read, claimed;
     for (const AxisFrame& x : along_x)
         for (const AxisFrame& y : along_y) {
-            ChartFrame frame{glm::ivec2(x.texels, y.texels), glm::dvec2(x.margin, y.margin)};
+            ChartFrame frame{glm::ivec2(x.texels, y.texels), glm::dvec2(x.margin, y.margin),
+                             glm::dvec2(x.stretch, y.stretch)};
             const size_t claimed_count = rasteriseChartFrame(chart, frame, scale, candidate_read, claimed);
             const size_t read_count = size_t(std::count(candidate_read.begin(), candidate_read.end(), uint8_t(1)));
             const double score = double(claimed_count) - kTargetClaimedPerRead * double(read_count);

@@ -135,6 +135,24 @@ glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& poin
     return best_weights;
 }
 
+double distanceToTriangle(const UvTriangle& triangle, const glm::dvec2& point) {
+    const glm::dvec3 weights = nearestBarycentric(triangle, point);
+    const glm::dvec2 nearest = triangle[0] * weights[0] + triangle[1] * weights[1] + triangle[2] * weights[2];
+    return glm::length(point - nearest);
+}
+
+bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre) {
+    const double low_x = std::min({triangle[0].x, triangle[1].x, triangle[2].x});
+    const double high_x = std::max({triangle[0].x, triangle[1].x, triangle[2].x});
+    const double low_y = std::min({triangle[0].y, triangle[1].y, triangle[2].y});
+    const double high_y = std::max({triangle[0].y, triangle[1].y, triangle[2].y});
+    if (centre.x < low_x - kNearClaimTexels || centre.x > high_x + kNearClaimTexels ||
+        centre.y < low_y - kNearClaimTexels || centre.y > high_y + kNearClaimTexels)
+        return false;
+    if (!(std::abs(signedDoubleArea(triangle)) > 0.0)) return false;  // zero area: the centroid fallback's
+    return !containsPoint(triangle, centre) && distanceToTriangle(triangle, centre) < kNearClaimTexels;
+}
+
 SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& weights) {
     glm::dvec3 position{0.0};
     glm::dvec3 shading_normal{0.0};

@@ -47,6 +47,17 @@ inline bool bilinearReadsTexel(const UvTriangle& triangle, int x, int y) {
                                2.0 + 2.0 * kReadSlackTexels);
 }
 
+/// The near-claim rule: a texel centre that no triangle contains but that lies within kNearClaimTexels of one is
+/// that triangle's (the nearest's, when several are that near). The packer's spanned frames
+/// (lightmap_charts.cpp) end a chart a hundredth of a texel inside its end centres, so that it reads no texel
+/// beyond them, and this rule still traces those centres. Ordinary charts keep their edges 0.05 texel clear of
+/// rows of centres, and are not affected.
+inline constexpr double kNearClaimTexels = 0.02;
+bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre);
+
+/// Distance from `point` to the triangle (0 inside), in texels.
+double distanceToTriangle(const UvTriangle& triangle, const glm::dvec2& point);
+
 /// Barycentric weights of the point of the triangle nearest `point` (the point itself when inside); for a
 /// zero-area triangle, the nearest point on its longest edge.
 glm::dvec3 nearestBarycentric(const UvTriangle& triangle, const glm::dvec2& point);

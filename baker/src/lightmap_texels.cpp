@@ -13,10 +13,18 @@
 namespace gusuku::bake {
 namespace {
 
+// How a triangle claims a texel, strongest last: a claim of a stronger kind displaces a weaker one.
+enum class ClaimKind : int8_t {
+    Centroid = 0,  // the texel under the UV centroid of a triangle that covers no centre
+    Near = 1,      // a centre within kNearClaimTexels of the triangle, inside none (lightmap_raster.h)
+    Centre = 2,    // the centre inside the triangle
+};
+
 struct TexelClaim {
     int32_t triangle = -1;
-    bool by_centre = false;   // false: a fallback claim at the UV centroid of a triangle that covers no centre
-    double coverage = -1.0;   // area of the triangle inside the texel, computed only when two claims meet
+    ClaimKind kind = ClaimKind::Centroid;
+    double coverage = -1.0;  // Centre and Centroid: area of the triangle inside the texel, computed only when two
+                             // claims meet; Near: the centre's distance to the triangle, negated (nearer wins)
 };
 
 detail::UvTriangle uvTriangleInTexels(const TriangleMesh& mesh, size_t triangle, int resolution) {
@@ -41,14 +49,18 @@ std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int
                                                      int(texel / resolution));
         return claim.coverage;
     };
-    auto claimTexel = [&](size_t texel, int32_t triangle, bool by_centre) {
+    auto claimTexel = [&](size_t texel, int32_t triangle, ClaimKind kind, double near_distance = 0.0) {
         TexelClaim& held = claims[texel];
-        TexelClaim incoming{triangle, by_centre, -1.0};
-        if (held.triangle < 0 || (by_centre && !held.by_centre)) {
+        TexelClaim incoming{triangle, kind, kind == ClaimKind::Near ? -near_distance : -1.0};
+        if (held.triangle < 0 || kind > held.kind) {
             held = incoming;
             return;
         }
-        if (by_centre != held.by_centre) return;  // a fallback claim never displaces a centre claim
+        if (kind != held.kind) return;  // a weaker claim never displaces a stronger one
+        if (kind == ClaimKind::Near) {
+            if (incoming.coverage > held.coverage) held = incoming;
+            return;
+        }
         if (coverageOf(incoming, texel) > coverageOf(held, texel)) held = incoming;
     };
 
@@ -68,17 +80,23 @@ std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int
         const double max_u = std::fmax(uv[0].x, std::fmax(uv[1].x, uv[2].x));
         const double min_v = std::fmin(uv[0].y, std::fmin(uv[1].y, uv[2].y));
         const double max_v = std::fmax(uv[0].y, std::fmax(uv[1].y, uv[2].y));
-        // Texel centres x + 0.5 within [min_u, max_u].
-        const int first_x = int(std::fmax(0.0, std::ceil(min_u - 0.5)));
-        const int last_x = int(std::fmin(double(resolution - 1), std::floor(max_u - 0.5)));
-        const int first_y = int(std::fmax(0.0, std::ceil(min_v - 0.5)));
-        const int last_y = int(std::fmin(double(resolution - 1), std::floor(max_v - 0.5)));
+        // Texel centres x + 0.5 within [min_u, max_u], grown by the near-claim distance.
+        const double near = detail::kNearClaimTexels;
+        const int first_x = int(std::fmax(0.0, std::ceil(min_u - near - 0.5)));
+        const int last_x = int(std::fmin(double(resolution - 1), std::floor(max_u + near - 0.5)));
+        const int first_y = int(std::fmax(0.0, std::ceil(min_v - near - 0.5)));
+        const int last_y = int(std::fmin(double(resolution - 1), std::floor(max_v + near - 0.5)));
         bool covered_a_centre = false;
         for (int y = first_y; y <= last_y; ++y) {
             for (int x = first_x; x <= last_x; ++x) {
-                if (!detail::containsPoint(uv, glm::dvec2(x + 0.5, y + 0.5))) continue;
-                claimTexel(size_t(y) * resolution + x, int32_t(triangle), true);
-                covered_a_centre = true;
+                const glm::dvec2 centre(x + 0.5, y + 0.5);
+                if (detail::containsPoint(uv, centre)) {
+                    claimTexel(size_t(y) * resolution + x, int32_t(triangle), ClaimKind::Centre);
+                    covered_a_centre = true;
+                } else if (detail::nearClaimsCentre(uv, centre)) {
+                    claimTexel(size_t(y) * resolution + x, int32_t(triangle), ClaimKind::Near,
+                               detail::distanceToTriangle(uv, centre));
+                }
             }
         }
         if (!covered_a_centre) {
@@ -86,7 +104,7 @@ std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int
             const glm::dvec2 centroid = (uv[0] + uv[1] + uv[2]) / 3.0;
             const double x = std::floor(centroid.x), y = std::floor(centroid.y);
             if (x >= 0.0 && y >= 0.0 && x < resolution && y < resolution)
-                claimTexel(size_t(y) * resolution + size_t(x), int32_t(triangle), false);
+                claimTexel(size_t(y) * resolution + size_t(x), int32_t(triangle), ClaimKind::Centroid);
         }
     }
 

@@ -105,8 +105,11 @@ struct LightmapCharts {
 /// - Charts are skyline-packed by the shape of the texels they touch (lightmap_pack.cpp: largest perimeter first,
 ///   four quarter turns, small charts into the holes left under bigger ones), each with `padding_texels` empty
 ///   texels on every side of the texels its triangles touch, so at least 2 * padding_texels empty texels
-///   separate two charts. Inside its rectangle a chart is offset so its edges stay clear of rows of texel
-///   centres (coverage is then stable under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres). If the rectangles do not fit, the
+///   separate two charts. Inside its frame a chart is either offset so its edges stay clear of rows of texel
+///   centres (coverage is then stable under float noise: a 1 m face at 8 texels/m covers 8 x 8 centres), or, per
+///   axis, spanned: stretched (never shrunk by more than 0.5 %, so its density is the requested one or higher) to
+///   end a hundredth of a texel inside a row of centres at each end, so it reads no texel it does not trace (the
+///   same face spans 9 x 9 centres, all traced); each chart takes the frame that traces most for its reads. If the rectangles do not fit, the
 ///   density is lowered uniformly (bisection) until they do; texels_per_metre reports it.
 /// About linear in triangles (hash maps for welding, adjacency and overlap tests). Throws InputError for a mesh without triangles, an index out of range, a position
 /// that is not finite, a bad density, resolution or padding, or when even a one-texel footprint per chart
