@@ -141,7 +141,7 @@ double distanceToTriangle(const UvTriangle& triangle, const glm::dvec2& point) {
     return glm::length(point - nearest);
 }
 
-bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre) {
+bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre, double* distance) {
     const double low_x = std::min({triangle[0].x, triangle[1].x, triangle[2].x});
     const double high_x = std::max({triangle[0].x, triangle[1].x, triangle[2].x});
     const double low_y = std::min({triangle[0].y, triangle[1].y, triangle[2].y});
@@ -150,7 +150,10 @@ bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre) {
         centre.y < low_y - kNearClaimTexels || centre.y > high_y + kNearClaimTexels)
         return false;
     if (!(std::abs(signedDoubleArea(triangle)) > 0.0)) return false;  // zero area: the centroid fallback's
-    return !containsPoint(triangle, centre) && distanceToTriangle(triangle, centre) < kNearClaimTexels;
+    if (containsPoint(triangle, centre)) return false;
+    const double to_triangle = distanceToTriangle(triangle, centre);
+    if (distance) *distance = to_triangle;
+    return to_triangle < kNearClaimTexels;
 }
 
 SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& weights) {

@@ -53,7 +53,8 @@ inline bool bilinearReadsTexel(const UvTriangle& triangle, int x, int y) {
 /// beyond them, and this rule still traces those centres. Ordinary charts keep their edges 0.05 texel clear of
 /// rows of centres, and are not affected.
 inline constexpr double kNearClaimTexels = 0.02;
-bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre);
+/// `distance`, when given, receives the centre's distance to the triangle where the rule claims it.
+bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre, double* distance = nullptr);
 
 /// Distance from `point` to the triangle (0 inside), in texels.
 double distanceToTriangle(const UvTriangle& triangle, const glm::dvec2& point);

@@ -93,9 +93,8 @@ std::vector<LightmapTexel> rasterizeLightmapTexels(const TriangleMesh& mesh, int
                 if (detail::containsPoint(uv, centre)) {
                     claimTexel(size_t(y) * resolution + x, int32_t(triangle), ClaimKind::Centre);
                     covered_a_centre = true;
-                } else if (detail::nearClaimsCentre(uv, centre)) {
-                    claimTexel(size_t(y) * resolution + x, int32_t(triangle), ClaimKind::Near,
-                               detail::distanceToTriangle(uv, centre));
+                } else if (double distance = 0.0; detail::nearClaimsCentre(uv, centre, &distance)) {
+                    claimTexel(size_t(y) * resolution + x, int32_t(triangle), ClaimKind::Near, distance);
                 }
             }
         }
