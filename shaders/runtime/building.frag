@@ -35,10 +35,25 @@ layout(location = 0) out vec4 out_colour;  // linear; the sRGB attachment encode
 // the cutoff are holes. A specialisation constant, so the opaque materials' pipeline has no discard at all (a
 // discard can cost early depth testing on tile-based GPUs).
 layout(constant_id = 0) const bool kAlphaMasked = false;
+// With multisampling (the pipeline's alpha to coverage on): the mask's edge as a coverage. The alpha's distance
+// from the cutoff over its change across the pixel (fwidth) is the share of the pixel on the opaque side, so the
+// edge stays as sharp as a discard's where the texture is magnified and becomes a partial coverage where a leaf
+// or a gap is smaller than a pixel. The mip chain keeps each level's coverage at the cutoff
+// (srgb_mip_chain.h), so that share does not drift with distance.
+layout(constant_id = 1) const bool kAlphaToCoverage = false;
 
 void main() {
     vec4 base_colour_texel = texture(base_colour, base_colour_uv);
-    if (kAlphaMasked && base_colour_texel.a * material.base_colour_factor.a < material.alpha_cutoff) discard;
+    float coverage = 1.0;
+    if (kAlphaMasked) {
+        float alpha = base_colour_texel.a * material.base_colour_factor.a;
+        if (kAlphaToCoverage) {
+            coverage = clamp((alpha - material.alpha_cutoff) / max(fwidth(alpha), 1.0 / 255.0) + 0.5, 0.0, 1.0);
+            if (coverage <= 0.0) discard;
+        } else if (alpha < material.alpha_cutoff) {
+            discard;
+        }
+    }
     vec3 albedo = base_colour_texel.rgb * material.base_colour_factor.rgb;
     vec3 normal = normalize(normal_enu);
     // Two-sided: a face seen from behind is lit as its front (thin walls, eaves).
@@ -87,5 +102,5 @@ void main() {
         display_linear = applyColourMatch(radiance * frame.exposure, colour_state);
     else
         display_linear = applyColourMatch(radiance, colour_state);
-    out_colour = vec4(display_linear, 1.0);
+    out_colour = vec4(display_linear, coverage);  // alpha: the coverage where alpha to coverage is on, else 1
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "gusuku/maths/colour.h"
 
@@ -64,10 +65,37 @@ LinearLevel halved(const LinearLevel& above) {
 
 uint8_t toByte(float value) { return uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
 
+// The factor by which a level's (float) alpha is scaled so that the share of its texels at or above
+// `coverage_alpha`, once stored as bytes, is the nearest to `target`: the k-th largest alpha (k the target's texel
+// count) is lifted to a quarter byte under the smallest passing byte, so that it rounds onto that byte and the
+// alphas below it round under it (unless within a fraction of a byte of it). 1 when nothing is to pass or the
+// k-th alpha is 0 (a transparent level stays transparent).
+float coverageScale(const LinearLevel& level, float coverage_alpha, double target) {
+    std::vector<float> alphas;
+    alphas.reserve(level.rgba.size() / 4);
+    for (size_t index = 3; index < level.rgba.size(); index += 4) alphas.push_back(level.rgba[index]);
+    const size_t passing = size_t(std::llround(target * double(alphas.size())));
+    if (passing == 0 || alphas.empty()) return 1.0f;
+    std::nth_element(alphas.begin(), alphas.begin() + (passing - 1), alphas.end(), std::greater<float>());
+    const float kth_largest = alphas[passing - 1];
+    if (!(kth_largest > 0.0f)) return 1.0f;
+    // The smallest byte that passes as alphaCoverage (and the shader's UNORM read) compares it.
+    int passing_byte = 255;
+    while (passing_byte > 0 && (passing_byte - 1) / 255.0f >= coverage_alpha) --passing_byte;
+    return (float(passing_byte) - 0.25f) / 255.0f / kth_largest;
+}
+
 }  // namespace
 
+double alphaCoverage(const uint8_t* rgba8, size_t count, float coverage_alpha) {
+    if (count == 0) return 0.0;
+    size_t covered = 0;
+    for (size_t texel = 0; texel < count; ++texel) covered += rgba8[texel * 4 + 3] / 255.0f >= coverage_alpha;
+    return double(covered) / double(count);
+}
+
 std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8, uint32_t width, uint32_t height,
-                                                            uint32_t level_count) {
+                                                            uint32_t level_count, float coverage_alpha) {
     std::vector<std::vector<uint8_t>> levels;
     if (level_count <= 1 || width == 0 || height == 0) return levels;
     std::array<float, 256> decoded{};
@@ -75,11 +103,21 @@ std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8,
     LinearLevel level{width, height, std::vector<float>(size_t(width) * height * 4)};
     for (size_t index = 0; index < level.rgba.size(); ++index)
         level.rgba[index] = index % 4 == 3 ? rgba8[index] / 255.0f : decoded[rgba8[index]];
+    const bool preserve_coverage = coverage_alpha > 0.0f && coverage_alpha <= 1.0f;
+    const double level0_coverage =
+        preserve_coverage ? alphaCoverage(rgba8, size_t(width) * height, coverage_alpha) : 0.0;
     for (uint32_t next = 1; next < level_count; ++next) {
         level = halved(level);
         std::vector<uint8_t> bytes(level.rgba.size());
         for (size_t index = 0; index < bytes.size(); ++index)
             bytes[index] = toByte(index % 4 == 3 ? level.rgba[index] : srgbEncode(level.rgba[index]));
+        if (preserve_coverage) {
+            // Scaled from the filtered float alpha, so that the level below is filtered from the unscaled one
+            // (each level keeps level 0's coverage, not its parent's rounding).
+            const float scale = coverageScale(level, coverage_alpha, level0_coverage);
+            for (size_t index = 3; index < bytes.size(); index += 4)
+                bytes[index] = toByte(std::min(1.0f, level.rgba[index] * scale));
+        }
         levels.push_back(std::move(bytes));
     }
     return levels;

@@ -170,6 +170,37 @@ VkRenderPass createShadowRenderPass(VkDevice device) {
     return render_pass;
 }
 
+namespace {
+
+// The colour attachment's blend state for a pipeline's BlendMode.
+VkPipelineColorBlendAttachmentState blendAttachmentFor(const GraphicsPipelineDescription& description) {
+    VkPipelineColorBlendAttachmentState blend_attachment{};
+    switch (description.blend) {
+        case BlendMode::kOpaque:
+            // With alpha to coverage the output alpha is a coverage, not the composite's: leave the
+            // attachment's alpha as the camera draw wrote it.
+            blend_attachment.colorWriteMask =
+                VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT;
+            if (!description.alpha_to_coverage) blend_attachment.colorWriteMask |= VK_COLOR_COMPONENT_A_BIT;
+            break;
+        case BlendMode::kMultiplyTwice:
+            blend_attachment.blendEnable = VK_TRUE;
+            blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_DST_COLOR;
+            blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_COLOR;
+            blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
+            blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+            blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+            blend_attachment.colorWriteMask =
+                VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT;
+            break;
+        case BlendMode::kNoColourWrites: blend_attachment.colorWriteMask = 0; break;
+    }
+    return blend_attachment;
+}
+
+}  // namespace
+
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& description) {
     VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
     auto makeModule = [&](const uint32_t* code, size_t bytes) {
@@ -219,6 +250,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
         raster.lineWidth = 1.0f;
         VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         multisample.rasterizationSamples = description.samples;
+        multisample.alphaToCoverageEnable = description.alpha_to_coverage ? VK_TRUE : VK_FALSE;
         VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         depth.depthTestEnable = description.depth_test ? VK_TRUE : VK_FALSE;
         depth.depthWriteEnable = description.depth_write ? VK_TRUE : VK_FALSE;
@@ -236,25 +268,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
             depth.stencilTestEnable = VK_TRUE;
             depth.front = depth.back = stencil;
         }
-        VkPipelineColorBlendAttachmentState blend_attachment{};
-        switch (description.blend) {
-            case BlendMode::kOpaque:
-                blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                                  VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-                break;
-            case BlendMode::kMultiplyTwice:
-                blend_attachment.blendEnable = VK_TRUE;
-                blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_DST_COLOR;
-                blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_COLOR;
-                blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
-                blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-                blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-                blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-                blend_attachment.colorWriteMask =
-                    VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT;
-                break;
-            case BlendMode::kNoColourWrites: blend_attachment.colorWriteMask = 0; break;
-        }
+        const VkPipelineColorBlendAttachmentState blend_attachment = blendAttachmentFor(description);
         VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
         blend.attachmentCount = description.has_colour_attachment ? 1 : 0;
         blend.pAttachments = &blend_attachment;

@@ -71,6 +71,9 @@ struct GraphicsPipelineDescription {
     bool has_colour_attachment = true;
     /// rasterizationSamples: the render pass's sample count (RuntimeOptions::msaa_samples in the main pass).
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    /// alphaToCoverageEnable: the fragment's output alpha sets how many of its samples it covers (alpha-masked
+    /// materials with multisampling; the colour attachment's alpha is then not written, colorWriteMask RGB).
+    bool alpha_to_coverage = false;
 };
 
 /// A graphics pipeline with dynamic viewport and scissor; triangle lists, no culling (thin walls and

@@ -111,8 +111,18 @@ void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sc
     }
     const MipChainMaker maker =
         canBlitMipChain(gpu, VK_FORMAT_R8G8B8A8_SRGB) ? MipChainMaker::kGpuBlit : MipChainMaker::kCpuBoxFilter;
-    for (const BakeSetTexture& texture : mesh.textures)
-        scene.textures.push_back(uploadBaseColourTexture(gpu, texture, maker));
+    // A texture that an alpha-masked material reads keeps its coverage at that material's cutoff down its chain
+    // (the first such material's, should two with different cutoffs share it).
+    std::vector<float> coverage_alpha(mesh.textures.size(), -1.0f);
+    for (const BakeSetMaterial& material : mesh.materials) {
+        const int texture = material.base_color_texture;
+        if (!material.alpha_masked || texture < 0 || size_t(texture) >= coverage_alpha.size() ||
+            coverage_alpha[texture] > 0.0f || !(material.base_color_factor.a > 0.0f))
+            continue;
+        coverage_alpha[texture] = material.alpha_cutoff / material.base_color_factor.a;
+    }
+    for (size_t texture = 0; texture < mesh.textures.size(); ++texture)
+        scene.textures.push_back(uploadBaseColourTexture(gpu, mesh.textures[texture], maker, coverage_alpha[texture]));
     // One texel: no chain to make, and it reads white at every level of detail.
     GpuImageDescription description;
     description.format = VK_FORMAT_R8G8B8A8_SRGB;
@@ -307,7 +317,8 @@ void boundReceivers(const BakeSetData& bake_set, uint32_t columns, uint32_t rows
 
 }  // namespace
 
-GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker) {
+GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker,
+                                 float coverage_alpha) {
     GpuImageDescription description;
     description.format = VK_FORMAT_R8G8B8A8_SRGB;
     description.width = uint32_t(texture.width);
@@ -317,12 +328,13 @@ GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& tex
     GpuImage image(gpu, description);
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     image.upload(texture.rgba8.data(), texture.rgba8.size(), 0, read);
-    if (maker == MipChainMaker::kGpuBlit) {
+    const bool masked = coverage_alpha > 0.0f && coverage_alpha <= 1.0f;
+    if (maker == MipChainMaker::kGpuBlit && !masked) {
         image.generateMipChain(read);
         return image;
     }
     const std::vector<std::vector<uint8_t>> levels = boxFilteredSrgbMipLevels(
-        texture.rgba8.data(), description.width, description.height, description.mip_levels);
+        texture.rgba8.data(), description.width, description.height, description.mip_levels, coverage_alpha);
     for (size_t level = 0; level < levels.size(); ++level)
         image.upload(levels[level].data(), levels[level].size(), 0, read, uint32_t(level + 1));
     return image;

@@ -79,7 +79,11 @@ enum class MipChainMaker { kGpuBlit, kCpuBoxFilter };
 
 /// A base-colour texture (already checked: rgba8 holds width x height texels) as an R8G8B8A8_SRGB image with its
 /// full mip chain, left in SHADER_READ_ONLY_OPTIMAL. Throws std::runtime_error on Vulkan failure.
-GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker);
+/// `coverage_alpha` in (0, 1]: the texture is an alpha-masked material's, whose cutoff over its factor's alpha
+/// this is; its chain is then made on the CPU whatever `maker` says, each level keeping level 0's coverage at
+/// that alpha (boxFilteredSrgbMipLevels), which a blit cannot.
+GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker,
+                                 float coverage_alpha = -1.0f);
 
 /// Uploads the bake set (already checked by findBakeSetProblem); change_threshold is
 /// RuntimeOptions::ground_change_threshold. Throws std::runtime_error on Vulkan failure.

@@ -3,6 +3,7 @@
 // linear filtering (GpuImage::generateMipChain makes it on the GPU elsewhere). Filtered in linear light, as an
 // sRGB blit does: averaging the encoded bytes would darken every edge between light and dark texels.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -14,7 +15,18 @@ namespace gusuku {
 /// the 2 x 2 texels above it when sides are even), RGB decoded to linear before and encoded after, rounded to
 /// the nearest byte. Each level is filtered from the level above in float, so rounding does not accumulate.
 /// Empty for level_count <= 1.
+///
+/// `coverage_alpha` in (0, 1] (an alpha-masked material's cutoff over its base colour factor's alpha): each
+/// level's alpha is then scaled (by one factor a level, the result held to 1) so that the share of its texels at
+/// or above `coverage_alpha` is the nearest it can be to level 0's. A box filter alone moves that share: a
+/// foliage card whose leaves cover 40 % of level 0 averages to alpha 0.4 a few levels down and vanishes under a
+/// cutoff of 0.5, or goes solid if they cover 60 % (Castano 2010, "Computing alpha mipmaps"). RGB is the box
+/// filter's either way. Outside (0, 1], alpha is the plain box filter's.
 std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8, uint32_t width, uint32_t height,
-                                                            uint32_t level_count);
+                                                            uint32_t level_count, float coverage_alpha = -1.0f);
+
+/// The share of the texels of `rgba8` (count texels, R G B A bytes) whose alpha is at or above `coverage_alpha`
+/// (alpha byte / 255 >= coverage_alpha).
+double alphaCoverage(const uint8_t* rgba8, size_t count, float coverage_alpha);
 
 }  // namespace gusuku
