@@ -114,13 +114,13 @@ VkSampler createDepthReadSampler(VkDevice device, VkSamplerCreateInfo info) {
     return sampler;
 }
 
-// The base colour's level of detail, biased towards the finer level. A pixel's trilinear, anisotropic read at
-// the hardware's level is blurrier than the pixel's own average of the texture (the path tracer's): on the
-// shrine, at 320 x 180 against 512 spp truths, a Laplacian over its stone 0.038 against the truth's 0.046 and
-// its roof 0.076 against 0.110. A bias of -0.5 took its composite from 1.84 / 1.98 to 1.81 / 1.88 mean dE00 and
-// -1 to 1.76 / 1.86 (front / corner, docs/measurements.md). Half of that step, not all of it: a finer level
-// skips more of the texels under a pixel, which shimmers as the camera moves, and the bench's still frames cannot
-// measure that.
+// The base colour's level of detail, biased towards the finer level: the trilinear read's tent over two texels of
+// the chosen level is wider than a pixel's own box average of the texture (what the path tracer's samples give).
+// Measured on the shrine at 320 x 180 against 512 spp truths: -0.5 took its composite from 1.84 / 1.98 to
+// 1.79 / 1.86 mean dE00 and -1 to 1.76 / 1.86 (front / corner, docs/measurements.md); most of what the 1x frame
+// still lacks against the truth's detail is coverage at geometric edges, not the texture. Half of that step, not
+// all of it: a finer level skips more of the texels under a pixel, which shimmers as the camera moves, and the
+// bench's still frames cannot measure that.
 constexpr float kBaseColourLodBias = -0.5f;
 
 }  // namespace
