@@ -80,8 +80,11 @@ TEST(AlphaCoverageMipChain, EveryLevelKeepsLevelZerosCoverageAtTheCutoff) {
             EXPECT_NEAR(coverage, level0, 0.02) << "level " << level + 1;
             plain_drift = std::max(plain_drift, std::abs(plain_coverage - level0));
             // The colour is the box filter's either way.
-            for (size_t byte = 0; byte < kept[level].size(); ++byte)
-                if (byte % 4 != 3) ASSERT_EQ(kept[level][byte], plain[level][byte]);
+            for (size_t byte = 0; byte < kept[level].size(); ++byte) {
+                if (byte % 4 != 3) {
+                    ASSERT_EQ(kept[level][byte], plain[level][byte]);
+                }
+            }
         }
     }
     EXPECT_GT(plain_drift, 0.2) << "the box filter alone should lose the mask's coverage (the test's teeth)";

@@ -103,7 +103,7 @@ std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8,
     LinearLevel level{width, height, std::vector<float>(size_t(width) * height * 4)};
     for (size_t index = 0; index < level.rgba.size(); ++index)
         level.rgba[index] = index % 4 == 3 ? rgba8[index] / 255.0f : decoded[rgba8[index]];
-    const bool preserve_coverage = coverage_alpha > 0.0f && coverage_alpha <= 1.0f;
+    const bool preserve_coverage = keepsAlphaCoverage(coverage_alpha);
     const double level0_coverage =
         preserve_coverage ? alphaCoverage(rgba8, size_t(width) * height, coverage_alpha) : 0.0;
     for (uint32_t next = 1; next < level_count; ++next) {

@@ -328,8 +328,7 @@ GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& tex
     GpuImage image(gpu, description);
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     image.upload(texture.rgba8.data(), texture.rgba8.size(), 0, read);
-    const bool masked = coverage_alpha > 0.0f && coverage_alpha <= 1.0f;
-    if (maker == MipChainMaker::kGpuBlit && !masked) {
+    if (maker == MipChainMaker::kGpuBlit && !keepsAlphaCoverage(coverage_alpha)) {
         image.generateMipChain(read);
         return image;
     }

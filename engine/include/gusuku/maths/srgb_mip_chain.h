@@ -25,6 +25,10 @@ namespace gusuku {
 std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8, uint32_t width, uint32_t height,
                                                             uint32_t level_count, float coverage_alpha = -1.0f);
 
+/// Whether boxFilteredSrgbMipLevels keeps the coverage at `coverage_alpha` (it lies in (0, 1]); else its chain
+/// is the plain box filter's, which a GPU blit makes as well.
+inline bool keepsAlphaCoverage(float coverage_alpha) { return coverage_alpha > 0.0f && coverage_alpha <= 1.0f; }
+
 /// The share of the texels of `rgba8` (count texels, R G B A bytes) whose alpha is at or above `coverage_alpha`
 /// (alpha byte / 255 >= coverage_alpha).
 double alphaCoverage(const uint8_t* rgba8, size_t count, float coverage_alpha);
