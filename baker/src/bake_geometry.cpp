@@ -96,11 +96,12 @@ TriangleMesh loadSiteMeshOrStandIn(const SiteConfig& site, const Bounds3& buildi
     return makeFlatGround(half_size);
 }
 
-BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size) {
+BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size,
+                                 int building_texture_size) {
     BakeGeometry geometry;
     GltfLoadOptions building_options;
     building_options.enu_from_model = site.building.enuFromModel(site.site.reference);
-    building_options.max_texture_size = max_texture_size;
+    building_options.max_texture_size = building_texture_size;
     const TriangleMesh building = loadGltf(site.building.path, building_options, &geometry.warnings);
     requireBakeableBuilding(site, building);
     chooseLightmapUvs(geometry, building, site.bake.texels_per_metre);

@@ -33,9 +33,12 @@ struct BakeGeometry {
     const Bvh& cpuBvh() const { return *scene.bvh; }
 };
 
-/// Loads and prepares. lowest_sun_elevation_deg sizes the ground grid (negative: overcast only).
-/// Bad input throws InputError naming the file and field.
-BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size);
+/// Loads and prepares. lowest_sun_elevation_deg sizes the ground grid (negative: overcast only). The building's
+/// textures are decoded to fit building_texture_size (what building.glb keeps for the runtime; the tracers
+/// downsample them again to their own max_texture_size when they upload the scene), the site mesh's to
+/// max_texture_size. Bad input throws InputError naming the file and field.
+BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size,
+                                 int building_texture_size);
 
 /// The site's SfM mesh placed as site.json says, or, when it names none, the bake's flat grey stand-in ground:
 /// a square 4 x the building's largest extent (at least 10 m) from the origin each way, with a warning saying so.

@@ -54,6 +54,7 @@ uint64_t traceInputHash(const SiteConfig& site, const std::vector<std::string>& 
     // a pilot of half, which this plan must not resume).
     hash.addString(options.adaptive_sampling ? "adaptive sampling 2" : "uniform sampling");
     hash.addValue(samples).addValue(options.max_texture_size).addValue(tracerCodeHash())
+        .addValue(options.building_texture_size)
         .addValue(kSkyNextEventRelativeVarianceThreshold);
     return hash.value();
 }
@@ -271,7 +272,8 @@ BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& si
                                     const PreparedSky& sunny, const std::optional<PreparedSky>& overcast,
                                     const BakeOptions& options) {
     // The lowest baked sun sizes the ground grid.
-    BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size);
+    BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size,
+                                                   options.building_texture_size);
     refuseBuildingWithoutTexels(site, geometry);
     std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
     if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});

@@ -38,6 +38,8 @@ constexpr const char* kBakeUsage =
     "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
     "  --slot NAME        bake only this slot of SITE.json into a partial set, to be joined with the other\n"
     "                     slots' partial sets by `gusuku-bake merge` (one slot per machine)\n"
+    "  --texture-size N   the building's textures in the bake set are held to N x N (16-8192, default 2048:\n"
+    "                     the detail the runtime draws; tracing reads them at 512 whatever this is)\n"
     "  --no-denoise       skip the edge-keeping lightmap filter\n"
     "  --uniform-sampling every texel the same samples (default: half of them alike, the other half where\n"
     "                     each texel's noise is)\n"
@@ -60,6 +62,8 @@ BakeRequest parseArguments(CommandLine& line) {
     options.output_dir = line.text("--output", "-o").value_or("");
     if (const std::optional<int64_t> samples = line.integer("--samples", 1, 1000000))
         options.samples_override = int(*samples);
+    if (const std::optional<int64_t> side = line.integer("--texture-size", 16, 8192))
+        options.building_texture_size = int(*side);
     options.denoise = !line.flag("--no-denoise");
     options.adaptive_sampling = !line.flag("--uniform-sampling");
     options.force = line.flag("--force");

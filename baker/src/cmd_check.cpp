@@ -148,7 +148,7 @@ int checkSite(const std::string& site_path) {
     // What the bake itself would refuse or warn about before tracing, by the bake's own preflight code.
     const std::vector<bake::SlotSun> suns = bake::slotSunPositions(config);
     for (const std::string& message : bake::sunsBelowHorizon(suns)) warnings.push_back(message);
-    bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns), 512);
+    bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns), 512, 512);
     bake::refuseBuildingWithoutTexels(config, geometry);
     std::printf("lightmap: %zu texels at %d^2; ground grid: %d x %d cells of %.3g m\n", geometry.texels.size(),
                 geometry.lightmap_resolution, geometry.ground_region.columns, geometry.ground_region.rows,

@@ -16,6 +16,10 @@ namespace gusuku::bake {
 
 // The bake set layout's version, kBakeSetFormat, is gusuku/maths/bakeset_manifest.h's (gusuku::kBakeSetFormat).
 
+/// The side the bake set's building textures are held to by default (BakeOptions::building_texture_size): the
+/// camera tracer's own (camera_tracer.h), so that the runtime draws the texture detail the bench's truth traces.
+constexpr int kDefaultBuildingTextureSize = 2048;
+
 struct BakeOptions {
     std::string output_dir;
     bool force = false;             ///< bake even when the manifest says the bake set is up to date
@@ -30,6 +34,11 @@ struct BakeOptions {
     /// (gusuku_bake/bake_merge.h). Everything but the slot's own files is what the whole bake writes.
     std::string slot;
     int max_texture_size = 512;     ///< albedo textures are downsampled to this for tracing
+    /// The building's base-colour textures as building.glb (and the runtime pack) keep them for the runtime:
+    /// downsampled to fit this side, never enlarged. The tracers still read them at max_texture_size (a
+    /// bounce's albedo needs no detail), but the runtime draws them: at 512 the shared shrine's 2048^2
+    /// structure texture lost the detail the camera tracer's truth (2048) shows (docs/measurements.md).
+    int building_texture_size = kDefaultBuildingTextureSize;
     /// The length each GPU dispatch aims at (gusuku_bake/dispatch_budget.h): a stop waits for at most about
     /// one, and a pass over a large set is cut into point ranges to keep to it.
     double target_chunk_seconds = 0.25;
