@@ -273,7 +273,7 @@ BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& si
                                     const BakeOptions& options) {
     // The lowest baked sun sizes the ground grid.
     BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size,
-                                                   options.building_texture_size);
+                                                options.building_texture_size);
     refuseBuildingWithoutTexels(site, geometry);
     std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
     if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});

@@ -18,6 +18,7 @@
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/gpu/vulkan_context.h"
+#include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
 
 namespace gusuku::bake_cli {
@@ -148,7 +149,10 @@ int checkSite(const std::string& site_path) {
     // What the bake itself would refuse or warn about before tracing, by the bake's own preflight code.
     const std::vector<bake::SlotSun> suns = bake::slotSunPositions(config);
     for (const std::string& message : bake::sunsBelowHorizon(suns)) warnings.push_back(message);
-    bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns), 512, 512);
+    // The bake's own tracing side for both: the check reads the geometry, not the runtime's texture detail.
+    const int trace_texture_size = bake::BakeOptions{}.max_texture_size;
+    bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns),
+                                                            trace_texture_size, trace_texture_size);
     bake::refuseBuildingWithoutTexels(config, geometry);
     std::printf("lightmap: %zu texels at %d^2; ground grid: %d x %d cells of %.3g m\n", geometry.texels.size(),
                 geometry.lightmap_resolution, geometry.ground_region.columns, geometry.ground_region.rows,

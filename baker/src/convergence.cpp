@@ -288,7 +288,9 @@ ConvergenceStudy runConvergenceStudy(VulkanContext& context, const SiteConfig& s
     if (site.overcast_sky) overcast = prepareSky(*site.overcast_sky);
     const SlotLighting lighting = lightSlot(site, slot, sunny, overcast ? &*overcast : nullptr);
     const double elevation = lighting.sun.present ? lighting.sun_position.apparent_elevation_deg : -1.0;
-    const BakeGeometry geometry = prepareBakeGeometry(site, elevation, options.max_texture_size, options.max_texture_size);
+    // The study traces the lightmap alone: nothing draws the building's textures, so they need no more detail.
+    const BakeGeometry geometry =
+        prepareBakeGeometry(site, elevation, options.max_texture_size, options.max_texture_size);
     const std::vector<QueryPointGpu> points = texelCentrePoints(geometry);
     IrradianceTracer tracer(context, geometry.scene, lighting.sky->tables, options.max_texture_size);
     TracePass pass;
