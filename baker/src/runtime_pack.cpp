@@ -15,7 +15,9 @@
 #include "gusuku/maths/ktx2.h"
 #include "gusuku/maths/pack_geometry.h"
 #include "gusuku/maths/shared_exponent.h"
+#include "gusuku/maths/texture_coverage.h"
 #include "gusuku_bake/astc_lightmap.h"
+#include "gusuku_bake/astc_texture.h"
 
 namespace gusuku::bake {
 namespace {
@@ -114,10 +116,17 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
 
     report.lightmap_scale = lightmapScaleOf(bake_set);
     PackGeometry geometry{report.lightmap_scale, bake_set.building, bake_set.occluder};
+    const std::vector<float> coverage_alpha = textureCoverageAlphas(bake_set.building);
     for (size_t index = 0; index < geometry.building.textures.size(); ++index) {
         BakeSetTexture& texture = geometry.building.textures[index];
-        files.writeKtx2("texture_" + std::to_string(index) + ".ktx2",
-                        {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width), uint32_t(texture.height), texture.rgba8});
+        const std::string name = "texture_" + std::to_string(index);
+        report.texture_bytes += files.writeKtx2(
+            name + ".ktx2", {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width), uint32_t(texture.height), texture.rgba8});
+        const auto encode_start = std::chrono::steady_clock::now();
+        const Ktx2Image astc = encodeAstcTexture(texture, coverage_alpha[index]);
+        report.astc_encode_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
+        report.astc_texture_bytes += files.writeKtx2(name + "_astc.ktx2", astc);
         texture.rgba8.clear();  // pack.bin holds the sides; the texels are the KTX2's
     }
     files.write("pack.bin", encodePackGeometry(geometry));
@@ -152,11 +161,12 @@ bool runtimePackIsUpToDate(const std::string& bake_set_folder) {
     if (!fs::exists(packed)) return false;
     try {
         const BakeSetManifest manifest = readBakeSetManifest(bake_set_folder + "/manifest.json");
-        // A pack written before the ASTC lightmaps has none: writing it again adds them.
+        // A pack written before the ASTC lightmaps or textures has none: writing it again adds them. (A
+        // building without textures has no texture_0 of either kind.)
+        const std::string pack = bake_set_folder + "/" + kRuntimePackFolder + "/";
         for (const BakeSetSlot& slot : manifest.slots)
-            if (!fs::exists(bake_set_folder + "/" + kRuntimePackFolder + "/" +
-                            lightmapCompanionName(slot.building_irradiance, "_astc")))
-                return false;
+            if (!fs::exists(pack + lightmapCompanionName(slot.building_irradiance, "_astc"))) return false;
+        if (fs::exists(pack + "texture_0.ktx2") && !fs::exists(pack + "texture_0_astc.ktx2")) return false;
         return readWholeFile(packed) == packManifestText(manifest);
     } catch (const std::exception&) {
         return false;

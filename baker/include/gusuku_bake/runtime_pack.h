@@ -16,7 +16,9 @@ struct RuntimePackReport {
     uint64_t bytes = 0;     ///< all its files
     uint64_t lightmap_bytes = 0;  ///< its building_<slot>.ktx2 files (E5B9G9R9)
     uint64_t astc_lightmap_bytes = 0;  ///< its building_<slot>_astc.ktx2 files (ASTC 4x4 HDR)
-    double astc_encode_seconds = 0.0;  ///< wall time astcenc took for all slots
+    uint64_t texture_bytes = 0;        ///< its texture_<n>.ktx2 files (RGBA8, level 0)
+    uint64_t astc_texture_bytes = 0;   ///< its texture_<n>_astc.ktx2 files (ASTC 6x6 sRGB, full mip chains)
+    double astc_encode_seconds = 0.0;  ///< wall time astcenc took for all slots and textures
     float lightmap_scale = 1.0f;  ///< pack.bin's lightmap_scale
 };
 

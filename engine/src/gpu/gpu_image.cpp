@@ -30,6 +30,7 @@ uint32_t bytesPerTexel(VkFormat format) {
 
 size_t levelByteCount(VkFormat format, uint32_t width, uint32_t height) {
     if (format == VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK) return (size_t(width) + 3) / 4 * ((size_t(height) + 3) / 4) * 16;
+    if (format == VK_FORMAT_ASTC_6x6_SRGB_BLOCK) return (size_t(width) + 5) / 6 * ((size_t(height) + 5) / 6) * 16;
     return size_t(width) * height * bytesPerTexel(format);
 }
 

@@ -2,12 +2,35 @@
 // checked once, reported as the first "FIELD: PROBLEM".
 #include "gusuku/maths/bakeset_validate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "gusuku/maths/ktx2.h"
 
 namespace gusuku {
 
 namespace {
+
+// The ASTC 6x6 levels of a texture, when it has them: the full chain, each level's blocks.
+std::optional<std::string> astcLevelsProblem(const BakeSetTexture& texture, const std::string& field) {
+    if (texture.astc6x6_levels.empty()) return std::nullopt;
+    const uint32_t width = uint32_t(texture.width), height = uint32_t(texture.height);
+    const uint32_t level_count = ktx2FullLevelCount(width, height);
+    if (texture.astc6x6_levels.size() != level_count)
+        return field + ".astc6x6_levels: " + std::to_string(texture.astc6x6_levels.size()) +
+               " levels, the full chain of " + std::to_string(width) + " x " + std::to_string(height) + " has " +
+               std::to_string(level_count);
+    for (uint32_t level = 0; level < level_count; ++level) {
+        const uint64_t bytes = ktx2LevelBytes(Ktx2Format::kAstc6x6Srgb, std::max(1u, width >> level),
+                                              std::max(1u, height >> level));
+        if (texture.astc6x6_levels[level].size() != bytes)
+            return field + ".astc6x6_levels[" + std::to_string(level) + "]: " +
+                   std::to_string(texture.astc6x6_levels[level].size()) + " bytes, its 6 x 6 blocks need " +
+                   std::to_string(bytes);
+    }
+    return std::nullopt;
+}
 
 using Problem = std::optional<std::string>;
 
@@ -137,10 +160,12 @@ Problem checkBuilding(const BakeSetMesh& mesh) {
             return field + ": " + std::to_string(texture.width) + " x " + std::to_string(texture.height) +
                    " texels, both must be positive";
         const size_t bytes = size_t(texture.width) * size_t(texture.height) * 4;
-        if (texture.rgba8.size() != bytes)
+        // A pack for ASTC devices may hold only the blocks (BakeSetTexture): rgba8 empty then.
+        if (texture.rgba8.size() != bytes && !(texture.rgba8.empty() && !texture.astc6x6_levels.empty()))
             return field + ".rgba8: " + std::to_string(texture.rgba8.size()) + " bytes, " +
                    std::to_string(texture.width) + " x " + std::to_string(texture.height) + " RGBA8 needs " +
                    std::to_string(bytes);
+        if (Problem p = astcLevelsProblem(texture, field)) return p;
     }
     if (Problem p = firstNonFinite(mesh.positions, "building.positions")) return p;
     if (Problem p = firstNonFinite(mesh.normals, "building.normals")) return p;

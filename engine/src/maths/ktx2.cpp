@@ -3,6 +3,7 @@
 
 #include "gusuku/maths/ktx2.h"
 
+#include <algorithm>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
@@ -15,7 +16,8 @@ namespace {
 constexpr uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr size_t kHeaderBytes = 80;       // identifier 12, header 9 x 4, index 4 x 4 + 2 x 8
 constexpr size_t kLevelEntryBytes = 24;   // byteOffset, byteLength, uncompressedByteLength (u64 each)
-constexpr size_t kDfdOffset = kHeaderBytes + kLevelEntryBytes;
+// The DFD follows the level index: one entry a level.
+size_t dfdOffsetFor(uint32_t level_count) { return kHeaderBytes + kLevelEntryBytes * level_count; }
 constexpr char kWriter[] = "gusuku runtime pack";
 
 // Data Format Specification 1.3 values.
@@ -32,14 +34,13 @@ struct Sample {
 
 // Block-compressed formats have a typeSize of 1 (the KTX 2.0 specification, "typeSize").
 uint32_t typeSizeOf(Ktx2Format format) {
-    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb || format == Ktx2Format::kAstc4x4Sfloat
-               ? 1u
-               : 4u;
+    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb || ktx2IsBlockFormat(format) ? 1u
+                                                                                                               : 4u;
 }
 
 bool isKnown(uint32_t vk_format) {
     for (Ktx2Format format : {Ktx2Format::kR8Unorm, Ktx2Format::kR8g8b8a8Srgb, Ktx2Format::kR32g32b32a32Sfloat,
-                              Ktx2Format::kE5b9g9r9Ufloat, Ktx2Format::kAstc4x4Sfloat})
+                              Ktx2Format::kE5b9g9r9Ufloat, Ktx2Format::kAstc4x4Sfloat, Ktx2Format::kAstc6x6Srgb})
         if (uint32_t(format) == vk_format) return true;
     return false;
 }
@@ -70,6 +71,10 @@ std::vector<Sample> samplesOf(Ktx2Format format) {
             // One sample over the 128-bit block, channel ASTC_DATA (0), signed float (the Data Format
             // Specification's compressed-format table for the HDR ASTC formats).
             return {{0, 128, 0 | kQualifierFloat | kQualifierSigned, kFloatMinusOne, kBlockFloatUpper}};
+        case Ktx2Format::kAstc6x6Srgb:
+            // One sample over the block, channel ASTC_DATA, unsigned normalised (limits 0 and 0xFFFFFFFF, as
+            // vk2dfd gives the LDR ASTC formats); the sRGB transfer is the descriptor's, not the sample's.
+            return {{0, 128, 0, 0, 0xFFFFFFFFu}};
     }
     return {};
 }
@@ -78,9 +83,11 @@ std::vector<Sample> samplesOf(Ktx2Format format) {
 std::vector<uint32_t> dfdWords(Ktx2Format format) {
     const std::vector<Sample> samples = samplesOf(format);
     const uint32_t block_bytes = 24 + 16 * uint32_t(samples.size());
-    const uint32_t transfer = format == Ktx2Format::kR8g8b8a8Srgb ? kTransferSrgb : kTransferLinear;
-    const bool astc = format == Ktx2Format::kAstc4x4Sfloat;
-    const uint32_t block_dimensions = astc ? (4 - 1) | (4 - 1) << 8 : 0;  // texelBlockDimension0..3, each minus 1
+    const bool srgb = format == Ktx2Format::kR8g8b8a8Srgb || format == Ktx2Format::kAstc6x6Srgb;
+    const uint32_t transfer = srgb ? kTransferSrgb : kTransferLinear;
+    const bool astc = ktx2IsBlockFormat(format);
+    const uint32_t side = ktx2BlockSide(format);
+    const uint32_t block_dimensions = astc ? (side - 1) | (side - 1) << 8 : 0;  // texelBlockDimension0..3, minus 1
     std::vector<uint32_t> words = {4 + block_bytes, 0, 2u | block_bytes << 16,
                                    (astc ? kModelAstc : kModelRgbsda) | kPrimariesBt709 << 8 | transfer << 16,
                                    block_dimensions, ktx2TexelBytes(format), 0};
@@ -136,8 +143,27 @@ std::string ktx2FormatName(uint32_t vk_format) {
         case uint32_t(Ktx2Format::kR32g32b32a32Sfloat): return "VK_FORMAT_R32G32B32A32_SFLOAT";
         case uint32_t(Ktx2Format::kE5b9g9r9Ufloat): return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
         case uint32_t(Ktx2Format::kAstc4x4Sfloat): return "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK";
+        case uint32_t(Ktx2Format::kAstc6x6Srgb): return "VK_FORMAT_ASTC_6x6_SRGB_BLOCK";
         default: return "VkFormat " + std::to_string(vk_format);
     }
+}
+
+bool ktx2IsBlockFormat(Ktx2Format format) {
+    return format == Ktx2Format::kAstc4x4Sfloat || format == Ktx2Format::kAstc6x6Srgb;
+}
+
+uint32_t ktx2BlockSide(Ktx2Format format) {
+    switch (format) {
+        case Ktx2Format::kAstc4x4Sfloat: return 4;
+        case Ktx2Format::kAstc6x6Srgb: return 6;
+        default: return 1;
+    }
+}
+
+uint32_t ktx2FullLevelCount(uint32_t width, uint32_t height) {
+    uint32_t levels = 1;
+    for (uint32_t side = std::max(width, height); side > 1; side >>= 1) ++levels;
+    return levels;
 }
 
 uint32_t ktx2TexelBytes(Ktx2Format format) {
@@ -145,41 +171,72 @@ uint32_t ktx2TexelBytes(Ktx2Format format) {
         case Ktx2Format::kR8Unorm: return 1;
         case Ktx2Format::kR32g32b32a32Sfloat: return 16;
         case Ktx2Format::kAstc4x4Sfloat: return 16;
+        case Ktx2Format::kAstc6x6Srgb: return 16;
         default: return 4;
     }
 }
 
 uint64_t ktx2LevelBytes(Ktx2Format format, uint32_t width, uint32_t height) {
-    if (format == Ktx2Format::kAstc4x4Sfloat)
-        return (uint64_t(width) + 3) / 4 * ((uint64_t(height) + 3) / 4) * ktx2TexelBytes(format);
-    return uint64_t(width) * height * ktx2TexelBytes(format);
+    const uint64_t side = ktx2BlockSide(format);
+    return (uint64_t(width) + side - 1) / side * ((uint64_t(height) + side - 1) / side) * ktx2TexelBytes(format);
 }
+
+namespace {
+
+uint32_t levelSide(uint32_t side, uint32_t level) { return std::max(1u, side >> level); }
+
+// Level `level`'s texels of `image` (0: texels; then smaller_levels).
+const std::vector<uint8_t>& levelTexels(const Ktx2Image& image, uint32_t level) {
+    return level == 0 ? image.texels : image.smaller_levels[level - 1];
+}
+
+}  // namespace
 
 std::vector<uint8_t> encodeKtx2(const Ktx2Image& image) {
     if (!isKnown(uint32_t(image.format))) throw std::invalid_argument("encodeKtx2: unknown format");
-    const size_t level_bytes = size_t(ktx2LevelBytes(image.format, image.width, image.height));
-    if (image.width == 0 || image.height == 0 || image.texels.size() != level_bytes)
-        throw std::invalid_argument("encodeKtx2: texels are not width x height texels (or blocks) of the format");
+    if (image.width == 0 || image.height == 0) throw std::invalid_argument("encodeKtx2: a side is 0");
+    const uint32_t level_count = uint32_t(1 + image.smaller_levels.size());
+    if (level_count != 1 && level_count != ktx2FullLevelCount(image.width, image.height))
+        throw std::invalid_argument("encodeKtx2: smaller_levels is neither empty nor the rest of the full chain");
+    std::vector<size_t> level_bytes(level_count);
+    for (uint32_t level = 0; level < level_count; ++level) {
+        level_bytes[level] = size_t(ktx2LevelBytes(image.format, levelSide(image.width, level),
+                                                   levelSide(image.height, level)));
+        if (levelTexels(image, level).size() != level_bytes[level])
+            throw std::invalid_argument("encodeKtx2: level " + std::to_string(level) +
+                                        " is not its width x height texels (or blocks) of the format");
+    }
     const std::vector<uint32_t> dfd = dfdWords(image.format);
     const std::vector<uint8_t> kvd = keyValueData();
-    const size_t kvd_offset = kDfdOffset + dfd.size() * 4;
-    const size_t level_offset = alignedUp(kvd_offset + kvd.size(), levelAlignment(image.format));
-    std::vector<uint8_t> bytes(level_offset + level_bytes, 0);
+    const size_t dfd_offset = dfdOffsetFor(level_count);
+    const size_t kvd_offset = dfd_offset + dfd.size() * 4;
+    // The levels, smallest first (the specification's order), each aligned.
+    std::vector<size_t> level_offsets(level_count);
+    size_t end = kvd_offset + kvd.size();
+    for (uint32_t level = level_count; level-- > 0;) {
+        level_offsets[level] = alignedUp(end, levelAlignment(image.format));
+        end = level_offsets[level] + level_bytes[level];
+    }
+    std::vector<uint8_t> bytes(end, 0);
     std::memcpy(bytes.data(), kIdentifier, sizeof kIdentifier);
-    const uint32_t header[9] = {uint32_t(image.format), typeSizeOf(image.format), image.width, image.height, 0, 0, 1, 1, 0};
+    const uint32_t header[9] = {uint32_t(image.format), typeSizeOf(image.format), image.width, image.height, 0, 0, 1,
+                                level_count, 0};
     for (int field = 0; field < 9; ++field) putU32(bytes, 12 + 4 * field, header[field]);
-    putU32(bytes, 48, uint32_t(kDfdOffset));
+    putU32(bytes, 48, uint32_t(dfd_offset));
     putU32(bytes, 52, uint32_t(dfd.size() * 4));
     putU32(bytes, 56, uint32_t(kvd_offset));
     putU32(bytes, 60, uint32_t(kvd.size()));
     putU64(bytes, 64, 0);  // no supercompression global data
     putU64(bytes, 72, 0);
-    putU64(bytes, kHeaderBytes, level_offset);
-    putU64(bytes, kHeaderBytes + 8, level_bytes);
-    putU64(bytes, kHeaderBytes + 16, level_bytes);
-    for (size_t word = 0; word < dfd.size(); ++word) putU32(bytes, kDfdOffset + 4 * word, dfd[word]);
+    for (uint32_t level = 0; level < level_count; ++level) {
+        const size_t entry = kHeaderBytes + kLevelEntryBytes * level;
+        putU64(bytes, entry, level_offsets[level]);
+        putU64(bytes, entry + 8, level_bytes[level]);
+        putU64(bytes, entry + 16, level_bytes[level]);
+        std::memcpy(bytes.data() + level_offsets[level], levelTexels(image, level).data(), level_bytes[level]);
+    }
+    for (size_t word = 0; word < dfd.size(); ++word) putU32(bytes, dfd_offset + 4 * word, dfd[word]);
     std::memcpy(bytes.data() + kvd_offset, kvd.data(), kvd.size());
-    std::memcpy(bytes.data() + level_offset, image.texels.data(), level_bytes);
     return bytes;
 }
 
@@ -207,7 +264,8 @@ public:
         if (value != expected) fail(field, std::to_string(value) + " is not " + std::to_string(expected) + " (" + why + ")");
     }
 
-    void checkHeader(Ktx2Format expected) const {
+    // Returns the level count: 1, or with `mip_chain` the full chain's.
+    uint32_t checkHeader(Ktx2Format expected, bool mip_chain) const {
         if (size_ < kHeaderBytes + kLevelEntryBytes)
             fail("header", "the file has " + std::to_string(size_) + " bytes, fewer than the 104 of a KTX2 header, "
                            "index and one level entry (truncated?)");
@@ -222,16 +280,22 @@ public:
         expectU32(28, "pixelDepth", 0, "a 2D image");
         expectU32(32, "layerCount", 0, "one image, not an array");
         expectU32(36, "faceCount", 1, "not a cube map");
-        expectU32(40, "levelCount", 1, "the pack holds one level");
+        const uint32_t level_count = mip_chain ? ktx2FullLevelCount(u32(20), u32(24)) : 1;
+        expectU32(40, "levelCount", level_count,
+                  mip_chain ? "the full mip chain of its sides" : "the pack holds one level of this file");
         expectU32(44, "supercompressionScheme", 0, "the pack is not supercompressed");
         if (u64(64) != 0 || u64(72) != 0) fail("sgdByteOffset/sgdByteLength", "is not 0 (no supercompression)");
+        need(kHeaderBytes, kLevelEntryBytes * level_count, "level index");
+        return level_count;
     }
 
     // The DFD must be, word for word, the one the format is written with. Returns where it ends.
-    size_t checkDfd(Ktx2Format format) const {
+    size_t checkDfd(Ktx2Format format, uint32_t level_count) const {
         const std::vector<uint32_t> expected = dfdWords(format);
         const uint32_t offset = u32(48), length = u32(52);
-        if (offset != kDfdOffset) fail("dfdByteOffset", std::to_string(offset) + " is not 104 (right after the level index)");
+        if (offset != dfdOffsetFor(level_count))
+            fail("dfdByteOffset", std::to_string(offset) + " is not " + std::to_string(dfdOffsetFor(level_count)) +
+                                      " (right after the level index)");
         if (length != expected.size() * 4)
             fail("dfdByteLength", std::to_string(length) + " is not " + std::to_string(expected.size() * 4) +
                                       ", the descriptor of " + ktx2FormatName(uint32_t(format)));
@@ -271,34 +335,56 @@ public:
         return end;
     }
 
-    Ktx2Image level(Ktx2Format format, size_t parts_end) const {
-        Ktx2Image image{format, u32(20), u32(24), {}};
-        const uint64_t offset = u64(kHeaderBytes), length = u64(kHeaderBytes + 8);
-        const uint64_t expected = ktx2LevelBytes(format, image.width, image.height);
-        const char* unit = format == Ktx2Format::kAstc4x4Sfloat ? " texels in 4 x 4 blocks of " : " texels of ";
-        if (length != expected)
-            fail("levels[0].byteLength", std::to_string(length) + " is not " + std::to_string(image.width) + " x " +
-                                             std::to_string(image.height) + unit +
-                                             std::to_string(ktx2TexelBytes(format)) + " bytes (" +
-                                             std::to_string(expected) + ")");
-        if (u64(kHeaderBytes + 16) != length)
-            fail("levels[0].uncompressedByteLength", std::to_string(u64(kHeaderBytes + 16)) + " is not its byteLength " +
-                                                         std::to_string(length) + " (no supercompression)");
-        if (offset % levelAlignment(format) != 0)
-            fail("levels[0].byteOffset", std::to_string(offset) + " is not a multiple of " +
-                                             std::to_string(levelAlignment(format)));
-        if (offset < parts_end)
-            fail("levels[0].byteOffset", std::to_string(offset) + " overlaps the header, DFD or key/value data (they end at " +
-                                             std::to_string(parts_end) + ")");
-        if (offset > size_ || length > size_ - offset)
-            fail("levels[0]", "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
-                                  " lie outside the file of " + std::to_string(size_) + " bytes (truncated?)");
-        if (offset + length != size_)
-            fail("levels[0]", "the file has " + std::to_string(size_ - offset - length) +
-                                  " bytes after its one level (levels do not add up to the file)");
-        image.texels.assign(bytes_ + offset, bytes_ + offset + length);
+    // Every level, the smallest first in the file: each after what precedes it (the header, DFD and key/value
+    // data, then the smaller level), and level 0 ending the file.
+    Ktx2Image levels(Ktx2Format format, size_t parts_end, uint32_t level_count) const {
+        Ktx2Image image{format, u32(20), u32(24), {}, {}};
+        image.smaller_levels.resize(level_count - 1);
+        size_t previous_end = parts_end;
+        for (uint32_t level = level_count; level-- > 0;) {
+            std::vector<uint8_t>& texels = level == 0 ? image.texels : image.smaller_levels[level - 1];
+            previous_end = readLevel(format, level, levelSide(image.width, level), levelSide(image.height, level),
+                                     previous_end, texels);
+        }
+        if (previous_end != size_)
+            fail("levels[0]", "the file has " + std::to_string(size_ - previous_end) +
+                                  " bytes after its largest level (levels do not add up to the file)");
         return image;
     }
+
+private:
+    // Level `level` (width x height) into `texels`; returns where it ends.
+    size_t readLevel(Ktx2Format format, uint32_t level, uint32_t width, uint32_t height, size_t previous_end,
+                     std::vector<uint8_t>& texels) const {
+        const std::string field = "levels[" + std::to_string(level) + "]";
+        const size_t entry = kHeaderBytes + kLevelEntryBytes * level;
+        const uint64_t offset = u64(entry), length = u64(entry + 8);
+        const uint64_t expected = ktx2LevelBytes(format, width, height);
+        const uint32_t side = ktx2BlockSide(format);
+        const std::string unit = side > 1 ? " texels in " + std::to_string(side) + " x " + std::to_string(side) +
+                                                " blocks of "
+                                          : std::string(" texels of ");
+        if (length != expected)
+            fail(field + ".byteLength", std::to_string(length) + " is not " + std::to_string(width) + " x " +
+                                            std::to_string(height) + unit + std::to_string(ktx2TexelBytes(format)) +
+                                            " bytes (" + std::to_string(expected) + ")");
+        if (u64(entry + 16) != length)
+            fail(field + ".uncompressedByteLength", std::to_string(u64(entry + 16)) + " is not its byteLength " +
+                                                        std::to_string(length) + " (no supercompression)");
+        if (offset % levelAlignment(format) != 0)
+            fail(field + ".byteOffset", std::to_string(offset) + " is not a multiple of " +
+                                            std::to_string(levelAlignment(format)));
+        if (offset < previous_end)
+            fail(field + ".byteOffset", std::to_string(offset) + " overlaps what precedes it (the header, DFD, "
+                                        "key/value data and smaller levels end at " + std::to_string(previous_end) + ")");
+        if (offset > size_ || length > size_ - offset)
+            fail(field, "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+                            " lie outside the file of " + std::to_string(size_) + " bytes (truncated?)");
+        texels.assign(bytes_ + offset, bytes_ + offset + length);
+        return size_t(offset + length);
+    }
+
+public:
 
 private:
     const uint8_t* bytes_;
@@ -308,12 +394,24 @@ private:
 
 }  // namespace
 
-Ktx2Image decodeKtx2(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected) {
+namespace {
+
+Ktx2Image decode(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected, bool mip_chain) {
     const Ktx2Reader reader(bytes, size, file);
-    reader.checkHeader(expected);
-    const size_t dfd_end = reader.checkDfd(expected);
+    const uint32_t level_count = reader.checkHeader(expected, mip_chain);
+    const size_t dfd_end = reader.checkDfd(expected, level_count);
     const size_t parts_end = reader.checkKeyValueData(dfd_end);
-    return reader.level(expected, parts_end);
+    return reader.levels(expected, parts_end, level_count);
+}
+
+}  // namespace
+
+Ktx2Image decodeKtx2(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected) {
+    return decode(bytes, size, file, expected, false);
+}
+
+Ktx2Image decodeKtx2MipChain(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected) {
+    return decode(bytes, size, file, expected, true);
 }
 
 }  // namespace gusuku

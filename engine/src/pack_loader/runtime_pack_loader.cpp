@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <utility>
 
 #include "gusuku/maths/bakeset_validate.h"
 #include "gusuku/maths/input_error.h"
@@ -91,6 +93,28 @@ std::vector<uint8_t> astcLightmapBlocks(const std::string& lightmap_path, uint32
     return readKtx2(path, Ktx2Format::kAstc4x4Sfloat, resolution, resolution).texels;
 }
 
+// A base-colour texture: texture_<n>.ktx2 (RGBA8) and texture_<n>_astc.ktx2 (ASTC 6x6 blocks, the full chain),
+// either of which may be absent but not both (a phone's pack may leave out the RGBA8, a pack written before the
+// blocks has none).
+void readTexture(const std::string& folder, size_t index, BakeSetTexture& texture) {
+    const std::string rgba8_path = folder + "/texture_" + std::to_string(index) + ".ktx2";
+    const std::string astc_path = folder + "/texture_" + std::to_string(index) + "_astc.ktx2";
+    const uint32_t width = uint32_t(texture.width), height = uint32_t(texture.height);
+    std::error_code error;
+    if (fs::exists(astc_path, error)) {
+        const std::vector<uint8_t> bytes = readPackFile(astc_path);
+        Ktx2Image image = decodeKtx2MipChain(bytes.data(), bytes.size(), astc_path, Ktx2Format::kAstc6x6Srgb);
+        if (image.width != width || image.height != height)
+            throw InputError(astc_path, "pixelWidth/pixelHeight",
+                             std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                 " is not pack.bin's " + std::to_string(width) + " x " + std::to_string(height));
+        texture.astc6x6_levels.push_back(std::move(image.texels));
+        for (std::vector<uint8_t>& level : image.smaller_levels) texture.astc6x6_levels.push_back(std::move(level));
+        if (!fs::exists(rgba8_path, error)) return;
+    }
+    texture.rgba8 = readKtx2(rgba8_path, Ktx2Format::kR8g8b8a8Srgb, width, height).texels;
+}
+
 std::string packFolderOf(const std::string& folder) {
     std::error_code error;
     if (!fs::exists(folder + "/pack.bin", error) && fs::exists(folder + "/pack/pack.bin", error)) return folder + "/pack";
@@ -110,12 +134,8 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
     const std::string geometry_path = folder + "/pack.bin";
     const std::vector<uint8_t> geometry_bytes = readPackFile(geometry_path);
     PackGeometry geometry = decodePackGeometry(geometry_bytes.data(), geometry_bytes.size(), geometry_path);
-    for (size_t index = 0; index < geometry.building.textures.size(); ++index) {
-        BakeSetTexture& texture = geometry.building.textures[index];
-        texture.rgba8 = readKtx2(folder + "/texture_" + std::to_string(index) + ".ktx2", Ktx2Format::kR8g8b8a8Srgb,
-                                 uint32_t(texture.width), uint32_t(texture.height))
-                            .texels;
-    }
+    for (size_t index = 0; index < geometry.building.textures.size(); ++index)
+        readTexture(folder, index, geometry.building.textures[index]);
     data.building = std::move(geometry.building);
     data.occluder = std::move(geometry.occluder);
 

@@ -117,7 +117,8 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
     options_.lightmap_format = chooseLightmapFormat(gpu_, bake_set, options_);
     checkDeviceRequirements(gpu_, options_);
     try {
-        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format);
+        scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format,
+                             options_.texture_compression_astc_ldr && deviceSamplesAstcLdr(gpu_));
         createGroundSelectionArrays();
         createTargets();
         // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
@@ -166,7 +167,8 @@ using runtime_detail::RuntimeImpl;
 // (VulkanContext enables it where the device has it), so anisotropy is turned off, not made invalid, without it.
 RuntimeOptions optionsForContext(const VulkanContext& context, RuntimeOptions options) {
     if (!context.enabledFeatures().samplerAnisotropy && options.max_anisotropy > 1.0f) options.max_anisotropy = 1.0f;
-    options.texture_compression_astc_hdr = false;  // VulkanContext does not enable it
+    options.texture_compression_astc_hdr = false;  // VulkanContext does not enable either
+    options.texture_compression_astc_ldr = false;
     return options;
 }
 
@@ -189,6 +191,7 @@ public:
     void invalidateShadowMaps() override { runtime_.invalidateShadowMaps(); }
     uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }
     LightmapFormat lightmapFormat() const override { return runtime_.lightmapFormat(); }
+    uint32_t astcTextureCount() const override { return runtime_.astcTextureCount(); }
 
 private:
     VulkanContext context_;

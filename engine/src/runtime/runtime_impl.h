@@ -71,6 +71,7 @@ public:
     void invalidateShadowMaps() override { building_shadow_valid_ = site_shadow_valid_ = false; }
     uint64_t deviceMemoryBytes() const override;
     LightmapFormat lightmapFormat() const override { return options_.lightmap_format; }
+    uint32_t astcTextureCount() const override { return scene_.astc_texture_count; }
 
 private:
     // runtime_resources.cpp and runtime_frame_pipelines.cpp

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <string>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -13,6 +14,7 @@
 
 #include "gusuku/maths/shared_exponent.h"
 #include "gusuku/maths/srgb_mip_chain.h"
+#include "gusuku/maths/texture_coverage.h"
 #include "ground_quads.h"
 
 namespace gusuku::runtime_detail {
@@ -98,7 +100,7 @@ void uploadBuilding(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sce
 }
 
 // Materials and their textures (sRGB: the sampler decodes to linear), and the white texture of untextured ones.
-void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& scene) {
+void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, bool astc_textures, GpuScene& scene) {
     for (const BakeSetMaterial& material : mesh.materials) {
         scene.base_colour_factors.push_back(material.base_color_factor);
         scene.material_texture.push_back(material.base_color_texture);
@@ -112,17 +114,23 @@ void uploadMaterials(const GpuDevice& gpu, const BakeSetMesh& mesh, GpuScene& sc
     const MipChainMaker maker =
         canBlitMipChain(gpu, VK_FORMAT_R8G8B8A8_SRGB) ? MipChainMaker::kGpuBlit : MipChainMaker::kCpuBoxFilter;
     // A texture that an alpha-masked material reads keeps its coverage at that material's cutoff down its chain
-    // (the first such material's, should two with different cutoffs share it).
-    std::vector<float> coverage_alpha(mesh.textures.size(), -1.0f);
-    for (const BakeSetMaterial& material : mesh.materials) {
-        const int texture = material.base_color_texture;
-        if (!material.alpha_masked || texture < 0 || size_t(texture) >= coverage_alpha.size() ||
-            coverage_alpha[texture] > 0.0f || !(material.base_color_factor.a > 0.0f))
+    // (the bake's ASTC chains keep it by the same rule).
+    const std::vector<float> coverage_alpha = textureCoverageAlphas(mesh);
+    for (size_t texture = 0; texture < mesh.textures.size(); ++texture) {
+        const BakeSetTexture& source = mesh.textures[texture];
+        if (astc_textures && !source.astc6x6_levels.empty()) {
+            scene.textures.push_back(uploadAstcBaseColourTexture(gpu, source));
+            ++scene.astc_texture_count;
             continue;
-        coverage_alpha[texture] = material.alpha_cutoff / material.base_color_factor.a;
+        }
+        if (source.rgba8.empty())
+            throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet,
+                               "bake set: building.textures[" + std::to_string(texture) +
+                                   "]: held only as ASTC 6x6 blocks (its RGBA8 file left out of the pack), which "
+                                   "this runtime cannot draw: enable textureCompressionASTC_LDR on a device that "
+                                   "has it and set options.texture_compression_astc_ldr, or ship the RGBA8 file");
+        scene.textures.push_back(uploadBaseColourTexture(gpu, source, maker, coverage_alpha[texture]));
     }
-    for (size_t texture = 0; texture < mesh.textures.size(); ++texture)
-        scene.textures.push_back(uploadBaseColourTexture(gpu, mesh.textures[texture], maker, coverage_alpha[texture]));
     // One texel: no chain to make, and it reads white at every level of detail.
     GpuImageDescription description;
     description.format = VK_FORMAT_R8G8B8A8_SRGB;
@@ -339,6 +347,29 @@ GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& tex
     return image;
 }
 
+GpuImage uploadAstcBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture) {
+    GpuImageDescription description;
+    description.format = VK_FORMAT_ASTC_6x6_SRGB_BLOCK;
+    description.width = uint32_t(texture.width);
+    description.height = uint32_t(texture.height);
+    description.mip_levels = uint32_t(texture.astc6x6_levels.size());
+    description.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    GpuImage image(gpu, description);
+    for (uint32_t level = 0; level < description.mip_levels; ++level)
+        image.upload(texture.astc6x6_levels[level].data(), texture.astc6x6_levels[level].size(), 0,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, level);
+    return image;
+}
+
+bool deviceSamplesAstcLdr(const GpuDevice& gpu) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(gpu.physical_device, VK_FORMAT_ASTC_6x6_SRGB_BLOCK, &properties);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+                                        VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    return (properties.optimalTilingFeatures & needed) == needed;
+}
+
 VkFormat lightmapVkFormat(LightmapFormat format) {
     switch (format) {
         case LightmapFormat::kRgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -358,10 +389,10 @@ const char* lightmapFormatName(LightmapFormat format) {
 }
 
 GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold,
-                     LightmapFormat lightmap_format) {
+                     LightmapFormat lightmap_format, bool astc_textures) {
     GpuScene scene;
     uploadBuilding(gpu, bake_set.building, scene);
-    uploadMaterials(gpu, bake_set.building, scene);
+    uploadMaterials(gpu, bake_set.building, astc_textures, scene);
     uploadOccluder(gpu, bake_set.occluder, scene);
     scene.slot_mean_indirect = slotMeanIndirect(bake_set.slots);
 

@@ -47,7 +47,8 @@ struct GpuScene {
     std::vector<float> alpha_cutoffs;
     std::vector<glm::vec4> base_colour_factors;  ///< per material
     std::vector<int> material_texture;           ///< per material: index into textures, or -1 (white)
-    std::vector<GpuImage> textures;              ///< RGBA8 sRGB base colour textures, full mip chains
+    std::vector<GpuImage> textures;              ///< RGBA8 or ASTC 6x6 sRGB base colour textures, full mip chains
+    uint32_t astc_texture_count = 0;             ///< of textures, those made from the bake set's ASTC blocks
     GpuImage white_texture;                      ///< 1x1 white for materials without a texture
     GpuBuffer occluder_vertices;                 ///< vec3, device-local (may hold nothing)
     GpuBuffer occluder_indices;
@@ -85,10 +86,20 @@ enum class MipChainMaker { kGpuBlit, kCpuBoxFilter };
 GpuImage uploadBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture, MipChainMaker maker,
                                  float coverage_alpha = -1.0f);
 
+/// A texture's ASTC 6x6 blocks (already checked: texture.astc6x6_levels is its full chain) as a
+/// VK_FORMAT_ASTC_6x6_SRGB_BLOCK image, each level as the bake made it, left in SHADER_READ_ONLY_OPTIMAL.
+GpuImage uploadAstcBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture& texture);
+
+/// Whether the device samples and filters VK_FORMAT_ASTC_6x6_SRGB_BLOCK (optimal tiling, as a transfer
+/// destination too). Only meaningful where the app enabled textureCompressionASTC_LDR.
+bool deviceSamplesAstcLdr(const GpuDevice& gpu);
+
 /// Uploads the bake set (already checked by findBakeSetProblem); change_threshold is
-/// RuntimeOptions::ground_change_threshold. Throws std::runtime_error on Vulkan failure.
+/// RuntimeOptions::ground_change_threshold; `astc_textures`: the textures with ASTC blocks are drawn from them
+/// (RuntimeOptions::texture_compression_astc_ldr and deviceSamplesAstcLdr). Throws std::runtime_error on Vulkan
+/// failure, RuntimeError kInvalidBakeSet for a texture held only as blocks when `astc_textures` is false.
 GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold,
-                     LightmapFormat lightmap_format);
+                     LightmapFormat lightmap_format, bool astc_textures);
 
 /// The Vulkan format that holds lightmaps in `format`, and its name for messages.
 /// The scale the runtime stores lightmaps and ground terms at: the largest irradiance over 30000 (so it fits a

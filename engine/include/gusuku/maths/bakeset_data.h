@@ -22,6 +22,11 @@ struct BakeSetTexture {
     int width = 0;
     int height = 0;
     std::vector<uint8_t> rgba8;
+    /// The same texture as ASTC 6x6 sRGB blocks (VK_FORMAT_ASTC_6x6_SRGB_BLOCK), its full mip chain made at bake
+    /// time (element k is level k), as a runtime pack holds it for devices that sample ASTC LDR; empty when the
+    /// bake set has none (the EXR bake set, or a pack written before them). A pack may hold only these, with
+    /// rgba8 empty: such a texture draws only where the runtime takes ASTC (docs/runtime.md, "Textures").
+    std::vector<std::vector<uint8_t>> astc6x6_levels;
 };
 
 struct BakeSetMaterial {

@@ -230,6 +230,15 @@ struct RuntimeOptions {
     /// cannot ask a device which features it was created with. openHeadless's own device does not enable it
     /// (and sets this false).
     bool texture_compression_astc_hdr = false;
+    /// True when the app enabled textureCompressionASTC_LDR on its device (VkPhysicalDeviceFeatures; every
+    /// Vulkan phone GPU has it, desktop GPUs and lavapipe do not). The building's base-colour textures are then
+    /// drawn from the bake set's ASTC 6x6 sRGB blocks (the runtime pack's, their mip chains made at bake time:
+    /// 3.56 bits a texel against RGBA8's 32) where it has them and the device samples and filters
+    /// VK_FORMAT_ASTC_6x6_SRGB_BLOCK; else as RGBA8 with the chains made at load. A texture the bake set holds
+    /// only as blocks (a pack whose RGBA8 files were left out) that cannot be drawn so fails open() with
+    /// kInvalidBakeSet naming the texture. Runtime::baseColourTextureFormat() says which. openHeadless's own
+    /// device does not enable it (and sets this false).
+    bool texture_compression_astc_ldr = false;
 };
 
 /// Semaphores a frame waits on before it reads the camera, and signals when its composite is written. Binary
@@ -369,6 +378,10 @@ public:
 
     /// The format the lightmaps are held in: RuntimeOptions::lightmap_format, kAuto resolved.
     virtual LightmapFormat lightmapFormat() const = 0;
+
+    /// How many of the building's base-colour textures are drawn from the bake set's ASTC 6x6 blocks
+    /// (RuntimeOptions::texture_compression_astc_ldr); the others are RGBA8.
+    virtual uint32_t astcTextureCount() const = 0;
 
     /// Where an ENU point lands in the frame for these intrinsics and pose (the camera convention above);
     /// nothing when it is behind the camera. Pure maths, for apps and tests.

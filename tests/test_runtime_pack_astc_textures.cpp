@@ -1,0 +1,243 @@
+// The runtime pack's ASTC 6x6 sRGB base-colour textures (docs/runtime.md, "Textures") on a real bake of the mini
+// site with a textured house: the pack writes texture_0_astc.ktx2 beside the RGBA8 file, a full mip chain whose
+// header says so (read here by hand); loadRuntimePack (standard library only) carries the blocks; astcenc decodes
+// level 0 to the RGBA8 texture within ASTC 6x6's error; bad chains are refused in one line; a pack without the
+// RGBA8 file loads, and a runtime that cannot take ASTC refuses it naming the texture; and on a device that cannot
+// sample ASTC LDR (lavapipe) the option falls back to RGBA8, drawing the same bytes. (Drawing the blocks needs a
+// device with textureCompressionASTC_LDR: the composite's error is measured from decoded blocks by
+// gusuku-lightmap-formats --textures.)
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu_test_support.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/site.h"
+#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/maths/colour.h"
+#include "gusuku/maths/input_error.h"
+#include "gusuku/maths/ktx2.h"
+#include "gusuku/runtime/runtime.h"
+#include "gusuku_bake/astc_texture.h"
+#include "gusuku_bake/bake_job.h"
+#include "gusuku_bake/runtime_pack.h"
+#include "mini_site.h"
+
+namespace gusuku {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kTextureWidth = 96, kTextureHeight = 64;
+
+std::vector<uint8_t> readBytes(const std::string& path) {
+    std::ifstream stream(path, std::ios::binary);
+    return std::vector<uint8_t>(std::istreambuf_iterator<char>(stream), {});
+}
+void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+uint32_t u32At(const std::vector<uint8_t>& bytes, size_t at) {
+    uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + at, 4);
+    return value;
+}
+
+// The mini site's house with a brick-like texture (smooth shading, dark joints) over every face.
+void texturiseBuilding(const std::string& dir) {
+    const std::string path = dir + "/building.glb";
+    GltfLoadOptions options;
+    options.enu_from_model = enuFromGltfYUp();
+    TriangleMesh house = loadGltf(path, options);
+    ImageRGBA texture;
+    texture.width = kTextureWidth;
+    texture.height = kTextureHeight;
+    texture.texels.resize(size_t(kTextureWidth) * kTextureHeight * 4);
+    for (int y = 0; y < kTextureHeight; ++y)
+        for (int x = 0; x < kTextureWidth; ++x) {
+            const bool joint = y % 8 == 0 || (x + (y / 8 % 2) * 8) % 16 == 0;
+            const float shade = joint ? 0.05f : 0.35f + 0.15f * std::sin(0.3f * x) * std::cos(0.2f * y);
+            float* texel = texture.texel(x, y);
+            texel[0] = shade * 1.2f;
+            texel[1] = shade * 0.8f;
+            texel[2] = shade * 0.6f;
+            texel[3] = 1.0f;
+        }
+    house.textures = {texture};
+    house.texture_names = {"bricks"};
+    for (Material& material : house.materials) material.base_color_texture = 0;
+    house.uv0.resize(house.positions.size());
+    for (size_t v = 0; v < house.positions.size(); ++v)
+        house.uv0[v] = {0.25f * (house.positions[v].x + house.positions[v].z), 0.25f * (house.positions[v].y + 1.0f)};
+    writeGlb(path, house, glm::inverse(enuFromGltfYUp()));
+}
+
+class RuntimePackAstcTexturesTest : public testing::GpuTest {
+protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        if (!folder_.empty()) return;
+        const std::string dir = testing::makeTemporaryDirectory("gusuku-pack-astc-textures");
+        testing::MiniSiteOptions site_options;
+        site_options.samples_per_texel = 2;
+        site_options.with_overcast_slot = false;
+        testing::writeMiniSite(dir, site_options);
+        texturiseBuilding(dir);
+        bake::BakeOptions options;
+        options.output_dir = dir + "/bakeset";
+        options.show_progress = false;
+        ASSERT_TRUE(bake::runBake(context(), loadSiteConfig(dir + "/site.json"), options).completed);
+        const bake::RuntimePackReport report = bake::writeRuntimePack(options.output_dir);
+        EXPECT_GT(report.astc_texture_bytes, 0u);
+        EXPECT_GT(report.texture_bytes, 0u);
+        folder_ = options.output_dir;
+    }
+
+    std::string packCopy(const std::string& name) {
+        const std::string copy = testing::makeTemporaryDirectory("gusuku-pack-astc-textures-" + name) + "/pack";
+        fs::copy(folder_ + "/pack", copy);
+        return copy;
+    }
+
+    static std::string folder_;
+};
+std::string RuntimePackAstcTexturesTest::folder_;
+
+TEST_F(RuntimePackAstcTexturesTest, ThePackHoldsTheTexturesFullChainOfBlocksAndTheLoaderCarriesIt) {
+    const std::vector<uint8_t> file = readBytes(folder_ + "/pack/texture_0_astc.ktx2");
+    ASSERT_GE(file.size(), 80u);
+    EXPECT_EQ(u32At(file, 12), 166u);  // VK_FORMAT_ASTC_6x6_SRGB_BLOCK
+    EXPECT_EQ(u32At(file, 20), uint32_t(kTextureWidth));
+    EXPECT_EQ(u32At(file, 24), uint32_t(kTextureHeight));
+    EXPECT_EQ(u32At(file, 40), 7u);  // levelCount: 96 x 64 down to 1 x 1
+    const BakeSetData pack = loadRuntimePack(folder_);
+    ASSERT_EQ(pack.building.textures.size(), 1u);
+    const BakeSetTexture& texture = pack.building.textures[0];
+    ASSERT_EQ(texture.astc6x6_levels.size(), 7u);
+    EXPECT_EQ(texture.astc6x6_levels[0].size(), 16u * 16u * 11u);  // 16 x 11 blocks
+    EXPECT_EQ(texture.astc6x6_levels[6].size(), 16u);
+    ASSERT_EQ(texture.rgba8.size(), size_t(kTextureWidth) * kTextureHeight * 4);
+    // astcenc's decode of level 0 against the RGBA8 the pack also holds: a few codes (a swapped channel, a
+    // mirrored row order or blocks of another size would be tens).
+    const std::vector<uint8_t> decoded =
+        bake::decodeAstcTextureLevel(texture.astc6x6_levels[0], kTextureWidth, kTextureHeight);
+    double sum = 0.0;
+    for (size_t index = 0; index < decoded.size(); ++index)
+        if (index % 4 != 3) sum += std::abs(int(decoded[index]) - int(texture.rgba8[index]));
+    EXPECT_LT(sum / double(kTextureWidth * kTextureHeight * 3), 4.0);
+    // The EXR bake set has no blocks (they are the pack's).
+    EXPECT_TRUE(loadBakeSet(folder_).building.textures[0].astc6x6_levels.empty());
+}
+
+std::string refusal(const std::string& pack) {
+    try {
+        loadRuntimePack(pack);
+        return "";
+    } catch (const InputError& error) {
+        EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos);
+        return error.what();
+    }
+}
+
+void expectStart(const std::string& message, const std::string& prefix) {
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message << "\n  expected to start with: " << prefix;
+}
+
+TEST_F(RuntimePackAstcTexturesTest, BadChainsAreRefusedAndEitherFileAloneLoads) {
+    {
+        const std::string pack = packCopy("truncated"), astc = pack + "/texture_0_astc.ktx2";
+        std::vector<uint8_t> bytes = readBytes(astc);
+        bytes.resize(bytes.size() - 16);
+        writeBytes(astc, bytes);
+        expectStart(refusal(pack), astc + ": levels[0]: bytes");
+    }
+    {
+        const std::string pack = packCopy("one-level"), astc = pack + "/texture_0_astc.ktx2";
+        writeBytes(astc, encodeKtx2({Ktx2Format::kAstc6x6Srgb, kTextureWidth, kTextureHeight,
+                                     std::vector<uint8_t>(16 * 16 * 11), {}}));
+        expectStart(refusal(pack), astc + ": levelCount: 1 is not 7 (the full mip chain of its sides)");
+    }
+    {
+        const std::string pack = packCopy("size"), astc = pack + "/texture_0_astc.ktx2";
+        Ktx2Image small{Ktx2Format::kAstc6x6Srgb, 2, 2, std::vector<uint8_t>(16), {std::vector<uint8_t>(16)}};
+        writeBytes(astc, encodeKtx2(small));
+        expectStart(refusal(pack), astc + ": pixelWidth/pixelHeight: 2 x 2 is not pack.bin's 96 x 64");
+    }
+    {
+        const std::string pack = packCopy("neither");
+        fs::remove(pack + "/texture_0_astc.ktx2");
+        const BakeSetData old_pack = loadRuntimePack(pack);  // a pack from before the blocks
+        EXPECT_TRUE(old_pack.building.textures[0].astc6x6_levels.empty());
+        fs::remove(pack + "/texture_0.ktx2");
+        expectStart(refusal(pack), pack + "/texture_0.ktx2: is missing or not a regular file");
+    }
+    {
+        const std::string pack = packCopy("blocks-only");
+        fs::remove(pack + "/texture_0.ktx2");
+        const BakeSetData phone_pack = loadRuntimePack(pack);
+        EXPECT_TRUE(phone_pack.building.textures[0].rgba8.empty());
+        EXPECT_EQ(phone_pack.building.textures[0].astc6x6_levels.size(), 7u);
+    }
+}
+
+RuntimeOptions smallFrame(bool astc_enabled) {
+    RuntimeOptions options;
+    options.frame_width = 96;
+    options.frame_height = 72;
+    options.texture_compression_astc_ldr = astc_enabled;
+    return options;
+}
+
+std::vector<uint8_t> composite(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options,
+                               uint32_t* astc_textures = nullptr) {
+    const std::vector<uint8_t> camera(size_t(96) * 72 * 4, 120);
+    FrameInput frame;
+    frame.camera_rgba8 = camera.data();
+    frame.intrinsics = CameraIntrinsics::fromFieldOfView(96, 72, 60.0);
+    frame.pose = CameraPose::lookingAt({6, -8, 4}, {0, 0, 1});
+    frame.utc_unix_seconds = 1782000000.0;
+    frame.colour_match = ColourMatch::kOff;
+    std::vector<uint8_t> pixels(camera.size());
+    const std::unique_ptr<Runtime> runtime = Runtime::open(gpu, bake_set, options);
+    if (astc_textures) *astc_textures = runtime->astcTextureCount();
+    runtime->renderFrame(frame, pixels.data());
+    return pixels;
+}
+
+TEST_F(RuntimePackAstcTexturesTest, WithoutAstcSamplingTheRuntimeDrawsRgba8AndRefusesABlocksOnlyPack) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(context().gpu().physical_device, VK_FORMAT_ASTC_6x6_SRGB_BLOCK, &properties);
+    if (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
+        GTEST_SKIP() << "this device samples ASTC LDR; the test's device does not enable the feature, so claiming it "
+                        "would be invalid";
+    EXPECT_FALSE(RuntimeOptions{}.texture_compression_astc_ldr);
+    const BakeSetData pack = loadRuntimePack(folder_);
+    uint32_t astc_textures = 99;
+    const std::vector<uint8_t> plain = composite(context(), pack, smallFrame(false), &astc_textures);
+    EXPECT_EQ(astc_textures, 0u);
+    // The app says it enabled the feature, but the device cannot sample the format: RGBA8, the same bytes.
+    EXPECT_EQ(composite(context(), pack, smallFrame(true), &astc_textures), plain);
+    EXPECT_EQ(astc_textures, 0u);
+    EXPECT_EQ(composite(context(), loadBakeSet(folder_), smallFrame(false)), plain);
+    // A phone's pack (blocks only) on a runtime that cannot draw them: refused, naming the texture.
+    const std::string phone = packCopy("phone");
+    fs::remove(phone + "/texture_0.ktx2");
+    try {
+        Runtime::open(context(), loadRuntimePack(phone), smallFrame(true));
+        ADD_FAILURE() << "a blocks-only texture opened without ASTC sampling";
+    } catch (const RuntimeError& error) {
+        EXPECT_EQ(error.code(), RuntimeErrorCode::kInvalidBakeSet);
+        expectStart(error.what(), "bake set: building.textures[0]: held only as ASTC 6x6 blocks");
+    }
+}
+
+}  // namespace
+}  // namespace gusuku
