@@ -148,8 +148,10 @@ static_assert(offsetof(gusuku_bakeset_desc, ground_albedo) == 224);
 // API version 2 (alpha-masked materials).
 static_assert(offsetof(gusuku_bakeset_desc, material_alpha_cutoffs) == 240);
 static_assert(offsetof(gusuku_runtime_options, lightmap_format) == 76 &&
-              offsetof(gusuku_runtime_options, texture_compression_astc_hdr) == 80 &&
-              sizeof(gusuku_runtime_options) == 84);
+              offsetof(gusuku_runtime_options, texture_compression_astc_hdr) == 80);
+// API version 3 (ASTC base-colour textures).
+static_assert(offsetof(gusuku_runtime_options, texture_compression_astc_ldr) == 84 &&
+              sizeof(gusuku_runtime_options) == 88);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
 static_assert(offsetof(gusuku_frame_input, camera_luma) == 232 && sizeof(gusuku_frame_input) == 312);
@@ -451,9 +453,45 @@ TEST_F(CApiVersionsTest, AnOldFrameInfoIsWrittenOnlyAsFarAsItsSize) {
               GUSUKU_ERROR_INVALID_ARGUMENT);
     const std::string message = gusuku_last_error_message();
     EXPECT_NE(message.find("options.struct_size: 40 is not the size of any gusuku_runtime_options this library "
-                           "knows (44, 76 or 84 bytes)"),
+                           "knows (44, 76, 84 or 88 bytes)"),
               std::string::npos)
         << message;
+}
+
+
+// API version 3's option texture_compression_astc_ldr: 0 by default; a version-2 layout (its bytes past it
+// kBeyond, which read as nonzero) opens as the default; gusuku_runtime_astc_texture_count says how many textures
+// are drawn from ASTC blocks (none here: the wall has no texture, and lavapipe samples no ASTC).
+TEST_F(CApiVersionsTest, AstcTextureOptionIsReadFromVersion3AndDefaultsBeforeIt) {
+    const WallScene scene;
+    const OldInBuffer<BakeSetDesc01, gusuku_bakeset_desc> old_desc(scene.desc());
+    gusuku_bakeset* set = nullptr;
+    ASSERT_EQ(gusuku_bakeset_create(old_desc.today(), &set), GUSUKU_OK) << gusuku_last_error_message();
+    const gusuku_vulkan_device vulkan = device();
+    gusuku_runtime_options options;
+    ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    EXPECT_EQ(options.texture_compression_astc_ldr, 0u);
+    EXPECT_EQ(options.struct_size, 88u);
+    options.frame_width = options.frame_height = kSize;
+    options.shadow_map_size = 64;
+    std::vector<uint8_t> version2(sizeof options + 64, kBeyond);
+    std::memcpy(version2.data(), &options, offsetof(gusuku_runtime_options, texture_compression_astc_ldr));
+    reinterpret_cast<gusuku_runtime_options*>(version2.data())->struct_size =
+        uint32_t(offsetof(gusuku_runtime_options, texture_compression_astc_ldr));
+    options.texture_compression_astc_ldr = 1;
+    const gusuku_runtime_options* layouts[2] = {reinterpret_cast<const gusuku_runtime_options*>(version2.data()),
+                                                &options};
+    for (const gusuku_runtime_options* given : layouts) {
+        gusuku_runtime* runtime = nullptr;
+        ASSERT_EQ(gusuku_runtime_open(&vulkan, set, given, &runtime), GUSUKU_OK) << gusuku_last_error_message();
+        uint32_t count = 99;
+        EXPECT_EQ(gusuku_runtime_astc_texture_count(runtime, &count), GUSUKU_OK);
+        EXPECT_EQ(count, 0u);
+        EXPECT_EQ(gusuku_runtime_astc_texture_count(runtime, nullptr), GUSUKU_ERROR_INVALID_ARGUMENT);
+        EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
+    }
+    EXPECT_EQ(gusuku_runtime_astc_texture_count(nullptr, nullptr), GUSUKU_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(gusuku_bakeset_free(set), GUSUKU_OK);
 }
 
 }  // namespace

@@ -133,11 +133,17 @@ std::vector<uint8_t> composite(const BakeSetData& bake_set, const Request& reque
     return pixels;
 }
 
-double meanCodeError(const std::vector<uint8_t>& decoded, const std::vector<uint8_t>& reference) {
-    double sum = 0.0;
-    for (size_t index = 0; index < reference.size(); ++index)
-        if (index % 4 != 3) sum += std::abs(int(decoded[index]) - int(reference[index]));
-    return sum / double(reference.size() / 4 * 3);
+// Mean |code| over RGB; for a masked texture (coverage_alpha in (0, 1]) over the texels the reference keeps
+// (alpha at or above it), since a discarded texel's colour is never seen.
+double meanCodeError(const std::vector<uint8_t>& decoded, const std::vector<uint8_t>& reference, float coverage_alpha) {
+    double sum = 0.0, count = 0.0;
+    for (size_t texel = 0; texel < reference.size() / 4; ++texel) {
+        if (keepsAlphaCoverage(coverage_alpha) && reference[texel * 4 + 3] / 255.0f < coverage_alpha) continue;
+        for (int channel = 0; channel < 3; ++channel)
+            sum += std::abs(int(decoded[texel * 4 + channel]) - int(reference[texel * 4 + channel]));
+        count += 3.0;
+    }
+    return count > 0.0 ? sum / count : 0.0;
 }
 
 // Per texture: sizes, and each level's blocks decoded against the RGBA8 chain (mean |code| over RGB).
@@ -151,7 +157,7 @@ void reportTextures(const BakeSetData& exr, const BakeSetData& pack) {
         const uint32_t levels = ktx2FullLevelCount(width, height);
         const std::vector<std::vector<uint8_t>> chain =
             boxFilteredSrgbMipLevels(texture.rgba8.data(), width, height, levels, coverage_alpha[index]);
-        std::printf("texture %zu: %ux%u%s, level error (mean |code|, RGB):", index, width, height,
+        std::printf("texture %zu: %ux%u%s, level error (mean |code|, RGB of the texels drawn):", index, width, height,
                     keepsAlphaCoverage(coverage_alpha[index]) ? " (alpha-masked)" : "");
         for (uint32_t level = 0; level < levels; ++level) {
             const uint32_t w = std::max(1u, width >> level), h = std::max(1u, height >> level);
@@ -159,7 +165,11 @@ void reportTextures(const BakeSetData& exr, const BakeSetData& pack) {
             astc_bytes += blocks[level].size();
             if (level > 4 && w < 64 && h < 64) continue;
             const std::vector<uint8_t>& expected = level == 0 ? texture.rgba8 : chain[level - 1];
-            std::printf(" L%u %.2f", level, meanCodeError(bake::decodeAstcTextureLevel(blocks[level], w, h), expected));
+            const std::vector<uint8_t> decoded = bake::decodeAstcTextureLevel(blocks[level], w, h);
+            std::printf(" L%u %.2f", level, meanCodeError(decoded, expected, coverage_alpha[index]));
+            if (keepsAlphaCoverage(coverage_alpha[index]))  // the share of texels kept, RGBA8 chain / blocks
+                std::printf(" (kept %.3f / %.3f)", alphaCoverage(expected.data(), size_t(w) * h, coverage_alpha[index]),
+                            alphaCoverage(decoded.data(), size_t(w) * h, coverage_alpha[index]));
         }
         std::printf("\n");
     }

@@ -357,6 +357,16 @@ gusuku_result gusuku_runtime_lightmap_format(const gusuku_runtime* runtime, gusu
     return GUSUKU_OK;
 }
 
+gusuku_result gusuku_runtime_astc_texture_count(const gusuku_runtime* runtime, uint32_t* out_count) {
+    if (runtime == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_astc_texture_count: runtime: is NULL");
+    if (out_count == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_astc_texture_count: out_count: is NULL",
+                    &runtime->last_error);
+    *out_count = runtime->runtime->astcTextureCount();
+    return GUSUKU_OK;
+}
+
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes) {
     if (runtime == nullptr)
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_device_memory_bytes: runtime: is NULL");

@@ -66,6 +66,7 @@ struct StructLayouts<gusuku_runtime_options> {
         GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, frame_width, direct_only_shadow_darkening),
         GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, shadow_sun_step_deg, max_anisotropy),
         GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, lightmap_format, texture_compression_astc_hdr),
+        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, texture_compression_astc_ldr, texture_compression_astc_ldr),
     };
 };
 

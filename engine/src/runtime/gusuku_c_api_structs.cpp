@@ -72,6 +72,7 @@ gusuku_runtime_options defaultOptions() {
     options.max_anisotropy = defaults.max_anisotropy;
     options.lightmap_format = gusuku_lightmap_format(defaults.lightmap_format);
     options.texture_compression_astc_hdr = defaults.texture_compression_astc_hdr ? 1u : 0u;
+    options.texture_compression_astc_ldr = defaults.texture_compression_astc_ldr ? 1u : 0u;
     return options;
 }
 
@@ -117,6 +118,7 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.max_anisotropy = options.max_anisotropy;
     converted.lightmap_format = LightmapFormat(options.lightmap_format);
     converted.texture_compression_astc_hdr = options.texture_compression_astc_hdr != 0;
+    converted.texture_compression_astc_ldr = options.texture_compression_astc_ldr != 0;
     return converted;
 }
 

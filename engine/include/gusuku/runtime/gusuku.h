@@ -10,7 +10,7 @@
  *     gusuku_runtime_close(rt);
  *
  * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
- * 2 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * 3 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
  * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
  * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
  * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
@@ -111,7 +111,7 @@ const char* gusuku_version(void);
 
 /* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
  * fields or functions. */
-#define GUSUKU_API_VERSION 2u
+#define GUSUKU_API_VERSION 3u
 
 /* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
  * gusuku_api_version() is N or more. O(1). */
@@ -303,6 +303,12 @@ typedef struct gusuku_runtime_options {
                                                 and filter: GUSUKU_ERROR_DEVICE naming options.lightmap_format */
     uint32_t texture_compression_astc_hdr;   /* nonzero: the app enabled textureCompressionASTC_HDR on its device
                                                 (VK_EXT_texture_compression_astc_hdr or Vulkan 1.3); default 0 */
+
+    /* API version 3: */
+    uint32_t texture_compression_astc_ldr;   /* nonzero: the app enabled textureCompressionASTC_LDR on its device
+                                                (every Vulkan phone GPU has it): the building's base-colour
+                                                textures are drawn from the runtime pack's ASTC 6x6 blocks where
+                                                the device samples them, else RGBA8; default 0 */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
@@ -485,6 +491,10 @@ gusuku_result gusuku_runtime_invalidate_shadow_maps(gusuku_runtime* runtime);
 
 /* The format the lightmaps are held in: options.lightmap_format with AUTO resolved at open (API version 2). O(1). */
 gusuku_result gusuku_runtime_lightmap_format(const gusuku_runtime* runtime, gusuku_lightmap_format* out_format);
+
+/* How many of the building's base-colour textures are drawn from ASTC 6x6 blocks
+ * (options.texture_compression_astc_ldr; the others are RGBA8) (API version 3). O(1). */
+gusuku_result gusuku_runtime_astc_texture_count(const gusuku_runtime* runtime, uint32_t* out_count);
 
 /* Device memory the runtime holds, bytes (buffers and images, all allocated at open). O(1). */
 gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, uint64_t* out_bytes);
