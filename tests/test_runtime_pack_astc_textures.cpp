@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bake_command.h"
 #include "gpu_test_support.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/gltf_loader.h"
@@ -186,6 +187,33 @@ TEST_F(RuntimePackAstcTexturesTest, BadChainsAreRefusedAndEitherFileAloneLoads) 
         EXPECT_TRUE(phone_pack.building.textures[0].rgba8.empty());
         EXPECT_EQ(phone_pack.building.textures[0].astc6x6_levels.size(), 7u);
     }
+}
+
+TEST_F(RuntimePackAstcTexturesTest, PackWritesAPhonesPackOrADesktopsOnRequest) {
+    const std::string dir = testing::makeTemporaryDirectory("gusuku-pack-astc-textures-kinds");
+    const testing::CommandResult phone =
+        testing::runBakeCommand({"pack", folder_, "-o", dir + "/phone", "--textures", "astc"}, dir);
+    ASSERT_EQ(phone.exit_code, 0) << phone.stderr_text;
+    EXPECT_TRUE(fs::exists(dir + "/phone/texture_0_astc.ktx2"));
+    EXPECT_FALSE(fs::exists(dir + "/phone/texture_0.ktx2"));
+    EXPECT_TRUE(loadRuntimePack(dir + "/phone").building.textures[0].rgba8.empty());
+    // Packing the same folder again as a desktop's leaves no blocks from the phone's behind.
+    const testing::CommandResult desktop =
+        testing::runBakeCommand({"pack", folder_, "-o", dir + "/phone", "--textures", "rgba8"}, dir);
+    ASSERT_EQ(desktop.exit_code, 0) << desktop.stderr_text;
+    EXPECT_TRUE(fs::exists(dir + "/phone/texture_0.ktx2"));
+    EXPECT_FALSE(fs::exists(dir + "/phone/texture_0_astc.ktx2"));
+    EXPECT_TRUE(loadRuntimePack(dir + "/phone").building.textures[0].astc6x6_levels.empty());
+    // A phone's pack in place of the bake set's own (which the tools draw) is refused, as is an unknown kind.
+    const testing::CommandResult in_place = testing::runBakeCommand({"pack", folder_, "--textures", "astc"}, dir);
+    EXPECT_EQ(in_place.exit_code, 2);
+    EXPECT_NE(in_place.stderr_text.find("--textures astc: needs -o DIR"), std::string::npos) << in_place.stderr_text;
+    const testing::CommandResult unknown =
+        testing::runBakeCommand({"pack", folder_, "-o", dir + "/x", "--textures", "bc7"}, dir);
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.stderr_text.find("--textures: 'bc7' is not both, astc or rgba8"), std::string::npos)
+        << unknown.stderr_text;
+    EXPECT_TRUE(fs::exists(folder_ + "/pack/texture_0.ktx2"));  // the bake set's own pack untouched
 }
 
 RuntimeOptions smallFrame(bool astc_enabled) {

@@ -106,7 +106,8 @@ private:
 
 }  // namespace
 
-RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder) {
+RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder,
+                                   PackTextures textures) {
     const BakeSetData bake_set = loadBakeSet(bake_set_folder);
     RuntimePackReport report;
     report.folder = pack_folder.empty() ? bake_set_folder + "/" + kRuntimePackFolder : pack_folder;
@@ -120,13 +121,20 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
     for (size_t index = 0; index < geometry.building.textures.size(); ++index) {
         BakeSetTexture& texture = geometry.building.textures[index];
         const std::string name = "texture_" + std::to_string(index);
-        report.texture_bytes += files.writeKtx2(
-            name + ".ktx2", {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width), uint32_t(texture.height), texture.rgba8});
-        const auto encode_start = std::chrono::steady_clock::now();
-        const Ktx2Image astc = encodeAstcTexture(texture, coverage_alpha[index]);
-        report.astc_encode_seconds +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
-        report.astc_texture_bytes += files.writeKtx2(name + "_astc.ktx2", astc);
+        if (textures != PackTextures::kAstc)
+            report.texture_bytes += files.writeKtx2(name + ".ktx2", {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width),
+                                                                     uint32_t(texture.height), texture.rgba8});
+        else
+            fs::remove(report.folder + "/" + name + ".ktx2");
+        if (textures != PackTextures::kRgba8) {
+            const auto encode_start = std::chrono::steady_clock::now();
+            const Ktx2Image astc = encodeAstcTexture(texture, coverage_alpha[index]);
+            report.astc_encode_seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
+            report.astc_texture_bytes += files.writeKtx2(name + "_astc.ktx2", astc);
+        } else {
+            fs::remove(report.folder + "/" + name + "_astc.ktx2");
+        }
         texture.rgba8.clear();  // pack.bin holds the sides; the texels are the KTX2's
     }
     files.write("pack.bin", encodePackGeometry(geometry));

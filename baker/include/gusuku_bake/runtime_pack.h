@@ -11,6 +11,13 @@ namespace gusuku::bake {
 /// The pack's folder inside a bake set: "pack".
 inline constexpr const char* kRuntimePackFolder = "pack";
 
+/// Which kinds of base-colour texture files the pack holds (docs/bakeset.md, "The runtime pack").
+enum class PackTextures {
+    kBoth,   ///< texture_<n>.ktx2 (RGBA8) and texture_<n>_astc.ktx2 (ASTC 6x6 chains): every device (the default)
+    kAstc,   ///< the blocks alone: a phone's pack (8x smaller textures), drawn only where ASTC LDR is sampled
+    kRgba8,  ///< the RGBA8 alone: a desktop's pack (no astcenc time)
+};
+
 struct RuntimePackReport {
     std::string folder;     ///< BAKESET/pack
     uint64_t bytes = 0;     ///< all its files
@@ -28,7 +35,10 @@ struct RuntimePackReport {
 /// give the same pack byte for byte), every other file is
 /// written atomically, so a pack with a manifest is always complete. A partial set (loadBakeSet refuses it) has no
 /// pack. Throws InputError naming the bake set's file and field, or std::runtime_error on a write failure.
-RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "");
+/// `textures` chooses the texture files; the other kind's files, left in pack_folder by an earlier pack, are
+/// removed.
+RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "",
+                                   PackTextures textures = PackTextures::kBoth);
 
 /// True when bake_set_folder/pack/manifest.json is the pack manifest of bake_set_folder/manifest.json.
 bool runtimePackIsUpToDate(const std::string& bake_set_folder);
