@@ -110,6 +110,14 @@ constexpr float kMaxBakedIrradiance = float(kBakeSetIrradiance.maximum);
 /// finite and, for irradiance, RGB >= 0 and at most kMaxBakedIrradiance. The first bad texel is named.
 BakeSetImage loadExr(const std::string& path, int width, int height, const std::string& size_source,
                      bool irradiance) {
+    // The header's size first: a file that declares another size is refused before its texels are decoded (a
+    // corrupt header can declare a gigabyte of them).
+    const ImageSize declared = readImageSize(path);
+    if (declared.width != width || declared.height != height)
+        throw InputError(path, "image size",
+                         std::to_string(declared.width) + " x " + std::to_string(declared.height) +
+                             " texels, expected " + std::to_string(width) + " x " + std::to_string(height) + " (" +
+                             size_source + ")");
     ImageRGBA image = readFloatRgbaExr(path);
     if (image.width != width || image.height != height)
         throw InputError(path, "image size",

@@ -168,7 +168,10 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
     ImageRGBA image;
     image.width = (spec.width + factor - 1) / factor;
     image.height = (spec.height + factor - 1) / factor;
-    image.texels.assign(size_t(image.width) * size_t(image.height) * 4, 0.0f);
+    // Reserved, not filled: the rows are added band by band as they decode, so a header that declares a large
+    // image over a file that ends early fails after touching one band's memory, not the whole image's (a
+    // fuzzed 8192^2 EXR took 6 s of page faults zero-filling a gigabyte before its first row failed).
+    image.texels.reserve(size_t(image.width) * size_t(image.height) * 4);
 
     // A band is a whole number of block rows, about a million file texels.
     const int block_rows_per_band = std::max(1, int((size_t(1) << 20) / (size_t(spec.width) * size_t(factor))));
@@ -208,6 +211,7 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
             if (is_srgb) srgbDecodeImage(band);
         }
 
+        image.texels.resize(size_t(image.width) * size_t(first_out_row + out_rows) * 4);
         for (int out_row = 0; out_row < out_rows; ++out_row) {
             const int row_begin = out_row * factor;
             const int row_end = std::min(band_rows, row_begin + factor);
