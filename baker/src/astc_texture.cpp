@@ -117,11 +117,11 @@ Ktx2Image encodeAstcTexture(const BakeSetTexture& texture, float coverage_alpha,
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     // A masked texture's alpha decides which texels exist: near the cutoff a few codes of alpha error flip a
     // texel in or out, so alpha weighs more than colour there (kMaskedAlphaWeight, test_astc_texture).
-    const Context context = makeContext(quality, threads, 0, keepsAlphaCoverage(coverage_alpha) ? kMaskedAlphaWeight : 1.0f);
+    const bool masked = keepsAlphaCoverage(coverage_alpha);
+    const Context context = makeContext(quality, threads, 0, masked ? kMaskedAlphaWeight : 1.0f);
     const uint32_t level_count = ktx2FullLevelCount(width, height);
     const std::vector<std::vector<uint8_t>> smaller =
         boxFilteredSrgbMipLevels(texture.rgba8.data(), width, height, level_count, coverage_alpha);
-    const bool masked = keepsAlphaCoverage(coverage_alpha);
     const double target = masked ? alphaCoverage(texture.rgba8.data(), size_t(width) * height, coverage_alpha) : 0.0;
     Ktx2Image out{Ktx2Format::kAstc6x6Srgb, width, height, {}, {}};
     for (uint32_t level = 0; level < level_count; ++level) {
