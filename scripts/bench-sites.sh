@@ -8,6 +8,8 @@
 #
 # Usage: scripts/bench-sites.sh [--quick] [WORK_DIR [GUSUKU_BENCH_OPTION...]]   (default WORK_DIR: out/sites, outside
 # git's view; options after it go to every gusuku-bench run, e.g. --accuracy-size 320x180 --truth-samples 256)
+# The goals are read at the displayed frame's size with --accuracy-size 1280x720 --truth-samples 512 (about 85
+# minutes for the shrine on 2 cores with new truths; docs/measurements.md, "Every site at 4386099").
 # Writes, in WORK_DIR: sample/ (gusuku-bake sample), shrine/site.json and house/site.json (scripts/write-bench-site.py:
 # they name the shared files by absolute path; nothing is copied), each site's bakeset/ and bench/ (gusuku-bench's
 # results.json, summary.md, frames/), and summary.md: the per-site table, also printed. A bake already up to date
