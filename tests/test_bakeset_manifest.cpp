@@ -242,7 +242,7 @@ std::vector<BadManifest> badManifests() {
         withValue("irradiance of two channels", "/slots/0/sun/irradiance_rgb", json::array({1.0, 2.0}),
                   "expected 3 numbers, found 2"),
         withValue("direction not unit", "/slots/0/sun/direction_enu", json::array({1.0, 1.0, 0.0}),
-                  "is not a unit vector"),
+                  "(1, 1, 0) has length 1.41421356, not 1"),
         withValue("zero cell", "/ground_grid/cell_m", 0.0, "0 is outside [0.001, 100]"),
         withValue("columns as float", "/ground_grid/columns", 4.5, "4.5 is not a whole number"),
         withValue("origin of one number", "/ground_grid/origin_enu_m", json::array({1.0}), "expected 2 numbers, found 1"),
@@ -266,7 +266,8 @@ std::vector<BadManifest> badManifests() {
         withValue("slot not an object", "/slots/1", "x", "expected an object, found a string"),
         withValue("slots not an array", "/slots", json::object(), "expected an array, found an object"),
         withValue("colour space changed", "/slots/0/colour_statistics/space", "sRGB", "expected \"CIE Lab (D65)"),
-        withValue("negative sigma", "/slots/0/colour_statistics/lab_sigma/0", -0.5, "is outside [0, inf]"),
+        withValue("negative sigma", "/slots/0/colour_statistics/lab_sigma/0", -0.5, "-0.5 is outside [0, 1e+09] CIE Lab"),
+        withValue("a Lab mean of 1e300", "/slots/0/colour_statistics/lab_mean/0", 1e300, "is outside [-1e+09, 1e+09]"),
     };
     // Non-finite numbers: JSON has none, but a literal too large for a double overflows when parsed.
     std::string overflow = exampleJson().dump(2);
@@ -305,8 +306,19 @@ TEST(BakeSetManifest, TheDocumentedRangesAreTheReadersRanges) {
         if (line.rfind("| `", 0) == 0 && line.find("] |") != std::string::npos) rows.push_back(line);
     std::vector<std::string> expected;
     for (const gusuku::BakeSetRange& range : gusuku::kBakeSetRanges) {
-        char row[256];
-        std::snprintf(row, sizeof row, "| `%s` | [%g, %g] | %s |", range.field, range.minimum, range.maximum, range.unit);
+        std::string also;
+        const auto add = [&](const std::string& note) { also += (also.empty() ? "" : "; ") + note; };
+        if (range.source == gusuku::BakeSetRangeSource::kTexels) add("each texel");
+        if (range.whole_number) add("a whole number");
+        if (range.when_sun_present) add("a present sun's");
+        if (range.length_tolerance > 0.0) {
+            char note[64];
+            std::snprintf(note, sizeof note, "length 1 within %g", range.length_tolerance);
+            add(note);
+        }
+        char row[512];
+        std::snprintf(row, sizeof row, "| `%s` | [%.10g, %.10g] | %s | %s |", range.field, range.minimum, range.maximum,
+                      range.unit, also.empty() ? "-" : also.c_str());
         expected.push_back(row);
     }
     EXPECT_EQ(rows, expected);

@@ -179,6 +179,23 @@ TEST(Ktx2, BadFilesAreRefusedNamingTheFileAndField) {
                file[at + 1] = 'u';
            }),
            "building_noon.ktx2: kvd KTXorientation: 'ru' is not rd");
+    // Without KTXorientation a reader may flip the image; with its key's NUL lost the key runs into the value.
+    starts(edited([](auto& file) { setU32(file, 60, 0); }), "building_noon.ktx2: kvd: has no KTXorientation");
+    starts(edited([](auto& file) {
+               const size_t at = std::string(file.begin(), file.end()).find("KTXorientation");
+               file[at] = 'k';  // "kTXorientation": an ordinary key (not KTX's), so the orientation is missing
+           }),
+           "building_noon.ktx2: kvd: has no KTXorientation");
+    starts(edited([](auto& file) {
+               const size_t at = std::string(file.begin(), file.end()).find(std::string("KTXorientation\0", 15));
+               file[at + 14] = 'r';  // "KTXorientationrrd\0": the key's NUL lost
+           }),
+           "building_noon.ktx2: kvd entry 0: key 'KTXorientationrrd' is not one the KTX 2.0 specification defines");
+    starts(edited([](auto& file) {
+               const size_t at = std::string(file.begin(), file.end()).find(std::string("rd\0", 3));
+               file[at + 2] = 'x';  // the value's NUL lost
+           }),
+           "building_noon.ktx2: kvd KTXorientation: its value does not end in a NUL");
 }
 
 }  // namespace

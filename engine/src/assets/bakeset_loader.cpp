@@ -30,6 +30,9 @@ struct NamedFile {
 
 /// folder/name after checking that the manifest's name stays in the folder and names a regular file.
 std::string bakeSetFile(const std::string& folder, const std::string& manifest_path, const NamedFile& file) {
+    // A NUL would cut the path short where the system reads it, so the file opened would not be the one named.
+    if (file.name.find('\0') != std::string::npos)
+        throw InputError(manifest_path, file.pointer, "holds a NUL character (\\u0000), which no file name may");
     if (file.name.find('/') != std::string::npos || file.name.find('\\') != std::string::npos ||
         file.name == "." || file.name == "..")
         throw InputError(manifest_path, file.pointer,
@@ -103,13 +106,11 @@ BakeSetOccluder loadOccluder(const std::string& path, uint64_t expected_triangle
     return occluder;
 }
 
-/// The largest irradiance a bake set's texel may hold (gusuku/maths/bakeset_ranges.h says why).
-constexpr float kMaxBakedIrradiance = float(kBakeSetIrradiance.maximum);
-
-/// An EXR of 4 float32 channels at the manifest's size (`size_source` says which field sets it), every value
-/// finite and, for irradiance, RGB >= 0 and at most kMaxBakedIrradiance. The first bad texel is named.
+/// An EXR of 4 float32 channels at the manifest's size (`size_source` says which field sets it), every texel
+/// within `ranges` (gusuku/maths/bakeset_ranges.h, as the runtime pack's reader holds its KTX2 texels). The first
+/// bad texel is named.
 BakeSetImage loadExr(const std::string& path, int width, int height, const std::string& size_source,
-                     bool irradiance) {
+                     std::initializer_list<BakeSetRange> ranges) {
     // The header's size first: a file that declares another size is refused before its texels are decoded (a
     // corrupt header can declare a gigabyte of them).
     const ImageSize declared = readImageSize(path);
@@ -123,28 +124,10 @@ BakeSetImage loadExr(const std::string& path, int width, int height, const std::
         throw InputError(path, "image size",
                          std::to_string(image.width) + " x " + std::to_string(image.height) + " texels, expected " +
                              std::to_string(width) + " x " + std::to_string(height) + " (" + size_source + ")");
-    static const char* const kChannel[4] = {"R", "G", "B", "A"};
-    const char* const quantity = irradiance ? "irradiance" : "value";
-    for (size_t i = 0; i < image.texels.size(); ++i) {
-        const float value = image.texels[i];
-        const int channel = int(i % 4);
-        const bool negative = irradiance && channel < 3 && value < 0.0f;
-        const bool too_large = irradiance && channel < 3 && value > kMaxBakedIrradiance;
-        if (std::isfinite(value) && !negative && !too_large) continue;
-        const size_t texel = i / 4;
-        std::ostringstream field, problem;
-        field << "texel (" << texel % size_t(width) << ", " << texel / size_t(width) << ") channel " << kChannel[channel];
-        if (std::isnan(value))
-            problem << "NaN " << quantity;
-        else if (std::isinf(value))
-            problem << "infinite " << quantity;
-        else if (too_large)
-            problem << quantity << " " << value << " above the limit " << kMaxBakedIrradiance;
-        else
-            problem << "negative " << quantity << " " << value;
-        throw InputError(path, field.str(), problem.str());
-    }
-    return {image.width, image.height, std::move(image.texels)};
+    BakeSetImage out{image.width, image.height, std::move(image.texels)};
+    if (const std::optional<BakeSetTexelProblem> problem = findBakeSetTexelProblem(out, ranges))
+        throw InputError(path, problem->field, problem->problem);
+    return out;
 }
 
 /// The path with symbolic links resolved as far as it exists (the rest appended lexically), absolute.
@@ -211,27 +194,21 @@ BakeSetData loadNamedFiles(const std::string& folder, const std::string& manifes
     if (manifest.occluder) data.occluder = loadOccluder(occluder_path, manifest.occluder->triangles);
     const GroundGrid& grid = manifest.ground_grid.grid;
     const std::string grid_size = "the manifest's /ground_grid/columns x rows";
-    data.ground_geometry = loadExr(geometry_path, grid.columns, grid.rows, grid_size, false);
     // RGB is the ground's unit normal (docs/bakeset.md): the ratio's sun term is its cosine, so a zero or
     // unnormalised normal would darken or brighten the camera's ground with no building there.
-    for (size_t texel = 0; texel * 4 < data.ground_geometry.rgba.size(); ++texel) {
-        const float* normal = data.ground_geometry.rgba.data() + texel * 4;
-        const double length = std::sqrt(double(normal[0]) * normal[0] + double(normal[1]) * normal[1] +
-                                        double(normal[2]) * normal[2]);
-        if (std::fabs(length - 1.0) > kBakeSetGroundNormalLengthTolerance)
-            throw InputError(geometry_path,
-                             "texel (" + std::to_string(texel % size_t(grid.columns)) + ", " +
-                                 std::to_string(texel / size_t(grid.columns)) + ")",
-                             "the ground normal's length is " + std::to_string(length) + ", not 1");
-    }
-    // Albedo is non-negative like irradiance: the same check.
-    if (!albedo_path.empty()) data.ground_albedo = loadExr(albedo_path, grid.columns, grid.rows, grid_size, true);
+    data.ground_geometry =
+        loadExr(geometry_path, grid.columns, grid.rows, grid_size, {kBakeSetGroundNormal, kBakeSetGroundHeightM});
+    if (!albedo_path.empty())
+        data.ground_albedo = loadExr(albedo_path, grid.columns, grid.rows, grid_size, {kBakeSetGroundAlbedo});
     const int resolution = manifest.building.lightmap_resolution;
     for (const auto& paths : slot_paths) {
         BakeSetSlotImages slot;
-        slot.building = loadExr(paths[0], resolution, resolution, "the manifest's /building/lightmap_resolution", true);
-        slot.ground_with = loadExr(paths[1], grid.columns, grid.rows, grid_size, true);
-        slot.ground_without = loadExr(paths[2], grid.columns, grid.rows, grid_size, true);
+        slot.building = loadExr(paths[0], resolution, resolution, "the manifest's /building/lightmap_resolution",
+                                {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
+        slot.ground_with =
+            loadExr(paths[1], grid.columns, grid.rows, grid_size, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
+        slot.ground_without =
+            loadExr(paths[2], grid.columns, grid.rows, grid_size, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
         data.slots.push_back(std::move(slot));
     }
 

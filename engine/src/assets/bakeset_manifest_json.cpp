@@ -199,6 +199,28 @@ int readInt(const ObjectReader& reader, const std::string& name, int min, int ma
     return int(number);
 }
 
+/// A number within its row of gusuku/maths/bakeset_ranges.h (whole when the row says so), refused as the pack
+/// reader refuses it.
+double readRanged(const ObjectReader& reader, const std::string& name, const BakeSetRange& range) {
+    const json& value = reader.required(name);
+    if (!value.is_number()) reader.fail(name, "expected a number, found " + json_reader::describeJsonType(value));
+    const double number = value.get<double>();
+    if (const std::optional<std::string> problem = bakeSetValueProblem(range, number)) reader.fail(name, *problem);
+    return number;
+}
+
+/// A count within its row: integers as they are (every digit of a count above 2^53), then the row's bounds.
+uint64_t readCount(const ObjectReader& reader, const std::string& name, const BakeSetRange& range) {
+    const json& value = reader.required(name);
+    if (value.is_number_unsigned()) {
+        const uint64_t count = value.get<uint64_t>();
+        if (count < uint64_t(range.minimum) || count > uint64_t(range.maximum))
+            reader.fail(name, std::to_string(count) + " is outside " + describeBakeSetRange(range) + " " + range.unit);
+        return count;
+    }
+    return uint64_t(readRanged(reader, name, range));
+}
+
 bool readBool(const ObjectReader& reader, const std::string& name) {
     const json& value = reader.required(name);
     if (!value.is_boolean())
@@ -250,12 +272,12 @@ BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
     if (sun.present && !sunny) reader.fail("present", "an overcast slot has no sun");
     if (sunny) {
         BakeSetSunPosition position;
-        position.azimuth_deg = reader.number("azimuth_deg", {0.0, 360.0});
-        position.apparent_elevation_deg = reader.number("apparent_elevation_deg", {-90.0, 90.0});
-        position.direction_enu = readVec3(reader, "direction_enu", {-1.0, 1.0});
+        position.azimuth_deg = readRanged(reader, "azimuth_deg", kBakeSetSunAzimuthDeg);
+        position.apparent_elevation_deg = readRanged(reader, "apparent_elevation_deg", kBakeSetSunElevationDeg);
+        position.direction_enu = readVec3(reader, "direction_enu", rangeOf(kBakeSetSunDirectionEnu));
         const glm::dvec3& d = position.direction_enu;
-        if (std::fabs(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - 1.0) > 1e-6)
-            reader.fail("direction_enu", "is not a unit vector");
+        if (const std::optional<std::string> problem = bakeSetDirectionProblem(kBakeSetSunDirectionEnu, d.x, d.y, d.z))
+            reader.fail("direction_enu", *problem);
         // The direction must be the one azimuth and elevation give (docs/design.md 2): the runtime lights by
         // the direction and picks slots by the angles, so two that disagree light one sun and choose another.
         const double degree = std::acos(-1.0) / 180.0;
@@ -278,8 +300,8 @@ BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
                         json_reader::formatNumber(sun.position->apparent_elevation_deg) +
                             " is below the horizon, yet present is true (a present sun is at " +
                             rangeOf(kBakeSetPresentSunElevationDeg).describe() + " degrees)");
-        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", rangeOf(kBakeSetIrradiance));
-        sun.angular_radius_deg = reader.number("angular_radius_deg", {0.0, 90.0});
+        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", rangeOf(kBakeSetSunIrradiance));
+        sun.angular_radius_deg = readRanged(reader, "angular_radius_deg", kBakeSetSunAngularRadiusDeg);
     } else {
         for (const char* name : {"irradiance_rgb", "angular_radius_deg"})
             if (reader.has(name)) reader.fail(name, "only a present sun has an irradiance");
@@ -313,17 +335,17 @@ BakeSetSlot readSlot(const ObjectReader& reader) {
     const ObjectReader sampling = reader.object("sky_sampling", {"method", "cosine_relative_variance"});
     slot.sky_sampling_method = readNonEmptyString(sampling, "method");
     // pi * integral(L^2 cos) / integral(L cos)^2 - 1 is >= 0 up to rounding (Cauchy-Schwarz); -1 is its floor.
-    slot.cosine_relative_variance = sampling.number("cosine_relative_variance", {-1.0, kInfinity});
+    slot.cosine_relative_variance = readRanged(sampling, "cosine_relative_variance", kBakeSetCosineRelativeVariance);
     slot.building_irradiance = readNonEmptyString(reader, "building_irradiance");
     slot.ground_irradiance_with_building = readNonEmptyString(reader, "ground_irradiance_with_building");
     slot.ground_irradiance_without_building = readNonEmptyString(reader, "ground_irradiance_without_building");
-    slot.invalid_texels = readUnsigned(reader, "invalid_texels", 0, uint64_t(kBakeSetInvalidTexels.maximum));
+    slot.invalid_texels = readCount(reader, "invalid_texels", kBakeSetInvalidTexels);
     if (const auto colour = reader.optionalObject("colour_statistics", {"space", "lab_mean", "lab_sigma", "texels"})) {
         readFixedText(*colour, "space", kColourSpace);
         BakeSetColourStatistics statistics;
-        statistics.lab_mean = readVec3(*colour, "lab_mean", kAnyFinite);
-        statistics.lab_sigma = readVec3(*colour, "lab_sigma", kNonNegative);
-        statistics.texels = readUnsigned(*colour, "texels", 0, UINT64_MAX);
+        statistics.lab_mean = readVec3(*colour, "lab_mean", rangeOf(kBakeSetLabMean));
+        statistics.lab_sigma = readVec3(*colour, "lab_sigma", rangeOf(kBakeSetLabSigma));
+        statistics.texels = readCount(*colour, "texels", kBakeSetColourTexels);
         slot.colour_statistics = statistics;
     }
     return slot;
@@ -370,10 +392,10 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     const ObjectReader site =
         root.object("site", {"name", "latitude_deg", "longitude_deg", "height_m", "utc_offset_minutes"});
     manifest.site.name = site.string("name");
-    manifest.site.latitude_deg = site.number("latitude_deg", {-90.0, 90.0});
-    manifest.site.longitude_deg = site.number("longitude_deg", {-180.0, 180.0});
-    manifest.site.height_m = site.number("height_m", kAnyFinite);
-    manifest.site.utc_offset_minutes = readInt(site, "utc_offset_minutes", -24 * 60, 24 * 60);
+    manifest.site.latitude_deg = readRanged(site, "latitude_deg", kBakeSetLatitudeDeg);
+    manifest.site.longitude_deg = readRanged(site, "longitude_deg", kBakeSetLongitudeDeg);
+    manifest.site.height_m = readRanged(site, "height_m", kBakeSetHeightM);
+    manifest.site.utc_offset_minutes = int(readRanged(site, "utc_offset_minutes", kBakeSetUtcOffsetMinutes));
 
     const ObjectReader settings = root.object("settings", {"samples_per_texel", "max_bounces", "seed", "denoised"});
     manifest.settings.samples_per_texel = uint32_t(readUnsigned(settings, "samples_per_texel", 1, UINT32_MAX));
@@ -388,9 +410,9 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     readFixedText(building, "mesh_frame", kMeshFrame);
     readFixedText(building, "lightmap_uv", kLightmapUv);
     manifest.building.lightmap_uv_source = building.string("lightmap_uv_source");
-    manifest.building.lightmap_resolution = readInt(building, "lightmap_resolution", 1, 1 << 16);
-    manifest.building.texels_per_metre = building.number("texels_per_metre", kNonNegative);
-    manifest.building.texels = readUnsigned(building, "texels", 0, UINT64_MAX);
+    manifest.building.lightmap_resolution = int(readRanged(building, "lightmap_resolution", kBakeSetLightmapResolution));
+    manifest.building.texels_per_metre = readRanged(building, "texels_per_metre", kBakeSetTexelsPerMetre);
+    manifest.building.texels = readCount(building, "texels", kBakeSetBuildingTexels);
     readFixedText(building, "irradiance_units", kIrradianceUnits);
 
     const ObjectReader ground =
@@ -400,9 +422,9 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     readFixedText(ground, "geometry_channels", kGeometryChannels);
     const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, rangeOf(kBakeSetGroundOriginM));
     manifest.ground_grid.grid.origin_enu_m = {origin[0], origin[1]};
-    manifest.ground_grid.grid.cell_m = ground.number("cell_m", rangeOf(kBakeSetGroundCellM));
-    manifest.ground_grid.grid.columns = readInt(ground, "columns", 1, 1 << 20);
-    manifest.ground_grid.grid.rows = readInt(ground, "rows", 1, 1 << 20);
+    manifest.ground_grid.grid.cell_m = readRanged(ground, "cell_m", kBakeSetGroundCellM);
+    manifest.ground_grid.grid.columns = int(readRanged(ground, "columns", kBakeSetGroundColumns));
+    manifest.ground_grid.grid.rows = int(readRanged(ground, "rows", kBakeSetGroundRows));
     readFixedText(ground, "row_0", kRow0);
     manifest.ground_grid.ground_source = readNonEmptyString(ground, "ground_source");
     readFixedText(ground, "irradiance_alpha", kIrradianceAlpha);
@@ -416,10 +438,13 @@ BakeSetManifest readManifest(const ObjectReader& root) {
         BakeSetOccluderInfo info;
         info.mesh = readNonEmptyString(*occluder, "mesh");
         readFixedText(*occluder, "mesh_frame", kMeshFrame);
-        info.source_triangles = readUnsigned(*occluder, "source_triangles", 1, UINT64_MAX);
-        info.triangles = readUnsigned(*occluder, "triangles", 1, info.source_triangles);
-        info.target_error_m = occluder->number("target_error_m", kNonNegative);
-        info.simplification_error_m = occluder->number("simplification_error_m", kNonNegative);
+        info.source_triangles = readCount(*occluder, "source_triangles", kBakeSetOccluderSourceTriangles);
+        info.triangles = readCount(*occluder, "triangles", kBakeSetOccluderTriangles);
+        if (info.triangles > info.source_triangles)
+            occluder->fail("triangles", std::to_string(info.triangles) + " is more than source_triangles " +
+                                            std::to_string(info.source_triangles));
+        info.target_error_m = readRanged(*occluder, "target_error_m", kBakeSetOccluderTargetErrorM);
+        info.simplification_error_m = readRanged(*occluder, "simplification_error_m", kBakeSetOccluderSimplificationErrorM);
         manifest.occluder = info;
     }
 

@@ -121,6 +121,20 @@ std::vector<uint8_t> keyValueData() {
 // The specification's level alignment without supercompression: lcm(texel block size, 4).
 size_t levelAlignment(Ktx2Format format) { return std::lcm(size_t(ktx2TexelBytes(format)), size_t(4)); }
 
+// The keys KTX 2.0 defines (section 5.3); a key starting "KTX" is reserved to them.
+bool isKtxDefinedKey(const std::string& key) {
+    for (const char* defined : {"KTXcubemapIncomplete", "KTXorientation", "KTXglFormat", "KTXdxgiFormat__",
+                                "KTXmetalPixelFormat", "KTXswizzle", "KTXwriter", "KTXwriterScParams",
+                                "KTXastcDecodeMode", "KTXanimData"})
+        if (key == defined) return true;
+    return false;
+}
+// Those whose value is a NUL-terminated string (the others hold binary numbers).
+bool ktxKeyHasTextValue(const std::string& key) {
+    return key == "KTXorientation" || key == "KTXswizzle" || key == "KTXwriter" || key == "KTXwriterScParams" ||
+           key == "KTXastcDecodeMode";
+}
+
 size_t alignedUp(size_t value, size_t alignment) { return (value + alignment - 1) / alignment * alignment; }
 
 void putU32(std::vector<uint8_t>& bytes, size_t at, uint32_t value) {
@@ -308,15 +322,19 @@ public:
         return offset + length;
     }
 
-    // Key/value entries well formed inside their region, which follows the DFD; KTXorientation, when present,
-    // "rd" (row 0 at the top). Returns where the region ends.
+    // Key/value entries well formed inside their region, which follows the DFD: each key ends in its NUL, each of
+    // the specification's own keys (KTX...) is one it defines and its text value ends in a NUL too, and
+    // KTXorientation is there and "rd" (row 0 at the top, as the pack writes; without it a reader may flip the
+    // image). A key whose NUL was lost runs into its value ("KTXorientationrd"), an unknown KTX key, so it is
+    // refused rather than skipped. Returns where the region ends.
     size_t checkKeyValueData(size_t dfd_end) const {
         const uint32_t offset = u32(56), length = u32(60);
-        if (length == 0) return dfd_end;
+        if (length == 0) fail("kvd", "has no KTXorientation (the key/value data is empty)");
         if (offset < dfd_end) fail("kvdByteOffset", std::to_string(offset) + " overlaps the DFD (ends at " + std::to_string(dfd_end) + ")");
         need(offset, length, "kvd");
         size_t at = offset;
         const size_t end = size_t(offset) + length;
+        bool has_orientation = false;
         for (int entry = 0; at < end; ++entry) {
             const std::string field = "kvd entry " + std::to_string(entry);
             if (end - at < 4) fail(field, "its length runs past the key/value data");
@@ -327,11 +345,22 @@ public:
             if (nul == nullptr) fail(field, "its key has no terminating NUL");
             const std::string key(text, static_cast<const char*>(nul));
             std::string value(static_cast<const char*>(nul) + 1, text + entry_bytes);
+            if (key.rfind("KTX", 0) == 0) {
+                if (!isKtxDefinedKey(key))
+                    fail(field, "key " + quotedForMessage(key) + " is not one the KTX 2.0 specification defines (a key "
+                                "that lost its NUL runs into its value)");
+                if (ktxKeyHasTextValue(key) && (value.empty() || value.back() != '\0'))
+                    fail("kvd " + key, "its value does not end in a NUL");
+            }
             while (!value.empty() && value.back() == '\0') value.pop_back();  // string values end in NUL
-            if (key == "KTXorientation" && value.rfind("rd", 0) != 0)
-                fail("kvd KTXorientation", quotedForMessage(value) + " is not rd (row 0 at the top, as the pack writes)");
+            if (key == "KTXorientation") {
+                if (value.rfind("rd", 0) != 0)
+                    fail("kvd KTXorientation", quotedForMessage(value) + " is not rd (row 0 at the top, as the pack writes)");
+                has_orientation = true;
+            }
             at = alignedUp(at + 4 + entry_bytes, 4);
         }
+        if (!has_orientation) fail("kvd", "has no KTXorientation (the pack writes \"rd\": row 0 at the top)");
         return end;
     }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "gusuku/maths/bakeset_ranges.h"
 #include "gusuku/maths/input_error.h"
 #include "pack_json.h"
 
@@ -34,21 +35,25 @@ public:
     std::string text(const std::string& key) const { return get(key, Type::kString, "a string").text; }
     bool boolean(const std::string& key) const { return get(key, Type::kBool, "true or false").boolean; }
     double number(const std::string& key) const { return get(key, Type::kNumber, "a number").number; }
-    double integer(const std::string& key, double lowest, double highest) const {
+    /// A number within its row of gusuku/maths/bakeset_ranges.h, refused as the tools' reader refuses it.
+    double ranged(const std::string& key, const BakeSetRange& range) const {
         const double value = number(key);
-        if (value != std::floor(value) || value < lowest || value > highest)
-            fail(key, std::to_string(value) + " is not a whole number in [" + std::to_string(lowest) + ", " +
-                          std::to_string(highest) + "]");
+        if (const std::optional<std::string> problem = bakeSetValueProblem(range, value)) fail(key, *problem);
         return value;
     }
-    glm::dvec3 vector3(const std::string& key) const {
+    /// Three numbers, each within the row, and of length 1 when the row is a direction.
+    glm::dvec3 vector3(const std::string& key, const BakeSetRange& range) const {
         const std::vector<JsonValue>& items = array(key);
         if (items.size() != 3) fail(key, "does not have 3 numbers");
         glm::dvec3 out;
         for (int axis = 0; axis < 3; ++axis) {
             if (items[axis].type != Type::kNumber) fail(key + "/" + std::to_string(axis), "is not a number");
             out[axis] = items[axis].number;
+            if (const std::optional<std::string> problem = bakeSetValueProblem(range, out[axis]))
+                fail(key + "/" + std::to_string(axis), *problem);
         }
+        if (const std::optional<std::string> problem = bakeSetDirectionProblem(range, out.x, out.y, out.z))
+            fail(key, *problem);
         return out;
     }
     const std::string& pointer() const { return pointer_; }
@@ -65,12 +70,19 @@ BakeSetSun readSun(const Fields& sun, bool sunny) {
     out.present = sun.boolean("present");
     out.irradiance_source = sun.text("irradiance_source");
     if (sunny) {
-        const glm::dvec3 direction = sun.vector3("direction_enu");
-        out.position = BakeSetSunPosition{sun.number("azimuth_deg"), sun.number("apparent_elevation_deg"), direction};
+        const double azimuth_deg = sun.ranged("azimuth_deg", kBakeSetSunAzimuthDeg);
+        const double elevation_deg = sun.ranged("apparent_elevation_deg", kBakeSetSunElevationDeg);
+        out.position = BakeSetSunPosition{azimuth_deg, elevation_deg,
+                                          sun.vector3("direction_enu", kBakeSetSunDirectionEnu)};
+    } else if (out.present) {
+        sun.fail("present", "an overcast slot has no sun");
     }
     if (out.present) {
-        out.irradiance_rgb = sun.vector3("irradiance_rgb");
-        out.angular_radius_deg = sun.number("angular_radius_deg");
+        if (const std::optional<std::string> problem =
+                bakeSetValueProblem(kBakeSetPresentSunElevationDeg, out.position->apparent_elevation_deg))
+            sun.fail("apparent_elevation_deg", *problem + ", yet present is true (a present sun is above the horizon)");
+        out.irradiance_rgb = sun.vector3("irradiance_rgb", kBakeSetSunIrradiance);
+        out.angular_radius_deg = sun.ranged("angular_radius_deg", kBakeSetSunAngularRadiusDeg);
     }
     return out;
 }
@@ -90,48 +102,60 @@ BakeSetSlot readSlot(const Fields& slot) {
     if (slot.has("sky_sampling")) {
         const Fields sampling = slot.object("sky_sampling");
         out.sky_sampling_method = sampling.text("method");
-        out.cosine_relative_variance = sampling.number("cosine_relative_variance");
+        out.cosine_relative_variance = sampling.ranged("cosine_relative_variance", kBakeSetCosineRelativeVariance);
     }
     out.building_irradiance = slot.text("building_irradiance");
     out.ground_irradiance_with_building = slot.text("ground_irradiance_with_building");
     out.ground_irradiance_without_building = slot.text("ground_irradiance_without_building");
-    out.invalid_texels = uint64_t(slot.integer("invalid_texels", 0, 67108864.0));
+    out.invalid_texels = uint64_t(slot.ranged("invalid_texels", kBakeSetInvalidTexels));
     if (slot.has("colour_statistics")) {
         const Fields statistics = slot.object("colour_statistics");
-        out.colour_statistics = BakeSetColourStatistics{statistics.vector3("lab_mean"), statistics.vector3("lab_sigma"),
-                                                        uint64_t(statistics.integer("texels", 0, 67108864.0))};
+        out.colour_statistics = BakeSetColourStatistics{statistics.vector3("lab_mean", kBakeSetLabMean),
+                                                        statistics.vector3("lab_sigma", kBakeSetLabSigma),
+                                                        uint64_t(statistics.ranged("texels", kBakeSetColourTexels))};
     }
     return out;
 }
 
 void readPlace(const Fields& root, BakeSetManifest& manifest) {
     const Fields site = root.object("site");
-    manifest.site = {site.text("name"), site.number("latitude_deg"), site.number("longitude_deg"),
-                     site.number("height_m"), int(site.integer("utc_offset_minutes", -1440, 1440))};
+    manifest.site.name = site.text("name");
+    manifest.site.latitude_deg = site.ranged("latitude_deg", kBakeSetLatitudeDeg);
+    manifest.site.longitude_deg = site.ranged("longitude_deg", kBakeSetLongitudeDeg);
+    manifest.site.height_m = site.ranged("height_m", kBakeSetHeightM);
+    manifest.site.utc_offset_minutes = int(site.ranged("utc_offset_minutes", kBakeSetUtcOffsetMinutes));
     const Fields building = root.object("building");
     manifest.building.mesh = building.text("mesh");
     manifest.building.lightmap_uv_source = building.text("lightmap_uv_source");
-    manifest.building.lightmap_resolution = int(building.integer("lightmap_resolution", 1, 16384));
-    manifest.building.texels_per_metre = building.number("texels_per_metre");
-    manifest.building.texels = uint64_t(building.integer("texels", 0, 67108864.0));
+    manifest.building.lightmap_resolution = int(building.ranged("lightmap_resolution", kBakeSetLightmapResolution));
+    manifest.building.texels_per_metre = building.ranged("texels_per_metre", kBakeSetTexelsPerMetre);
+    manifest.building.texels = uint64_t(building.ranged("texels", kBakeSetBuildingTexels));
     const Fields ground = root.object("ground_grid");
     manifest.ground_grid.geometry = ground.text("geometry");
     manifest.ground_grid.ground_source = ground.text("ground_source");
     if (ground.has("albedo")) manifest.ground_grid.albedo = ground.text("albedo");
-    manifest.ground_grid.grid.cell_m = ground.number("cell_m");
-    manifest.ground_grid.grid.columns = int(ground.integer("columns", 0, 16384));
-    manifest.ground_grid.grid.rows = int(ground.integer("rows", 0, 16384));
+    manifest.ground_grid.grid.cell_m = ground.ranged("cell_m", kBakeSetGroundCellM);
+    manifest.ground_grid.grid.columns = int(ground.ranged("columns", kBakeSetGroundColumns));
+    manifest.ground_grid.grid.rows = int(ground.ranged("rows", kBakeSetGroundRows));
     const std::vector<JsonValue>& origin = ground.array("origin_enu_m");
     if (origin.size() != 2 || origin[0].type != Type::kNumber || origin[1].type != Type::kNumber)
         ground.fail("origin_enu_m", "is not 2 numbers");
+    for (int axis = 0; axis < 2; ++axis)
+        if (const std::optional<std::string> problem = bakeSetValueProblem(kBakeSetGroundOriginM, origin[axis].number))
+            ground.fail("origin_enu_m/" + std::to_string(axis), *problem);
     manifest.ground_grid.grid.origin_enu_m = {origin[0].number, origin[1].number};
     if (root.has("occluder")) {
         const Fields occluder = root.object("occluder");
-        manifest.occluder = BakeSetOccluderInfo{occluder.text("mesh"),
-                                                uint64_t(occluder.integer("triangles", 0, 4294967295.0)),
-                                                uint64_t(occluder.integer("source_triangles", 0, 4294967295.0)),
-                                                occluder.number("target_error_m"),
-                                                occluder.number("simplification_error_m")};
+        const std::string mesh = occluder.text("mesh");
+        const uint64_t source_triangles = uint64_t(occluder.ranged("source_triangles", kBakeSetOccluderSourceTriangles));
+        const uint64_t triangles = uint64_t(occluder.ranged("triangles", kBakeSetOccluderTriangles));
+        if (triangles > source_triangles)
+            occluder.fail("triangles", std::to_string(triangles) + " is more than source_triangles " +
+                                           std::to_string(source_triangles));
+        manifest.occluder = BakeSetOccluderInfo{mesh, triangles, source_triangles,
+                                                occluder.ranged("target_error_m", kBakeSetOccluderTargetErrorM),
+                                                occluder.ranged("simplification_error_m",
+                                                                kBakeSetOccluderSimplificationErrorM)};
     }
 }
 

@@ -2,6 +2,7 @@
 
 #include "gusuku/loader/runtime_pack.h"
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "gusuku/maths/bakeset_ranges.h"
 #include "gusuku/maths/bakeset_validate.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/ktx2.h"
@@ -39,6 +41,8 @@ std::vector<uint8_t> readPackFile(const std::string& path) {
 // A file name from the manifest must name a file inside the pack.
 std::string packFileOf(const std::string& folder, const std::string& manifest_path, const std::string& field,
                        const std::string& exr_name) {
+    if (exr_name.find('\0') != std::string::npos)
+        throw InputError(manifest_path, field, "holds a NUL character (\\u0000), which no file name may");
     if (exr_name.empty() || exr_name.find('/') != std::string::npos || exr_name.find('\\') != std::string::npos ||
         exr_name == "." || exr_name == "..")
         throw InputError(manifest_path, field, quotedForMessage(exr_name) + " is not a plain file name");
@@ -56,10 +60,25 @@ Ktx2Image readKtx2(const std::string& path, Ktx2Format format, uint32_t width, u
     return image;
 }
 
-BakeSetImage floatImage(const std::string& path, uint32_t width, uint32_t height) {
+std::string formatScale(float scale) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", double(scale));
+    return text;
+}
+
+// Every decoded texel within the rows of gusuku/maths/bakeset_ranges.h, as the EXR set's loader holds its texels.
+void requireTexelsInRange(const std::string& path, const BakeSetImage& image,
+                          std::initializer_list<BakeSetRange> ranges, const std::string& note = "") {
+    if (const std::optional<BakeSetTexelProblem> problem = findBakeSetTexelProblem(image, ranges))
+        throw InputError(path, problem->field, problem->problem + note);
+}
+
+BakeSetImage floatImage(const std::string& path, uint32_t width, uint32_t height,
+                        std::initializer_list<BakeSetRange> ranges) {
     const Ktx2Image image = readKtx2(path, Ktx2Format::kR32g32b32a32Sfloat, width, height);
     BakeSetImage out{int(width), int(height), std::vector<float>(image.texels.size() / 4)};
     std::memcpy(out.rgba.data(), image.texels.data(), image.texels.size());
+    requireTexelsInRange(path, out, ranges);
     return out;
 }
 
@@ -81,6 +100,9 @@ BakeSetImage lightmapImage(const std::string& path, uint32_t resolution, float s
                              std::to_string(mark) + " is neither 0 (invalid) nor 255 (valid)");
         out.rgba[texel * 4 + 3] = mark == 255 ? 1.0f : 0.0f;
     }
+    // The range holds the texels as the runtime will see them: a large lightmap_scale makes every one too bright.
+    requireTexelsInRange(path, out, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage},
+                         " after pack.bin's lightmap_scale " + formatScale(scale));
     return out;
 }
 
@@ -142,10 +164,12 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
     const BakeSetManifest& manifest = data.manifest;
     const uint32_t columns = uint32_t(manifest.ground_grid.grid.columns), rows = uint32_t(manifest.ground_grid.grid.rows);
     data.ground_geometry =
-        floatImage(packFileOf(folder, manifest_path, "/ground_grid/geometry", manifest.ground_grid.geometry), columns, rows);
+        floatImage(packFileOf(folder, manifest_path, "/ground_grid/geometry", manifest.ground_grid.geometry), columns,
+                   rows, {kBakeSetGroundNormal, kBakeSetGroundHeightM});
     if (!manifest.ground_grid.albedo.empty())
         data.ground_albedo =
-            floatImage(packFileOf(folder, manifest_path, "/ground_grid/albedo", manifest.ground_grid.albedo), columns, rows);
+            floatImage(packFileOf(folder, manifest_path, "/ground_grid/albedo", manifest.ground_grid.albedo), columns,
+                       rows, {kBakeSetGroundAlbedo});
     const uint32_t resolution = uint32_t(manifest.building.lightmap_resolution);
     for (size_t slot = 0; slot < manifest.slots.size(); ++slot) {
         const BakeSetSlot& entry = manifest.slots[slot];
@@ -157,10 +181,10 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
         images.building_astc = astcLightmapBlocks(lightmap_path, resolution);
         images.ground_with = floatImage(packFileOf(folder, manifest_path, pointer + "ground_irradiance_with_building",
                                                    entry.ground_irradiance_with_building),
-                                        columns, rows);
+                                        columns, rows, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
         images.ground_without = floatImage(packFileOf(folder, manifest_path, pointer + "ground_irradiance_without_building",
                                                       entry.ground_irradiance_without_building),
-                                           columns, rows);
+                                           columns, rows, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
         data.slots.push_back(std::move(images));
     }
     data.building_astc_scale = geometry.lightmap_scale;

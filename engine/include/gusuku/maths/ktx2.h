@@ -66,7 +66,9 @@ std::vector<uint8_t> encodeKtx2(const Ktx2Image& image);
 /// Reads a container written as encodeKtx2 writes, whose format must be `expected`; `file` names it in errors.
 /// InputError(file, field, problem) for: a file shorter than its header or its parts, a wrong identifier, another
 /// format, a typeSize, depth, layer, face or level count or supercompression other than written, a DFD that does
-/// not describe the format, key/value data that does not parse, a level outside the file, misaligned, or whose
+/// not describe the format, key/value data that does not parse or lacks KTXorientation "rd" (a KTX key
+/// the specification does not define, as one that lost its NUL reads, or a KTX text value without its NUL), a
+/// level outside the file, misaligned, or whose
 /// byte length is not width x height texels. Never reads outside `bytes`; allocates at most `size` bytes.
 /// One level only: a mip chain is refused at levelCount.
 Ktx2Image decodeKtx2(const uint8_t* bytes, size_t size, const std::string& file, Ktx2Format expected);
