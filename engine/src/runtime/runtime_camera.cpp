@@ -3,6 +3,7 @@
 
 #include "runtime_camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -28,6 +29,16 @@ constexpr double kNearlyVertical = 0.999;
 constexpr double kRotationTolerance = 1e-3;
 // A GPS fix's height above the ellipsoid is refused beyond 100 km either way (no site on the ground lies there).
 constexpr double kMaxFixHeightM = 1e5;
+
+// `offset` scaled by a power of two so that its largest component lies in [1, 2): exact (barring underflow of
+// components far smaller than the largest), so directions and ratios such as X / Z are unchanged, while lengths
+// and products of it stay far from a double's overflow (a finite offset of 1e308 has a length of inf).
+glm::dvec3 scaledByPowerOfTwo(const glm::dvec3& offset) {
+    const double largest = std::max({std::abs(offset.x), std::abs(offset.y), std::abs(offset.z)});
+    if (!(largest > 0.0) || !std::isfinite(largest)) return offset;
+    const int exponent = std::ilogb(largest);
+    return {std::scalbn(offset.x, -exponent), std::scalbn(offset.y, -exponent), std::scalbn(offset.z, -exponent)};
+}
 
 }  // namespace
 
@@ -55,7 +66,7 @@ CameraPose CameraPose::lookingAt(const glm::dvec3& position_enu, const glm::dvec
     const glm::dvec3 offset = target_enu - position_enu;
     if (!(glm::length(offset) > kMinLookDistanceM))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "CameraPose::lookingAt: the target is the position");
-    const glm::dvec3 forward = glm::normalize(offset);
+    const glm::dvec3 forward = glm::normalize(scaledByPowerOfTwo(offset));  // no overflow of its length
     const glm::dvec3 world_up = std::abs(forward.z) > kNearlyVertical ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, world_up));
     CameraPose pose;
@@ -66,8 +77,9 @@ CameraPose CameraPose::lookingAt(const glm::dvec3& position_enu, const glm::dvec
 
 std::optional<glm::dvec2> Runtime::projectToPixel(const CameraIntrinsics& intrinsics, const CameraPose& pose,
                                                   const glm::dvec3& point_enu) {
-    // camera_to_enu is orthonormal, so its transpose takes ENU offsets into the camera frame.
-    const glm::dvec3 camera = glm::transpose(pose.camera_to_enu) * (point_enu - pose.position_enu);
+    // camera_to_enu is orthonormal, so its transpose takes ENU offsets into the camera frame. The pixel depends on
+    // the offset's direction only, so it is scaled first: a far point's rotated offset cannot overflow.
+    const glm::dvec3 camera = glm::transpose(pose.camera_to_enu) * scaledByPowerOfTwo(point_enu - pose.position_enu);
     if (!(camera.z > 0.0)) return std::nullopt;
     return glm::dvec2(intrinsics.fx * camera.x / camera.z + intrinsics.cx,
                       intrinsics.fy * camera.y / camera.z + intrinsics.cy);

@@ -507,22 +507,30 @@ gusuku_result gusuku_runtime_close(gusuku_runtime* runtime);
 
 /* ------------------------------------------------------------------------------------------------------------ */
 /* Cameras and weather (pure CPU, no runtime needed; runtime.h's helpers)                                        */
+/* Numbers: each helper refuses a NaN or infinite argument, and any finite one whose result would not be finite
+ * (a sum or product past a double's 1.8e308, a quotient by a denormal), with GUSUKU_ERROR_INVALID_ARGUMENT and
+ * "FUNCTION: ARGUMENT: PROBLEM" naming the argument: GUSUKU_OK never comes with a NaN or an infinity in an
+ * output (out_pixel's NaN for a point behind the camera, documented below, excepted). Results are computed in
+ * double, scaled where that keeps finite answers finite (a target 1e308 away still gives a rotation). */
 
 /* The pose of a camera at position_enu looking at target_enu, the image's up towards ENU +z (towards north when
- * it looks straight up or down): CameraPose::lookingAt. A coordinate not finite, or a target within 1 um of the
- * position: GUSUKU_ERROR_INVALID_ARGUMENT naming it. O(1). */
+ * it looks straight up or down): CameraPose::lookingAt. A coordinate not finite, a target within 1 um of the
+ * position, or one whose offset from it overflows a double: GUSUKU_ERROR_INVALID_ARGUMENT naming it. O(1). */
 gusuku_result gusuku_pose_looking_at(const double position_enu[3], const double target_enu[3], gusuku_pose* out_pose);
 
 /* Intrinsics of a width x height frame with this horizontal field of view, square pixels, the principal point at
- * the centre: CameraIntrinsics::fromFieldOfView. width and height in [1, 65536], the angle in (0, 180) degrees,
- * else GUSUKU_ERROR_INVALID_ARGUMENT naming it. O(1). */
+ * the centre: CameraIntrinsics::fromFieldOfView. width and height in [1, 65536], the angle in (0, 180) degrees
+ * and not so small (a denormal) that the focal length overflows, else GUSUKU_ERROR_INVALID_ARGUMENT naming it.
+ * O(1). */
 gusuku_result gusuku_intrinsics_from_field_of_view(uint32_t width, uint32_t height, double horizontal_fov_deg,
                                                    gusuku_intrinsics* out_intrinsics);
 
 /* Where the ENU point lands in the frame (the pixel convention above): Runtime::projectToPixel. In front of the
  * camera (camera z > 0): out_pixel = (u, v) and *out_in_front = 1; else out_pixel = (NaN, NaN), *out_in_front 0.
  * The intrinsics and pose are checked as a frame's are (focal lengths finite and positive, a rotation), their
- * width and height excepted; a problem is GUSUKU_ERROR_INVALID_ARGUMENT naming the field. O(1). */
+ * width and height excepted; a problem is GUSUKU_ERROR_INVALID_ARGUMENT naming the field. So is a point_enu not
+ * finite, one whose offset from the pose's position overflows a double, and one in front whose pixel would not be
+ * finite (nearly in the camera's plane z = 0, or intrinsics near 1e308). O(1). */
 gusuku_result gusuku_project_to_pixel(const gusuku_intrinsics* intrinsics, const gusuku_pose* pose,
                                       const double point_enu[3], double out_pixel[2], int32_t* out_in_front);
 
