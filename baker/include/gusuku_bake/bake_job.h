@@ -25,8 +25,9 @@ struct BakeOptions {
     bool force = false;             ///< bake even when the manifest says the bake set is up to date
     int samples_override = 0;       ///< > 0: use instead of bake.samples_per_texel
     bool denoise = true;            ///< edge-keeping filter on the building lightmap
-    /// The building's samples: half to every texel alike, the other half by each texel's noise
-    /// (adaptive_sampling.h); false: every texel alike. The ground's cells are always sampled alike.
+    /// The building's samples from kMinAdaptiveSamples on: a quarter (at least 16) to every texel alike as a
+    /// pilot, the rest by each texel's noise (adaptive_sampling.h); false: every texel alike. The ground's
+    /// cells are always sampled alike.
     bool adaptive_sampling = true;
     bool show_progress = true;
     /// Non-empty: bake only this slot of the site into a partial bake set (manifest marked "partial", naming
