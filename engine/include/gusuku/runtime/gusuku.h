@@ -433,7 +433,8 @@ typedef struct gusuku_pass_timings {
 gusuku_result gusuku_runtime_options_fill_defaults(gusuku_runtime_options* options);
 
 /* The same for a frame: no camera, zero intrinsics (to be set), identity pose at the origin, time 0, no GPS fix,
- * cloud cover 0, exposure 1, PROPOSED, colour match off, flags BLEND_SLOTS | GROUND_RATIO. O(1). */
+ * cloud cover 0, exposure 1, PROPOSED, colour match AUTO (ground where the bake set and device allow it, else
+ * off), flags BLEND_SLOTS | GROUND_RATIO. O(1). */
 gusuku_result gusuku_frame_input_fill_defaults(gusuku_frame_input* frame);
 
 /* Sets struct_size to this header's sizeof and fills the defaults: the way to start options and frames. Inline,
