@@ -266,8 +266,8 @@ std::vector<BadManifest> badManifests() {
         withValue("slot not an object", "/slots/1", "x", "expected an object, found a string"),
         withValue("slots not an array", "/slots", json::object(), "expected an array, found an object"),
         withValue("colour space changed", "/slots/0/colour_statistics/space", "sRGB", "expected \"CIE Lab (D65)"),
-        withValue("negative sigma", "/slots/0/colour_statistics/lab_sigma/0", -0.5, "-0.5 is outside [0, 1e+09] CIE Lab"),
-        withValue("a Lab mean of 1e300", "/slots/0/colour_statistics/lab_mean/0", 1e300, "is outside [-1e+09, 1e+09]"),
+        withValue("negative sigma", "/slots/0/colour_statistics/lab_sigma/0", -0.5, "-0.5 is outside [0, 1000000000] CIE Lab"),
+        withValue("a Lab mean of 1e300", "/slots/0/colour_statistics/lab_mean/0", 1e300, "is outside [-1000000000, 1000000000]"),
     };
     // Non-finite numbers: JSON has none, but a literal too large for a double overflows when parsed.
     std::string overflow = exampleJson().dump(2);

@@ -239,8 +239,18 @@ void readFixedText(const ObjectReader& reader, const std::string& name, const ch
         reader.fail(name, std::string("expected \"") + expected + "\" (fixed by " + kBakeSetFormat + ")");
 }
 
-glm::dvec3 readVec3(const ObjectReader& reader, const std::string& name, const NumberRange& range) {
-    const std::vector<double> values = reader.numberArray(name, 3, range);
+/// `count` numbers, each within its row of gusuku/maths/bakeset_ranges.h, refused as the pack reader refuses them.
+std::vector<double> readRangedArray(const ObjectReader& reader, const std::string& name, size_t count,
+                                    const BakeSetRange& range) {
+    const std::vector<double> values = reader.numberArray(name, count, kAnyFinite);
+    for (size_t i = 0; i < values.size(); ++i)
+        if (const std::optional<std::string> problem = bakeSetValueProblem(range, values[i]))
+            throw InputError(reader.file(), reader.fieldPointer(name) + "/" + std::to_string(i), *problem);
+    return values;
+}
+
+glm::dvec3 readVec3(const ObjectReader& reader, const std::string& name, const BakeSetRange& range) {
+    const std::vector<double> values = readRangedArray(reader, name, 3, range);
     return {values[0], values[1], values[2]};
 }
 
@@ -274,7 +284,13 @@ BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
         BakeSetSunPosition position;
         position.azimuth_deg = readRanged(reader, "azimuth_deg", kBakeSetSunAzimuthDeg);
         position.apparent_elevation_deg = readRanged(reader, "apparent_elevation_deg", kBakeSetSunElevationDeg);
-        position.direction_enu = readVec3(reader, "direction_enu", rangeOf(kBakeSetSunDirectionEnu));
+        // Before the direction's agreement with the angles, as the pack reader (which has no such check) refuses it.
+        if (sun.present && !rangeOf(kBakeSetPresentSunElevationDeg).contains(position.apparent_elevation_deg))
+            reader.fail("apparent_elevation_deg",
+                        json_reader::formatNumber(position.apparent_elevation_deg) +
+                            " is below the horizon, yet present is true (a present sun is at " +
+                            rangeOf(kBakeSetPresentSunElevationDeg).describe() + " degrees)");
+        position.direction_enu = readVec3(reader, "direction_enu", kBakeSetSunDirectionEnu);
         const glm::dvec3& d = position.direction_enu;
         if (const std::optional<std::string> problem = bakeSetDirectionProblem(kBakeSetSunDirectionEnu, d.x, d.y, d.z))
             reader.fail("direction_enu", *problem);
@@ -295,12 +311,7 @@ BakeSetSun readSun(const ObjectReader& slot, bool sunny) {
             if (reader.has(name)) reader.fail(name, "only a sunny slot has a sun position");
     }
     if (sun.present) {
-        if (sun.position && !rangeOf(kBakeSetPresentSunElevationDeg).contains(sun.position->apparent_elevation_deg))
-            reader.fail("apparent_elevation_deg",
-                        json_reader::formatNumber(sun.position->apparent_elevation_deg) +
-                            " is below the horizon, yet present is true (a present sun is at " +
-                            rangeOf(kBakeSetPresentSunElevationDeg).describe() + " degrees)");
-        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", rangeOf(kBakeSetSunIrradiance));
+        sun.irradiance_rgb = readVec3(reader, "irradiance_rgb", kBakeSetSunIrradiance);
         sun.angular_radius_deg = readRanged(reader, "angular_radius_deg", kBakeSetSunAngularRadiusDeg);
     } else {
         for (const char* name : {"irradiance_rgb", "angular_radius_deg"})
@@ -343,8 +354,8 @@ BakeSetSlot readSlot(const ObjectReader& reader) {
     if (const auto colour = reader.optionalObject("colour_statistics", {"space", "lab_mean", "lab_sigma", "texels"})) {
         readFixedText(*colour, "space", kColourSpace);
         BakeSetColourStatistics statistics;
-        statistics.lab_mean = readVec3(*colour, "lab_mean", rangeOf(kBakeSetLabMean));
-        statistics.lab_sigma = readVec3(*colour, "lab_sigma", rangeOf(kBakeSetLabSigma));
+        statistics.lab_mean = readVec3(*colour, "lab_mean", kBakeSetLabMean);
+        statistics.lab_sigma = readVec3(*colour, "lab_sigma", kBakeSetLabSigma);
         statistics.texels = readCount(*colour, "texels", kBakeSetColourTexels);
         slot.colour_statistics = statistics;
     }
@@ -420,7 +431,7 @@ BakeSetManifest readManifest(const ObjectReader& root) {
                                     "row_0", "ground_source", "irradiance_alpha", "albedo", "albedo_channels"});
     manifest.ground_grid.geometry = readNonEmptyString(ground, "geometry");
     readFixedText(ground, "geometry_channels", kGeometryChannels);
-    const std::vector<double> origin = ground.numberArray("origin_enu_m", 2, rangeOf(kBakeSetGroundOriginM));
+    const std::vector<double> origin = readRangedArray(ground, "origin_enu_m", 2, kBakeSetGroundOriginM);
     manifest.ground_grid.grid.origin_enu_m = {origin[0], origin[1]};
     manifest.ground_grid.grid.cell_m = readRanged(ground, "cell_m", kBakeSetGroundCellM);
     manifest.ground_grid.grid.columns = int(readRanged(ground, "columns", kBakeSetGroundColumns));
