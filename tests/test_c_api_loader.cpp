@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -123,6 +124,51 @@ TEST_F(CApiLoaderTest, FolderWithoutABakeSetIsRefusedWithTheLoadersMessage) {
     EXPECT_EQ(message.find('\n'), std::string::npos);
     EXPECT_EQ(gusuku_bakeset_load(nullptr, &bake_set), GUSUKU_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(gusuku_bakeset_load(folder.c_str(), nullptr), GUSUKU_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(CApiLoader, AnEmptyFolderNameIsRefusedNotReadAsTheRoot) {
+    // "" + "/manifest.json" is the file system's root: both loaders refuse the empty name itself.
+    using Load = gusuku_result (*)(const char*, gusuku_bakeset**);
+    const std::pair<Load, std::string> loaders[] = {{gusuku_bakeset_load, "gusuku_bakeset_load"},
+                                                    {gusuku_bakeset_load_pack, "gusuku_bakeset_load_pack"}};
+    for (const auto& [load, name] : loaders) {
+        gusuku_bakeset* bake_set = reinterpret_cast<gusuku_bakeset*>(this);  // must be overwritten with null
+        EXPECT_EQ(load("", &bake_set), GUSUKU_ERROR_INVALID_ARGUMENT) << name;
+        EXPECT_EQ(bake_set, nullptr);
+        EXPECT_EQ(std::string(gusuku_last_error_message()), name + ": folder: is empty");
+        EXPECT_EQ(load(nullptr, &bake_set), GUSUKU_ERROR_INVALID_ARGUMENT) << name;
+        EXPECT_EQ(std::string(gusuku_last_error_message()), name + ": folder: is NULL");
+    }
+}
+
+TEST_F(CApiLoaderTest, AFrameTheDeviceCannotHoldIsRefusedNamingTheFrameSize) {
+    // 8192 x 8192 is inside options' [1, 8192], but the colour statistics' camera copy is a 256 MiB storage
+    // buffer: a device whose maxStorageBufferRange is smaller (lavapipe's 128 MiB) refuses it at open, naming
+    // options.frame_width/height and the limit, not a GpuBuffer. A device that holds it opens.
+    gusuku_bakeset* bake_set = nullptr;
+    ASSERT_EQ(gusuku_bakeset_load(bakedSet().c_str(), &bake_set), GUSUKU_OK) << gusuku_last_error_message();
+    gusuku_runtime_options options;
+    ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    options.frame_width = options.frame_height = 8192;
+    options.msaa_samples = 1;
+    const gusuku_vulkan_device vulkan = device();
+    gusuku_runtime* runtime = nullptr;
+    const gusuku_result result = gusuku_runtime_open(&vulkan, bake_set, &options, &runtime);
+    EXPECT_EQ(gusuku_bakeset_free(bake_set), GUSUKU_OK);
+    const uint64_t packed_bytes = uint64_t(8192) * 8192 * 4;
+    if (packed_bytes <= context().gpu().limits().maxStorageBufferRange) {
+        EXPECT_EQ(result, GUSUKU_OK) << gusuku_last_error_message();
+        EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
+        GTEST_SKIP() << "this device holds an 8192 x 8192 frame's buffers";
+    }
+    EXPECT_EQ(result, GUSUKU_ERROR_DEVICE);
+    EXPECT_EQ(runtime, nullptr);
+    const std::string message = gusuku_last_error_message();
+    RecordProperty("message", message);  // in --gtest_output's report, for the record
+    EXPECT_EQ(message.rfind("gusuku_runtime_open: options.frame_width/height: 8192 x 8192 needs a 256.0 MiB "
+                            "storage buffer", 0), 0u) << message;
+    EXPECT_NE(message.find("maxStorageBufferRange of "), std::string::npos) << message;
+    EXPECT_EQ(message.find("GpuBuffer"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // runtime gets the sRGB bytes of the same picture. Expected bytes come from the sRGB curve (IEC 61966-2-1).
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -14,11 +15,13 @@
 
 namespace {
 
-// Writes a 4 x 2 image of `channels` channels with the given values per texel (the same for every texel).
-void writeImage(const std::string& path, int channels, OIIO::TypeDesc format, const std::vector<float>& texel) {
-    OIIO::ImageSpec spec(4, 2, channels, format);
+// Writes an image of `channels` channels with the given values per texel (the same for every texel); 8 x 8 is the
+// smallest camera frame (kMinCameraSide).
+void writeImage(const std::string& path, int channels, OIIO::TypeDesc format, const std::vector<float>& texel,
+                int width = 8, int height = 8) {
+    OIIO::ImageSpec spec(width, height, channels, format);
     std::vector<float> values;
-    for (int i = 0; i < 8; ++i) values.insert(values.end(), texel.begin(), texel.end());
+    for (int i = 0; i < width * height; ++i) values.insert(values.end(), texel.begin(), texel.end());
     auto output = OIIO::ImageOutput::create(path);
     ASSERT_TRUE(output && output->open(path, spec)) << OIIO::geterror();
     ASSERT_TRUE(output->write_image(OIIO::TypeDesc::FLOAT, values.data()) && output->close());
@@ -41,9 +44,9 @@ TEST(RenderCameraImage, EveryBitDepthGivesTheSameSrgbBytes) {
     for (const char* name : {"camera8.png", "camera16.png", "camera_float.exr", "camera_half.exr"}) {
         SCOPED_TRACE(name);
         const gusuku::render_cli::CameraImage camera = gusuku::render_cli::readCameraImage(dir + "/" + name);
-        ASSERT_EQ(camera.width, 4u);
-        ASSERT_EQ(camera.height, 2u);
-        ASSERT_EQ(camera.srgb_rgba8.size(), 4u * 2u * 4u);
+        ASSERT_EQ(camera.width, 8u);
+        ASSERT_EQ(camera.height, 8u);
+        ASSERT_EQ(camera.srgb_rgba8.size(), 8u * 8u * 4u);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(int(camera.srgb_rgba8[size_t(c)]), int(expected[c]), 1) << c;
         EXPECT_EQ(camera.srgb_rgba8[3], 255);  // no alpha in the file, or alpha 1: opaque
     }
@@ -70,6 +73,25 @@ TEST(RenderCameraImage, AFrameLargerThanTheRuntimeTakesIsRefusedFromItsHeader) {
     } catch (const gusuku::InputError& error) {
         EXPECT_EQ(std::string(error.what()), dir + "/wide.png: image size: 16384 x 16 pixels: a camera frame is at "
                                                    "most 8192 on a side (the runtime's frame limit)");
+    }
+}
+
+TEST(RenderCameraImage, AFrameSmallerThanTheStatisticsSampleIsRefusedNamingItsSize) {
+    // 1 x 1 and 7 x 8: refused by the image's size, not by the runtime's statistics_stride, an option gusuku-render
+    // never asks its user for.
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_camera_image");
+    for (const auto& [width, height] : {std::pair{1, 1}, std::pair{7, 8}}) {
+        const std::string path = dir + "/small" + std::to_string(width) + ".png";
+        writeImage(path, 3, OIIO::TypeDesc::UINT8, {0.5f, 0.5f, 0.5f}, width, height);
+        try {
+            gusuku::render_cli::readCameraImage(path);
+            ADD_FAILURE() << "a " << width << " x " << height << " camera frame was accepted";
+        } catch (const gusuku::InputError& error) {
+            EXPECT_EQ(std::string(error.what()),
+                      path + ": image size: " + std::to_string(width) + " x " + std::to_string(height) +
+                          " pixels: a camera frame is at least 8 on a side (the runtime's colour statistics sample "
+                          "every 8th pixel each way)");
+        }
     }
 }
 

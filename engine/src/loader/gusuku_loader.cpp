@@ -12,6 +12,8 @@ extern "C" gusuku_result gusuku_bakeset_load(const char* folder, gusuku_bakeset*
         return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_bakeset_load: out_bake_set: is NULL");
     *out_bake_set = nullptr;
     if (folder == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_bakeset_load: folder: is NULL");
+    // "" would become "/manifest.json", a file at the root of the file system, not a folder the app named.
+    if (folder[0] == '\0') return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_bakeset_load: folder: is empty");
     try {
         auto bake_set = std::make_unique<gusuku_bakeset>();
         bake_set->data = gusuku::loadBakeSet(folder);  // complete and checked, or it throws

@@ -2,11 +2,13 @@
 
 #include "device_requirements.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "camera_input.h"
+#include "colour_statistics_pass.h"
 #include "runtime_pipelines.h"
 #include "runtime_scene.h"
 
@@ -41,6 +43,37 @@ std::string hexadecimal(uint32_t value) {
     return text;
 }
 
+std::string mebibytes(uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1 << 20));
+    return text;
+}
+
+/// The frame's size against the device's limits on what each frame-sized resource needs, so a frame inside the
+/// options' [1, 8192] that this device cannot hold is refused naming the options, not by the resource that fails.
+void checkFrameSizeLimits(const GpuDevice& gpu, const RuntimeOptions& options) {
+    const VkPhysicalDeviceLimits& limits = gpu.limits();
+    const std::string size = std::to_string(options.frame_width) + " x " + std::to_string(options.frame_height);
+    const std::string device = std::string("this device's (") + gpu.properties.deviceName + ") ";
+    auto fail = [&](const std::string& what) {
+        throw RuntimeError(RuntimeErrorCode::kDevice,
+                           "options.frame_width/height: " + size + " " + what + ": choose a smaller frame");
+    };
+    const uint32_t side = std::max(options.frame_width, options.frame_height);
+    if (side > limits.maxImageDimension2D)
+        fail("is larger than " + device + "maxImageDimension2D of " + std::to_string(limits.maxImageDimension2D));
+    if (options.frame_width > limits.maxFramebufferWidth || options.frame_height > limits.maxFramebufferHeight)
+        fail("is larger than " + device + "maxFramebufferWidth/Height of " +
+             std::to_string(limits.maxFramebufferWidth) + " x " + std::to_string(limits.maxFramebufferHeight));
+    // The colour statistics read the camera as one frame-sized storage buffer of RGBA8 words (camera_pack.comp).
+    const uint64_t packed_bytes = uint64_t(options.frame_width) * options.frame_height * 4;
+    if (ColourStatisticsPass::deviceSupports(gpu) && packed_bytes > limits.maxStorageBufferRange)
+        fail("needs a " + mebibytes(packed_bytes) + " storage buffer for the colour statistics' camera copy (4 "
+             "bytes a pixel), beyond " + device + "maxStorageBufferRange of " +
+             mebibytes(limits.maxStorageBufferRange) + " (" + std::to_string(limits.maxStorageBufferRange / 4) +
+             " pixels)");
+}
+
 }  // namespace
 
 void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options) {
@@ -65,6 +98,8 @@ void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options
              " samples a pixel (framebufferColorSampleCounts 0x" + hexadecimal(limits.framebufferColorSampleCounts) +
              ", framebufferDepthSampleCounts 0x" + hexadecimal(limits.framebufferDepthSampleCounts) +
              "): choose a count both include, or 1");
+
+    checkFrameSizeLimits(gpu, options);
 
     const CameraPlaneFormats camera = cameraPlaneFormats(options.camera_format);
     const VkFormatFeatureFlags sampled = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;

@@ -8,7 +8,8 @@
 namespace gusuku::runtime_detail {
 
 /// Throws RuntimeError kDevice naming the first requirement the device does not meet: the queue family's graphics
-/// and compute, each format's optimal-tiling features and the main pass's sample count. (Vulkan 1.0 suffices; the
+/// and compute, each format's optimal-tiling features, the main pass's sample count and the frame size's limits
+/// (image and framebuffer sides, the colour statistics' frame-sized storage buffer). (Vulkan 1.0 suffices; the
 /// colour matches' 1.1 subgroups are optional: ColourStatisticsPass::deviceSupports.)
 void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options);
 

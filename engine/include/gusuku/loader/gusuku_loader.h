@@ -19,16 +19,17 @@ extern "C" {
 
 /* Loads folder/manifest.json and every file it names (gusuku/assets/bakeset_loader.h's loadBakeSet), checked as
  * gusuku_bakeset_create checks a desc, into a new bake set for gusuku_runtime_open(_headless); free it with
- * gusuku_bakeset_free. A missing folder or file, a corrupt or inconsistent file: GUSUKU_ERROR_INVALID_BAKE_SET
+ * gusuku_bakeset_free. folder NULL or "": GUSUKU_ERROR_INVALID_ARGUMENT ("gusuku_bakeset_load: folder: is
+ * empty"). A missing folder or file, a corrupt or inconsistent file: GUSUKU_ERROR_INVALID_BAKE_SET
  * with "gusuku_bakeset_load: FILE: FIELD: PROBLEM". Reads and decodes every file: O(bake set size) time and host
  * memory (tens of milliseconds for the sample's). */
 gusuku_result gusuku_bakeset_load(const char* folder, gusuku_bakeset** out_bake_set);
 
 /* Loads the runtime pack in folder (a pack folder, or a bake set folder holding pack/; docs/bakeset.md "The runtime
  * pack", gusuku/loader/runtime_pack.h's loadRuntimePack), checked as gusuku_bakeset_create checks a desc, into a
- * new bake set; free it with gusuku_bakeset_free. A missing file, a truncated or malformed KTX2 or pack.bin, sizes
- * that disagree with the manifest: GUSUKU_ERROR_INVALID_BAKE_SET with "gusuku_bakeset_load_pack: FILE: FIELD:
- * PROBLEM". Library gusuku_pack_loader: the C++ standard library only. */
+ * new bake set; free it with gusuku_bakeset_free. folder NULL or "": GUSUKU_ERROR_INVALID_ARGUMENT. A missing
+ * file, a truncated or malformed KTX2 or pack.bin, sizes that disagree with the manifest:
+ * GUSUKU_ERROR_INVALID_BAKE_SET with "gusuku_bakeset_load_pack: FILE: FIELD: PROBLEM". Library gusuku_pack_loader: the C++ standard library only. */
 gusuku_result gusuku_bakeset_load_pack(const char* folder, gusuku_bakeset** out_bake_set);
 
 #ifdef __cplusplus

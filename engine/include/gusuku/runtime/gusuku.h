@@ -272,7 +272,10 @@ typedef enum gusuku_lightmap_format {
 typedef struct gusuku_runtime_options {
     uint32_t struct_size;                 /* sizeof(gusuku_runtime_options) as the app's header declares it */
     uint32_t frame_width;                 /* every frame's images are this size, [1, 8192]; default 1280 x 720 */
-    uint32_t frame_height;
+    uint32_t frame_height;                /* a size the device cannot hold (its image and framebuffer sides, and
+                                             the colour statistics' 4-byte-a-pixel storage buffer: lavapipe's
+                                             128 MiB take 2^25 pixels, not 8192 x 8192): GUSUKU_ERROR_DEVICE
+                                             naming options.frame_width/height and the limit */
     uint32_t shadow_map_size;             /* texels per side, [64, 8192]; default 1024 */
     float shadow_bias_texels;             /* [0, 64]; default 1.5 */
     uint32_t shadow_pcf_radius;           /* [0, 3]; default 1; 0 hard shadows, else the sun's penumbra */

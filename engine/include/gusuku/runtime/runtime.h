@@ -15,7 +15,9 @@
 // colour attachment, sampled and a transfer source; D32_SFLOAT as a depth attachment and a sampled image;
 // R16G16B16A16_SFLOAT sampled with linear filtering; the camera format's plane formats sampled (R8G8B8A8_SRGB,
 // B8G8R8A8_SRGB, or R8_UNORM and R8G8_UNORM); RuntimeOptions::msaa_samples among the framebuffer colour and depth
-// sample counts. Timeline semaphores in FrameSync only if the app enabled them on its device. The colour matches
+// sample counts; the frame size within maxImageDimension2D and maxFramebufferWidth/Height and, where the colour
+// matches run, its 4 bytes a pixel within maxStorageBufferRange (lavapipe's 128 MiB: 2^25 pixels). Timeline
+// semaphores in FrameSync only if the app enabled them on its device. The colour matches
 // (FrameInput::colour_match kPaper, kPreserve, kGround) also need a Vulkan 1.1 instance
 // (GpuDevice::instance_api_version) and subgroup arithmetic in compute shaders; without them the runtime opens and
 // refuses only those frames (the default, kAuto, is then off).
