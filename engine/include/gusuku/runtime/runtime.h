@@ -16,9 +16,10 @@
 // D32_SFLOAT_S8_UINT or D24_UNORM_S8_UINT as a depth-stencil attachment (the main pass); R16G16B16A16_SFLOAT and
 // the lightmap format (E5B9G9R9_UFLOAT_PACK32 under the default kAuto) sampled with linear filtering; the camera
 // format's plane formats sampled (R8G8B8A8_SRGB, B8G8R8A8_SRGB, or R8_UNORM and R8G8_UNORM);
-// RuntimeOptions::msaa_samples among the framebuffer colour and depth sample counts; the frame size within maxImageDimension2D and maxFramebufferWidth/Height and, where the colour
-// matches run, its 4 bytes a pixel within maxStorageBufferRange (lavapipe's 128 MiB: 2^25 pixels). Timeline
-// semaphores in FrameSync only if the app enabled them on its device. The colour matches
+// RuntimeOptions::msaa_samples among the framebuffer colour and depth sample counts; the frame size within
+// maxImageDimension2D and maxFramebufferWidth/Height and, where the colour matches run, its 4 bytes a pixel within
+// maxStorageBufferRange (lavapipe's 128 MiB: 2^25 pixels). Timeline semaphores in FrameSync only if the app
+// enabled them on its device. The colour matches
 // (FrameInput::colour_match kPaper, kPreserve, kGround) also need a Vulkan 1.1 instance
 // (GpuDevice::instance_api_version) and subgroup arithmetic in compute shaders; without them the runtime opens and
 // refuses only those frames (the default, kAuto, is then off).
