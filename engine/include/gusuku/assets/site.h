@@ -88,7 +88,7 @@ struct BakeSlot {
 
 struct BakeSettings {
     std::string date;               ///< "YYYY-MM-DD", site clock
-    std::vector<BakeSlot> slots;    ///< default: sunny 09:00, 12:00, 15:00 and overcast
+    std::vector<BakeSlot> slots;    ///< default: sunny 09:00, 12:00, 15:00, and overcast given skies.overcast
     double texels_per_metre = 8.0;  ///< building lightmap density
     int samples_per_texel = 256;
     int max_bounces = 4;
