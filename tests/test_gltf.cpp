@@ -724,6 +724,45 @@ TEST_F(GltfTest, AlphaModeMaskAndCutoffAreReadAndBlendIsMaskWithWarning) {
     EXPECT_EQ(error.problem(), "-0.5 is not a number in [0, 1]");
 }
 
+// alphaCutoff and alphaMode of the wrong JSON type (issue 39 item 9): tinygltf read them as absent (the default
+// cutoff 0.5, OPAQUE) without a word; each is refused naming the material's field and the type found.
+TEST_F(GltfTest, AlphaCutoffOrAlphaModeOfTheWrongJsonTypeIsRefusedByField) {
+    const std::vector<std::pair<json, std::string>> cutoffs = {
+        {"0.3", "is a string"}, {true, "is a boolean"}, {json::array({0.3}), "is an array"}, {nullptr, "is null"}};
+    for (const auto& [cutoff, type] : cutoffs) {
+        GltfBuilder builder;
+        builder.document()["materials"] = {{{"name", "wall"}}, {{"alphaMode", "MASK"}, {"alphaCutoff", cutoff}}};
+        builder.setScene({builder.addNode({{"mesh", builder.addTriangleMesh(kTriangle, {}, {}, 1)}})});
+        const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "cutoff"), {}); });
+        EXPECT_EQ(error.field(), "materials[1].alphaCutoff") << cutoff.dump();
+        EXPECT_EQ(error.problem(), type + ", not a number in [0, 1]") << cutoff.dump();
+    }
+    GltfBuilder builder;
+    builder.document()["materials"] = {{{"alphaMode", 5}}};
+    builder.setScene({builder.addNode({{"mesh", builder.addTriangleMesh(kTriangle, {}, {}, 0)}})});
+    const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "mode"), {}); });
+    EXPECT_EQ(error.field(), "materials[0].alphaMode");
+    EXPECT_EQ(error.problem(), "is a number, not \"OPAQUE\", \"MASK\" or \"BLEND\"");
+}
+
+// A NaN or infinite texture coordinate (issue 39 item 10) is the glTF's fault, named by its attribute and
+// accessor, as a NaN position is: found later, the bake blamed its output folder.
+TEST_F(GltfTest, NonFiniteTexcoordIsRefusedNamingTheAccessor) {
+    for (const char* attribute : {"TEXCOORD_0", "TEXCOORD_1"}) {
+        for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+            GltfBuilder builder;
+            const int mesh = builder.addTriangleMesh(kTriangle);
+            const int uvs = builder.addFloats({0.0f, 0.0f, 1.0f, 0.0f, 0.0f, bad}, "VEC2", 2);
+            builder.document()["meshes"][0]["primitives"][0]["attributes"][attribute] = uvs;
+            builder.setScene({builder.addNode({{"mesh", mesh}})});
+            const InputError error = expectInputError([&] { gusuku::loadGltf(builder.write(dir_, "uv"), {}); });
+            EXPECT_EQ(error.field(), std::string("meshes[0].primitives[0].attributes.") + attribute);
+            EXPECT_EQ(error.problem(), "accessor " + std::to_string(uvs) + ", vertex 2 is " +
+                                           (std::isnan(bad) ? "NaN" : "infinite"));
+        }
+    }
+}
+
 TEST_F(GltfTest, RequiredExtensionsAreNamedAsUnsupported) {
     for (const char* extension : {"KHR_draco_mesh_compression", "KHR_texture_basisu", "KHR_materials_variants"}) {
         GltfBuilder builder;

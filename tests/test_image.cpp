@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -567,6 +568,74 @@ TEST(ImageFileTest, TruncatedPngIsRefusedFromItsChunkChain) {
     const std::vector<unsigned char> no_end(png.begin(), png.end() - 12);  // without IEND
     EXPECT_EQ(expectInputError([&] { gusuku::readImageFromMemory("noend.png", no_end); }),
               "noend.png: truncated PNG: no IEND chunk before the data ends at byte " + std::to_string(no_end.size()));
+}
+
+// Writes a width x height 8-bit RGB JPEG whose texels vary (so its entropy-coded data fills the file evenly).
+void writeTestJpeg(const std::string& path, int width, int height) {
+    std::vector<unsigned char> codes(size_t(width) * size_t(height) * 3);
+    for (size_t i = 0; i < codes.size(); ++i) codes[i] = (unsigned char)((i * 37 + (i / 3) * 11) % 256);
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(output && output->open(path, spec)) << OIIO::geterror();
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, codes.data()));
+    ASSERT_TRUE(output->close());
+}
+
+// A JPEG cut short decodes "successfully" in libjpeg, which fills the missing rows with grey and says "Premature
+// end of JPEG file" only as a warning (issue 39 item 7: a sky cut to 44 % became flat grey without a word). The
+// reader refuses it naming the file, from a file and from memory (an embedded texture) alike; the whole file reads.
+TEST(ImageFileTest, TruncatedJpegIsRefusedNamingTheFile) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    writeTestJpeg(dir + "/whole.jpg", 256, 128);
+    EXPECT_NO_THROW(gusuku::readImage(dir + "/whole.jpg"));
+    const std::string bytes = gusuku::readWholeFile(dir + "/whole.jpg");
+    const std::string cut_bytes = bytes.substr(0, bytes.size() * 44 / 100);
+    gusuku::writeBytesAtomically(dir + "/cut.jpg", cut_bytes.data(), cut_bytes.size());
+    const std::string message = expectInputError([&] { gusuku::readImage(dir + "/cut.jpg"); });
+    EXPECT_EQ(message.rfind(dir + "/cut.jpg: damaged image data", 0), 0u) << message;
+    EXPECT_NE(message.find("Premature end of JPEG file"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    const std::vector<unsigned char> cut_memory(cut_bytes.begin(), cut_bytes.end());
+    const std::string from_memory =
+        expectInputError([&] { gusuku::readImageFromMemory("textures/cut.jpg", cut_memory); });
+    EXPECT_EQ(from_memory.rfind("textures/cut.jpg: damaged image data", 0), 0u) << from_memory;
+    // A Radiance HDR cut short fails in its own decoder: refused as well, naming the file.
+    gusuku::writeHdr(dir + "/whole.hdr", makeGradient(64, 32, 2.0f));
+    const std::string hdr = gusuku::readWholeFile(dir + "/whole.hdr");
+    gusuku::writeBytesAtomically(dir + "/cut.hdr", hdr.data(), hdr.size() * 44 / 100);
+    EXPECT_EQ(expectInputError([&] { gusuku::readRadianceMap(dir + "/cut.hdr"); }).rfind(dir + "/cut.hdr: ", 0), 0u);
+}
+
+// A downsampled image keeps its proportion (issue 39 item 8): 2:1 with an odd height, 102 x 51 under a side limit
+// of 100 (factor 2), reads as 52 x 26, not 51 x 26 (both sides divided by 2 and rounded up). Each reduced texel
+// averages the file texels falling in it: with texel (x, y) holding (x, y), reduced texel i along a side of n
+// file texels and m reduced ones averages file texels in [i n / m, (i + 1) n / m).
+TEST(ImageFileTest, DownsamplingKeepsTheProportionOfAnOddSidedTwoToOneImage) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku_image");
+    ImageRGBA image = makeImage(102, 51);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            image.texel(x, y)[0] = float(x);
+            image.texel(x, y)[1] = float(y);
+            image.texel(x, y)[3] = 1.0f;
+        }
+    gusuku::writeExr(dir + "/sky.exr", image);
+    const ImageRGBA read = gusuku::readImage(dir + "/sky.exr", gusuku::ImageEncoding::Linear, 100);
+    ASSERT_EQ(read.width, 52);
+    ASSERT_EQ(read.height, 26);
+    double x_sum = 0.0;
+    for (int i = 0; i < read.width; ++i) {
+        const float x_mean = read.texel(i, 0)[0];
+        EXPECT_GE(x_mean, float(i) * 102.0f / 52.0f - 1e-4f) << i;
+        EXPECT_LT(x_mean, float(i + 1) * 102.0f / 52.0f) << i;
+        x_sum += x_mean;
+    }
+    for (int j = 0; j < read.height; ++j) {
+        EXPECT_GE(read.texel(0, j)[1], float(j) * 51.0f / 26.0f - 1e-4f) << j;
+        EXPECT_LT(read.texel(0, j)[1], float(j + 1) * 51.0f / 26.0f) << j;
+    }
+    // 102 file columns in 52 bins of 1 or 2: the bins' means average to about the file's mean, 50.5.
+    EXPECT_NEAR(x_sum / read.width, 50.5, 0.5);
 }
 
 // 1e39 is no float: an EXR holding it stores infinity (here a half channel, whose range ends at 65504). RGBE's

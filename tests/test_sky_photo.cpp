@@ -2,6 +2,7 @@
 // independent statement of the camera model (ISO 12232 saturation speed, the sRGB curve, 8-bit rounding, a clip),
 // written as PNG or JPEG with its EXIF through OpenImageIO, and read back.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,7 @@
 #include "bake_command.h"
 #include "gpu_test_support.h"
 #include "mini_site.h"
+#include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/assets/sky_photo.h"
@@ -499,6 +501,115 @@ TEST(SkyPhoto, CheckWarnsOfAnOverexposedSky) {
     ASSERT_EQ(check.exit_code, 0) << check.stderr_text;
     EXPECT_NE(check.stdout_text.find("texels clipped in every photo, more than a sun's glare"), std::string::npos)
         << check.stdout_text;
+}
+
+// Rewrites the one EXIF rational num/den (little-endian, as OpenImageIO writes JPEG EXIF) in the file at `path`.
+void patchExifRational(const std::string& path, std::array<uint32_t, 2> from, std::array<uint32_t, 2> to) {
+    std::string bytes = gusuku::readWholeFile(path);
+    const auto little_endian = [](std::array<uint32_t, 2> rational) {
+        std::string text;
+        for (uint32_t value : rational)
+            for (int shift = 0; shift < 32; shift += 8) text += char((value >> shift) & 0xFF);
+        return text;
+    };
+    const std::string pattern = little_endian(from);
+    const size_t found = bytes.find(pattern);
+    ASSERT_NE(found, std::string::npos);
+    ASSERT_EQ(bytes.find(pattern, found + 1), std::string::npos) << "the rational is not unique in the file";
+    bytes.replace(found, pattern.size(), little_endian(to));
+    gusuku::writeBytesAtomically(path, bytes.data(), bytes.size());
+}
+
+// A corrupt EXIF exposure (issue 39 item 6): an FNumber of 2.1e9 gives EV100 71.9, an ExposureTime of 4.7e-10 s
+// EV100 37.0 (log2(N^2 / t) at ISO 100), both beyond site.json's own ev100 range, [-10, 30]. Each passed `check`
+// and cost a whole bake; each is refused by the photo reader, naming the photo, the EXIF fields and their values.
+// Inside the range a photo still reads: f/64 at 1/1000 s and ISO 1 is EV100 28.6.
+TEST(SkyPhoto, ExifExposureOutsideSiteJsonsEv100RangeIsRefused) {
+    ImageRGBA grey;
+    grey.width = 64;
+    grey.height = 32;
+    grey.texels.assign(64 * 32 * 4, 1.0f);
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_exif_range");
+    EXPECT_EQ(gusuku::kSkyPhotoEv100Range.minimum, -10.0);
+    EXPECT_EQ(gusuku::kSkyPhotoEv100Range.maximum, 30.0);
+    const TestCamera huge_f_number{1.0 / 1000.0, 2.1e9, 100.0};
+    writePhoto(dir + "/f_number.jpg", grey, huge_f_number, WriteOptions{true, true, 0.0, 0, 0});
+    const std::string f_message =
+        expectInputError([&] { gusuku::skyPhotoEv100(dir + "/f_number.jpg", std::nullopt); });
+    EXPECT_EQ(f_message.rfind(dir + "/f_number.jpg: EXIF exposure: ExposureTime 0.001 s, FNumber 2.1e+09, "
+                                    "Exif:PhotographicSensitivity 100 give EV100 71.9",
+                              0),
+              0u)
+        << f_message;
+    EXPECT_NE(f_message.find("outside [-10, 30]"), std::string::npos) << f_message;
+    EXPECT_EQ(f_message.find('\n'), std::string::npos);
+
+    // OpenImageIO writes no ExposureTime under about 1e-4 s (its rationals' denominators are small), so 1/1000 s
+    // is written and its rational patched to 1/2127659574 (4.7e-10 s) in the file.
+    writePhoto(dir + "/time.jpg", grey, skyCamera(), WriteOptions{true, true, 0.0, 0, 0});
+    patchExifRational(dir + "/time.jpg", {1, 1000}, {1, 2127659574});
+    const std::string t_message = expectInputError([&] { gusuku::readSkyPhotos({SkyPhotoConfig{dir + "/time.jpg", {}}}); });
+    EXPECT_EQ(t_message.rfind(dir + "/time.jpg: EXIF exposure: ExposureTime 4.7e-10 s, FNumber 8, ", 0), 0u)
+        << t_message;
+    EXPECT_NE(t_message.find("give EV100 37.0, outside [-10, 30]"), std::string::npos) << t_message;
+
+    const TestCamera near_the_edge{1.0 / 1000.0, 64.0, 1.0};  // log2(64^2 x 1000) - log2(1 / 100) = 28.6
+    writePhoto(dir + "/edge.jpg", grey, near_the_edge, WriteOptions{true, true, 0.0, 0, 0});
+    EXPECT_NEAR(gusuku::skyPhotoEv100(dir + "/edge.jpg", std::nullopt), near_the_edge.ev100(), 1e-4);
+    // site.json's ev100 and a given one are held to the same range.
+    EXPECT_EQ(expectInputError([&] { gusuku::skyPhotoEv100(dir + "/edge.jpg", 30.5); }),
+              dir + "/edge.jpg: ev100: 30.5 is outside [-10, 30]");
+}
+
+// `check` refuses the corrupt EXIF (it passed before, and the bake then traced every slot), and so does the bake's
+// setup, before it writes anything into the output folder.
+TEST(SkyPhoto, CheckAndBakeRefuseACorruptExifExposureBeforeTracing) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_exif_check");
+    const std::string site_path = gusuku::testing::writeMiniSite(dir);
+    writePhoto(dir + "/corrupt.jpg", gusuku::readRadianceMap(dir + "/sky_sunny.hdr"), TestCamera{1.0 / 1000.0, 2.1e9, 100.0},
+               WriteOptions{true, true, 0.0, 0, 0});
+    nlohmann::json site = nlohmann::json::parse(std::ifstream(site_path));
+    site["skies"]["sunny"] = {{"path", "corrupt.jpg"}};
+    std::ofstream(site_path, std::ios::trunc) << site.dump(2);
+    const gusuku::testing::CommandResult check = gusuku::testing::runBakeCommand({"check", site_path}, dir);
+    EXPECT_EQ(check.exit_code, 1) << check.stdout_text << check.stderr_text;
+    EXPECT_NE(check.stderr_text.find("corrupt.jpg: EXIF exposure: "), std::string::npos) << check.stderr_text;
+    EXPECT_NE(check.stderr_text.find("FNumber 2.1e+09"), std::string::npos) << check.stderr_text;
+    const gusuku::testing::CommandResult bake =
+        gusuku::testing::runBakeCommand({"bake", site_path, "-o", dir + "/bakeset", "--quiet"}, dir);
+    EXPECT_EQ(bake.exit_code, 1) << bake.stdout_text << bake.stderr_text;
+    EXPECT_NE(bake.stderr_text.find("corrupt.jpg: EXIF exposure: "), std::string::npos) << bake.stderr_text;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bakeset/manifest.json"));
+}
+
+// An exactly 2:1 photo above kMaxImageSide with an odd height (issue 39 item 8): 8194 x 4097 is downsampled by 2
+// to 4098 x 2049, still 2:1 (it was refused as "4097 x 2049 is not the 2:1 of an equirectangular sky").
+TEST(SkyPhoto, ATwoToOnePhotoAboveTheSideLimitStaysTwoToOne) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("sky_photo_odd_2to1");
+    const int width = 8194, height = 4097;
+    std::vector<unsigned char> codes(size_t(width) * size_t(height) * 3, 128);
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    const std::string path = dir + "/sky.png";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(output && output->open(path, spec)) << OIIO::geterror();
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, codes.data()));
+    ASSERT_TRUE(output->close());
+    codes = {};
+    gusuku::SkyPhotoSummary summary;
+    const ImageRGBA sky = gusuku::readSkyPhotos({SkyPhotoConfig{path, 12.0}}, &summary);
+    EXPECT_EQ(sky.width, 4098);
+    EXPECT_EQ(sky.height, 2049);
+    // Code 128 everywhere: srgbDecode(128 / 255) x 1.2 x 2^12 / 179 in every texel.
+    const float expected = float(gusuku::srgbDecode(128.0 / 255.0) * 1.2 * std::exp2(12.0) / 179.0);
+    EXPECT_NEAR(sky.texel(4097, 2048)[0], expected, 1e-3f * expected);
+    // A file that is not 2:1 is named by its own size, not the downsample's.
+    ImageRGBA grey;
+    grey.width = 66;
+    grey.height = 32;
+    grey.texels.assign(66 * 32 * 4, 0.5f);
+    writePhoto(dir + "/wide.png", grey, skyCamera());
+    EXPECT_EQ(expectInputError([&] { gusuku::readSkyPhotos({SkyPhotoConfig{dir + "/wide.png", 12.0}}); }),
+              dir + "/wide.png: size: 66 x 32 is not the 2:1 of an equirectangular sky");
 }
 
 TEST(SkyPhoto, BadPhotosAreRefusedInOneLineNamingFileAndField) {

@@ -127,6 +127,33 @@ std::string requiredExtensionProblem(const std::string& name) {
     return "the file requires the extension " + name + ", which this loader does not support";
 }
 
+const char* jsonTypeName(const nlohmann::json& value) {
+    if (value.is_null()) return "null";
+    if (value.is_boolean()) return "a boolean";
+    if (value.is_number()) return "a number";
+    if (value.is_string()) return "a string";
+    if (value.is_array()) return "an array";
+    return "an object";
+}
+
+// tinygltf reads a material's alphaCutoff or alphaMode of the wrong JSON type as absent (so "0.5" or true became
+// the default 0.5, and alphaMode 5 OPAQUE) without a word: the types are checked on the JSON itself.
+void checkMaterialAlphaTypes(const std::string& path, const nlohmann::json& document) {
+    const auto materials = document.find("materials");
+    if (materials == document.end() || !materials->is_array()) return;
+    for (size_t i = 0; i < materials->size(); ++i) {
+        const nlohmann::json& material = (*materials)[i];
+        if (!material.is_object()) continue;
+        const std::string field = "materials[" + std::to_string(i) + "]";
+        if (const auto cutoff = material.find("alphaCutoff"); cutoff != material.end() && !cutoff->is_number())
+            throw InputError(path, field + ".alphaCutoff",
+                             std::string("is ") + jsonTypeName(*cutoff) + ", not a number in [0, 1]");
+        if (const auto mode = material.find("alphaMode"); mode != material.end() && !mode->is_string())
+            throw InputError(path, field + ".alphaMode",
+                             std::string("is ") + jsonTypeName(*mode) + ", not \"OPAQUE\", \"MASK\" or \"BLEND\"");
+    }
+}
+
 void checkBeforeParsing(const std::string& path, const std::vector<unsigned char>& file_bytes, bool is_glb) {
     const std::optional<std::string> text = gltfJsonText(file_bytes, is_glb);
     if (!text) return;  // tinygltf reports a malformed container
@@ -138,6 +165,7 @@ void checkBeforeParsing(const std::string& path, const std::vector<unsigned char
             if ((*required)[i].is_string())
                 throw InputError(path, "extensionsRequired[" + std::to_string(i) + "]",
                                  requiredExtensionProblem((*required)[i].get<std::string>()));
+    checkMaterialAlphaTypes(path, document);
     const std::filesystem::path base_dir = std::filesystem::path(path).parent_path();
     for (const char* list : {"buffers", "images"}) {
         const auto elements = document.find(list);
@@ -560,14 +588,21 @@ private:
                 data.normals.emplace_back(n);
             check_count(data.normals.size(), normal_field);
         }
-        if (int uv0_accessor = attribute("TEXCOORD_0"); uv0_accessor >= 0) {
-            data.uv0 = readVectors<glm::vec2>(uv0_accessor, field + ".attributes.TEXCOORD_0", true);
-            check_count(data.uv0.size(), field + ".attributes.TEXCOORD_0");
-        }
-        if (int uv1_accessor = attribute("TEXCOORD_1"); uv1_accessor >= 0) {
-            data.uv1 = readVectors<glm::vec2>(uv1_accessor, field + ".attributes.TEXCOORD_1", true);
-            check_count(data.uv1.size(), field + ".attributes.TEXCOORD_1");
-        }
+        // A NaN or infinite texture coordinate is the file's fault: found later, the lightmap texel it makes
+        // was blamed on the bake's output folder.
+        const auto read_uvs = [&](int accessor, const std::string& uv_field) {
+            std::vector<glm::vec2> uvs = readVectors<glm::vec2>(accessor, uv_field, true);
+            for (size_t i = 0; i < uvs.size(); ++i)
+                if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y))
+                    fail(uv_field, "accessor " + std::to_string(accessor) + ", vertex " + std::to_string(i) +
+                                       " is " + (std::isnan(uvs[i].x + uvs[i].y) ? "NaN" : "infinite"));
+            check_count(uvs.size(), uv_field);
+            return uvs;
+        };
+        if (int uv0_accessor = attribute("TEXCOORD_0"); uv0_accessor >= 0)
+            data.uv0 = read_uvs(uv0_accessor, field + ".attributes.TEXCOORD_0");
+        if (int uv1_accessor = attribute("TEXCOORD_1"); uv1_accessor >= 0)
+            data.uv1 = read_uvs(uv1_accessor, field + ".attributes.TEXCOORD_1");
         const std::string index_field = field + ".indices";
         if (primitive.indices >= 0) {
             data.indices = readIndices(primitive.indices, index_field);

@@ -158,16 +158,45 @@ bool readFileRows(const std::string& name, OIIO::ImageInput& input, int y_begin,
     return true;
 }
 
-// Reads subimage 0 of an opened input into linear RGBA, box-averaging `factor` x `factor` blocks (linear values,
-// partial blocks at the right and bottom edges averaged over what is there) band by band, so at most one band of
-// the file's rows is held at its full width.
+// The reduced image's size: the shorter side divided by `factor`, rounded up, and the longer side in the file's
+// proportion to it (rounded, and at most side_limit). Dividing both sides by the factor and rounding each up
+// broke an exactly 2:1 sky photo of 8194 x 4097 into 4097 x 2049; in proportion it becomes 4098 x 2049.
+struct ReducedSize {
+    int width = 0, height = 0;
+};
+ReducedSize reducedSize(int width, int height, int factor, int side_limit) {
+    if (factor <= 1) return {width, height};
+    const bool wide = width >= height;
+    const int long_side = wide ? width : height;
+    const int short_side = wide ? height : width;
+    const int reduced_short = (short_side + factor - 1) / factor;
+    const int64_t proportional_long = (int64_t(long_side) * reduced_short * 2 + short_side) / (int64_t(short_side) * 2);
+    const int reduced_long = int(std::clamp<int64_t>(proportional_long, 1, std::min(side_limit, long_side)));
+    return wide ? ReducedSize{reduced_long, reduced_short} : ReducedSize{reduced_short, reduced_long};
+}
+
+// The reduced texel that file texel `file_index` (of `file_count` along a side) falls in, when `reduced_count`
+// reduced texels share that side evenly: floor(file_index x reduced_count / file_count).
+int reducedIndex(int file_index, int reduced_count, int file_count) {
+    return int(int64_t(file_index) * reduced_count / file_count);
+}
+
+// The first file texel along a side that falls in reduced texel `reduced_index` (file_count past the last):
+// ceil(reduced_index x file_count / reduced_count), the inverse of reducedIndex.
+int firstFileIndex(int reduced_index, int reduced_count, int file_count) {
+    return int((int64_t(reduced_index) * file_count + reduced_count - 1) / reduced_count);
+}
+
+// Reads subimage 0 of an opened input into linear RGBA, box-averaging onto `size` (reducedSize): each reduced
+// texel is the mean of the file texels that fall in it (reducedIndex; `factor` x `factor` blocks when the sides
+// divide by the factor), band by band, so at most one band of the file's rows is held at its full width.
 ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool is_srgb, int factor,
-                        StderrCapture& capture) {
+                        ReducedSize size, StderrCapture& capture) {
     const OIIO::ImageSpec spec = input.spec();
     const int file_channels = std::min(spec.nchannels, 4);  // colour and alpha; further channels are not read
     ImageRGBA image;
-    image.width = (spec.width + factor - 1) / factor;
-    image.height = (spec.height + factor - 1) / factor;
+    image.width = size.width;
+    image.height = size.height;
     // Reserved, not filled: the rows are added band by band as they decode, so a header that declares a large
     // image over a file that ends early fails after touching one band's memory, not the whole image's (a
     // fuzzed 8192^2 EXR took 6 s of page faults zero-filling a gigabyte before its first row failed).
@@ -186,8 +215,8 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
     std::vector<int> counts(size_t(image.width));
     for (int first_out_row = 0; first_out_row < image.height; first_out_row += block_rows_per_band) {
         const int out_rows = std::min(block_rows_per_band, image.height - first_out_row);
-        const int y_begin = first_out_row * factor;
-        const int y_end = std::min(spec.height, (first_out_row + out_rows) * factor);
+        const int y_begin = firstFileIndex(first_out_row, image.height, spec.height);
+        const int y_end = firstFileIndex(first_out_row + out_rows, image.height, spec.height);
         const int band_rows = y_end - y_begin;
         const size_t band_texels = size_t(spec.width) * size_t(band_rows);
         band.width = spec.width;
@@ -213,13 +242,13 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
 
         image.texels.resize(size_t(image.width) * size_t(first_out_row + out_rows) * 4);
         for (int out_row = 0; out_row < out_rows; ++out_row) {
-            const int row_begin = out_row * factor;
-            const int row_end = std::min(band_rows, row_begin + factor);
+            const int row_begin = firstFileIndex(first_out_row + out_row, image.height, spec.height) - y_begin;
+            const int row_end = firstFileIndex(first_out_row + out_row + 1, image.height, spec.height) - y_begin;
             std::fill(sums.begin(), sums.end(), 0.0);
             std::fill(counts.begin(), counts.end(), 0);
             for (int y = row_begin; y < row_end; ++y) {
                 for (int x = 0; x < spec.width; ++x) {
-                    const int out_x = x / factor;
+                    const int out_x = reducedIndex(x, image.width, spec.width);
                     const float* texel = band.texel(x, y);
                     for (int c = 0; c < 4; ++c) sums[size_t(out_x) * 4 + size_t(c)] += texel[c];
                     ++counts[size_t(out_x)];
@@ -241,8 +270,14 @@ ImageRGBA readOpenedImage(const std::string& name, OIIO::ImageInput& input, Imag
     const int factor = longest_side > side_limit ? (longest_side + side_limit - 1) / side_limit : 1;
     const bool is_srgb = encoding == ImageEncoding::Srgb ||
                          (encoding == ImageEncoding::Auto && !isFloatFormat(spec.format));
-    ImageRGBA image = decodeReduced(name, input, is_srgb, factor, capture);
-    capture.restore();  // a codec's warnings on a good image are dropped
+    ImageRGBA image = decodeReduced(name, input, is_srgb, factor,
+                                    reducedSize(spec.width, spec.height, factor, side_limit), capture);
+    // A decoder that works around missing or corrupt data still returns every row but says so through the
+    // input's error: libjpeg's "Premature end of JPEG file" on a truncated JPEG, whose missing rows it fills
+    // with grey (a sky cut to 44 % of its bytes became flat grey without a word). Such an image is refused.
+    if (const std::string damage = oneLine(input.geterror()); !damage.empty())
+        throw InputError(name, "", "damaged image data, refused rather than read in part: " + damage);
+    capture.restore();  // a codec's warnings on stderr for a good image are dropped
     return image;
 }
 

@@ -40,8 +40,8 @@ constexpr NumberRange kScale{1e-6, 1e6};
 constexpr NumberRange kQuaternionComponent{-1.01, 1.01};
 constexpr NumberRange kHeading{-360.0, 360.0};
 constexpr NumberRange kNorthAzimuth{0.0, 360.0, false, true};
-// EV100 of a sky photo: -10 is a moonless night at a long exposure, 30 far above the sun through a dense filter.
-constexpr NumberRange kEv100{-10.0, 30.0};
+// EV100 of a sky photo: the range the EXIF reader holds the photo's own exposure to as well.
+constexpr NumberRange kEv100{kSkyPhotoEv100Range.minimum, kSkyPhotoEv100Range.maximum};
 // A bracket of one view: cameras shoot 3 to 9; beyond 16 it is more likely a folder of different photos.
 constexpr size_t kMaxBracketPhotos = 16;
 // Global horizontal illuminance under the sky: the clearest high-altitude noon stays under about 150 klux.

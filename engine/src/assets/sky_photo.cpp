@@ -99,16 +99,23 @@ EncodedPhoto readEncodedPhoto(const SkyPhotoConfig& config) {
     if (!isSkyPhotoExtension(lowerCaseExtension(config.path)))
         throw InputError(config.path, "", "an 8-bit sky photo must be .jpg, .jpeg or .png");
     checkPhotoFormat(config.path);
+    // The file's own size decides (the reader keeps a 2:1 file 2:1 when it downsamples one above kMaxImageSide).
+    const ImageSize file_size = readImageSize(config.path);
+    if (int64_t(file_size.width) != 2 * int64_t(file_size.height))
+        throw InputError(config.path, "size",
+                         std::to_string(file_size.width) + " x " + std::to_string(file_size.height) +
+                             " is not the 2:1 of an equirectangular sky");
     EncodedPhoto photo;
     photo.path = config.path;
     photo.ev100 = skyPhotoEv100(config.path, config.ev100);
     photo.radiance_scale = skyPhotoRadianceScale(photo.ev100);
     // ImageEncoding::Linear reads 8-bit data as code / 255, undecoded (box-averaged when downsampled).
     const ImageRGBA encoded = readImage(config.path, ImageEncoding::Linear);
-    if (encoded.width != 2 * encoded.height)
+    if (encoded.width != 2 * encoded.height)  // a reader that broke the proportion; never a user's mistake
         throw InputError(config.path, "size",
-                         std::to_string(encoded.width) + " x " + std::to_string(encoded.height) +
-                             " is not the 2:1 of an equirectangular sky");
+                         std::to_string(file_size.width) + " x " + std::to_string(file_size.height) + " read as " +
+                             std::to_string(encoded.width) + " x " + std::to_string(encoded.height) +
+                             ", not 2:1: the reader's downsample broke the sky's proportion");
     photo.width = encoded.width;
     photo.height = encoded.height;
     photo.codes.resize(size_t(encoded.width) * size_t(encoded.height) * 3);

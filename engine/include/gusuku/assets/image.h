@@ -23,7 +23,11 @@ enum class ImageEncoding {
 /// Reading limits. An image whose header declares more than kMaxImageFileTexels texels (16384 x 16384) is refused
 /// before a texel is decoded (a corrupt or hostile header, or a decompression bomb). One larger than max_side
 /// (at most kMaxImageSide) on either side is box-downsampled while it is decoded, by the smallest integer factor
-/// that fits (as boxDownsample), one band of rows at a time: the full-size image is never held.
+/// that fits, one band of rows at a time: the full-size image is never held. The shorter side is divided by the
+/// factor and rounded up, the longer one keeps the file's proportion (so an 8194 x 4097 sky becomes 4098 x 2049,
+/// still 2:1); each reduced texel averages the file texels that fall in it (whole blocks, as boxDownsample, when
+/// the sides divide by the factor). A decoder's report of damaged data it worked around (a truncated JPEG's
+/// "Premature end of JPEG file") is an InputError, as is a truncated PNG (its chunk chain) or HDR.
 constexpr int kMaxImageSide = 8192;
 constexpr int64_t kMaxImageFileTexels = int64_t(1) << 28;
 /// The largest radiance a radiance map may hold, in its own units: far above any sky (the sun's disc is about

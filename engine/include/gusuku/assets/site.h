@@ -118,6 +118,10 @@ inline constexpr SiteValueRange kSiteLongitudeRangeDeg{-180.0, 180.0};
 inline constexpr SiteValueRange kSiteHeightRangeM{-1000.0, 10000.0};
 inline constexpr SiteValueRange kSitePressureRangeMbar{100.0, 1100.0};
 inline constexpr SiteValueRange kSiteTemperatureRangeC{-90.0, 60.0};
+/// A sky photo's EV100, whether site.json gives it (`ev100`) or the photo's EXIF does (gusuku/assets/sky_photo.h):
+/// -10 is a moonless night at a long exposure, 30 far above the sun through a dense filter. Beyond it an EXIF
+/// value is corrupt (an FNumber of 2e9 gave EV100 72 and a sun of 1e20 W/m^2 after a whole bake).
+inline constexpr SiteValueRange kSkyPhotoEv100Range{-10.0, 30.0};
 
 /// Reads and validates site.json. Every field is checked: type, range, unknown names, referenced files exist.
 /// Throws InputError(path, "/json/pointer", problem) on the first problem found.

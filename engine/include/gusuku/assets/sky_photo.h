@@ -34,7 +34,9 @@
 //
 // Errors (InputError naming the file and the field, one line): not PNG or JPEG data, not 8 bits a channel, not
 // 2:1 (equirectangular), bracket members of different sizes, no exposure (neither ev100 nor the EXIF fields
-// ExposureTime, FNumber and Exif:PhotographicSensitivity), an EXIF value that is zero, negative or not finite.
+// ExposureTime, FNumber and Exif:PhotographicSensitivity), an EXIF value that is zero, negative or not finite,
+// an EV100 (from EXIF or given) outside kSkyPhotoEv100Range, site.json's range for ev100 (a corrupt EXIF: an
+// FNumber of 2.1e9 is EV100 72), a damaged file (a truncated JPEG: gusuku/assets/image.h).
 // Photos larger than kMaxImageSide on a side are box-downsampled in their encoded values while read (as
 // readImage does): near a clip edge such a texel mixes clipped and unclipped texels (a known limit).
 
@@ -56,7 +58,8 @@ bool isSkyPhotoExtension(const std::string& lower_case_extension);
 
 /// The photo's exposure: `ev100` when given, else from its EXIF ExposureTime, FNumber and ISO speed
 /// (Exif:PhotographicSensitivity, or the older Exif:ISOSpeedRatings). InputError(path, field, ...) when absent
-/// or invalid.
+/// or invalid, or when the EV100 is outside kSkyPhotoEv100Range (field "EXIF exposure", naming the EXIF fields
+/// and their values; "ev100" for a given one).
 double skyPhotoEv100(const std::string& path, const std::optional<double>& ev100);
 
 /// Bake units (Radiance W sr^-1 m^-2) of a linear value 1 in a photo taken at ev100: 1.2 x 2^EV100 / 179.
