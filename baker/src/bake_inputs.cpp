@@ -47,22 +47,6 @@ std::string percentDecoded(const std::string& uri) {
     return text;
 }
 
-// Resolved with symbolic links followed where the path exists, so two spellings of one file compare equal.
-fs::path resolved(const std::string& path) {
-    std::error_code error;
-    const fs::path canonical = fs::weakly_canonical(fs::absolute(path), error);
-    return error ? fs::absolute(path).lexically_normal() : canonical;
-}
-
-bool isSameOrInside(const fs::path& file, const fs::path& folder) {
-    auto file_part = file.begin();
-    for (auto folder_part = folder.begin(); folder_part != folder.end(); ++folder_part, ++file_part) {
-        if (folder_part->empty() && std::next(folder_part) == folder.end()) break;  // a trailing "/"
-        if (file_part == file.end() || *file_part != *folder_part) return false;
-    }
-    return true;
-}
-
 }  // namespace
 
 std::vector<std::string> gltfExternalFiles(const std::string& gltf_path) {
@@ -104,19 +88,6 @@ std::vector<std::string> bakeInputFiles(const SiteConfig& site) {
     for (const std::string& file : files)
         if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(file);
     return unique;
-}
-
-void refuseOutputHoldingInputs(const std::string& output_dir, const std::vector<std::string>& inputs) {
-    const fs::path folder = resolved(output_dir);
-    for (const std::string& input : inputs) {
-        const fs::path file = resolved(input);
-        if (!isSameOrInside(file, folder)) continue;
-        throw InputError(output_dir, "-o",
-                         file == folder ? "is an input of the bake; choose a folder for the bake set"
-                                        : "holds " + input +
-                                              ", an input of the bake, which baking could overwrite; choose a "
-                                              "folder that holds no input");
-    }
 }
 
 }  // namespace gusuku::bake

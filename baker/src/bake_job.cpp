@@ -26,6 +26,7 @@
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/dispatch_budget.h"
 #include "gusuku_bake/irradiance_tracer.h"
+#include "gusuku_bake/output_guard.h"
 #include "gusuku_bake/slot_lighting.h"
 
 namespace gusuku::bake {
@@ -348,7 +349,9 @@ void requireSiteSlot(const SiteConfig& site, const std::string& slot) {
         if (candidate.name == slot) return;
         names += (names.empty() ? "" : ", ") + candidate.name;
     }
-    throw InputError(site.file, "/bake/slots", "has no slot \"" + slot + "\" (--slot); its slots: " + names);
+    // A long value is cut as every reader cuts one (quotedForMessage), so a 100 KB --slot never floods the line.
+    const std::string shown_slot = slot.size() <= 80 ? "\"" + slot + "\"" : quotedForMessage(slot);
+    throw InputError(site.file, "/bake/slots", "has no slot " + shown_slot + " (--slot); its slots: " + names);
 }
 
 BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOptions& options) {
@@ -357,9 +360,15 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     const uint32_t samples = uint32_t(options.samples_override > 0 ? options.samples_override
                                                                    : site.bake.samples_per_texel);
     report.samples_per_point = samples;
-    // Before anything is created or written: the output folder must not be, or hold, anything the bake reads.
+    // Before anything is created or written: the output folder must not be, or hold, anything the bake reads,
+    // nor be, hold or lie inside a bake set or pack other than this site's own earlier bake set.
     const std::vector<std::string> input_files = bakeInputFiles(site);
-    refuseOutputHoldingInputs(options.output_dir, input_files);
+    OutputRequest output_request;
+    output_request.output = options.output_dir;
+    output_request.kind = OutputKind::kBakeSet;
+    output_request.inputs = input_files;
+    output_request.site_json = site.file;
+    refuseUnsafeOutput(output_request);
     const std::vector<const BakeSlot*> traced_slots = slotsToTrace(site, options.slot);
     const uint64_t trace_hash = traceInputHash(site, input_files, samples, options);
     const uint64_t input_hash = outputInputHash(trace_hash, options);

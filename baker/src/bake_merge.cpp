@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <map>
 
-#include "bake_inputs.h"
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/content_hash.h"
+#include "gusuku_bake/output_guard.h"
 
 namespace gusuku::bake {
 
@@ -216,7 +216,15 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
     for (const PartialSet& set : sets)
         if (sameFolder(set.folder, output_dir))
             throw InputError(output_dir, "-o", "is the partial set " + set.folder + "; merge into another folder");
-    refuseOutputHoldingInputs(output_dir, inputs);
+    OutputRequest output_request;
+    output_request.output = output_dir;
+    output_request.command = "merge";
+    output_request.kind = OutputKind::kBakeSet;
+    output_request.inputs = inputs;
+    for (const PartialSet& set : sets) output_request.read_sets.push_back(set.folder);
+    for (size_t i = 0; i < shared.inputs.size(); ++i)
+        if (shared.inputs[i].role == "site") output_request.site_json = inputs[i];
+    refuseUnsafeOutput(output_request);
 
     // ---- Write, as a bake does: the old manifest first out, every file renamed into place, the manifest last.
     const BakeFolderLock lock(output_dir);

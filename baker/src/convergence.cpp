@@ -67,7 +67,7 @@ const BakeSlot& studiedSlot(const SiteConfig& site, const ConvergenceOptions& op
     for (const BakeSlot& candidate : site.bake.slots)
         if (candidate.name == options.slot_name) slot = &candidate;
     if (slot == nullptr || (!options.slot_name.empty() && slot->name != options.slot_name))
-        throw std::invalid_argument("no slot named '" + options.slot_name + "' in " + site.file);
+        throw std::invalid_argument("no slot named " + quotedForMessage(options.slot_name) + " in " + site.file);
     return *slot;
 }
 

@@ -13,9 +13,11 @@
 
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/bakeset_manifest_json.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku_bake/lightmap_export.h"
+#include "gusuku_bake/output_guard.h"
 
 namespace gusuku::bake {
 
@@ -26,16 +28,31 @@ namespace fs = std::filesystem;
 constexpr int kGlLinear = 9729;        // glTF sampler filters: no mipmaps, which would blend across charts
 constexpr int kGlClampToEdge = 33071;  // the charts' padding is dilated, so the edge texel is the right one
 
-void checkOutputPath(const std::string& bakeset_folder, const std::string& output_path) {
+void checkOutputPath(const std::string& output_path) {
     std::string extension = fs::path(output_path).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (extension != ".glb") throw InputError(output_path, "", "the export is a glTF binary: name it .glb");
     std::error_code error;
     if (fs::is_directory(output_path, error)) throw InputError(output_path, "", "is a directory, not a .glb file");
-    const fs::path output_folder = fs::weakly_canonical(fs::absolute(output_path).parent_path(), error);
-    if (!error && fs::equivalent(output_folder, bakeset_folder, error))
-        throw InputError(output_path, "", "lies inside the bake set " + bakeset_folder +
-                                              "; write the export elsewhere (the set's own files stay as baked)");
+}
+
+// The export may not replace an input of the set's bake (its building model, site.json, a sky photo) nor lie
+// inside any bake set or pack (gusuku_bake/output_guard.h): the manifest's inputs are read for that first.
+void guardOutput(const std::string& bakeset_folder, const std::string& output_path) {
+    OutputRequest request;
+    request.output = output_path;
+    request.field = "";
+    request.command = "export";
+    request.kind = OutputKind::kFile;
+    request.read_sets = {bakeset_folder};
+    const std::string manifest_path = bakeset_folder + "/manifest.json";
+    std::error_code error;
+    if (fs::exists(manifest_path, error)) {
+        const BakeSetManifest manifest = readBakeSetManifest(manifest_path);
+        for (const BakeSetInput& input : manifest.inputs)
+            request.inputs.push_back(resolveBakeSetInputPath(bakeset_folder, manifest, input.path));
+    }
+    refuseUnsafeOutput(request);
 }
 
 size_t findSlot(const std::string& bakeset_folder, const BakeSetManifest& manifest, const std::string& name) {
@@ -44,7 +61,8 @@ size_t findSlot(const std::string& bakeset_folder, const BakeSetManifest& manife
         if (manifest.slots[s].name == name) return s;
         names += (s ? ", " : "") + manifest.slots[s].name;
     }
-    throw InputError(bakeset_folder + "/manifest.json", "/slots", "no slot '" + name + "' (its slots: " + names + ")");
+    throw InputError(bakeset_folder + "/manifest.json", "/slots",
+                     "no slot " + quotedForMessage(name) + " (its slots: " + names + ")");
 }
 
 // Images stay encoded in their bufferViews: the export copies them, it never needs their texels.
@@ -203,7 +221,8 @@ double coarseValidTexelFraction(const BakeSetImage& lightmap, double intensity) 
 
 LightmapExportReport exportLightmappedGlb(const std::string& bakeset_folder, const std::string& slot_name,
                                           const std::string& output_path) {
-    checkOutputPath(bakeset_folder, output_path);
+    checkOutputPath(output_path);
+    guardOutput(bakeset_folder, output_path);
     const BakeSetData bakeset = loadBakeSet(bakeset_folder);
     const size_t slot_index = findSlot(bakeset_folder, bakeset.manifest, slot_name);
     const BakeSetSlot& slot = bakeset.manifest.slots[slot_index];

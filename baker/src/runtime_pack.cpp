@@ -6,7 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -18,6 +25,7 @@
 #include "gusuku/maths/texture_coverage.h"
 #include "gusuku_bake/astc_lightmap.h"
 #include "gusuku_bake/astc_texture.h"
+#include "gusuku_bake/output_guard.h"
 
 namespace gusuku::bake {
 namespace {
@@ -88,11 +96,28 @@ std::string packManifestText(BakeSetManifest manifest) {
     return bakeSetManifestJson(manifest);
 }
 
+// Each file of the pack, written into the staging folder but named in messages by its place in the pack the
+// user asked for (the temporary folder is an implementation detail).
 class PackFiles {
 public:
-    explicit PackFiles(std::string folder) : folder_(std::move(folder)) {}
+    PackFiles(std::string staging_folder, std::string pack_folder)
+        : staging_folder_(std::move(staging_folder)), pack_folder_(std::move(pack_folder)) {
+        // Tests stand in for a full disk or a failing device here: the pack fails after this many files.
+        if (const char* limit = std::getenv("GUSUKU_TEST_PACK_FAIL_AFTER_FILES")) failing_after_files_ = std::atoll(limit);
+    }
     uint64_t write(const std::string& name, const std::vector<uint8_t>& bytes) {
-        writeBytesAtomically(folder_ + "/" + name, bytes.data(), bytes.size());
+        const std::string staged = staging_folder_ + "/" + name;
+        if (failing_after_files_ >= 0 && files_ >= failing_after_files_)
+            throw std::runtime_error(pack_folder_ + "/" + name + ": write failed: injected failure after " +
+                                     std::to_string(files_) + " files (GUSUKU_TEST_PACK_FAIL_AFTER_FILES)");
+        try {
+            writeBytesAtomically(staged, bytes.data(), bytes.size());
+        } catch (const std::exception& error) {
+            std::string message = error.what();
+            if (message.rfind(staged, 0) == 0) message = pack_folder_ + "/" + name + message.substr(staged.size());
+            throw std::runtime_error(message);
+        }
+        ++files_;
         bytes_ += bytes.size();
         return bytes.size();
     }
@@ -100,9 +125,93 @@ public:
     uint64_t bytes() const { return bytes_; }
 
 private:
-    std::string folder_;
+    std::string staging_folder_;
+    std::string pack_folder_;
     uint64_t bytes_ = 0;
+    long long files_ = 0;
+    long long failing_after_files_ = -1;
 };
+
+// Where a pack is written before it is renamed into place: a fresh sibling of the pack's folder (same file
+// system, so the rename is atomic), removed again unless committed. The old pack, manifest and all, stays whole
+// until the new one is complete.
+class PackStaging {
+public:
+    explicit PackStaging(const std::string& pack_folder) : shown_(pack_folder) {
+        std::error_code error;
+        fs::path target = fs::weakly_canonical(fs::absolute(pack_folder), error);
+        if (error) target = fs::absolute(pack_folder).lexically_normal();
+        if (target.has_relative_path() && target.filename().empty()) target = target.parent_path();
+        target_ = target;
+        fs::create_directories(target_.parent_path(), error);
+        if (error) throw InputError(shown_, "-o", "cannot create the folder: " + error.message());
+        static std::atomic<unsigned> counter{0};
+        const std::string tag = ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+        staging_ = target_.parent_path() / ("." + target_.filename().string() + tag);
+        old_ = target_.parent_path() / ("." + target_.filename().string() + ".old" + tag);
+        if (!fs::create_directory(staging_, error) || error)
+            throw InputError(shown_, "-o", "cannot create the folder: " + (error ? error.message() : "it exists"));
+    }
+    ~PackStaging() {
+        std::error_code ignored;
+        if (!committed_) fs::remove_all(staging_, ignored);
+    }
+    PackStaging(const PackStaging&) = delete;
+    PackStaging& operator=(const PackStaging&) = delete;
+
+    std::string folder() const { return staging_.string(); }
+
+    /// Puts the staged pack in the pack's place: a new name is renamed onto; an existing folder (a previous pack,
+    /// an empty folder) is swapped with it in one step where the system can (Linux's RENAME_EXCHANGE), else moved
+    /// aside first and put back if the second rename fails; then the old pack is removed.
+    void commit() {
+        std::error_code error;
+        if (!fs::exists(target_, error)) {
+            fs::rename(staging_, target_, error);
+            if (error) throw std::runtime_error(shown_ + ": cannot rename the written pack into place: " + error.message());
+            committed_ = true;
+            return;
+        }
+#ifdef RENAME_EXCHANGE
+        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
+            committed_ = true;
+            fs::remove_all(staging_, error);  // now the old pack
+            return;
+        }
+#endif
+        fs::rename(target_, old_, error);
+        if (error) throw std::runtime_error(shown_ + ": cannot move the old pack aside: " + error.message());
+        fs::rename(staging_, target_, error);
+        if (error) {
+            std::error_code ignored;
+            fs::rename(old_, target_, ignored);
+            throw std::runtime_error(shown_ + ": cannot rename the written pack into place: " + error.message());
+        }
+        committed_ = true;
+        fs::remove_all(old_, error);
+    }
+
+private:
+    std::string shown_;
+    fs::path target_, staging_, old_;
+    bool committed_ = false;
+};
+
+// The pack may not be, hold or lie inside an input of the set's bake or another bake set or pack
+// (gusuku_bake/output_guard.h); the set's own BAKESET/pack and a previous pack are its to replace.
+void guardPackFolder(const std::string& bake_set_folder, const BakeSetManifest& manifest,
+                     const std::string& pack_folder, bool named_by_user) {
+    OutputRequest request;
+    request.output = pack_folder;
+    request.field = named_by_user ? "-o" : "";
+    request.command = "pack";
+    request.kind = OutputKind::kRuntimePack;
+    for (const BakeSetInput& input : manifest.inputs)
+        request.inputs.push_back(resolveBakeSetInputPath(bake_set_folder, manifest, input.path));
+    request.read_sets = {bake_set_folder};
+    request.packed_set = bake_set_folder;
+    refuseUnsafeOutput(request);
+}
 
 }  // namespace
 
@@ -111,9 +220,9 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
     const BakeSetData bake_set = loadBakeSet(bake_set_folder);
     RuntimePackReport report;
     report.folder = pack_folder.empty() ? bake_set_folder + "/" + kRuntimePackFolder : pack_folder;
-    fs::create_directories(report.folder);
-    fs::remove(report.folder + "/manifest.json");
-    PackFiles files(report.folder);
+    guardPackFolder(bake_set_folder, bake_set.manifest, report.folder, !pack_folder.empty());
+    PackStaging staging(report.folder);
+    PackFiles files(staging.folder(), report.folder);
 
     report.lightmap_scale = lightmapScaleOf(bake_set);
     PackGeometry geometry{report.lightmap_scale, bake_set.building, bake_set.occluder};
@@ -124,16 +233,12 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
         if (textures != PackTextures::kAstc)
             report.texture_bytes += files.writeKtx2(name + ".ktx2", {Ktx2Format::kR8g8b8a8Srgb, uint32_t(texture.width),
                                                                      uint32_t(texture.height), texture.rgba8});
-        else
-            fs::remove(report.folder + "/" + name + ".ktx2");
         if (textures != PackTextures::kRgba8) {
             const auto encode_start = std::chrono::steady_clock::now();
             const Ktx2Image astc = encodeAstcTexture(texture, coverage_alpha[index]);
             report.astc_encode_seconds +=
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
             report.astc_texture_bytes += files.writeKtx2(name + "_astc.ktx2", astc);
-        } else {
-            fs::remove(report.folder + "/" + name + "_astc.ktx2");
         }
         texture.rgba8.clear();  // pack.bin holds the sides; the texels are the KTX2's
     }
@@ -160,6 +265,7 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
     }
     const std::string manifest_text = packManifestText(manifest);
     files.write("manifest.json", std::vector<uint8_t>(manifest_text.begin(), manifest_text.end()));
+    staging.commit();
     report.bytes = files.bytes();
     return report;
 }

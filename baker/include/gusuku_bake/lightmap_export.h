@@ -51,8 +51,9 @@ struct LightmapExportReport {
 /// its slot `slot_name`. Everything is checked before anything is written, and the file is written atomically
 /// (temporary name, then rename), so a refusal leaves no file. Throws InputError on one line naming the input:
 /// a missing or bad bake set (loadBakeSet's errors), "FOLDER/manifest.json: /slots: no slot 'X' (its slots: ...)",
-/// a building.glb primitive without TEXCOORD_1, an output that is not a .glb, lies inside the bake set or is a
-/// directory, and an output that cannot be written ("OUT: cannot write: ...").
+/// a building.glb primitive without TEXCOORD_1, an output that is not a .glb or is a directory, one the output
+/// guard refuses (gusuku_bake/output_guard.h: an input the manifest lists, or a file inside any bake set or
+/// pack), and an output that cannot be written ("OUT: cannot write: ...").
 LightmapExportReport exportLightmappedGlb(const std::string& bakeset_folder, const std::string& slot_name,
                                           const std::string& output_path);
 

@@ -31,12 +31,15 @@ struct RuntimePackReport {
 
 /// Loads the bake set in `bake_set_folder` (loadBakeSet: complete and checked, or InputError) and writes its pack
 /// into pack_folder (empty: bake_set_folder/pack; `gusuku-bake pack BAKESET -o DIR` writes it elsewhere, as for
-/// a bake set one may not write into): manifest.json is removed first and written last (the set's with its statistics zeroed, so the same inputs
-/// give the same pack byte for byte), every other file is
-/// written atomically, so a pack with a manifest is always complete. A partial set (loadBakeSet refuses it) has no
-/// pack. Throws InputError naming the bake set's file and field, or std::runtime_error on a write failure.
-/// `textures` chooses the texture files; the other kind's files, left in pack_folder by an earlier pack, are
-/// removed.
+/// a bake set one may not write into). Before anything is written the output guard (gusuku_bake/output_guard.h)
+/// refuses a folder that is, holds or lies inside an input of the set's bake, a bake set (the packed one
+/// included) or another pack, or an existing folder that holds something else than a pack; the set's own
+/// BAKESET/pack and a previous pack are replaced. The pack is written whole into a temporary sibling folder
+/// (the manifest last: the set's with its statistics zeroed, so the same inputs give the same pack byte for
+/// byte) and renamed into place, so any failure, a full disk included, leaves the old pack as it was, manifest
+/// and all. A partial set (loadBakeSet refuses it) has no pack. Throws InputError naming the bake set's file
+/// and field or the refused folder, or std::runtime_error on a write failure naming the pack's file.
+/// `textures` chooses the texture files; the folder holds no other kind's files afterwards.
 RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "",
                                    PackTextures textures = PackTextures::kBoth);
 
