@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -174,25 +175,73 @@ TEST(BakePreflight, BuildingTooLargeOrTooDenseIsRefusedBeforeItsChartsAreMade) {
 TEST(BakePreflight, BuffersOverTheDeviceLimitAreRefusedNamingTheField) {
     const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-limits");
     gusuku::testing::MiniSiteOptions options;
-    options.texels_per_metre = 40.0;  // about 38k texels: 1.2 MB of query points
+    options.texels_per_metre = 40.0;  // about 38k texels: 1.8 MB of query points
     const std::string site = gusuku::testing::writeMiniSite(dir, options);
-    // The mini site's sunny sky (128 x 64) needs 128 KiB of radiance; allow 512 KiB per buffer.
-    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "524288", 1);
+    // The mini site's sunny sky (128 x 64) needs 128 KiB of radiance; allow 1 MiB per buffer: more than the
+    // texels' least estimate before charting (half of them), less than their query points.
+    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "1048576", 1);
     const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
     const BakeRun check = runBake(dir, {"check", site});
-    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "65536", 1);  // now the sky is over it too, and named first
-    const BakeRun sky_bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    // 64 KiB: the sky is over it, and named, at the mini site's own 4 texels/m (18 KiB of query points).
+    const std::string sky_dir = dir + "/sky";
+    fs::create_directories(sky_dir);
+    const std::string sky_site = gusuku::testing::writeMiniSite(sky_dir);
+    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", "65536", 1);
+    const BakeRun sky_bake = runBake(sky_dir, {"bake", sky_site, "-o", sky_dir + "/out", "--quiet"});
     unsetenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES");
 
     const std::string texels = "site.json: /bake/texels_per_metre: building query points (";
     expectRefusedBeforeWriting(bake, dir + "/out", texels);
-    EXPECT_TRUE(contains(bake.err, "over the device's maxStorageBufferRange of 0.5 MiB")) << bake.err;
+    EXPECT_TRUE(contains(bake.err, "over the device's maxStorageBufferRange of 1.0 MiB")) << bake.err;
     EXPECT_EQ(check.exit_code, 1);
     EXPECT_TRUE(contains(check.err, texels)) << check.err;
-    expectRefusedBeforeWriting(sky_bake, dir + "/out", "site.json: /skies/sunny/path: sky radiance (128 x 64)");
+    expectRefusedBeforeWriting(sky_bake, sky_dir + "/out", "site.json: /skies/sunny/path: sky radiance (128 x 64)");
 
     const BakeRun fits = runBake(dir, {"check", site});  // the device's own limit: everything fits
     EXPECT_EQ(fits.exit_code, 0) << fits.err;
+}
+
+// A texel density whose lightmap's query points would pass the device's buffer limit for certain is refused before
+// the charts are made (issue 39 item 10): `check` of the sample house at 1000 texels/m charted and rasterised 12.8
+// million texels for 246 s and 1.27 GB before the same refusal. The mini house at 1000 texels/m asks for about
+// 2.4e7 texels (its 24 m^2): at least half of the 4096^2 lightmap the density is lowered to, 8.4e6 texels, 384 MiB
+// of query points over a limit of 128 MiB (set here, so a GPU with a larger one refuses the same).
+TEST(BakePreflight, TexelDensityOverTheDeviceLimitIsRefusedBeforeCharting) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-dense-device");
+    gusuku::testing::MiniSiteOptions options;
+    options.texels_per_metre = 1000.0;
+    const std::string site = gusuku::testing::writeMiniSite(dir, options);
+    setenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES", std::to_string(128 << 20).c_str(), 1);
+    // Before charting it takes a moment; charting first took minutes: 20 s tells them apart on a loaded machine.
+    const BakeRun check = runBake(dir, {"check", site}, 20.0);
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"}, 20.0);
+    unsetenv("GUSUKU_MAX_STORAGE_BUFFER_BYTES");
+    ASSERT_NE(check.exit_code, gusuku::testing::kTimedOut) << "check ran past 20 s";
+    ASSERT_NE(bake.exit_code, gusuku::testing::kTimedOut) << "bake ran past 20 s";
+    const std::string message = "site.json: /bake/texels_per_metre: 1000 texels/m on the building's ";
+    EXPECT_EQ(check.exit_code, 1) << check.err;
+    EXPECT_TRUE(contains(check.err, message)) << check.err;
+    EXPECT_TRUE(contains(check.err, "over the device's maxStorageBufferRange of 128 MiB (refused before charting)"))
+        << check.err;
+    EXPECT_FALSE(contains(check.out, "lightmap:")) << "no lightmap was made: " << check.out;
+    expectRefusedBeforeWriting(bake, dir + "/out", message);
+}
+
+// A NaN texture coordinate in the building's glb is the glb's fault, named by its accessor: the bake blamed its
+// output folder (issue 39 item 10).
+TEST(BakePreflight, NaNTexcoordInTheBuildingIsBlamedOnTheGlb) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-nan-uv");
+    const std::string site = gusuku::testing::writeMiniSite(dir);
+    gusuku::TriangleMesh building = gusuku::loadGltf(dir + "/building.glb", {});
+    building.uv0[1].x = std::numeric_limits<float>::quiet_NaN();
+    gusuku::writeGlb(dir + "/building.glb", building, glm::dmat4(1.0));
+    const BakeRun bake = runBake(dir, {"bake", site, "-o", dir + "/out", "--quiet"});
+    expectRefusedBeforeWriting(bake, dir + "/out", dir + "/building.glb: meshes[0].primitives[0].attributes.TEXCOORD_0: accessor ");
+    EXPECT_TRUE(contains(bake.err, "vertex 1 is NaN")) << bake.err;
+    const BakeRun check = runBake(dir, {"check", site});
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_TRUE(contains(check.err, dir + "/building.glb: meshes[0].primitives[0].attributes.TEXCOORD_0: "))
+        << check.err;
 }
 
 TEST(BakePreflight, CheckReportsSunsBelowTheHorizon) {

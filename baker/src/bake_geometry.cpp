@@ -8,6 +8,7 @@
 
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/maths/input_error.h"
+#include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {
 
@@ -22,15 +23,42 @@ constexpr double kMaxBuildingExtentM = 10000.0;
 // past 16 times the largest lightmap (a fourfold density cut) the request is a mistake, refused before that work.
 constexpr double kMaxRequestedLightmapTexels = 16.0 * double(kMaxLightmapResolution) * kMaxLightmapResolution;
 
+// The least share of the lightmap's texels a bake covers: charts are packed at kLightmapPackingOverhead = 2 (half
+// the square), glTF layouts fill as much or more; the sample house at 1000 texels/m covered 76 % of 4096^2.
+constexpr double kLeastCoveredFraction = 0.5;
+
 std::string formatNumber(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.4g", value);
     return text;
 }
 
+// The fewest lightmap texels the bake will trace for `building` at texels_per_metre (requested_texels = its area
+// x the density squared): generated charts cover about the requested count, or at least kLeastCoveredFraction of
+// the largest lightmap the density is lowered to fit; the glTF's own lightmap UVs (TEXCOORD_1, kept when they
+// pass the check) cover their share of the unit square at the resolution chosen for them.
+double leastLightmapTexels(const TriangleMesh& building, double texels_per_metre, double requested_texels) {
+    const double largest_lightmap_texels = double(kMaxLightmapResolution) * kMaxLightmapResolution;
+    double least = kLeastCoveredFraction * std::min(requested_texels, largest_lightmap_texels);
+    if (building.has_uv1 && building.uv1.size() == building.positions.size()) {
+        double uv_area = 0.0;
+        for (size_t i = 0; i + 2 < building.indices.size(); i += 3) {
+            const glm::dvec2 a = building.uv1[building.indices[i]];
+            const glm::dvec2 b = building.uv1[building.indices[i + 1]];
+            const glm::dvec2 c = building.uv1[building.indices[i + 2]];
+            uv_area += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+        }
+        const double resolution = chooseLightmapResolution(building, texels_per_metre);
+        least = std::min(least, std::min(uv_area, 1.0) * resolution * resolution);
+    }
+    return least;
+}
+
 // Refuses, before any chart is cut, a building whose size or requested texel count no bake can hold, naming the
-// site.json field to change.
-void requireBakeableBuilding(const SiteConfig& site, const TriangleMesh& building) {
+// site.json field to change. storage_buffer_limit_bytes (0: none) is the device's: the building's lightmap texels
+// are traced from one storage buffer of query points.
+void requireBakeableBuilding(const SiteConfig& site, const TriangleMesh& building,
+                             uint64_t storage_buffer_limit_bytes) {
     const Bounds3 bounds = meshBounds(building);
     const glm::dvec3 extent = glm::dvec3(bounds.max) - glm::dvec3(bounds.min);
     const double largest_extent = std::max({extent.x, extent.y, extent.z});
@@ -50,6 +78,24 @@ void requireBakeableBuilding(const SiteConfig& site, const TriangleMesh& buildin
                              " (16 x " + std::to_string(kMaxLightmapResolution) + "^2): at most " +
                              formatNumber(std::sqrt(kMaxRequestedLightmapTexels / area_m2)) +
                              " texels/m for this building");
+    if (storage_buffer_limit_bytes == 0) return;
+    // Query points for the texels the lightmap will hold at least, past the device's buffer limit: refused here, in
+    // a moment, where the bake's own check after charting and rasterising (deviceLimitProblems) took minutes and
+    // a gigabyte at 1000 texels/m to say the same.
+    const double least_texels = leastLightmapTexels(building, texels_per_metre, requested_texels);
+    const double least_bytes = least_texels * double(sizeof(QueryPointGpu));
+    if (least_bytes > double(storage_buffer_limit_bytes)) {
+        const double device_texels = double(storage_buffer_limit_bytes) / double(sizeof(QueryPointGpu));
+        throw InputError(site.file, "/bake/texels_per_metre",
+                         formatNumber(texels_per_metre) + " texels/m on the building's " + formatNumber(area_m2) +
+                             " m^2 of surface make at least " + formatNumber(least_texels) +
+                             " lightmap texels, whose query points need at least " +
+                             formatNumber(least_bytes / double(1 << 20)) +
+                             " MiB in one storage buffer, over the device's maxStorageBufferRange of " +
+                             formatNumber(double(storage_buffer_limit_bytes) / double(1 << 20)) +
+                             " MiB (refused before charting); lower bake.texels_per_metre to about " +
+                             formatNumber(std::sqrt(device_texels / area_m2)) + " or less");
+    }
 }
 
 // Lightmap UVs: the glTF's own when they pass the check at the chosen resolution, else our charts.
@@ -97,13 +143,13 @@ TriangleMesh loadSiteMeshOrStandIn(const SiteConfig& site, const Bounds3& buildi
 }
 
 BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size,
-                                 int building_texture_size) {
+                                 int building_texture_size, uint64_t storage_buffer_limit_bytes) {
     BakeGeometry geometry;
     GltfLoadOptions building_options;
     building_options.enu_from_model = site.building.enuFromModel(site.site.reference);
     building_options.max_texture_size = building_texture_size;
     const TriangleMesh building = loadGltf(site.building.path, building_options, &geometry.warnings);
-    requireBakeableBuilding(site, building);
+    requireBakeableBuilding(site, building, storage_buffer_limit_bytes);
     chooseLightmapUvs(geometry, building, site.bake.texels_per_metre);
     geometry.texels = rasterizeLightmapTexels(geometry.building, geometry.lightmap_resolution);
     const std::vector<uint32_t> triangle_chart = lightmapUvCharts(geometry.building);

@@ -2,6 +2,7 @@
 // Everything geometric a bake needs, loaded once: the building (with lightmap UVs, its own or generated), its
 // lightmap texels, the site mesh (or a flat stand-in), the combined trace scene and the ground grid.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,12 @@ struct BakeGeometry {
 /// Loads and prepares. lowest_sun_elevation_deg sizes the ground grid (negative: overcast only). The building's
 /// textures are decoded to fit building_texture_size (what building.glb keeps for the runtime; the tracers
 /// downsample them again to their own max_texture_size when they upload the scene), the site mesh's to
-/// max_texture_size. Bad input throws InputError naming the file and field.
+/// max_texture_size. Bad input throws InputError naming the file and field. With storage_buffer_limit_bytes (the
+/// device's, storageBufferLimitBytes; 0: not checked here), a texel density whose lightmap's query points would
+/// pass it for certain is refused before the charts are made (bake_preflight's deviceLimitProblems checks the
+/// exact sizes after).
 BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_elevation_deg, int max_texture_size,
-                                 int building_texture_size);
+                                 int building_texture_size, uint64_t storage_buffer_limit_bytes = 0);
 
 /// The site's SfM mesh placed as site.json says, or, when it names none, the bake's flat grey stand-in ground:
 /// a square 4 x the building's largest extent (at least 10 m) from the origin each way, with a warning saying so.

@@ -273,14 +273,14 @@ BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& si
                                     const PreparedSky& sunny, const std::optional<PreparedSky>& overcast,
                                     const BakeOptions& options) {
     // The lowest baked sun sizes the ground grid.
+    const uint64_t storage_buffer_limit = storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange);
     BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size,
-                                                options.building_texture_size);
+                                                options.building_texture_size, storage_buffer_limit);
     refuseBuildingWithoutTexels(site, geometry);
     std::vector<std::pair<std::string, const SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
     if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
     const std::vector<InputError> too_large = deviceLimitProblems(
-        site, bakeDeviceBuffers(site, geometry, skies, options.max_texture_size),
-        storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange));
+        site, bakeDeviceBuffers(site, geometry, skies, options.max_texture_size), storage_buffer_limit);
     if (!too_large.empty()) throw too_large.front();
     const std::string no_ground = emptyGroundReason(site, geometry);
     if (!no_ground.empty()) geometry.warnings.push_back(no_ground);

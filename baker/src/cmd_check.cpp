@@ -149,10 +149,20 @@ int checkSite(const std::string& site_path) {
     // What the bake itself would refuse or warn about before tracing, by the bake's own preflight code.
     const std::vector<bake::SlotSun> suns = bake::slotSunPositions(config);
     for (const std::string& message : bake::sunsBelowHorizon(suns)) warnings.push_back(message);
+    // The device's buffer limit first: the geometry refuses a texel density past it before charting.
+    uint64_t device_limit = uint64_t(1) << 27;  // Vulkan's guaranteed minimum of maxStorageBufferRange
+    std::string device = "no Vulkan device; Vulkan's guaranteed minimum";
+    try {
+        VulkanContext context(vulkanOptionsFromEnvironment());
+        device_limit = context.properties().limits.maxStorageBufferRange;
+        device = context.deviceDescription();
+    } catch (const std::exception&) {
+    }
+    device_limit = bake::storageBufferLimitBytes(device_limit);
     // The bake's own tracing side for both: the check reads the geometry, not the runtime's texture detail.
     const int trace_texture_size = bake::BakeOptions{}.max_texture_size;
     bake::BakeGeometry geometry = bake::prepareBakeGeometry(config, bake::lowestSunElevationDeg(suns),
-                                                            trace_texture_size, trace_texture_size);
+                                                            trace_texture_size, trace_texture_size, device_limit);
     bake::refuseBuildingWithoutTexels(config, geometry);
     std::printf("lightmap: %zu texels at %d^2; ground grid: %d x %d cells of %.3g m\n", geometry.texels.size(),
                 geometry.lightmap_resolution, geometry.ground_region.columns, geometry.ground_region.rows,
@@ -164,15 +174,6 @@ int checkSite(const std::string& site_path) {
     if (config.overcast_sky) overcast = bake::prepareSky(*config.overcast_sky);
     std::vector<std::pair<std::string, const bake::SkySamplingTables*>> skies = {{"/skies/sunny/path", &sunny.tables}};
     if (overcast) skies.push_back({"/skies/overcast/path", &overcast->tables});
-    uint64_t device_limit = uint64_t(1) << 27;  // Vulkan's guaranteed minimum of maxStorageBufferRange
-    std::string device = "no Vulkan device; Vulkan's guaranteed minimum";
-    try {
-        VulkanContext context(vulkanOptionsFromEnvironment());
-        device_limit = context.properties().limits.maxStorageBufferRange;
-        device = context.deviceDescription();
-    } catch (const std::exception&) {
-    }
-    device_limit = bake::storageBufferLimitBytes(device_limit);
     std::printf("device: %s, storage buffers up to %.1f MiB\n", device.c_str(), double(device_limit) / (1 << 20));
     const std::vector<InputError> too_large =
         bake::deviceLimitProblems(config, bake::bakeDeviceBuffers(config, geometry, skies, 512), device_limit);
