@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "bake_command.h"
 #include "bake_process.h"
 #include "gpu_test_support.h"
+#include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/input_error.h"
@@ -263,6 +265,37 @@ TEST_F(OutputGuardTest, AHundredThousandCharacterSlotIsCutInTheMessage) {
     EXPECT_TRUE(contains(baked.stderr_text, "(100000 characters)")) << baked.stderr_text.substr(0, 300);
     EXPECT_LT(baked.stderr_text.size(), 400u);
     expectNothingChanged();
+}
+
+// A writer that fails on a full disk (OpenEXR: "File output failed" about the temporary name, errno ENOSPC) is
+// reported as a full disk naming the output and its folder, not the temporary file (a bake with 800 KB free
+// did that; with a real 800 KB tmpfs the message is the same).
+TEST(OutputGuard, AFullDiskIsNamedAsOneWithTheFolderItFills) {
+    const std::string dir = testing::makeTemporaryDirectory("gusuku-guard-full");
+    const std::string output = dir + "/building_noon.exr";
+    std::string temporary;
+    try {
+        writeFileAtomicallyKeepingExtension(output, [&](const std::string& temporary_path) {
+            temporary = temporary_path;
+            std::ofstream(temporary_path) << "half an image";
+            errno = ENOSPC;
+            throw std::runtime_error("Failed to write pixel data to image file \"" + temporary_path +
+                                     "\". File output failed.");
+        });
+        ADD_FAILURE() << "the failed write was not reported";
+    } catch (const std::runtime_error& error) {
+        const std::string message = error.what();
+        EXPECT_EQ(message.rfind(output + ": cannot write: No space left on device (the disk holding " + dir +
+                                    " is full",
+                                0),
+                  0u)
+            << message;
+        EXPECT_FALSE(contains(message, ".tmp-")) << message;
+    }
+    EXPECT_FALSE(temporary.empty());
+    EXPECT_FALSE(fs::exists(temporary)) << "the temporary file is removed";
+    EXPECT_FALSE(fs::exists(output));
+    fs::remove_all(dir);
 }
 
 }  // namespace

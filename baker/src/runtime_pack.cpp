@@ -114,7 +114,9 @@ public:
             writeBytesAtomically(staged, bytes.data(), bytes.size());
         } catch (const std::exception& error) {
             std::string message = error.what();
-            if (message.rfind(staged, 0) == 0) message = pack_folder_ + "/" + name + message.substr(staged.size());
+            for (size_t at = message.find(staging_folder_); at != std::string::npos;
+                 at = message.find(staging_folder_, at + pack_folder_.size()))
+                message.replace(at, staging_folder_.size(), pack_folder_);
             throw std::runtime_error(message);
         }
         ++files_;

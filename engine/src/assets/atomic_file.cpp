@@ -34,6 +34,17 @@ std::string temporaryPathFor(const std::string& final_path, bool keep_extension)
     return stem_path + tag + extension;
 }
 
+// "OUT/x.exr: cannot write: No space left on device (the disk holding OUT is full, 12 KiB free)".
+std::string diskFullMessage(const std::string& final_path, const fs::path& parent) {
+    const fs::path folder = parent.empty() ? fs::path(".") : parent;
+    std::error_code error;
+    const fs::space_info space = fs::space(folder, error);
+    std::string message = final_path + ": cannot write: " + std::strerror(ENOSPC) + " (the disk holding " +
+                          folder.string() + " is full";
+    if (!error) message += ", " + std::to_string(space.available / 1024) + " KiB free";
+    return message + "; free some space and run the command again)";
+}
+
 void writeThroughTemporary(const std::string& final_path, const std::string& temporary_path,
                            const std::function<void(const std::string&)>& write) {
     // The rename would replace whatever the name holds: a device (/dev/full, /dev/null, as root), a FIFO or a
@@ -53,8 +64,12 @@ void writeThroughTemporary(const std::string& final_path, const std::string& tem
     try {
         write(temporary_path);
     } catch (...) {
+        const int write_errno = errno;  // the failed write's, before the clean-up below
         std::error_code ignored;
         fs::remove(temporary_path, ignored);
+        // A full disk is named as one, with the folder it fills: a writer's own text (OpenEXR's "File output
+        // failed" about the temporary name) does not say why.
+        if (write_errno == ENOSPC) throw std::runtime_error(diskFullMessage(final_path, parent));
         throw;
     }
     std::error_code error;

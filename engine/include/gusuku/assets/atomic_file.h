@@ -9,7 +9,9 @@ namespace gusuku {
 
 /// Calls write(temporary_path) with a temporary path in the same directory as final_path, then renames it
 /// onto final_path (atomic on POSIX file systems). If write throws, the temporary file is removed and the
-/// exception propagates; final_path is then untouched. Creates missing parent directories.
+/// exception propagates; final_path is then untouched. Creates missing parent directories. A write that fails
+/// with errno ENOSPC is reported as "FINAL: cannot write: No space left on device (the disk holding FOLDER is
+/// full, N KiB free; ...)" whatever the writer's own text said (OpenEXR names the temporary file).
 void writeFileAtomically(const std::string& final_path,
                          const std::function<void(const std::string& temporary_path)>& write);
 
