@@ -23,8 +23,8 @@ cmake -S tests/fuzz -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMA
   "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"${GUSUKU_FUZZ_JOBS:-2}"
 
-names=(site_json gltf glb bakeset_manifest bakeset_exr weather_service runtime_pack c_helpers)
-dictionaries=(site_json gltf gltf bakeset_manifest "" weather_service bakeset_manifest "")
+names=(site_json gltf glb bakeset_manifest bakeset_exr weather_service runtime_pack c_helpers exif)
+dictionaries=(site_json gltf gltf bakeset_manifest "" weather_service bakeset_manifest "" exif)
 share=$((total_seconds / ${#names[@]}))
 mkdir -p "$build/findings"
 for i in "${!names[@]}"; do
