@@ -38,7 +38,9 @@ struct MergeReport {
 ///   - shared files (building.glb, ground_geometry.exr, occluder.glb) whose bytes do not hash to what their
 ///     manifest recorded, or differ from the first set's;
 ///   - a slot given twice, a slot of the site given by none, a slot file missing;
-///   - an output folder that is one of the partial sets, or holds an input of the bake;
+///   - an output folder that is one of the partial sets, or that the output guard refuses
+///     (gusuku_bake/output_guard.h: is or holds an input of the bake; is, holds or lies inside a bake set or pack
+///     other than an earlier set of the same site);
 ///   - an output folder another bake or merge holds (its .lock).
 /// Writing goes as a bake's does: the output's old manifest.json is removed first, every file is copied to a
 /// temporary name and renamed, the manifest is written last; so a folder with a manifest is a complete set.

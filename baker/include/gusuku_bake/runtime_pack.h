@@ -40,6 +40,8 @@ struct RuntimePackReport {
 /// and all. A partial set (loadBakeSet refuses it) has no pack. Throws InputError naming the bake set's file
 /// and field or the refused folder, or std::runtime_error on a write failure naming the pack's file.
 /// `textures` chooses the texture files; the folder holds no other kind's files afterwards.
+/// Tests stand in for a failing disk with the environment variable GUSUKU_TEST_PACK_FAIL_AFTER_FILES=N: the
+/// write fails after N files, as a full disk would.
 RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "",
                                    PackTextures textures = PackTextures::kBoth);
 
