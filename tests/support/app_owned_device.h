@@ -12,6 +12,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "gusuku/gpu/debug_message_source.h"
+
 namespace gusuku::testing {
 
 // The app side: everything here is plain Vulkan, written as an app would, not gusuku code.
@@ -116,8 +118,9 @@ public:
 
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT types,
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+        if (isVulkanLoaderMessage(types, data)) return VK_FALSE;  // the loader's note about other drivers
         auto* self = static_cast<AppOwnedDevice*>(user);
         std::lock_guard<std::mutex> lock(self->messages_mutex);
         self->validation_messages.push_back(data && data->pMessage ? data->pMessage : "(no text)");

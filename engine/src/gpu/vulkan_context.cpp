@@ -3,6 +3,8 @@
 
 #include "gusuku/gpu/vulkan_context.h"
 
+#include "gusuku/gpu/debug_message_source.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -367,6 +369,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageS
                                                             const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                             void* user) {
     if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT || user == nullptr) return VK_FALSE;
+    if (isVulkanLoaderMessage(types, data)) {  // a note about the installed drivers: shown, not counted
+        std::cerr << "gusuku: Vulkan loader: " << (data->pMessage ? data->pMessage : "(no text)") << '\n';
+        return VK_FALSE;
+    }
     std::string message = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "ERROR [" : "WARNING [";
     message += data && data->pMessageIdName ? data->pMessageIdName : "no message id";
     message += "] ";
