@@ -172,16 +172,93 @@ TEST(BakeStop, SigtermDuringSetupEndsTheBakeAtOnce) {
     const double stop_seconds = secondsSince(signalled);
     const std::string stderr_text = gusuku::testing::readTextFile(dir + "/bake.err");
     EXPECT_EQ(status, 130) << stderr_text;
-    EXPECT_LT(stop_seconds, 2.0);
-    // The setup message is written from the signal handler; in about one run in five on lavapipe here the
-    // process ends with status 130 within 20 ms yet the file holds no message (not understood yet: the exit path
-    // writes before _exit). The status and the time are the contract; a message, when there is one, must be the
-    // setup's.
-    const bool any_message = stderr_text.find("interrupted") != std::string::npos;
-    if (any_message)
-        EXPECT_NE(stderr_text.find("interrupted before tracing began"), std::string::npos)
-            << "exit status " << status << " after " << stop_seconds << " s; stderr: " << stderr_text;
+    EXPECT_LT(stop_seconds, 1.5);
+    // Every run has the message. About one run in five had none: the signal came while the sky photos were
+    // decoded, when descriptor 2 points at image_read.cpp's capture file, and the message went there. The stop
+    // now writes to a copy of stderr taken before.
+    EXPECT_NE(stderr_text.find("interrupted before tracing began"), std::string::npos)
+        << "exit status " << status << " after " << stop_seconds << " s; stderr: " << stderr_text;
     EXPECT_FALSE(fs::exists(out + "/manifest.json"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace gusuku::bake
+
+namespace gusuku::bake {
+namespace {
+
+// A second signal ends the bake at once (bake_stop_signals.h): here it comes while the first stop is being
+// honoured, and the process must not wait for the cooperative stop's checkpoint or its deadline. The work on disk
+// still resumes the bake.
+TEST(BakeStop, ASecondSignalEndsTheBakeAtOnce) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-stop-second");
+    const std::string site = writeHeavySite(dir);
+    const std::string out = dir + "/out";
+    const pid_t pid =
+        gusuku::testing::spawnBakeProcess({"bake", site, "-o", out, "--quiet"}, "/dev/null", dir + "/bake.err");
+    const std::string pilot_checkpoint = out + "/.checkpoint/noon.building.bin";
+    const auto deadline = Clock::now() + std::chrono::seconds(300);
+    while (!fs::exists(pilot_checkpoint) && Clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(fs::exists(pilot_checkpoint)) << gusuku::testing::readTextFile(dir + "/bake.err");
+    ASSERT_EQ(kill(pid, SIGTERM), 0);
+    ASSERT_EQ(kill(pid, SIGINT), 0);
+    const auto second_signal = Clock::now();
+    const int status = gusuku::testing::waitBakeProcess(pid, 60);
+    const double stop_seconds = secondsSince(second_signal);
+    const std::string stderr_text = gusuku::testing::readTextFile(dir + "/bake.err");
+    EXPECT_EQ(status, 130) << stderr_text;
+    // At once: well under the cooperative stop's deadline (kStopDeadlineSeconds, 1 s), on a loaded machine too.
+    EXPECT_LT(stop_seconds, 0.5) << stderr_text;
+    EXPECT_NE(stderr_text.find("stopped without waiting for the current step"), std::string::npos) << stderr_text;
+    EXPECT_FALSE(fs::exists(out + "/manifest.json"));
+    ASSERT_EQ(gusuku::testing::waitBakeProcess(
+                  gusuku::testing::spawnBakeProcess({"bake", site, "-o", out, "--quiet"}, dir + "/resumed.out",
+                                                    dir + "/resumed.err"),
+                  300),
+              0)
+        << gusuku::testing::readTextFile(dir + "/resumed.err");
+    EXPECT_NE(gusuku::testing::readTextFile(dir + "/resumed.out").find("of the work came from checkpoints"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+// A stop while the runtime pack is written (after the bake set is complete) ends at once and says the set is
+// complete; the same command then writes the pack without baking again.
+TEST(BakeStop, AStopWhileThePackIsWrittenKeepsTheSetAndTheRerunWritesThePack) {
+    const std::string dir = gusuku::testing::makeTemporaryDirectory("gusuku-stop-pack");
+    // The heavy site's lightmaps at few samples: a short bake, and a pack whose ASTC encoding takes a while.
+    gusuku::testing::MiniSiteOptions options;
+    options.samples_per_texel = 4;
+    options.texels_per_metre = 40.0;
+    const std::string site = gusuku::testing::writeMiniSite(dir, options);
+    const std::string out = dir + "/out";
+    const std::vector<std::string> command = {"bake", site, "-o", out, "--quiet"};
+    const pid_t pid = gusuku::testing::spawnBakeProcess(command, "/dev/null", dir + "/bake.err");
+    // The set's manifest is the bake's last write; the pack follows it.
+    const auto deadline = Clock::now() + std::chrono::seconds(300);
+    int status = -1;
+    while (!fs::exists(out + "/manifest.json") && Clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    ASSERT_TRUE(fs::exists(out + "/manifest.json")) << gusuku::testing::readTextFile(dir + "/bake.err");
+    const bool pack_written_already = fs::exists(out + "/pack/manifest.json");
+    ASSERT_EQ(kill(pid, SIGTERM), 0);
+    const auto signalled = Clock::now();
+    status = gusuku::testing::waitBakeProcess(pid, 60);
+    const double stop_seconds = secondsSince(signalled);
+    const std::string stderr_text = gusuku::testing::readTextFile(dir + "/bake.err");
+    if (pack_written_already || status == 0) GTEST_SKIP() << "the pack was done before the signal came";
+    EXPECT_EQ(status, 130) << stderr_text;
+    EXPECT_LT(stop_seconds, 1.5);
+    EXPECT_NE(stderr_text.find("interrupted while writing the runtime pack"), std::string::npos) << stderr_text;
+    EXPECT_FALSE(fs::exists(out + "/pack/manifest.json"));
+    ASSERT_EQ(gusuku::testing::waitBakeProcess(
+                  gusuku::testing::spawnBakeProcess(command, dir + "/rerun.out", dir + "/rerun.err"), 300),
+              0)
+        << gusuku::testing::readTextFile(dir + "/rerun.err");
+    EXPECT_NE(gusuku::testing::readTextFile(dir + "/rerun.out").find("up to date"), std::string::npos);
+    EXPECT_TRUE(fs::exists(out + "/pack/manifest.json"));
     fs::remove_all(dir);
 }
 

@@ -89,15 +89,20 @@ int runBakeCommand(const std::vector<std::string>& args) {
     bake::BakeOptions& options = request.options;
 
     // From the start: a Ctrl-C during setup (device, skies, BVH) ends the bake before its first sample.
-    std::optional<BakeStopSignals> stop_signals(std::in_place, options.output_dir);
-    options.should_stop = stop_signals->poll();
+    BakeStopSignals stop_signals(options.output_dir);
+    options.should_stop = stop_signals.poll();
     const SiteConfig site = loadSiteConfig(request.site_path);
     if (!options.slot.empty()) bake::requireSiteSlot(site, options.slot);  // before the device is opened
     VulkanContext context(vulkanOptionsFromEnvironment());
     std::fprintf(stderr, "gusuku-bake: device %s\n", context.deviceDescription().c_str());
 
     const bake::BakeReport report = bake::runBake(context, site, options);
-    stop_signals.reset();  // the bake has returned: no deadline to keep, default handlers again
+    // The set is written: a stop from here ends at once (the pack goes to a temporary folder first), and one
+    // that came while the bake returned (its last files written, no poll left to see it) is honoured here.
+    if ((report.completed || report.up_to_date) && stop_signals.beginPacking()) {
+        std::fputs(stop_signals.packingMessage().c_str(), stderr);
+        return 130;
+    }
 
     if (report.up_to_date) {
         std::printf("bake set %s is up to date with its inputs (use --force to bake again)\n",
