@@ -55,6 +55,10 @@ def same_exrs(reference, actual):
 def message_kind(stderr_text):
     if "interrupted before tracing began" in stderr_text:
         return "setup"
+    if "interrupted twice" in stderr_text:
+        return "second signal"
+    if "interrupted while writing the runtime pack" in stderr_text:
+        return "packing"
     if "stopped without waiting" in stderr_text:
         return "deadline"
     if "the work done is saved" in stderr_text:

@@ -209,9 +209,10 @@ TEST(BakeStop, ASecondSignalEndsTheBakeAtOnce) {
     const double stop_seconds = secondsSince(second_signal);
     const std::string stderr_text = gusuku::testing::readTextFile(dir + "/bake.err");
     EXPECT_EQ(status, 130) << stderr_text;
-    // At once: well under the cooperative stop's deadline (kStopDeadlineSeconds, 1 s), on a loaded machine too.
-    EXPECT_LT(stop_seconds, 0.5) << stderr_text;
-    EXPECT_NE(stderr_text.find("stopped without waiting for the current step"), std::string::npos) << stderr_text;
+    // At once: by the second signal, not by the cooperative stop or its deadline (each says so in its own words),
+    // and within the promise's 1.5 s (the process's own teardown took up to 0.51 s on a loaded machine).
+    EXPECT_LT(stop_seconds, 1.5) << stderr_text;
+    EXPECT_NE(stderr_text.find("interrupted twice; stopped at once"), std::string::npos) << stderr_text;
     EXPECT_FALSE(fs::exists(out + "/manifest.json"));
     ASSERT_EQ(gusuku::testing::waitBakeProcess(
                   gusuku::testing::spawnBakeProcess({"bake", site, "-o", out, "--quiet"}, dir + "/resumed.out",

@@ -22,9 +22,10 @@ BakeStopSignals::BakeStopSignals(const std::string& output_dir) {
                      "again to bake.\n";
     packing_message_ = "gusuku-bake: interrupted while writing the runtime pack; the bake set in " + output_dir +
                        " is complete. Run the same command again (or gusuku-bake pack) to write the pack.\n";
-    deadline_message_ = "gusuku-bake: interrupted; stopped without waiting for the current step. The checkpoints "
-                        "in " + output_dir + "/.checkpoint hold the work up to the last one. Run the same command "
-                        "again to resume.\n";
+    const std::string resume = " The checkpoints in " + output_dir + "/.checkpoint hold the work up to the last "
+                               "one. Run the same command again to resume.\n";
+    deadline_message_ = "gusuku-bake: interrupted; stopped without waiting for the current step." + resume;
+    second_signal_message_ = "gusuku-bake: interrupted twice; stopped at once." + resume;
     stderr_copy_ = dup(STDERR_FILENO);
     sigemptyset(&stop_signals_);
     sigaddset(&stop_signals_, SIGINT);
@@ -70,7 +71,7 @@ void BakeStopSignals::takeSignals() {
             const Phase phase = phase_;
             if (phase == Phase::kSetup) writeAndExit(setup_message_);
             if (phase == Phase::kPacking) writeAndExit(packing_message_);
-            if (first_signal) writeAndExit(deadline_message_);  // a second signal: at once
+            if (first_signal) writeAndExit(second_signal_message_);
             first_signal = Clock::now();
             stop_requested_ = true;
         }

@@ -56,6 +56,7 @@ private:
     std::string setup_message_;     ///< a stop before tracing: nothing was traced
     std::string packing_message_;   ///< a stop while the pack is written: the set is complete
     std::string deadline_message_;  ///< a stop that did not wait for the bake: the checkpoints hold the work
+    std::string second_signal_message_;  ///< the same, at once on a second signal
     // A copy of stderr taken at construction: while an image is decoded, descriptor 2 points at a capture file
     // (image_read.cpp's StderrCapture, for libpng's text), and a message written there would be lost.
     int stderr_copy_ = -1;
