@@ -52,6 +52,14 @@ def same_exrs(reference, actual):
     return differing
 
 
+def check_and_clear(reference, stopped, label):
+    """Compares a completed set with the reference, says so, and removes it; returns the failures."""
+    differing = same_exrs(reference, stopped)
+    print(f"{label}: {'identical to the reference' if not differing else 'DIFFERS: ' + ', '.join(differing)}")
+    shutil.rmtree(stopped, ignore_errors=True)
+    return [f"{label}: the set differs"] if differing else []
+
+
 def message_kind(stderr_text):
     if "interrupted before tracing began" in stderr_text:
         return "setup"
@@ -128,13 +136,8 @@ def main():
         if os.path.exists(os.path.join(stopped, "manifest.json")):
             # The last trial's resume completed the set (its stop came in the runtime pack's encoding): check it
             # and start afresh, so that the trials keep landing in setup and tracing.
-            differing = same_exrs(reference, stopped)
-            print(f"the resumed set was complete: "
-                  f"{'identical to the reference' if not differing else 'DIFFERS: ' + ', '.join(differing)}")
-            if differing:
-                failures.append(f"before trial {trial + 1}: the completed set differs")
+            failures += check_and_clear(reference, stopped, f"before trial {trial + 1}: the resumed set was complete")
             completed_sets += 1
-            shutil.rmtree(stopped, ignore_errors=True)
         second = trial % 4 == 3
         # From the start (setup) to a little past the set's last write (into the runtime pack's encoding).
         delay = random.uniform(0.0, 1.1 * reference_seconds)
@@ -142,13 +145,9 @@ def main():
             process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=err)
             time.sleep(delay)
             if process.poll() is not None:  # finished before its signal: check it, start afresh
-                differing = same_exrs(reference, stopped)
-                print(f"trial {trial + 1:2d}: the bake finished before {delay:.2f} s; "
-                      f"{'identical to the reference' if not differing else 'DIFFERS: ' + ', '.join(differing)}")
-                if differing:
-                    failures.append(f"trial {trial + 1}: finished set differs")
+                failures += check_and_clear(reference, stopped, f"trial {trial + 1}: the bake finished before "
+                                                                f"{delay:.2f} s")
                 completed_sets += 1
-                shutil.rmtree(stopped, ignore_errors=True)
                 continue
             first_signal = time.monotonic()
             process.send_signal(signal.SIGTERM)

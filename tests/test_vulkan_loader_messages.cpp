@@ -74,14 +74,7 @@ TEST(VulkanLoaderMessages, AnUnloadableDriverJsonIsTheLoadersNoteNotAValidationM
     // The premise: with the bad JSON listed, the loader does send a warning through a messenger chained into
     // vkCreateInstance, and the classifier calls it the loader's.
     CollectedMessages messages;
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messenger_info.messageSeverity =
-        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    messenger_info.pfnUserCallback = &collect;
-    messenger_info.pUserData = &messages;
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info = warningAndErrorMessengerInfo(&collect, &messages);
     const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
     VkApplicationInfo application{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     application.apiVersion = VK_API_VERSION_1_1;
@@ -96,7 +89,8 @@ TEST(VulkanLoaderMessages, AnUnloadableDriverJsonIsTheLoadersNoteNotAValidationM
     bool names_the_bad_json = false;
     for (const std::string& note : messages.loader_notes)
         names_the_bad_json = names_the_bad_json || note.find("libvulkan_gusuku_missing.so") != std::string::npos;
-    EXPECT_TRUE(names_the_bad_json) << messages.loader_notes.size() << " loader notes, none naming its library (" << bad_json << ")";
+    EXPECT_TRUE(names_the_bad_json) << messages.loader_notes.size() << " loader notes, none naming its library ("
+                                    << bad_json << ")";
     EXPECT_TRUE(messages.others.empty()) << messages.others.front();
 
     // The harness's own context, validation on: it opens lavapipe (or whichever good driver) and counts nothing.

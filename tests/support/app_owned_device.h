@@ -28,14 +28,9 @@ public:
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
         app.pApplicationName = "app-owned device test";
         app.apiVersion = api_version;
-        VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        messenger_info.messageSeverity =
-            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-        messenger_info.pfnUserCallback = &AppOwnedDevice::onMessage;
-        messenger_info.pUserData = this;
+        // The app's own messenger, set as gusuku's tools set theirs (a test helper, not gusuku's code path).
+        VkDebugUtilsMessengerCreateInfoEXT messenger_info =
+            warningAndErrorMessengerInfo(&AppOwnedDevice::onMessage, this);
         VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
         instance_info.pNext = &messenger_info;  // also catches messages from instance creation itself
         instance_info.pApplicationInfo = &app;

@@ -171,14 +171,8 @@ void VulkanContext::createInstance(const VulkanContextOptions& options) {
     application.apiVersion = instance_api_version_;
 
     // Chained into vkCreateInstance too, so messages about instance creation and destruction are caught.
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messenger_info.messageSeverity =
-        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    messenger_info.pfnUserCallback = &VulkanContext::debugCallback;
-    messenger_info.pUserData = this;
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info =
+        warningAndErrorMessengerInfo(&VulkanContext::debugCallback, this);
 
     VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     instance_info.pApplicationInfo = &application;

@@ -20,4 +20,18 @@ inline bool isVulkanLoaderMessage(VkDebugUtilsMessageTypeFlagsEXT types,
            data->pMessageIdName != nullptr && std::strcmp(data->pMessageIdName, "Loader Message") == 0;
 }
 
+/// The messenger every gusuku context and test device installs: warnings and errors of every type (the loader's
+/// notes among them, which the callback tells apart with isVulkanLoaderMessage).
+inline VkDebugUtilsMessengerCreateInfoEXT warningAndErrorMessengerInfo(PFN_vkDebugUtilsMessengerCallbackEXT callback,
+                                                                       void* user) {
+    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = callback;
+    info.pUserData = user;
+    return info;
+}
+
 }  // namespace gusuku
