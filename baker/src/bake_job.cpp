@@ -3,6 +3,7 @@
 #include "gusuku_bake/bake_job.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -73,6 +74,17 @@ struct PointSet {
     uint32_t samples_per_point = 0;    ///< 0: the bake's samples (the building's footprint slots take a share)
     bool adaptive = false;             ///< a pilot of a quarter, the rest where the noise is (traceAdaptively)
     uint32_t samples(uint32_t bake_samples) const { return samples_per_point ? samples_per_point : bake_samples; }
+};
+
+/// The three sets every slot traces (bakePointSets), named by what they feed: the building's lightmap and the
+/// ground's two maps, whose ratio is the building's shadow on the ground.
+struct BakePointSets {
+    PointSet building;        ///< the building's texels over their footprints
+    PointSet ground_with;     ///< the ground's cells, the building in the scene
+    PointSet ground_without;  ///< the same cells, the building's triangles skipped
+
+    /// The sets in the order they are traced (and checkpointed and shown in the progress line).
+    std::array<const PointSet*, 3> inTraceOrder() const { return {&building, &ground_with, &ground_without}; }
 };
 
 // The building's texels spread over their footprints (lightmap_uv.h): every slot a point of its own.
@@ -203,6 +215,13 @@ private:
     bool stop_requested_ = false;
 };
 
+/// One slot's traced sums, a member per set of BakePointSets.
+struct SlotSums {
+    SetTracer::Sums building;
+    SetTracer::Sums ground_with;
+    SetTracer::Sums ground_without;
+};
+
 /// The building's set traced adaptively (adaptive_sampling.h): a pilot (adaptivePilotSamplesPerPoint), every
 /// point alike (checkpointed as the set itself), then extra samples planned per texel from the pilot's noise,
 /// traced as copies of the texels' footprint points in sets of their own ("building_extra", checkpointed like
@@ -289,8 +308,8 @@ BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& si
 
 /// The sets every slot traces: the building's footprint points (adaptively once a texel has the samples for a
 /// pilot), the ground's cells with the building and without it.
-std::vector<PointSet> bakePointSets(const LightmapFootprint& footprint, const BakeGeometry& geometry,
-                                    uint32_t samples_per_slot, bool adaptive_building) {
+BakePointSets bakePointSets(const LightmapFootprint& footprint, const BakeGeometry& geometry,
+                            uint32_t samples_per_slot, bool adaptive_building) {
     return {
         {"building", buildingQueryPoints(footprint), 0u, samples_per_slot, adaptive_building},
         {"ground_with", groundQueryPoints(geometry), 0u},
@@ -299,10 +318,10 @@ std::vector<PointSet> bakePointSets(const LightmapFootprint& footprint, const Ba
 }
 
 /// The point-samples the whole run traces, for the progress line: every set over every traced slot.
-double totalTraceWork(const std::vector<PointSet>& sets, uint32_t samples, size_t traced_slot_count) {
+double totalTraceWork(const BakePointSets& sets, uint32_t samples, size_t traced_slot_count) {
     double total_work = 0.0;
-    for (const PointSet& set : sets)
-        total_work += double(set.points.size()) * set.samples(samples) * double(traced_slot_count);
+    for (const PointSet* set : sets.inTraceOrder())
+        total_work += double(set->points.size()) * set->samples(samples) * double(traced_slot_count);
     return total_work;
 }
 
@@ -315,18 +334,22 @@ TracePass slotTracePass(const SiteConfig& site, const SlotLighting& lighting) {
 }
 
 /// One slot's sets traced in order, each with its own skip flags; nothing when stopped.
-std::optional<std::vector<SetTracer::Sums>> traceSlotSets(SetTracer& set_tracer, const SlotLighting& lighting,
-                                                          const std::vector<PointSet>& sets,
-                                                          const LightmapFootprint& footprint, TracePass pass,
-                                                          uint32_t samples, size_t max_trace_points) {
-    std::vector<SetTracer::Sums> sums;
-    for (const PointSet& set : sets) {
-        pass.skip_flags = set.skip_flags;
-        auto set_sums = set.adaptive ? traceAdaptively(set_tracer, lighting.slot.name, set, footprint, pass,
-                                                       set.samples(samples), max_trace_points)
-                                     : set_tracer.trace(lighting.slot.name, set, pass, set.samples(samples));
-        if (!set_sums) return std::nullopt;
-        sums.push_back(std::move(*set_sums));
+std::optional<SlotSums> traceSlotSets(SetTracer& set_tracer, const SlotLighting& lighting, const BakePointSets& sets,
+                                      const LightmapFootprint& footprint, TracePass pass, uint32_t samples,
+                                      size_t max_trace_points) {
+    SlotSums sums;
+    const std::array<std::pair<const PointSet*, SetTracer::Sums*>, 3> sums_of_set = {{
+        {&sets.building, &sums.building},
+        {&sets.ground_with, &sums.ground_with},
+        {&sets.ground_without, &sums.ground_without},
+    }};
+    for (const auto& [set, set_sums] : sums_of_set) {
+        pass.skip_flags = set->skip_flags;
+        auto traced = set->adaptive ? traceAdaptively(set_tracer, lighting.slot.name, *set, footprint, pass,
+                                                      set->samples(samples), max_trace_points)
+                                    : set_tracer.trace(lighting.slot.name, *set, pass, set->samples(samples));
+        if (!traced) return std::nullopt;
+        *set_sums = std::move(*traced);
     }
     return sums;
 }
@@ -401,10 +424,10 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
         geometry.building, geometry.lightmap_resolution, geometry.texels,
         footprintGridSide(samples, geometry.texels.size(), max_trace_points), site.bake.seed);
     const uint32_t samples_per_slot = samples / uint32_t(footprint.pointsPerTexel());
-    const std::vector<PointSet> sets = bakePointSets(footprint, geometry, samples_per_slot,
-                                                     options.adaptive_sampling && samples >= kMinAdaptiveSamples);
+    const BakePointSets sets = bakePointSets(footprint, geometry, samples_per_slot,
+                                             options.adaptive_sampling && samples >= kMinAdaptiveSamples);
     report.building_texels = geometry.texels.size();
-    report.ground_cells = sets[1].points.size();
+    report.ground_cells = sets.ground_with.points.size();
 
     BakeProgress progress(totalTraceWork(sets, samples, traced_slots.size()), options.show_progress);
     // The old manifest goes before the first file of this bake replaces one of its files: a bake set with a
@@ -424,20 +447,20 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     for (const SlotLighting& lighting : slots) {
         if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);
-        const std::optional<std::vector<SetTracer::Sums>> sums = traceSlotSets(
+        const std::optional<SlotSums> sums = traceSlotSets(
             set_tracer, lighting, sets, footprint, slotTracePass(site, lighting), samples, max_trace_points);
         if (!sums) {
             recordTraceStatistics(report, progress, set_tracer, wall_start);
             return report;  // completed = false: checkpoints hold everything done so far
         }
-        const SetTracer::Sums& building = (*sums)[0];
+        const SetTracer::Sums& building = sums->building;
         const std::vector<glm::vec4> texel_sums =
             texelSumsFromFootprint(footprint, building.sums, samples_per_slot, kMaxBackfaceFraction);
         report.invalid_texels.push_back(invalid_accounting.count(lighting.slot.name, texel_sums, samples));
         writer.writeSlot(lighting, texel_sums,
                          texelLuminanceVarianceFromFootprint(footprint, building.sums, building.luminance_square_sums,
                                                              samples_per_slot, kMaxBackfaceFraction),
-                         (*sums)[1].sums, (*sums)[2].sums);
+                         sums->ground_with.sums, sums->ground_without.sums);
     }
     recordTraceStatistics(report, progress, set_tracer, wall_start);
     std::optional<BakeSetPartial> partial;
