@@ -4,7 +4,9 @@
 #                      among them; of gusuku/loader/ the pack reader's runtime_pack.h and the C gusuku_loader.h,
 #                      whose gusuku_bakeset_load_pack it defines), the licence and the package files;
 #                      find_package(gusuku) gives gusuku::runtime and gusuku::pack_loader, which need Vulkan and
-#                      glm only: a phone app reads the bake set's runtime pack without the tools' I/O stack
+#                      glm only: a phone app reads the bake set's runtime pack without the tools' I/O stack;
+#                      gusuku_weather (gusuku/weather/: the METAR and Open-Meteo readers, C++ and C) and
+#                      gusuku_json (their private JSON reader: the archive only, no header) likewise
 #   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
 #                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
 #                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
@@ -31,12 +33,16 @@ endforeach()
 # runtime; gusuku_loader (the EXR bake set, the I/O stack) links it.
 set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
 target_compile_features(gusuku_pack_loader INTERFACE cxx_std_17)
-install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader EXPORT gusukuRuntimeTargets
+set_target_properties(gusuku_weather PROPERTIES EXPORT_NAME weather)
+set_target_properties(gusuku_json PROPERTIES EXPORT_NAME json)
+target_compile_features(gusuku_weather INTERFACE cxx_std_17)
+install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader gusuku_weather gusuku_json
+        EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
 # component installs the folders of exactly the libraries it installs.
-foreach(library maths gpu runtime)
+foreach(library maths gpu runtime weather)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
           COMPONENT runtime FILES_MATCHING PATTERN "*.h")
 endforeach()

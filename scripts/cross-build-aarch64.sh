@@ -2,7 +2,8 @@
 # Cross-compiles the runtime-only configuration (-DGUSUKU_RUNTIME_ONLY=ON: what a phone app links) for AArch64 Linux
 # with Debian's cross toolchain, through cmake/toolchains/aarch64-linux-gnu.cmake (the Android NDK's route), and
 # checks what it made (docs/platforms.md):
-#   1. configures and builds gusuku_maths, gusuku_gpu and gusuku_runtime in build-aarch64/;
+#   1. configures and builds gusuku_maths, gusuku_gpu, gusuku_runtime, gusuku_pack_loader and gusuku_weather in
+#      build-aarch64/;
 #   2. installs them into a prefix and builds tests/consumer against the installed package (the C99 and C++17
 #      programs, every runtime header alone as C++17 and C++20), with tests/consumer/install_and_consume.cmake;
 #   3. checks with file and readelf that the libraries' objects and the programs are AArch64 ELF, and that the
@@ -44,7 +45,8 @@ fail() {
 }
 
 # The static libraries: every object inside is AArch64 ELF (readelf -h reads each member of an archive).
-for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a; do
+for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a libgusuku_weather.a \
+  libgusuku_json.a; do
   archive="$work/prefix/lib/$library"
   [ -f "$archive" ] || { fail "$library is missing from the installed prefix"; continue; }
   file "$archive" | grep -q "ar archive" || fail "$library: not an ar archive: $(file -b "$archive")"
@@ -58,7 +60,7 @@ done
 
 # The programs: AArch64 ELF executables that need libvulkan and the C/C++ runtime only.
 allowed_needed='^(libvulkan\.so\.1|libstdc\+\+\.so\.6|libm\.so\.6|libgcc_s\.so\.1|libc\.so\.6|ld-linux-aarch64\.so\.1)$'
-for program in consumer_runtime consumer_runtime_cxx17 consumer_pack; do
+for program in consumer_runtime consumer_runtime_cxx17 consumer_pack consumer_weather; do
   binary="$work/build/$program"
   [ -f "$binary" ] || { fail "$program was not built"; continue; }
   description=$(file -b "$binary")

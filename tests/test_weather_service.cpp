@@ -1,4 +1,4 @@
-// gusuku/loader/weather_service.h on saved answers of the documented shapes (tests/data/weather/): Open-Meteo's
+// gusuku/weather/weather_service.h on saved answers of the documented shapes (tests/data/weather/): Open-Meteo's
 // current and hourly blocks on a local clock and in unixtime, METAR sky groups with their okta values, and the
 // one-line InputError for each malformed answer.
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/loader/weather_service.h"
+#include "gusuku/weather/weather_service.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/time_utc.h"
 
@@ -115,7 +115,8 @@ TEST(WeatherService, MalformedOpenMeteoAnswersNameTheField) {
         std::string file, expected;
     };
     const Case cases[] = {
-        {"open_meteo_not_json.txt", "Open-Meteo answer: byte 1: not JSON"},
+        // The standard-library JSON reader counts bytes from 0: the '<' of "<html>" is byte 0.
+        {"open_meteo_not_json.txt", "Open-Meteo answer: byte 0: not JSON"},
         {"open_meteo_missing_cloud_cover.json",
          "Open-Meteo answer: /current/cloud_cover: missing (ask with &current=cloud_cover,is_day)"},
         {"open_meteo_cover_140.json", "Open-Meteo answer: /current/cloud_cover: 140 is outside [0, 100] %"},

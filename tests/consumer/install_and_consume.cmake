@@ -34,6 +34,8 @@ file(RENAME ${WORK_DIR}/staging ${prefix})  # the package is used where it was n
 set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h
                    include/gusuku/loader/runtime_pack.h include/gusuku/loader/gusuku_loader.h
                    lib/libgusuku_pack_loader.a
+                   include/gusuku/weather/gusuku_weather.h include/gusuku/weather/weather_service.h
+                   lib/libgusuku_weather.a lib/libgusuku_json.a
                    lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
 if(WITH_LOADER)
   list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)
@@ -140,6 +142,7 @@ if(RUN_CONSUMERS)
   run_step("run consumer_runtime" ${WORK_DIR}/build/consumer_runtime)
   run_step("run consumer_runtime_cxx17" ${WORK_DIR}/build/consumer_runtime_cxx17)
   run_step("run consumer_pack" ${WORK_DIR}/build/consumer_pack)
+  run_step("run consumer_weather" ${WORK_DIR}/build/consumer_weather)
   if(WITH_LOADER)
     run_step("run consumer_loader" ${WORK_DIR}/build/consumer_loader)
   endif()

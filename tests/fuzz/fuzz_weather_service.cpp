@@ -1,4 +1,4 @@
-// libFuzzer target: the weather adapters (gusuku/loader/weather_service.h) on arbitrary bytes, read both as an
+// libFuzzer target: the weather adapters (gusuku/weather/weather_service.h) on arbitrary bytes, read both as an
 // Open-Meteo answer (current, then the hour nearest an instant) and as a METAR: the text an app fetched from a
 // network it does not control. Bad input must end in gusuku::InputError; any other exception, a crash, a
 // sanitizer report, a leak or a hang is a finding.
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "gusuku/loader/weather_service.h"
+#include "gusuku/weather/weather_service.h"
 #include "gusuku/maths/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -6,10 +6,13 @@
 
 #include "gusuku/maths/bakeset_ranges.h"
 #include "gusuku/maths/input_error.h"
-#include "pack_json.h"
+#include "json_reader.h"
 
 namespace gusuku::pack_detail {
 namespace {
+
+using json_detail::JsonValue;
+using json_detail::parseJson;
 
 using Type = JsonValue::Type;
 

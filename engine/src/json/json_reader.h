@@ -1,13 +1,15 @@
 #pragma once
-// A small JSON reader (RFC 8259) for the runtime pack's manifest, so that gusuku_pack_loader needs the C++ standard
-// library alone. Private to gusuku_pack_loader. Strict: one value and nothing after it but white space, no
+// A small JSON reader (RFC 8259) for the runtime pack's manifest and Open-Meteo's answers, so that
+// gusuku_pack_loader and gusuku_weather need the C++ standard library alone (a phone build has no nlohmann-json).
+// Library gusuku_json, private to those two (this header is not installed). Strict: one value and nothing after it but white space, no
 // duplicate keys, strings valid UTF-8 escapes, numbers as RFC 8259 writes them (read locale-independently),
-// nesting at most 64 deep. Errors are InputError(file, "byte N", problem).
+// nesting at most 64 deep. Errors are InputError(file, "byte N", problem), N counted
+// from 0.
 
 #include <string>
 #include <vector>
 
-namespace gusuku::pack_detail {
+namespace gusuku::json_detail {
 
 struct JsonValue {
     enum class Type { kNull, kBool, kNumber, kString, kArray, kObject };
@@ -25,4 +27,4 @@ struct JsonValue {
 
 JsonValue parseJson(const std::string& text, const std::string& file);
 
-}  // namespace gusuku::pack_detail
+}  // namespace gusuku::json_detail

@@ -1,4 +1,4 @@
-// A METAR's sky-cover groups into gusuku::Weather (gusuku/loader/weather_service.h).
+// A METAR's sky-cover groups into gusuku::Weather (gusuku/weather/weather_service.h).
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/loader/weather_service.h"
+#include "gusuku/weather/weather_service.h"
 #include "gusuku/maths/input_error.h"
 #include "gusuku/maths/time_utc.h"
 

@@ -1,8 +1,9 @@
 #pragma once
 // Weather from a weather service's answer: the text an app fetched (this library makes no network call) turned
-// into the runtime's gusuku::Weather (gusuku/runtime/runtime.h: cloud_cover in [0, 1]). In gusuku_loader, not in
-// the lean runtime: reading JSON needs nlohmann-json, which the runtime never links. How often to ask, and what to
-// do when nothing answers: docs/platform-light.md.
+// into the runtime's gusuku::Weather (gusuku/runtime/runtime.h: cloud_cover in [0, 1]). Library gusuku_weather
+// (CMake gusuku::weather): the C++ standard library only, so a phone (runtime-only) build has it; the C entry
+// points are gusuku/weather/gusuku_weather.h. How often to ask, and what to do when nothing answers:
+// docs/platform-light.md.
 //
 // Two services:
 //   - Open-Meteo's /v1/forecast (open-meteo.com/en/docs), asked with &current=cloud_cover,is_day (a "current"

@@ -1,13 +1,13 @@
-// The runtime pack's JSON reader (pack_json.h).
+// The standard-library JSON reader (json_reader.h).
 
-#include "pack_json.h"
+#include "json_reader.h"
 
 #include <charconv>
 #include <cstdint>
 
 #include "gusuku/maths/input_error.h"
 
-namespace gusuku::pack_detail {
+namespace gusuku::json_detail {
 namespace {
 
 constexpr int kDeepestNesting = 64;
@@ -220,4 +220,4 @@ const JsonValue* JsonValue::find(const std::string& key) const {
 
 JsonValue parseJson(const std::string& text, const std::string& file) { return Parser(text, file).document(); }
 
-}  // namespace gusuku::pack_detail
+}  // namespace gusuku::json_detail
