@@ -10,6 +10,7 @@
 #include "gusuku/maths/bakeset_validate.h"
 #include "device_requirements.h"
 #include "lightmap_format_choice.h"
+#include "runtime_error_category.h"
 #include "runtime_impl.h"
 
 namespace gusuku {
@@ -19,6 +20,9 @@ namespace runtime_detail {
 constexpr uint32_t kMaxFrameSide = 8192;
 constexpr uint32_t kMinShadowMapSize = 64, kMaxShadowMapSize = 8192;
 constexpr uint32_t kMaxShadowPcfRadius = 3;
+
+// What open() does, for its errors' messages ("gusuku runtime: out of host memory opening the bake set").
+constexpr const char* kOpening = "opening the bake set";
 
 // The float options' ranges, as runtime.h documents them: a bound is where a value stops meaning anything
 // (a gain limit below 1 inverts the clamp, a darkening above 1 brightens, a smoothing below one frame is none).
@@ -145,12 +149,9 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         createPipelines();
         camera_->createDrawPipeline(main_passes_[0], mainPassSamples());
         createCommands();
-    } catch (const RuntimeError&) {
+    } catch (...) {
         destroy();
-        throw;
-    } catch (const std::exception& error) {
-        destroy();
-        throw deviceError(error);
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidBakeSet, kOpening);
     }
 }
 
@@ -160,7 +161,8 @@ RuntimeImpl::~RuntimeImpl() { destroy(); }
 
 namespace {
 
-using runtime_detail::deviceError;
+using runtime_detail::kOpening;
+using runtime_detail::rethrowAsRuntimeError;
 using runtime_detail::RuntimeImpl;
 
 // The options as the headless device can honour them: that device knows whether it enabled samplerAnisotropy
@@ -203,12 +205,8 @@ private:
 std::unique_ptr<Runtime> Runtime::openHeadless(const BakeSetData& bake_set, const RuntimeOptions& options) {
     try {
         return std::make_unique<HeadlessRuntime>(bake_set, options);
-    } catch (const RuntimeError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw RuntimeError(RuntimeErrorCode::kOutOfMemory, "gusuku runtime: out of host memory opening the bake set");
-    } catch (const std::exception& error) {
-        throw deviceError(error);
+    } catch (...) {
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidBakeSet, kOpening);
     }
 }
 
@@ -216,12 +214,8 @@ std::unique_ptr<Runtime> Runtime::open(const GpuDevice& gpu, const BakeSetData& 
                                        const RuntimeOptions& options) {
     try {
         return std::make_unique<RuntimeImpl>(gpu, bake_set, options);
-    } catch (const RuntimeError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw RuntimeError(RuntimeErrorCode::kOutOfMemory, "gusuku runtime: out of host memory opening the bake set");
-    } catch (const std::exception& error) {
-        throw deviceError(error);
+    } catch (...) {
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidBakeSet, kOpening);
     }
 }
 

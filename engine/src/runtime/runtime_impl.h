@@ -33,10 +33,6 @@ namespace gusuku::runtime_detail {
 
 struct GraphicsPipelineDescription;  // runtime_pipelines.h
 
-inline RuntimeError deviceError(const std::exception& error) {
-    return RuntimeError(RuntimeErrorCode::kDevice, std::string("gusuku runtime: ") + error.what());
-}
-
 /// Throws RuntimeError(kInvalidFrame) for options out of their documented ranges (runtime.h).
 void checkRuntimeOptions(const RuntimeOptions& options);
 

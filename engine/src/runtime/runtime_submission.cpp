@@ -6,9 +6,15 @@
 
 #include "gusuku/gpu/gpu_compute.h"
 #include "runtime_camera.h"
+#include "runtime_error_category.h"
 #include "runtime_impl.h"
 
 namespace gusuku::runtime_detail {
+
+namespace {
+// What a frame call does, for its errors' messages ("gusuku runtime: out of host memory rendering a frame").
+constexpr const char* kRendering = "rendering a frame";
+}  // namespace
 
 // The next slot, once the GPU is done with the frame that used it last: the one wait of the GPU-resident
 // path, which blocks only when frames_in_flight frames are all still on the GPU.
@@ -28,8 +34,8 @@ void RuntimeImpl::waitForSlot(FrameSlot& slot) {
 void RuntimeImpl::waitIdle() {
     try {
         for (FrameSlot& slot : slots_) waitForSlot(slot);
-    } catch (const std::exception& error) {
-        throw deviceError(error);
+    } catch (...) {
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidFrame, "waiting for the frames in flight");
     }
 }
 
@@ -103,10 +109,8 @@ FrameInfo RuntimeImpl::renderFrame(const FrameInput& frame, uint8_t* output_rgba
             },
             &frame.sync, false);
         finishOutput(output_rgba8);
-    } catch (const RuntimeError&) {
-        throw;
-    } catch (const std::exception& error) {
-        throw deviceError(error);
+    } catch (...) {
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidFrame, kRendering);
     }
     return info;
 }
@@ -118,9 +122,7 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
     };
     const Clock::time_point start = Clock::now();
     checkFrame(frame);
-    waitIdle();  // every pass alone, with nothing else on the GPU
-    acquireSlot(frame);
-    const FrameInfo info = prepareFrame(frame);
+    FrameInfo info;
     // Each pass alone in its own submission, waited for: lavapipe writes timestamps only when graphics work is
     // flushed (docs/design.md 5), so wall time around a fenced submission is the honest per-pass figure.
     auto timed = [&](double& slot, const auto& record) {
@@ -129,6 +131,9 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
         slot = milliseconds(pass_start, Clock::now());
     };
     try {
+        waitIdle();  // every pass alone, with nothing else on the GPU
+        acquireSlot(frame);
+        info = prepareFrame(frame);
         timed(timings.upload_ms, [&](VkCommandBuffer cmd) { recordFrameStart(cmd, frame); });
         timed(timings.statistics_ms, [&](VkCommandBuffer cmd) { recordStatistics(cmd, frame); });
         timed(timings.shadow_ms, [&](VkCommandBuffer cmd) { recordShadows(cmd); });
@@ -152,10 +157,8 @@ FrameInfo RuntimeImpl::renderFrameProfiled(const FrameInput& frame, uint8_t* out
         const Clock::time_point copy_start = Clock::now();
         finishOutput(output_rgba8);
         timings.readback_ms += milliseconds(copy_start, Clock::now());
-    } catch (const RuntimeError&) {
-        throw;
-    } catch (const std::exception& error) {
-        throw deviceError(error);
+    } catch (...) {
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidFrame, kRendering);
     }
     timings.total_ms = milliseconds(start, Clock::now());
     return info;
