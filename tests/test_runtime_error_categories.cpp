@@ -1,7 +1,8 @@
 // The runtime's errors keep their category (runtime.h, "Errors": host memory is kOutOfMemory, device failures
 // kDevice): a host allocation that fails while the runtime opens reaches the app as out of memory, not as a
 // device failure, on every way in: Runtime::open on the app's device, Runtime::openHeadless, and the C API's
-// gusuku_runtime_open_headless (GUSUKU_ERROR_OUT_OF_MEMORY).
+// gusuku_runtime_open_headless (GUSUKU_ERROR_OUT_OF_MEMORY); and so is one in Weather::estimatedFrom, which
+// said "invalid frame" for it (gusuku_weather_estimate likewise).
 //
 // The failure is real: this executable replaces the global operator new, and the test arms it on its own thread
 // to refuse every allocation of at least kRefusedBytes. The bake set's lightmaps are made large enough that the
@@ -14,6 +15,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -139,6 +141,29 @@ TEST(RuntimeErrorCategories, HostMemoryRunningOutInTheCApiIsOutOfMemory) {
     EXPECT_EQ(runtime, nullptr);
     ASSERT_EQ(gusuku_runtime_open_headless(&bake_set, &options, &runtime), GUSUKU_OK) << gusuku_last_error_message();
     gusuku_runtime_close(runtime);
+}
+
+// Weather::estimatedFrom allocates two frame-sized arrays (runtime.h): a 1024^2 frame's 12 MiB of linear colour is
+// refused, which is host memory running out, not a bad frame.
+TEST(RuntimeErrorCategories, HostMemoryRunningOutEstimatingTheWeatherIsOutOfMemory) {
+    constexpr uint32_t kSide = 1024;
+    const std::vector<uint8_t> camera(size_t(kSide) * kSide * 4, 128);
+    std::string message;
+    const RuntimeErrorCode code = codeThrownBy(
+        [&] {
+            RefuseLargeAllocations refuse;
+            Weather::estimatedFrom(camera.data(), kSide, kSide);
+        },
+        message);
+    EXPECT_EQ(code, RuntimeErrorCode::kOutOfMemory) << message;
+    gusuku_weather weather{};
+    gusuku_result result = GUSUKU_OK;
+    {
+        RefuseLargeAllocations refuse;
+        result = gusuku_weather_estimate(camera.data(), kSide, kSide, &weather);
+    }
+    EXPECT_EQ(result, GUSUKU_ERROR_OUT_OF_MEMORY) << gusuku_result_name(result) << ": " << gusuku_last_error_message();
+    EXPECT_EQ(gusuku_weather_estimate(camera.data(), kSide, kSide, &weather), GUSUKU_OK);
 }
 
 }  // namespace

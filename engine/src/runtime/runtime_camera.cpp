@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -47,6 +48,8 @@ Weather Weather::estimatedFrom(const uint8_t* camera_rgba8, uint32_t width, uint
         return {estimateCloudCover(camera_rgba8, width, height).cloud_cover};
     } catch (const RuntimeError&) {
         throw;
+    } catch (const std::bad_alloc&) {  // its two frame-sized arrays: host memory, not the frame, is short
+        throw RuntimeError(RuntimeErrorCode::kOutOfMemory, "Weather::estimatedFrom: out of host memory");
     } catch (const std::exception& error) {  // the runtime's one error family (runtime.h)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("Weather::estimatedFrom: ") + error.what());
     }
