@@ -2,15 +2,13 @@
 
 #include "gusuku_bake/astc_texture.h"
 
-#include <astcenc.h>
-
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
+#include "astcenc_session.h"
 #include "gusuku/maths/srgb_mip_chain.h"
 
 namespace gusuku::bake {
@@ -18,47 +16,22 @@ namespace {
 
 constexpr unsigned kBlockSide = 6;
 constexpr float kMaskedAlphaWeight = 8.0f;
-const astcenc_swizzle kIdentity{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-
-void check(astcenc_error error, const char* step) {
-    if (error != ASTCENC_SUCCESS)
-        throw std::runtime_error(std::string("astcenc ") + step + ": " + astcenc_get_error_string(error));
-}
-
-struct ContextFree {
-    void operator()(astcenc_context* context) const { astcenc_context_free(context); }
-};
-using Context = std::unique_ptr<astcenc_context, ContextFree>;
 
 // Profile LDR sRGB: astcenc decodes RGB from sRGB before it measures its error, as a sampler does before
 // filtering, so the blocks are chosen for the light they show, not for the bytes. `alpha_weight` scales alpha's
 // share of that error (astcenc's cw_a_weight, 1 by default).
-Context makeContext(float quality, unsigned threads, unsigned flags, float alpha_weight = 1.0f) {
-    astcenc_config config;
-    check(astcenc_config_init(ASTCENC_PRF_LDR_SRGB, kBlockSide, kBlockSide, 1, quality, flags, &config), "config");
-    config.cw_a_weight = alpha_weight;
-    astcenc_context* context = nullptr;
-    check(astcenc_context_alloc(&config, threads, &context), "context");
-    return Context(context);
+AstcencContext makeContext(float quality, unsigned threads, unsigned flags, float alpha_weight = 1.0f) {
+    return makeAstcencContext(ASTCENC_PRF_LDR_SRGB, kBlockSide, quality, threads, flags, alpha_weight);
 }
 
-// One level's RGBA8 texels as blocks; astcenc splits one image's blocks among the threads that call it with
-// their own thread index, and the context is reset between images.
+// One level's RGBA8 texels as blocks, on `threads` threads; the context is reset for the next image.
 std::vector<uint8_t> encodeLevel(astcenc_context* context, const std::vector<uint8_t>& rgba8, uint32_t width,
                                  uint32_t height, unsigned threads) {
     void* slices[1] = {const_cast<uint8_t*>(rgba8.data())};
     astcenc_image image{width, height, 1, ASTCENC_TYPE_U8, slices};
     std::vector<uint8_t> blocks(size_t(ktx2LevelBytes(Ktx2Format::kAstc6x6Srgb, width, height)));
-    std::vector<astcenc_error> errors(threads, ASTCENC_SUCCESS);
-    std::vector<std::thread> workers;
-    for (unsigned thread = 1; thread < threads; ++thread)
-        workers.emplace_back([&, thread] {
-            errors[thread] = astcenc_compress_image(context, &image, &kIdentity, blocks.data(), blocks.size(), thread);
-        });
-    errors[0] = astcenc_compress_image(context, &image, &kIdentity, blocks.data(), blocks.size(), 0);
-    for (std::thread& worker : workers) worker.join();
-    for (astcenc_error error : errors) check(error, "compress");
-    check(astcenc_compress_reset(context), "reset");
+    compressAstcImage(context, image, blocks, threads);
+    checkAstcenc(astcenc_compress_reset(context), "reset");
     return blocks;
 }
 
@@ -67,8 +40,8 @@ std::vector<uint8_t> decodeLevel(astcenc_context* context, const std::vector<uin
     std::vector<uint8_t> rgba8(size_t(width) * height * 4);
     void* slices[1] = {rgba8.data()};
     astcenc_image image{width, height, 1, ASTCENC_TYPE_U8, slices};
-    check(astcenc_decompress_image(context, blocks.data(), blocks.size(), &image, &kIdentity, 0), "decompress");
-    check(astcenc_decompress_reset(context), "reset");
+    decompressAstcImage(context, blocks, image);
+    checkAstcenc(astcenc_decompress_reset(context), "reset");
     return rgba8;
 }
 
@@ -118,7 +91,7 @@ Ktx2Image encodeAstcTexture(const BakeSetTexture& texture, float coverage_alpha,
     // A masked texture's alpha decides which texels exist: near the cutoff a few codes of alpha error flip a
     // texel in or out, so alpha weighs more than colour there (kMaskedAlphaWeight, test_astc_texture).
     const bool masked = keepsAlphaCoverage(coverage_alpha);
-    const Context context = makeContext(quality, threads, 0, masked ? kMaskedAlphaWeight : 1.0f);
+    const AstcencContext context = makeContext(quality, threads, 0, masked ? kMaskedAlphaWeight : 1.0f);
     const uint32_t level_count = ktx2FullLevelCount(width, height);
     const std::vector<std::vector<uint8_t>> smaller =
         boxFilteredSrgbMipLevels(texture.rgba8.data(), width, height, level_count, coverage_alpha);
@@ -143,8 +116,8 @@ std::vector<uint8_t> decodeAstcTextureLevel(const std::vector<uint8_t>& blocks, 
     std::vector<uint8_t> rgba8(size_t(width) * height * 4);
     void* slices[1] = {rgba8.data()};
     astcenc_image image{width, height, 1, ASTCENC_TYPE_U8, slices};
-    const Context context = makeContext(kAstcTextureQuality, 1, ASTCENC_FLG_DECOMPRESS_ONLY);
-    check(astcenc_decompress_image(context.get(), blocks.data(), blocks.size(), &image, &kIdentity, 0), "decompress");
+    const AstcencContext context = makeContext(kAstcTextureQuality, 1, ASTCENC_FLG_DECOMPRESS_ONLY);
+    decompressAstcImage(context.get(), blocks, image);
     return rgba8;
 }
 
