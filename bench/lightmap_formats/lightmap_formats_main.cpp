@@ -25,13 +25,12 @@
 #include <thread>
 #include <vector>
 
-#include <glm/geometric.hpp>
-
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/loader/runtime_pack.h"
 #include "gusuku/runtime/runtime.h"
+#include "format_comparison.h"
 #include "gusuku_bake/astc_lightmap.h"
 #include "image_metrics.h"
 
@@ -48,13 +47,6 @@ struct Request {
     std::vector<float> astc_qualities;  // astcenc qualities to encode the EXR lightmaps at (none: the pack's only)
 };
 
-glm::dvec3 parsePoint(const std::string& option, const char* text) {
-    glm::dvec3 point;
-    if (std::sscanf(text, "%lf,%lf,%lf", &point.x, &point.y, &point.z) != 3)
-        throw std::invalid_argument(option + ": '" + text + "' is not E,N,U");
-    return point;
-}
-
 Request readRequest(int argc, char** argv) {
     Request request;
     for (int index = 1; index < argc; ++index) {
@@ -62,14 +54,12 @@ Request readRequest(int argc, char** argv) {
         const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
         if (argument.rfind("--", 0) == 0 && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
         if (argument == "--size") {
-            if (std::sscanf(value, "%ux%u", &request.width, &request.height) != 2 || request.width < 16 ||
-                request.height < 16)
-                throw std::invalid_argument(std::string("--size: '") + value + "' is not WxH of at least 16x16");
+            bench_common::parseFrameSizeOption(value, request.width, request.height);
         } else if (argument == "--position") {
-            request.position = parsePoint(argument, value);
+            request.position = bench_common::parsePointOption(argument, value);
             request.placed = true;
         } else if (argument == "--look-at") {
-            request.look_at = parsePoint(argument, value);
+            request.look_at = bench_common::parsePointOption(argument, value);
         } else if (argument == "--fov") {
             request.fov_deg = std::atof(value);
         } else if (argument == "--astc-quality") {
@@ -95,25 +85,9 @@ Request readRequest(int argc, char** argv) {
 
 void placeCamera(const BakeSetData& bake_set, Request& request) {
     if (request.placed) return;
-    glm::dvec3 low(INFINITY), high(-INFINITY);
-    for (const glm::vec3& position : bake_set.building.positions) {
-        low = glm::min(low, glm::dvec3(position));
-        high = glm::max(high, glm::dvec3(position));
-    }
-    const glm::dvec3 centre = 0.5 * (low + high);
-    const double radius = std::max(0.5 * glm::length(high - low), 1.0);
-    request.look_at = centre;
-    request.position = centre + radius * glm::dvec3(1.8 * 0.6, -1.8 * 0.8, 0.6);
-}
-
-double meanLightmapLuminance(const BakeSetImage& image) {
-    double sum = 0.0, count = 0.0;
-    for (size_t texel = 0; texel + 3 < image.rgba.size(); texel += 4)
-        if (image.rgba[texel + 3] > 0.0f) {
-            sum += luminanceRec709(glm::dvec3(image.rgba[texel], image.rgba[texel + 1], image.rgba[texel + 2]));
-            count += 1.0;
-        }
-    return count > 0.0 ? sum / count : 0.0;
+    const bench_common::BuildingView view = bench_common::southEastViewOf(bake_set);
+    request.look_at = view.look_at;
+    request.position = view.position;
 }
 
 struct FormatRun {
@@ -142,8 +116,7 @@ void drawSlots(const BakeSetData& bake_set, LightmapFormat format, const Request
         frame.pose = CameraPose::lookingAt(request.position, request.look_at);
         frame.utc_unix_seconds = parseIso8601Utc(sunny ? info.utc : sunny_utc);
         frame.weather.cloud_cover = sunny ? 0.0f : 1.0f;
-        frame.exposure =
-            float(0.6 / (0.5 / M_PI * std::max(meanLightmapLuminance(bake_set.slots[slot].building) + sun, 1e-9)));
+        frame.exposure = bench_common::sunlitGreyExposure(bake_set.slots[slot].building, sun);
         frame.colour_match = ColourMatch::kOff;
         std::vector<uint8_t> composite(camera.size());
         for (int warm_up = 0; warm_up < 2; ++warm_up) runtime->renderFrame(frame, composite.data());
@@ -165,10 +138,7 @@ void report(const BakeSetData& bake_set, const Request& request, const std::vect
                     double(texels * run.bytes_per_texel_x16) / 16.0 / 1048576.0, double(run.device_bytes) / 1048576.0);
         for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
             const std::vector<uint8_t>& reference = runs[0].composites[slot];
-            std::vector<uint8_t> region(size_t(request.width) * request.height, 0);
-            for (size_t pixel = 0; pixel < region.size(); ++pixel)
-                for (int channel = 0; channel < 3; ++channel)
-                    if (reference[pixel * 4 + channel] != camera[pixel * 4 + channel]) region[pixel] = 1;
+            const std::vector<uint8_t> region = bench_common::changedRegion(reference, camera);
             const bench::ErrorSummary in_region = bench::summariseError(run.composites[slot], reference, region);
             const bench::ErrorSummary whole = bench::summariseError(run.composites[slot], reference);
             std::printf("  %-14s dE00 vs rgba32f: region mean %.4f p95 %.4f (%zu px), frame mean %.4f\n",

@@ -29,6 +29,7 @@
 #include "gusuku/maths/texture_coverage.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/runtime/runtime.h"
+#include "format_comparison.h"
 #include "gusuku_bake/astc_texture.h"
 #include "image_metrics.h"
 
@@ -48,13 +49,6 @@ struct Request {
     std::string utc;
 };
 
-glm::dvec3 parsePoint(const std::string& option, const std::string& text) {
-    glm::dvec3 point;
-    if (std::sscanf(text.c_str(), "%lf,%lf,%lf", &point.x, &point.y, &point.z) != 3)
-        throw std::invalid_argument(option + ": '" + text + "' is not E,N,U");
-    return point;
-}
-
 Request readRequest(int argc, char** argv) {
     Request request;
     for (int index = 1; index < argc; ++index) {
@@ -62,14 +56,13 @@ Request readRequest(int argc, char** argv) {
         const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
         if (argument.rfind("--", 0) == 0 && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
         if (argument == "--size") {
-            if (std::sscanf(value, "%ux%u", &request.width, &request.height) != 2 || request.width < 16 ||
-                request.height < 16)
-                throw std::invalid_argument(std::string("--size: '") + value + "' is not WxH of at least 16x16");
+            bench_common::parseFrameSizeOption(value, request.width, request.height);
         } else if (argument == "--view") {
             const std::string text = value;
             const size_t colon = text.find(':');
             if (colon == std::string::npos) throw std::invalid_argument("--view: '" + text + "' is not E,N,U:E,N,U");
-            request.views.push_back({parsePoint(argument, text.substr(0, colon)), parsePoint(argument, text.substr(colon + 1))});
+            request.views.push_back({bench_common::parsePointOption(argument, text.substr(0, colon)),
+                                     bench_common::parsePointOption(argument, text.substr(colon + 1))});
         } else if (argument == "--fov") {
             request.fov_deg = std::atof(value);
         } else if (argument == "--time") {
@@ -86,27 +79,11 @@ Request readRequest(int argc, char** argv) {
     return request;
 }
 
-// Without --view: south-east of the building's bounds, 1.8 radii out and 0.6 up, looking at their centre.
+// Without --view: south-east of the building's bounds, looking at their centre (format_comparison.h).
 void placeDefaultView(const BakeSetData& bake_set, Request& request) {
     if (!request.views.empty()) return;
-    glm::dvec3 low(INFINITY), high(-INFINITY);
-    for (const glm::vec3& position : bake_set.building.positions) {
-        low = glm::min(low, glm::dvec3(position));
-        high = glm::max(high, glm::dvec3(position));
-    }
-    const glm::dvec3 centre = 0.5 * (low + high);
-    const double radius = std::max(0.5 * glm::length(high - low), 1.0);
-    request.views.push_back({centre + radius * glm::dvec3(1.8 * 0.6, -1.8 * 0.8, 0.6), centre});
-}
-
-double meanLightmapLuminance(const BakeSetImage& image) {
-    double sum = 0.0, count = 0.0;
-    for (size_t texel = 0; texel + 3 < image.rgba.size(); texel += 4)
-        if (image.rgba[texel + 3] > 0.0f) {
-            sum += luminanceRec709(glm::dvec3(image.rgba[texel], image.rgba[texel + 1], image.rgba[texel + 2]));
-            count += 1.0;
-        }
-    return count > 0.0 ? sum / count : 0.0;
+    const bench_common::BuildingView view = bench_common::southEastViewOf(bake_set);
+    request.views.push_back({view.position, view.look_at});
 }
 
 std::vector<uint8_t> composite(const BakeSetData& bake_set, const Request& request, const View& view,
@@ -124,9 +101,8 @@ std::vector<uint8_t> composite(const BakeSetData& bake_set, const Request& reque
     frame.intrinsics = CameraIntrinsics::fromFieldOfView(request.width, request.height, request.fov_deg);
     frame.pose = CameraPose::lookingAt(view.position, view.look_at);
     frame.utc_unix_seconds = parseIso8601Utc(request.utc.empty() ? info.utc : request.utc);
-    frame.exposure = float(0.6 / (0.5 / M_PI * std::max(meanLightmapLuminance(bake_set.slots[slot].building) +
-                                                            luminanceRec709(info.sun.irradiance_rgb),
-                                                        1e-9)));
+    frame.exposure =
+        bench_common::sunlitGreyExposure(bake_set.slots[slot].building, luminanceRec709(info.sun.irradiance_rgb));
     frame.colour_match = ColourMatch::kOff;
     std::vector<uint8_t> pixels(camera.size());
     for (int warm_up = 0; warm_up < 2; ++warm_up) runtime->renderFrame(frame, pixels.data());
@@ -203,10 +179,7 @@ int main(int argc, char** argv) {
         for (const View& view : request.views) {
             const std::vector<uint8_t> reference = composite(bake_set, request, view, camera);
             const std::vector<uint8_t> astc = composite(decoded, request, view, camera);
-            std::vector<uint8_t> region(size_t(request.width) * request.height, 0);
-            for (size_t pixel = 0; pixel < region.size(); ++pixel)
-                for (int channel = 0; channel < 3; ++channel)
-                    if (reference[pixel * 4 + channel] != camera[pixel * 4 + channel]) region[pixel] = 1;
+            const std::vector<uint8_t> region = bench_common::changedRegion(reference, camera);
             const bench::ErrorSummary summary = bench::summariseError(astc, reference, region);
             std::printf("view %.1f,%.1f,%.1f -> %.1f,%.1f,%.1f, %ux%u: ASTC 6x6 vs RGBA8 dE00 region mean %.4f p95 "
                         "%.4f (%zu px)\n",
