@@ -32,4 +32,12 @@ ConditionFrames traceCondition(TruthRenderer& renderer, const BenchView& view, u
     return frames;
 }
 
+RespondedFrames respondedFrames(const ConditionFrames& frames, const CameraResponse& response) {
+    RespondedFrames responded;
+    responded.truth = applyCameraResponse(frames.truth, frames.exposure, response);
+    responded.camera = applyCameraResponse(frames.camera, frames.exposure, response);
+    responded.mask = changedPixelMask(responded.truth, responded.camera);
+    return responded;
+}
+
 }  // namespace gusuku::bench

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_views.h"
+#include "camera_response.h"
 #include "camera_view.h"
 #include "frame_spread.h"
 #include "gusuku/assets/bakeset_loader.h"
@@ -108,6 +109,13 @@ struct ConditionFrames {
 
 ConditionFrames traceCondition(TruthRenderer& renderer, const BenchView& view, uint32_t width, uint32_t height,
                                const BenchCondition& condition, uint32_t samples);
+
+// One condition's frames as a camera with `response` records them (8-bit), and the pixels where the building
+// changes the truth: what the weather sections compare each runtime composite with.
+struct RespondedFrames {
+    std::vector<uint8_t> truth, camera, mask;
+};
+RespondedFrames respondedFrames(const ConditionFrames& frames, const CameraResponse& response);
 
 /// The truth's request (the building in) for this view, size, condition, samples and seed: seed 2 is the
 /// second estimate that measures the truth's own noise.

@@ -179,9 +179,7 @@ Json runWeatherUnder(Bench& bench, const SkySet& skies) {
         const ConditionFrames frames = traceCondition(*skies.renderer, bench.view, width, height, {utc, cover},
                                                       settings.sweep_samples);
         for (const CameraResponse& response : benchCameraResponses()) {
-            const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
-            const std::vector<uint8_t> camera = applyCameraResponse(frames.camera, frames.exposure, response);
-            const std::vector<uint8_t> mask = changedPixelMask(truth, camera);
+            const auto [truth, camera, mask] = respondedFrames(frames, response);
             auto errorOf = [&](const std::string& mode_name) {
                 const FrameInput input = frameInputFor(runtimeModeNamed(mode_name), camera, intrinsics, pose, utc,
                                                        cover, frames.exposure * response.exposure_scale);
@@ -340,9 +338,7 @@ Json runCloudsUnder(Bench& bench, const SkySet& skies) {
             const ConditionFrames frames = traceCondition(*skies.renderer, bench.view, width, height, {utc, cover},
                                                           settings.sweep_samples);
             for (const CameraResponse& response : benchCameraResponses()) {
-                const std::vector<uint8_t> truth = applyCameraResponse(frames.truth, frames.exposure, response);
-                const std::vector<uint8_t> camera = applyCameraResponse(frames.camera, frames.exposure, response);
-                const std::vector<uint8_t> mask = changedPixelMask(truth, camera);
+                const auto [truth, camera, mask] = respondedFrames(frames, response);
                 const CloudEstimate estimate = estimateCloudCover(camera, width, height);
                 // The candidate weather whose composite is closest to the truth, and the one the estimate picks.
                 float best = candidates[0], picked = candidates[0];
