@@ -206,7 +206,7 @@ size_t bakedInvalidTexels(VulkanContext& context, const std::string& name, const
     // Dilation: every texel that a bilinear lookup reads from a point whose own texel is traced and valid holds
     // light (its own, or its chart's valid neighbours'). Read from the baked mesh's uv1 as the runtime reads it, not
     // as "every texel next to a valid one": a chart may end on its last row of centres (a spanned frame,
-    // lightmap_charts.cpp), and the texel beyond it then belongs to the next chart, which may lie wholly inside
+    // lightmap_chart_frames.cpp), and the texel beyond it then belongs to the next chart, which may lie wholly inside
     // the wall and be black, unread by anything in the open.
     const ImageRGBA lightmap = readImage(dir + "/bake/building_" + slot + ".exr");
     const TriangleMesh baked = loadGltf(dir + "/bake/building.glb", {enuFromGltfYUp()});

@@ -139,7 +139,7 @@ TEST_F(BakeInvalidTexelsTest, APavilionOfDoubleSidedFacesHasNoInvalidTexelInTheO
     EXPECT_EQ(invalid.one_sided_backs, 0u) << "no material is one-sided";
     // Under the ground: the platform's sides below z = 0, counted below from the baked mesh's uv1 as the texel
     // centres the bake claims there (9.6 m^2 at 16 texels a m^2 is about 154 texels' area, but a side 0.7 m
-    // tall holds 4 rows of centres when its chart ends on its first and last rows, lightmap_charts.cpp's
+    // tall holds 4 rows of centres when its chart ends on its first and last rows, lightmap_chart_frames.cpp's
     // spanned frame, and 2 of them lie below the ground).
     EXPECT_GT(invalid.under_ground, 100u);
     EXPECT_GT(invalid.closed_double_sided, 2u);

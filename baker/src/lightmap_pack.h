@@ -10,8 +10,8 @@
 namespace gusuku::bake::detail {
 
 /// A chart as the packer sees it: a rectangle of texels, and which of them the chart needs for itself. The
-/// charting code gives each chart's bilinear read set (lightmap_charts.cpp, phase 7): the packer keeps these sets,
-/// grown by the padding, apart.
+/// charting code gives each chart's bilinear read set (lightmap_chart_frames.cpp, phase 7): the packer keeps these
+/// sets, grown by the padding, apart.
 struct ChartShape {
     glm::ivec2 inner{1, 1};         ///< texels, as charted (before any turn)
     std::vector<uint8_t> occupied;  ///< inner.x * inner.y, row-major: 1 where the chart needs the texel

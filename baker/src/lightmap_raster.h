@@ -49,7 +49,7 @@ inline bool bilinearReadsTexel(const UvTriangle& triangle, int x, int y) {
 
 /// The near-claim rule: a texel centre that no triangle contains but that lies within kNearClaimTexels of one is
 /// that triangle's (the nearest's, when several are that near). The packer's spanned frames
-/// (lightmap_charts.cpp) end a chart a hundredth of a texel inside its end centres, so that it reads no texel
+/// (lightmap_chart_frames.cpp) end a chart a hundredth of a texel inside its end centres, so that it reads no texel
 /// beyond them, and this rule still traces those centres. Ordinary charts keep their edges 0.05 texel clear of
 /// rows of centres, and are not affected.
 inline constexpr double kNearClaimTexels = 0.02;
