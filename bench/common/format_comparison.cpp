@@ -14,6 +14,22 @@
 
 namespace gusuku::bench_common {
 
+std::string readFolderAndOptions(int argc, char** argv, const char* usage,
+                                 const std::function<bool(const std::string& option, const char* value)>& read_option) {
+    std::string folder;
+    for (int index = 1; index < argc; ++index) {
+        const std::string argument = argv[index];
+        const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
+        const bool is_option = argument.rfind("--", 0) == 0;
+        if (is_option && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
+        if (is_option && read_option(argument, value)) ++index;
+        else if (folder.empty() && !is_option) folder = argument;
+        else throw std::invalid_argument("'" + argument + "': unknown argument");
+    }
+    if (folder.empty()) throw std::invalid_argument(usage);
+    return folder;
+}
+
 glm::dvec3 parsePointOption(const std::string& option, const std::string& text) {
     glm::dvec3 point;
     if (std::sscanf(text.c_str(), "%lf,%lf,%lf", &point.x, &point.y, &point.z) != 3)

@@ -4,6 +4,7 @@
 // composite changes. One copy, so both tools compare formats the same way.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,12 @@
 #include "gusuku/maths/bakeset_data.h"
 
 namespace gusuku::bench_common {
+
+/// The tools' command line: one bake set folder and options that each take a value. `read_option(option, value)`
+/// reads an option it knows and returns true, else false; an option without a value, an unknown argument or a
+/// second folder throws std::invalid_argument, and so does no folder (with `usage` as the message).
+std::string readFolderAndOptions(int argc, char** argv, const char* usage,
+                                 const std::function<bool(const std::string& option, const char* value)>& read_option);
 
 /// "E,N,U" as a point; std::invalid_argument "OPTION: 'TEXT' is not E,N,U" otherwise.
 glm::dvec3 parsePointOption(const std::string& option, const std::string& text);

@@ -49,20 +49,17 @@ struct Request {
 
 Request readRequest(int argc, char** argv) {
     Request request;
-    for (int index = 1; index < argc; ++index) {
-        const std::string argument = argv[index];
-        const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
-        if (argument.rfind("--", 0) == 0 && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
-        if (argument == "--size") {
+    auto read_option = [&](const std::string& option, const char* value) {
+        if (option == "--size") {
             bench_common::parseFrameSizeOption(value, request.width, request.height);
-        } else if (argument == "--position") {
-            request.position = bench_common::parsePointOption(argument, value);
+        } else if (option == "--position") {
+            request.position = bench_common::parsePointOption(option, value);
             request.placed = true;
-        } else if (argument == "--look-at") {
-            request.look_at = bench_common::parsePointOption(argument, value);
-        } else if (argument == "--fov") {
+        } else if (option == "--look-at") {
+            request.look_at = bench_common::parsePointOption(option, value);
+        } else if (option == "--fov") {
             request.fov_deg = std::atof(value);
-        } else if (argument == "--astc-quality") {
+        } else if (option == "--astc-quality") {
             for (const char* at = value; *at != '\0';) {
                 char* end = nullptr;
                 const float quality = std::strtof(at, &end);
@@ -71,15 +68,13 @@ Request readRequest(int argc, char** argv) {
                 request.astc_qualities.push_back(quality);
                 at = *end == ',' ? end + 1 : end;
             }
-        } else if (request.folder.empty() && argument.rfind("--", 0) != 0) {
-            request.folder = argument;
-            continue;
         } else {
-            throw std::invalid_argument("'" + argument + "': unknown argument");
+            return false;
         }
-        ++index;
-    }
-    if (request.folder.empty()) throw std::invalid_argument("usage: gusuku-lightmap-formats BAKESET [--size WxH] ...");
+        return true;
+    };
+    request.folder = bench_common::readFolderAndOptions(
+        argc, argv, "usage: gusuku-lightmap-formats BAKESET [--size WxH] ...", read_option);
     return request;
 }
 

@@ -51,31 +51,26 @@ struct Request {
 
 Request readRequest(int argc, char** argv) {
     Request request;
-    for (int index = 1; index < argc; ++index) {
-        const std::string argument = argv[index];
-        const char* value = index + 1 < argc ? argv[index + 1] : nullptr;
-        if (argument.rfind("--", 0) == 0 && value == nullptr) throw std::invalid_argument(argument + ": needs a value");
-        if (argument == "--size") {
+    auto read_option = [&](const std::string& option, const char* value) {
+        if (option == "--size") {
             bench_common::parseFrameSizeOption(value, request.width, request.height);
-        } else if (argument == "--view") {
+        } else if (option == "--view") {
             const std::string text = value;
             const size_t colon = text.find(':');
             if (colon == std::string::npos) throw std::invalid_argument("--view: '" + text + "' is not E,N,U:E,N,U");
-            request.views.push_back({bench_common::parsePointOption(argument, text.substr(0, colon)),
-                                     bench_common::parsePointOption(argument, text.substr(colon + 1))});
-        } else if (argument == "--fov") {
+            request.views.push_back({bench_common::parsePointOption(option, text.substr(0, colon)),
+                                     bench_common::parsePointOption(option, text.substr(colon + 1))});
+        } else if (option == "--fov") {
             request.fov_deg = std::atof(value);
-        } else if (argument == "--time") {
+        } else if (option == "--time") {
             request.utc = value;
-        } else if (request.folder.empty() && argument.rfind("--", 0) != 0) {
-            request.folder = argument;
-            continue;
         } else {
-            throw std::invalid_argument("'" + argument + "': unknown argument");
+            return false;
         }
-        ++index;
-    }
-    if (request.folder.empty()) throw std::invalid_argument("usage: gusuku-texture-formats BAKESET [--size WxH] ...");
+        return true;
+    };
+    request.folder = bench_common::readFolderAndOptions(
+        argc, argv, "usage: gusuku-texture-formats BAKESET [--size WxH] ...", read_option);
     return request;
 }
 
