@@ -22,8 +22,9 @@ protected:
     void SetUp() override {
         dir_ = gusuku::testing::makeTemporaryDirectory("gusuku_render_outputs");
         fs::create_directory(dir_ + "/set");
-        for (const char* name : {"manifest.json", "building_overcast.exr", "ground_geometry.exr"})
+        for (const char* name : {"building_overcast.exr", "ground_geometry.exr"})
             std::ofstream(dir_ + "/set/" + name) << "bytes";
+        std::ofstream(dir_ + "/set/manifest.json") << R"({"format": "gusuku-bakeset/1"})";  // what marks a set
         std::ofstream(dir_ + "/camera.png") << "bytes";
         request_.bake_set = dir_ + "/set";
         request_.camera = dir_ + "/camera.png";
@@ -48,8 +49,19 @@ TEST_F(RenderOutputsTest, OutputsBesideTheInputsAreAccepted) {
     request_.direct_only_png = dir_ + "/direct.png";
     request_.camera_png = dir_ + "/camera_out.png";
     EXPECT_EQ(refusal(), "");
-    request_.output_png = dir_ + "/set/composite.png";  // a new file in the set's folder destroys nothing
-    EXPECT_EQ(refusal(), "");
+}
+
+// A new file inside the bake set's folder destroys nothing today, but the set's next bake or pack would take the
+// folder for its own: the guard every writing command shares refuses it, and a file inside a pack likewise.
+TEST_F(RenderOutputsTest, AnOutputInsideTheBakeSetFolderIsRefused) {
+    request_.output_png = dir_ + "/set/composite.png";
+    EXPECT_EQ(refusal().rfind("-o: ", 0), 0u) << refusal();
+    EXPECT_NE(refusal().find("inside"), std::string::npos) << refusal();
+    fs::create_directory(dir_ + "/set/pack");
+    std::ofstream(dir_ + "/set/pack/pack.bin") << "bytes";
+    request_.output_png = dir_ + "/composite.png";
+    request_.camera_png = dir_ + "/set/pack/camera.png";
+    EXPECT_EQ(refusal().rfind("--camera-out: ", 0), 0u) << refusal();
 }
 
 TEST_F(RenderOutputsTest, AnOutputOntoABakeSetFileIsRefused) {

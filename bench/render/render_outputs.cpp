@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "gusuku/maths/input_error.h"
+#include "gusuku_bake/output_guard.h"
 
 namespace gusuku::render_cli {
 namespace {
@@ -49,6 +50,16 @@ void refuseOutputsThatAreInputs(const RenderRequest& request, const std::vector<
             if (output == resolved(outputs[other].second))
                 throw InputError(path, option, "is also the " + outputs[other].first +
                                                    " output; each output needs its own file");
+        // The rule every writing command shares (gusuku_bake/output_guard.h): nothing inside a bake set or a
+        // runtime pack, this render's own set included, which its next bake or pack would take for its own.
+        bake::OutputRequest guard;
+        guard.output = path;
+        guard.field = option;
+        guard.command = "render";
+        guard.kind = bake::OutputKind::kFile;
+        guard.inputs = inputs;
+        guard.read_sets = {request.bake_set};
+        bake::refuseUnsafeOutput(guard);
     }
 }
 

@@ -16,7 +16,8 @@ std::vector<std::string> renderInputFiles(const RenderRequest& request, const st
 
 /// Throws InputError(output, option, "is an input of this render (...)") when an output (-o, --direct-only,
 /// --camera-out) is, after resolving links and relative parts, one of `inputs` or the bake set folder itself,
-/// or the same file as another output.
+/// or the same file as another output; then applies the output guard every writing command shares
+/// (gusuku_bake/output_guard.h): no output inside a bake set or a runtime pack.
 void refuseOutputsThatAreInputs(const RenderRequest& request, const std::vector<std::string>& inputs);
 
 }  // namespace gusuku::render_cli
