@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <regex>
 #include <sstream>
 
 #include <OpenImageIO/filesystem.h>
@@ -261,6 +262,22 @@ ImageRGBA decodeReduced(const std::string& name, OIIO::ImageInput& input, bool i
     return image;
 }
 
+// True when every line of a decoder's report is libjpeg's JWRN_EXTRANEOUS_DATA, as OpenImageIO 2.4 words it:
+// 'JPEG error: Corrupt JPEG data: 3 extraneous bytes before marker 0xda ("sky.jpg")': bytes skipped between
+// segments, every pixel decoded.
+bool onlyExtraneousBytes(const std::string& report) {
+    static const std::regex extraneous(
+        R"(JPEG error: Corrupt JPEG data: \d+ extraneous bytes before marker 0x[0-9a-fA-F]+.*)");
+    std::istringstream lines(report);
+    bool any = false;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        if (!std::regex_match(line, extraneous)) return false;
+        any = true;
+    }
+    return any;
+}
+
 ImageRGBA readOpenedImage(const std::string& name, OIIO::ImageInput& input, ImageEncoding encoding, int max_side,
                           StderrCapture& capture) {
     const OIIO::ImageSpec& spec = input.spec();
@@ -275,8 +292,10 @@ ImageRGBA readOpenedImage(const std::string& name, OIIO::ImageInput& input, Imag
     // A decoder that works around missing or corrupt data still returns every row but says so through the
     // input's error: libjpeg's "Premature end of JPEG file" on a truncated JPEG, whose missing rows it fills
     // with grey (a sky cut to 44 % of its bytes became flat grey without a word). Such an image is refused.
-    if (const std::string damage = oneLine(input.geterror()); !damage.empty())
-        throw InputError(name, "", "damaged image data, refused rather than read in part: " + damage);
+    // One libjpeg warning is about no pixel: "extraneous bytes before marker", padding that some cameras and
+    // editors write between segments; an image whose only report is that one is read as it is.
+    if (const std::string report = input.geterror(); !report.empty() && !onlyExtraneousBytes(report))
+        throw InputError(name, "", "damaged image data, refused rather than read in part: " + oneLine(report));
     capture.restore();  // a codec's warnings on stderr for a good image are dropped
     return image;
 }
