@@ -15,26 +15,8 @@
 #include <string.h>
 
 #include "gusuku/runtime/gusuku.h"
+#include "support/c_checks.h"
 
-static int g_failures = 0;
-
-#define CHECK(condition)                                                                                          \
-    do {                                                                                                          \
-        if (!(condition)) {                                                                                       \
-            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #condition);                         \
-            ++g_failures;                                                                                         \
-        }                                                                                                         \
-    } while (0)
-
-#define CHECK_RESULT(call, expected)                                                                              \
-    do {                                                                                                          \
-        gusuku_result result_ = (call);                                                                           \
-        if (result_ != (expected)) {                                                                              \
-            fprintf(stderr, "%s:%d: %s returned %s, expected %s (%s)\n", __FILE__, __LINE__, #call,               \
-                    gusuku_result_name(result_), gusuku_result_name(expected), gusuku_last_error_message());      \
-            ++g_failures;                                                                                         \
-        }                                                                                                         \
-    } while (0)
 
 #define CHECK_MESSAGE_HAS(message, text)                                                                          \
     do {                                                                                                          \

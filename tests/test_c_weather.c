@@ -11,26 +11,8 @@
 #include <string.h>
 
 #include "gusuku/weather/gusuku_weather.h"
+#include "support/c_checks.h"
 
-static int g_failures = 0;
-
-#define CHECK(condition)                                                                                          \
-    do {                                                                                                          \
-        if (!(condition)) {                                                                                       \
-            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #condition);                         \
-            ++g_failures;                                                                                         \
-        }                                                                                                         \
-    } while (0)
-
-#define CHECK_RESULT(call, expected)                                                                              \
-    do {                                                                                                          \
-        gusuku_result result_ = (call);                                                                           \
-        if (result_ != (expected)) {                                                                              \
-            fprintf(stderr, "%s:%d: %s returned %s, expected %s (%s)\n", __FILE__, __LINE__, #call,               \
-                    gusuku_result_name(result_), gusuku_result_name(expected), gusuku_last_error_message());      \
-            ++g_failures;                                                                                         \
-        }                                                                                                         \
-    } while (0)
 
 /* The thread's last message starts with `text` (the whole "FUNCTION: NAME: FIELD: PROBLEM" prefix). */
 #define CHECK_MESSAGE_STARTS(text)                                                                                \
