@@ -21,6 +21,7 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/runtime/gusuku.h"
+#include "gusuku/runtime/runtime.h"
 
 namespace gusuku {
 namespace {
@@ -161,6 +162,23 @@ static_assert(sizeof(FrameInfo01) == 104 && sizeof(gusuku_frame_info) == 112);
 static_assert(offsetof(gusuku_frame_info, ground_quads_drawn) == 100);
 static_assert(offsetof(gusuku_frame_info, ground_quads_total) == 104);
 static_assert(sizeof(gusuku_pass_timings) == 72 && offsetof(gusuku_pass_timings, total_ms) == 64);
+
+// The enums' values are ABI too: gusuku 0.1's numbers, the C and C++ enums equal, and the paper's names
+// (GUSUKU_MODE_PROPOSED, kPaper, ...) still aliases of today's (GUSUKU_MODE_BAKED_LIGHT, kReinhard, ...).
+static_assert(GUSUKU_MODE_BAKED_LIGHT == 0 && GUSUKU_MODE_DIRECT_ONLY == 1);
+static_assert(GUSUKU_MODE_PROPOSED == GUSUKU_MODE_BAKED_LIGHT);
+static_assert(RenderMode::kProposed == RenderMode::kBakedLight);
+static_assert(int(RenderMode::kBakedLight) == GUSUKU_MODE_BAKED_LIGHT &&
+              int(RenderMode::kDirectOnly) == GUSUKU_MODE_DIRECT_ONLY);
+static_assert(GUSUKU_COLOUR_MATCH_OFF == 0 && GUSUKU_COLOUR_MATCH_REINHARD == 1 && GUSUKU_COLOUR_MATCH_PRESERVE == 2 &&
+              GUSUKU_COLOUR_MATCH_GROUND == 3 && GUSUKU_COLOUR_MATCH_AUTO == 4);
+static_assert(GUSUKU_COLOUR_MATCH_PAPER == GUSUKU_COLOUR_MATCH_REINHARD);
+static_assert(ColourMatch::kPaper == ColourMatch::kReinhard);
+static_assert(int(ColourMatch::kOff) == GUSUKU_COLOUR_MATCH_OFF &&
+              int(ColourMatch::kReinhard) == GUSUKU_COLOUR_MATCH_REINHARD &&
+              int(ColourMatch::kPreserve) == GUSUKU_COLOUR_MATCH_PRESERVE &&
+              int(ColourMatch::kGround) == GUSUKU_COLOUR_MATCH_GROUND &&
+              int(ColourMatch::kAuto) == GUSUKU_COLOUR_MATCH_AUTO);
 #endif
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -236,7 +254,7 @@ FrameInput01 frame01(const uint8_t* camera) {
     frame.utc_unix_seconds = 1782000000.0;
     frame.weather.cloud_cover = 1.0f;
     frame.exposure = 1.0f;
-    frame.mode = GUSUKU_MODE_PROPOSED;
+    frame.mode = GUSUKU_MODE_PROPOSED;  // 0.1's spelling, kept as an alias of GUSUKU_MODE_BAKED_LIGHT
     frame.colour_match = GUSUKU_COLOUR_MATCH_OFF;
     frame.flags = GUSUKU_FRAME_BLEND_SLOTS | GUSUKU_FRAME_GROUND_RATIO;
     return frame;

@@ -36,7 +36,7 @@ long long residentKilobytes() {
 int main(int argc, char** argv) {
     using namespace gusuku;
     long frames = 10000;
-    RenderMode mode = RenderMode::kProposed;
+    RenderMode mode = RenderMode::kBakedLight;
     try {
         // The tools' one command-line reader: ranges, repeated options and unknown words handled as everywhere.
         CommandLine line("gusuku-frame-memory", std::vector<std::string>(argv + 1, argv + argc));
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
         const long long at_end = residentKilobytes();
         const long measured = frames - warm_up;
         std::printf("frames %ld (%ld warm-up, %ld measured), %ux%u, mode %s\n", frames, warm_up, measured, kWidth,
-                    kHeight, mode == RenderMode::kProposed ? "proposed" : "direct-only");
+                    kHeight, mode == RenderMode::kBakedLight ? "proposed" : "direct-only");
         std::printf("VmRSS after warm-up: %lld KiB\n", after_warm_up);
         std::printf("VmRSS at the end:    %lld KiB\n", at_end);
         std::printf("growth: %lld KiB, %.2f KiB a frame\n", at_end - after_warm_up,

@@ -29,7 +29,7 @@ using Clock = std::chrono::steady_clock;
 struct Settings {
     long width = 1280, height = 720, rounds = 7, frames_per_round = 20;
     std::vector<uint32_t> msaa_counts{4};
-    std::vector<RenderMode> modes{RenderMode::kProposed};
+    std::vector<RenderMode> modes{RenderMode::kBakedLight};
     long profiled_frames = 0;  // --profile N: N profiled frames per combination after the rounds
     bool ground_ratio = true;  // --no-ground-ratio: the last pass keeps only what it must (the resolve)
     ColourMatch colour_match = ColourMatch::kOff;  // --colour-match: FrameInput::colour_match of every frame
@@ -38,7 +38,7 @@ struct Settings {
 struct PathRun {
     std::unique_ptr<Runtime> runtime;
     uint32_t msaa_samples = 1;
-    RenderMode mode = RenderMode::kProposed;
+    RenderMode mode = RenderMode::kBakedLight;
     bool read_back = false;
     std::vector<double> frame_ms;  // per round: mean milliseconds a frame
     std::vector<PassTimings> profiles;
@@ -70,10 +70,12 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     if (help) {
         std::printf("usage: gusuku-frame-paths [--width W] [--height H] [--rounds N] [--frames N]\n"
                     "                          [--msaa COUNTS (e.g. 1,4; default 4)]\n"
-                    "                          [--mode proposed|direct-only|both (default proposed)]\n"
+                    "                          [--mode baked-light|direct-only|both (default baked-light;\n"
+                    "                           proposed: baked-light's old spelling)]\n"
                     "                          [--profile N (N profiled frames each: every pass alone)]\n"
                     "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n"
-                    "                          [--colour-match off|paper|preserve|ground (default off)]\n");
+                    "                          [--colour-match off|reinhard|preserve|ground (default off;\n"
+                    "                           paper: reinhard's old spelling)]\n");
         return settings;
     }
     settings.width = long(line.integer("--width", 16, 8192).value_or(settings.width));
@@ -83,12 +85,16 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     if (const std::optional<std::string> msaa = line.text("--msaa")) settings.msaa_counts = parseMsaaCounts(line, *msaa);
     settings.ground_ratio = !line.flag("--no-ground-ratio");
     settings.profiled_frames = long(line.integer("--profile", 0, 1000).value_or(0));
-    const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both"}).value_or(0);
+    // "proposed" (RenderMode's old name) stays accepted so that existing scripts keep working; 0 and 3 both keep
+    // the default, kBakedLight.
+    const size_t mode = line.choice("--mode", {"proposed", "direct-only", "both", "baked-light"}).value_or(0);
     if (mode == 1) settings.modes = {RenderMode::kDirectOnly};
-    if (mode == 2) settings.modes = {RenderMode::kProposed, RenderMode::kDirectOnly};
-    const ColourMatch matches[4] = {ColourMatch::kOff, ColourMatch::kPaper, ColourMatch::kPreserve,
-                                    ColourMatch::kGround};
-    const size_t match = line.choice("--colour-match", {"off", "paper", "preserve", "ground"}).value_or(0);
+    if (mode == 2) settings.modes = {RenderMode::kBakedLight, RenderMode::kDirectOnly};
+    // "paper" (ColourMatch's old name) stays accepted so that existing scripts keep working.
+    const ColourMatch matches[5] = {ColourMatch::kOff, ColourMatch::kReinhard, ColourMatch::kPreserve,
+                                    ColourMatch::kGround, ColourMatch::kReinhard};
+    const size_t match =
+        line.choice("--colour-match", {"off", "reinhard", "preserve", "ground", "paper"}).value_or(0);
     settings.colour_match = matches[match];
     line.positionals();
     line.finish();

@@ -13,14 +13,14 @@ std::vector<RuntimeMode> benchRuntimeModes(bool with_ground_match) {
     std::vector<RuntimeMode> modes;
     modes.push_back({"direct_only", RenderMode::kDirectOnly, ColourMatch::kOff, false, false});
     // The proposed method as the runtime ships it: the camera's exposure given, no colour match.
-    modes.push_back({"proposed", RenderMode::kProposed, ColourMatch::kOff, true, true});
-    modes.push_back({"proposed_no_slot_blend", RenderMode::kProposed, ColourMatch::kOff, false, true});
-    modes.push_back({"proposed_no_ground_ratio", RenderMode::kProposed, ColourMatch::kOff, true, false});
-    modes.push_back({"proposed_preserve_match", RenderMode::kProposed, ColourMatch::kPreserve, true, true});
+    modes.push_back({"proposed", RenderMode::kBakedLight, ColourMatch::kOff, true, true});
+    modes.push_back({"proposed_no_slot_blend", RenderMode::kBakedLight, ColourMatch::kOff, false, true});
+    modes.push_back({"proposed_no_ground_ratio", RenderMode::kBakedLight, ColourMatch::kOff, true, false});
+    modes.push_back({"proposed_preserve_match", RenderMode::kBakedLight, ColourMatch::kPreserve, true, true});
     // The ground match: the camera's ground against the bake set's prediction (needs ground albedo).
     if (with_ground_match)
-        modes.push_back({"proposed_ground_match", RenderMode::kProposed, ColourMatch::kGround, true, true});
-    modes.push_back({"proposed_paper_match", RenderMode::kProposed, ColourMatch::kPaper, true, true});
+        modes.push_back({"proposed_ground_match", RenderMode::kBakedLight, ColourMatch::kGround, true, true});
+    modes.push_back({"proposed_paper_match", RenderMode::kBakedLight, ColourMatch::kReinhard, true, true});
     return modes;
 }
 

@@ -12,7 +12,7 @@ namespace gusuku::bench {
 
 struct RuntimeMode {
     std::string name;  ///< "direct_only", "proposed", "proposed_no_slot_blend", ...
-    RenderMode mode = RenderMode::kProposed;
+    RenderMode mode = RenderMode::kBakedLight;
     ColourMatch colour_match = ColourMatch::kPreserve;
     bool blend_slots = true;
     bool ground_ratio = true;

@@ -30,8 +30,8 @@ const char* const kRenderUsage =
     "  --fov DEG              horizontal field of view, (1, 170) degrees (default 60)\n"
     "  --time ISO8601         the instant, with its offset (default: the bake date, 12:00 site clock)\n"
     "  --weather W            sunny, overcast, or a cloud cover in [0, 1] (default sunny)\n"
-    "  --colour-match M       off, paper, preserve or ground (default off: the camera's exposure is known;\n"
-    "                         ground needs a bake set with ground albedo)\n"
+    "  --colour-match M       off, reinhard, preserve or ground (default off: the camera's exposure is known;\n"
+    "                         ground needs a bake set with ground albedo; paper: reinhard's old spelling)\n"
     "  --exposure X           display value per unit radiance (default: the sample frame's middle grey, or 1)\n"
     "  --samples N            path-traced samples per pixel of the sample camera frame (default 64)\n"
     "  --frames N             frames timed after 3 warm-up frames (default 20)\n"
@@ -98,9 +98,10 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
             request.cloud_cover = float(*cover);
         }
     }
-    if (const auto mode = line.choice("--colour-match", {"off", "paper", "preserve", "ground"})) {
-        const ColourMatch modes[4] = {ColourMatch::kOff, ColourMatch::kPaper, ColourMatch::kPreserve,
-                                      ColourMatch::kGround};
+    // "paper" (ColourMatch's old name) stays accepted so that existing scripts keep working.
+    if (const auto mode = line.choice("--colour-match", {"off", "reinhard", "preserve", "ground", "paper"})) {
+        const ColourMatch modes[5] = {ColourMatch::kOff, ColourMatch::kReinhard, ColourMatch::kPreserve,
+                                      ColourMatch::kGround, ColourMatch::kReinhard};
         request.colour_match = modes[*mode];
     }
     if (const auto exposure = line.number("--exposure", 1e-9, 1e9)) request.exposure = float(*exposure);

@@ -13,7 +13,7 @@
 
 #include "interface_types.h"
 
-// ColourMatchState::mode (gusuku::ColourMatch kOff, kPaper, kPreserve in that order)
+// ColourMatchState::mode (gusuku::ColourMatch kOff, kReinhard, kPreserve in that order)
 #define COLOUR_MATCH_MODE_OFF 0u
 #define COLOUR_MATCH_MODE_PAPER 1u
 #define COLOUR_MATCH_MODE_PRESERVE 2u

@@ -22,7 +22,7 @@
 #define RUNTIME_MATERIAL_SET 1
 #define RUNTIME_BASE_COLOUR_BINDING 0          // sampler2D, sRGB: the material's base colour texture (or white)
 
-// FrameUniforms::render_mode (RenderMode kProposed, kDirectOnly)
+// FrameUniforms::render_mode (RenderMode kBakedLight, kDirectOnly)
 #define RUNTIME_RENDER_MODE_PROPOSED 0u
 #define RUNTIME_RENDER_MODE_DIRECT_ONLY 1u
 

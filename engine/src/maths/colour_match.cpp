@@ -136,8 +136,8 @@ glm::dvec3 colourMatchTransferLab(const glm::dvec3& lab, const ColourMatchParame
     const glm::dvec3 gain(makeLabTransfer(parameters.source, target, parameters.gain_limit).gain);
     const glm::dvec3 source_mean(parameters.source.mean);
     const glm::dvec3 target_mean(target.mean);
-    if (parameters.mode == ColourMatchMode::kPaper) return (lab - source_mean) * gain + target_mean;
-    // kPreserve: L moved like kPaper; a, b keep their spread and take a bounded white-balance shift.
+    if (parameters.mode == ColourMatchMode::kReinhard) return (lab - source_mean) * gain + target_mean;
+    // kPreserve: L moved like kReinhard; a, b keep their spread and take a bounded white-balance shift.
     double shift_a = target_mean.y - source_mean.y, shift_b = target_mean.z - source_mean.z;
     const double shift_length = std::sqrt(shift_a * shift_a + shift_b * shift_b);
     if (shift_length > kColourMatchMaxWhiteBalanceShift) {

@@ -85,7 +85,7 @@ static_assert(offsetof(ColourStatisticsPartial, lab_m2) == 16);
 static_assert(offsetof(ColourStatisticsPartial, clipped_count) == 28);
 static_assert(sizeof(ColourStatisticsPartial) == 32);
 static_assert(uint32_t(ColourMatchMode::kOff) == COLOUR_MATCH_MODE_OFF);
-static_assert(uint32_t(ColourMatchMode::kPaper) == COLOUR_MATCH_MODE_PAPER);
+static_assert(uint32_t(ColourMatchMode::kReinhard) == COLOUR_MATCH_MODE_PAPER);
 static_assert(uint32_t(ColourMatchMode::kPreserve) == COLOUR_MATCH_MODE_PRESERVE);
 
 namespace {

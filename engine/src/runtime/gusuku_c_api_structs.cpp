@@ -88,7 +88,7 @@ gusuku_frame_input defaultFrame() {
     frame.utc_unix_seconds = defaults.utc_unix_seconds;
     frame.weather.cloud_cover = defaults.weather.cloud_cover;
     frame.exposure = defaults.exposure;
-    frame.mode = GUSUKU_MODE_PROPOSED;
+    frame.mode = GUSUKU_MODE_BAKED_LIGHT;
     frame.colour_match = GUSUKU_COLOUR_MATCH_AUTO;  // FrameInput's ColourMatch::kAuto
     frame.flags = (defaults.blend_slots ? GUSUKU_FRAME_BLEND_SLOTS : 0u) |
                   (defaults.ground_ratio ? GUSUKU_FRAME_GROUND_RATIO : 0u);
@@ -170,13 +170,13 @@ std::string convertFrame(const gusuku_frame_input& frame, FrameInput& converted)
     converted.weather.cloud_cover = frame.weather.cloud_cover;
     converted.exposure = frame.exposure;
     switch (frame.mode) {
-    case GUSUKU_MODE_PROPOSED: converted.mode = RenderMode::kProposed; break;
+    case GUSUKU_MODE_BAKED_LIGHT: converted.mode = RenderMode::kBakedLight; break;
     case GUSUKU_MODE_DIRECT_ONLY: converted.mode = RenderMode::kDirectOnly; break;
     default: return "mode: " + std::to_string(int(frame.mode)) + " is not a gusuku_render_mode";
     }
     switch (frame.colour_match) {
     case GUSUKU_COLOUR_MATCH_OFF: converted.colour_match = ColourMatch::kOff; break;
-    case GUSUKU_COLOUR_MATCH_PAPER: converted.colour_match = ColourMatch::kPaper; break;
+    case GUSUKU_COLOUR_MATCH_REINHARD: converted.colour_match = ColourMatch::kReinhard; break;
     case GUSUKU_COLOUR_MATCH_PRESERVE: converted.colour_match = ColourMatch::kPreserve; break;
     case GUSUKU_COLOUR_MATCH_GROUND: converted.colour_match = ColourMatch::kGround; break;
     case GUSUKU_COLOUR_MATCH_AUTO: converted.colour_match = ColourMatch::kAuto; break;

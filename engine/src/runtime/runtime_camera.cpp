@@ -143,12 +143,12 @@ std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t wi
         return "weather.cloud_cover: must be in [0, 1], got " + std::to_string(frame.weather.cloud_cover);
     if (!std::isfinite(frame.exposure) || !(frame.exposure > 0.0f))
         return "exposure: must be finite and positive, got " + std::to_string(frame.exposure);
-    if (frame.colour_match != ColourMatch::kOff && frame.colour_match != ColourMatch::kPaper &&
+    if (frame.colour_match != ColourMatch::kOff && frame.colour_match != ColourMatch::kReinhard &&
         frame.colour_match != ColourMatch::kPreserve && frame.colour_match != ColourMatch::kGround &&
         frame.colour_match != ColourMatch::kAuto)
         return "colour_match: " + std::to_string(uint32_t(frame.colour_match)) +
                " is not off, paper, preserve, ground or auto";
-    if (frame.mode != RenderMode::kProposed && frame.mode != RenderMode::kDirectOnly)
+    if (frame.mode != RenderMode::kBakedLight && frame.mode != RenderMode::kDirectOnly)
         return "mode: " + std::to_string(int(frame.mode)) + " is not proposed or direct-only";
     if (frame.position) {
         const GeoPosition& fix = *frame.position;

@@ -30,10 +30,10 @@
 //   costs more than subgroupAdd (docs/design.md 5).
 // - Cost on lavapipe: test_colour_match's ColourStatisticsTiming prints it per frame size and stride (the
 //   figures are in docs/measurements.md); it grows with the samples, 1 / stride^2 of the pixels.
-// - Transfer, kPaper: Reinhard per Lab channel, y = (x - mu_src) g + mu_tgt, g = sigma_tgt / sigma_src with
+// - Transfer, kReinhard: Reinhard per Lab channel, y = (x - mu_src) g + mu_tgt, g = sigma_tgt / sigma_src with
 //   sigma_src floored at kLabTransferMinSourceSigma (0.01 Lab) and g clamped to [1 / gain_limit, gain_limit]
 //   (colour.h makeLabTransfer / colour.glsl labTransferGain: the one definition of the floor and the clamp).
-// - Transfer, kPreserve: L as in kPaper (mean and spread); a and b keep their spread (gain 1) and are shifted
+// - Transfer, kPreserve: L as in kReinhard (mean and spread); a and b keep their spread (gain 1) and are shifted
 //   by the camera's white balance, mu_tgt.ab - mu_src.ab, shortened to at most
 //   kColourMatchMaxWhiteBalanceShift so a frame of blue sky tints the building by a bounded cast only. Then
 //   the chroma is scaled towards the L axis (same L, same hue) until the colour lies inside the sRGB gamut:
@@ -105,7 +105,15 @@ namespace gusuku {
 /// The transfer's mode, as the GPU state holds it (COLOUR_MATCH_MODE_* in colour_match_interface.h); the
 /// runtime's API names it ColourMatch. kAuto is the API's default and never reaches the GPU: each frame resolves it
 /// to kGround where the bake set has ground albedo and the device runs the statistics, else to kOff.
-enum class ColourMatchMode : uint32_t { kOff = 0, kPaper = 1, kPreserve = 2, kGround = 3, kAuto = 4 };
+enum class ColourMatchMode : uint32_t {
+    kOff = 0,
+    kReinhard = 1,  ///< Reinhard et al.'s per-channel Lab transfer
+    kPreserve = 2,
+    kGround = 3,
+    kAuto = 4,
+    /// The paper's name, kept for existing code (the same value; never list both in one switch).
+    kPaper = kReinhard,
+};
 
 struct BakeSetData;
 

@@ -317,19 +317,21 @@ typedef struct gusuku_runtime_options {
 typedef struct gusuku_runtime gusuku_runtime;
 
 typedef enum gusuku_render_mode {
-    GUSUKU_MODE_PROPOSED = 0,     /* baked E_ind + real-time sun with shadow map, ground ratio, colour match */
-    GUSUKU_MODE_DIRECT_ONLY = 1   /* what AR apps draw today: ambient + shadowed sun, fixed shadow darkening */
+    GUSUKU_MODE_BAKED_LIGHT = 0,  /* baked E_ind + real-time sun with shadow map, ground ratio, colour match */
+    GUSUKU_MODE_DIRECT_ONLY = 1,  /* what AR apps draw today: ambient + shadowed sun, fixed shadow darkening */
+    GUSUKU_MODE_PROPOSED = GUSUKU_MODE_BAKED_LIGHT  /* the paper's name, kept for existing code */
 } gusuku_render_mode;
 
 typedef enum gusuku_colour_match {
     GUSUKU_COLOUR_MATCH_OFF = 0,
-    GUSUKU_COLOUR_MATCH_PAPER = 1,     /* Reinhard per-channel Lab transfer */
+    GUSUKU_COLOUR_MATCH_REINHARD = 1,  /* Reinhard per-channel Lab transfer */
     GUSUKU_COLOUR_MATCH_PRESERVE = 2,  /* lightness and white balance towards the camera, chroma spread kept */
     GUSUKU_COLOUR_MATCH_GROUND = 3,    /* per-channel gain that takes the bake set's predicted ground to the
                                           camera's (needs a bake set with ground albedo: else the frame fails
                                           with GUSUKU_ERROR_INVALID_FRAME) */
-    GUSUKU_COLOUR_MATCH_AUTO = 4       /* the default: GROUND where the bake set has ground albedo and the device
+    GUSUKU_COLOUR_MATCH_AUTO = 4,      /* the default: GROUND where the bake set has ground albedo and the device
                                           runs the statistics, else OFF; never fails a frame */
+    GUSUKU_COLOUR_MATCH_PAPER = GUSUKU_COLOUR_MATCH_REINHARD  /* the paper's name, kept for existing code */
 } gusuku_colour_match;
 
 /* gusuku_frame_input.flags */
@@ -376,7 +378,7 @@ typedef struct gusuku_frame_input {
     gusuku_geo_position position;
     gusuku_weather weather;
     float exposure;                     /* display-linear value per unit radiance, > 0; default 1 */
-    gusuku_render_mode mode;            /* default GUSUKU_MODE_PROPOSED */
+    gusuku_render_mode mode;            /* default GUSUKU_MODE_BAKED_LIGHT */
     gusuku_colour_match colour_match;   /* default GUSUKU_COLOUR_MATCH_AUTO (ground where possible, else off) */
     uint32_t flags;                     /* GUSUKU_FRAME_*; default BLEND_SLOTS | GROUND_RATIO */
 

@@ -20,7 +20,7 @@
 // maxImageDimension2D and maxFramebufferWidth/Height and, where the colour matches run, its 4 bytes a pixel within
 // maxStorageBufferRange (lavapipe's 128 MiB: 2^25 pixels). Timeline semaphores in FrameSync only if the app
 // enabled them on its device. The colour matches
-// (FrameInput::colour_match kPaper, kPreserve, kGround) also need a Vulkan 1.1 instance
+// (FrameInput::colour_match kReinhard, kPreserve, kGround) also need a Vulkan 1.1 instance
 // (GpuDevice::instance_api_version) and subgroup arithmetic in compute shaders; without them the runtime opens and
 // refuses only those frames (the default, kAuto, is then off).
 // Nothing else: no extension, no optional feature.
@@ -120,7 +120,7 @@ struct Weather {
 
 /// The colour match of a frame, one enum with the GPU state's (gusuku/maths/colour_match.h):
 ///   kOff       no colour match;
-///   kPaper     Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
+///   kReinhard  Reinhard per-channel Lab transfer: source the baked appearance (manifest colour_statistics),
 ///              target the camera frame (the seed paper's method);
 ///   kPreserve  moves lightness and white balance towards the camera but keeps the building's chroma spread (the
 ///              saturation the paper reports losing);
@@ -134,8 +134,12 @@ struct Weather {
 using ColourMatch = ColourMatchMode;
 
 enum class RenderMode {
-    kProposed,    ///< baked E_ind + real-time sun with shadow map, ground ratio, colour match
-    kDirectOnly,  ///< what AR apps draw today: albedo x (ambient + shadowed sun), a fixed shadow darkening
+    /// gusuku's frame: the bake set's baked indirect light (E_ind) + the real-time sun with a shadow map, the
+    /// ground ratio and the colour match
+    kBakedLight = 0,
+    kDirectOnly = 1,  ///< what AR apps draw today: albedo x (ambient + shadowed sun), a fixed shadow darkening
+    /// The paper's name, kept for existing code (the same value; never list both in one switch).
+    kProposed = kBakedLight,
 };
 
 /// The camera's pixel format, fixed when the runtime opens (RuntimeOptions::camera_format): what the platform
@@ -294,7 +298,7 @@ struct FrameInput {
     /// From EV100 or the platform's light estimate (ARCore, ARKit): gusuku/maths/exposure.h and
     /// docs/platform-light.md; ColourMatch::kGround estimates it from the frame when the platform gives nothing.
     float exposure = 1.0f;
-    RenderMode mode = RenderMode::kProposed;
+    RenderMode mode = RenderMode::kBakedLight;
     /// kAuto by default: the ground match where the bake set and the device allow it (it undoes an unknown
     /// exposure and white balance, and leaves a known one nearly as it is), else off. kOff for a camera whose
     /// exposure is known exactly (a rendered camera); gusuku-bench measures when each match helps and hurts.
