@@ -6,7 +6,8 @@
 #                      find_package(gusuku) gives gusuku::runtime and gusuku::pack_loader, which need Vulkan and
 #                      glm only: a phone app reads the bake set's runtime pack without the tools' I/O stack;
 #                      gusuku_weather (gusuku/weather/: the METAR and Open-Meteo readers, C++ and C) and
-#                      gusuku_json (their private JSON reader: the archive only, no header) likewise
+#                      gusuku_json (their private JSON reader: the archive only, no header) likewise, and
+#                      gusuku_c_common (the C API's error reporting that they all share: the archive only)
 #   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
 #                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
 #                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
@@ -35,8 +36,12 @@ set_target_properties(gusuku_pack_loader PROPERTIES EXPORT_NAME pack_loader)
 target_compile_features(gusuku_pack_loader INTERFACE cxx_std_17)
 set_target_properties(gusuku_weather PROPERTIES EXPORT_NAME weather)
 set_target_properties(gusuku_json PROPERTIES EXPORT_NAME json)
+# gusuku_c_common: the C API's error reporting and bake set handle, which the runtime, the loaders and the weather
+# readers share (the archive only, no header), so gusuku_last_error_message is defined once in an app's link.
+set_target_properties(gusuku_c_common PROPERTIES EXPORT_NAME c_common)
 target_compile_features(gusuku_weather INTERFACE cxx_std_17)
 install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader gusuku_weather gusuku_json
+                gusuku_c_common
         EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

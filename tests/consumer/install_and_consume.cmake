@@ -35,7 +35,7 @@ set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtim
                    include/gusuku/loader/runtime_pack.h include/gusuku/loader/gusuku_loader.h
                    lib/libgusuku_pack_loader.a
                    include/gusuku/weather/gusuku_weather.h include/gusuku/weather/weather_service.h
-                   lib/libgusuku_weather.a lib/libgusuku_json.a
+                   lib/libgusuku_weather.a lib/libgusuku_json.a lib/libgusuku_c_common.a
                    lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
 if(WITH_LOADER)
   list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)

@@ -1,5 +1,6 @@
 // The C API's error reporting (gusuku.h, "Errors"): the codes' names, the calling thread's last message, and
-// exceptions turned into codes. A file of its own so that code which needs only this (the C helpers' fuzz target,
+// exceptions turned into codes. Library gusuku_c_common, which every library with C entry points links, so the
+// message and gusuku_last_error_message are defined once; code which needs only this (the C helpers' fuzz target,
 // tests/fuzz/fuzz_c_helpers.cpp) compiles without the rest of the runtime.
 #include <cstdio>
 #include <exception>
@@ -8,7 +9,7 @@
 #include "gusuku/maths/input_error.h"
 #include "gusuku/runtime/gusuku.h"
 #include "gusuku/runtime/runtime.h"
-#include "gusuku_c_api_detail.h"
+#include "gusuku_c_errors.h"
 
 namespace gusuku::c_api_detail {
 

@@ -4,7 +4,8 @@
 #include <memory>
 
 #include "gusuku/assets/bakeset_loader.h"
-#include "gusuku_c_api_detail.h"
+#include "gusuku_c_bakeset_handle.h"
+#include "gusuku_c_errors.h"
 
 extern "C" gusuku_result gusuku_bakeset_load(const char* folder, gusuku_bakeset** out_bake_set) {
     using gusuku::c_api_detail::fail;

@@ -3,7 +3,8 @@
 
 #include "gusuku/loader/gusuku_loader.h"
 #include "gusuku/loader/runtime_pack.h"
-#include "gusuku_c_api_detail.h"
+#include "gusuku_c_bakeset_handle.h"
+#include "gusuku_c_errors.h"
 
 extern "C" gusuku_result gusuku_bakeset_load_pack(const char* folder, gusuku_bakeset** out_bake_set) {
     using gusuku::c_api_detail::fail;

@@ -1,6 +1,6 @@
 #pragma once
-// What the C API (gusuku.h) keeps behind its opaque bake set handle, and its error reporting, shared by the
-// runtime's gusuku_c_api.cpp and gusuku_loader's gusuku_bakeset_load (which makes the same handle from files).
+// The runtime's private C API pieces: the bake set desc's conversion, beside the handle and the error reporting
+// that it shares with the loaders and gusuku_weather (library gusuku_c_common, engine/src/c_common).
 // Not a public header: not installed.
 
 #include <exception>
@@ -8,28 +8,10 @@
 
 #include "gusuku/maths/bakeset_data.h"
 #include "gusuku/runtime/gusuku.h"
-
-/// The bake set handle: a complete, checked BakeSetData in host memory.
-struct gusuku_bakeset {
-    gusuku::BakeSetData data;
-};
+#include "gusuku_c_bakeset_handle.h"
+#include "gusuku_c_errors.h"
 
 namespace gusuku::c_api_detail {
-
-/// A fixed buffer for a one-line message: writing one never allocates, so never throws.
-struct MessageBuffer {
-    char text[GUSUKU_MESSAGE_CAPACITY] = {};
-    /// Copies message (cut to fit), newlines turned into spaces so it stays one line.
-    void set(const char* message) noexcept;
-};
-
-/// Records a failure in the calling thread's message (and in `handle_message` when given) and returns `code`.
-gusuku_result fail(gusuku_result code, const char* message, MessageBuffer* handle_message = nullptr) noexcept;
-
-/// Maps the exception being handled (call inside a catch block) to a code and records its message, prefixed
-/// with `context` ("gusuku_runtime_open: ..."): RuntimeError by its code, InputError as an invalid bake set,
-/// std::bad_alloc as out of memory, any other exception as internal.
-gusuku_result failFromCurrentException(const char* context, MessageBuffer* handle_message = nullptr) noexcept;
 
 /// The first problem with a desc: its code and "FIELD: PROBLEM" (no message: none).
 struct DescProblem {

@@ -7,7 +7,7 @@
 #include "gusuku/maths/input_error.h"
 #include "gusuku/weather/gusuku_weather.h"
 #include "gusuku/weather/weather_service.h"
-#include "gusuku_c_api_detail.h"
+#include "gusuku_c_errors.h"
 
 namespace {
 
