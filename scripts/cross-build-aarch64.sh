@@ -46,7 +46,7 @@ fail() {
 
 # The static libraries: every object inside is AArch64 ELF (readelf -h reads each member of an archive).
 for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a libgusuku_weather.a \
-  libgusuku_json.a; do
+  libgusuku_json.a libgusuku_c_common.a; do
   archive="$work/prefix/lib/$library"
   [ -f "$archive" ] || { fail "$library is missing from the installed prefix"; continue; }
   file "$archive" | grep -q "ar archive" || fail "$library: not an ar archive: $(file -b "$archive")"
@@ -57,6 +57,16 @@ for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_p
   fi
   echo "$library: $objects objects, all $(echo "$machines" | awk '{print $2}')"
 done
+
+# The C API's last error is one thread-local per process: gusuku_last_error_message is defined in exactly one of
+# the installed archives (gusuku_c_common's), so an app that links several of them gets one message, not two.
+definitions=$(for archive in "$work"/prefix/lib/libgusuku_*.a; do
+  readelf -Ws "$archive" | awk -v name="$(basename "$archive")" \
+    '$8 == "gusuku_last_error_message" && $7 != "UND" { print name }'
+done)
+[ "$(grep -c . <<<"$definitions")" -eq 1 ] && [ "$definitions" = libgusuku_c_common.a ] ||
+  fail "gusuku_last_error_message must be defined once, in libgusuku_c_common.a; defined in: $definitions"
+echo "gusuku_last_error_message: defined once, in $definitions"
 
 # The programs: AArch64 ELF executables that need libvulkan and the C/C++ runtime only. Those that draw a frame
 # need libvulkan; the pack and weather readers call no Vulkan function, so the linker (--as-needed) may drop it.
