@@ -16,7 +16,7 @@
 # is not redone. Bakes: the shrine 16 texels/m and the house 12, both 192 samples a texel (about 5 minutes each on
 # 2 shared cores); the sample as `gusuku-bake sample` writes it (512 samples, under a minute).
 # Without the shared data it prints why and exits 0, having run nothing. GUSUKU_SHARED_DATA: another data folder;
-# GUSUKU_BENCH, GUSUKU_BAKE: another build's tools.
+# GUSUKU_BENCH, GUSUKU_BAKE: another build's tools (GUSUKU_BENCH_CODE: the commit they were built from).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 quick=()
@@ -37,7 +37,7 @@ bake="${GUSUKU_BAKE:-./build/baker/gusuku-bake}"
 # Two visitor poses, the same on every site (the buildings all stand where the sample house stands, origin at ENU
 # (2, 4, 1.5) m on the terrace's top at 1.5 m): eye height 1.7 m, 9 m in front (south) and from the south-west.
 views="front:2,-5,3.2:2,3.5,3;corner:-5,-2.5,3.2:2,3.5,2.8"
-code="$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')"
+code="${GUSUKU_BENCH_CODE:-$(git rev-parse --short HEAD 2>/dev/null || echo 'not a git checkout')$(git diff --quiet HEAD 2>/dev/null || echo ' with uncommitted changes')}"
 
 # The sample as this build writes it (--force: its files replaced, its bake set beside them kept).
 "$bake" sample "$work/sample" --force > /dev/null
