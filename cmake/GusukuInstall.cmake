@@ -1,6 +1,6 @@
 # `cmake --install BUILD --prefix P` installs what an app links, as the CMake package "gusuku" (find_package):
-#   component runtime  gusuku_maths, gusuku_gpu, gusuku_runtime and gusuku_pack_loader (static), their headers
-#                      (gusuku/maths/, gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h
+#   component runtime  gusuku_formats, gusuku_maths, gusuku_gpu, gusuku_runtime and gusuku_pack_loader (static), their headers
+#                      (gusuku/formats/, gusuku/maths/, gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h
 #                      among them; of gusuku/loader/ the pack reader's runtime_pack.h and the C gusuku_loader.h,
 #                      whose gusuku_bakeset_load_pack it defines), the licence and the package files;
 #                      find_package(gusuku) gives gusuku::runtime and gusuku::pack_loader, which need Vulkan and
@@ -21,12 +21,13 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 set(GUSUKU_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/gusuku)
 
+set_target_properties(gusuku_formats PROPERTIES EXPORT_NAME formats)
 set_target_properties(gusuku_maths PROPERTIES EXPORT_NAME maths)
 set_target_properties(gusuku_gpu PROPERTIES EXPORT_NAME gpu)
 set_target_properties(gusuku_runtime PROPERTIES EXPORT_NAME runtime)
 # The installed headers are C++17 (Android NDK and Unity native-plugin code mostly is; the sources may be C++20):
 # a consumer gets at least C++17 from the targets, and tests/consumer compiles every header as C++17.
-foreach(runtime_library gusuku_maths gusuku_gpu gusuku_runtime)
+foreach(runtime_library gusuku_formats gusuku_maths gusuku_gpu gusuku_runtime)
   target_compile_features(${runtime_library} INTERFACE cxx_std_17)
 endforeach()
 
@@ -40,14 +41,14 @@ set_target_properties(gusuku_json PROPERTIES EXPORT_NAME json)
 # readers share (the archive only, no header), so gusuku_last_error_message is defined once in an app's link.
 set_target_properties(gusuku_c_common PROPERTIES EXPORT_NAME c_common)
 target_compile_features(gusuku_weather INTERFACE cxx_std_17)
-install(TARGETS gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader gusuku_weather gusuku_json
+install(TARGETS gusuku_formats gusuku_maths gusuku_gpu gusuku_runtime gusuku_pack_loader gusuku_weather gusuku_json
                 gusuku_c_common
         EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
 # component installs the folders of exactly the libraries it installs.
-foreach(library maths gpu runtime weather)
+foreach(library formats maths gpu runtime weather)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
           COMPONENT runtime FILES_MATCHING PATTERN "*.h")
 endforeach()

@@ -2,7 +2,7 @@
 # Cross-compiles the runtime-only configuration (-DGUSUKU_RUNTIME_ONLY=ON: what a phone app links) for AArch64 Linux
 # with Debian's cross toolchain, through cmake/toolchains/aarch64-linux-gnu.cmake (the Android NDK's route), and
 # checks what it made (docs/platforms.md):
-#   1. configures and builds gusuku_maths, gusuku_gpu, gusuku_runtime, gusuku_pack_loader and gusuku_weather in
+#   1. configures and builds gusuku_formats, gusuku_maths, gusuku_gpu, gusuku_runtime, gusuku_pack_loader and gusuku_weather in
 #      build-aarch64/;
 #   2. installs them into a prefix and builds tests/consumer against the installed package (the C99 and C++17
 #      programs, every runtime header alone as C++17 and C++20), with tests/consumer/install_and_consume.cmake;
@@ -45,7 +45,7 @@ fail() {
 }
 
 # The static libraries: every object inside is AArch64 ELF (readelf -h reads each member of an archive).
-for library in libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a libgusuku_weather.a \
+for library in libgusuku_formats.a libgusuku_maths.a libgusuku_gpu.a libgusuku_runtime.a libgusuku_pack_loader.a libgusuku_weather.a \
   libgusuku_json.a libgusuku_c_common.a; do
   archive="$work/prefix/lib/$library"
   [ -f "$archive" ] || { fail "$library is missing from the installed prefix"; continue; }

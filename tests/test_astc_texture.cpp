@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/ktx2.h"
 #include "gusuku/maths/srgb_mip_chain.h"
 #include "gusuku_bake/astc_texture.h"
 

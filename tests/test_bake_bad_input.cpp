@@ -21,7 +21,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"

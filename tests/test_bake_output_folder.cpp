@@ -17,7 +17,7 @@
 
 #include "bake_process.h"
 #include "gpu_test_support.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_job.h"

@@ -23,7 +23,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/runtime_pack.h"
 #include "mini_site.h"

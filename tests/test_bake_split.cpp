@@ -24,7 +24,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/bake_merge.h"

@@ -20,7 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "gusuku_bake/sky_light.h"

@@ -1,4 +1,4 @@
-// The bake set loader (gusuku/assets/bakeset_loader.h), the in-memory check (gusuku/maths/bakeset_validate.h) and the
+// The bake set loader (gusuku/assets/bakeset_loader.h), the in-memory check (gusuku/formats/bakeset_validate.h) and the
 // occluder the baker writes (gusuku_bake/occluder.h, issue 9). One real bake of the mini site with an SfM mesh
 // (2 samples) is loaded and checked against what is known independently of the loader: the house's and the
 // site's geometry, the manifest's texel counts, the ground grid's addressing. Each error case corrupts a copy.
@@ -23,11 +23,11 @@
 #include "gpu_test_support.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_validate.h"
 #include "gusuku/assets/glb_positions.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/occluder.h"
@@ -235,7 +235,7 @@ TEST_F(BakeSetLoaderTest, NanInfiniteAndNegativeTexelsAreNamed) {
         writeExr(folder + "/" + file, image, true);
     };
     corrupt("building_noon.exr", 3, 5, 1, kNaN);
-    // The messages name the row of gusuku/maths/bakeset_ranges.h the texel breaks.
+    // The messages name the row of gusuku/formats/bakeset_ranges.h the texel breaks.
     EXPECT_EQ(loadError(folder), folder + "/building_noon.exr: texel (3, 5) channel G: NaN is not a finite number in "
                                           "[0, 1e+18] sky units x sr (irradiance (lightmap and ground irradiance RGB))");
     corrupt("building_noon.exr", 3, 5, 1, 0.25f);

@@ -1,4 +1,4 @@
-// The bake set manifest (gusuku/maths/bakeset_manifest.h, gusuku/assets/bakeset_manifest_json.h, docs/bakeset.md): a
+// The bake set manifest (gusuku/formats/bakeset_manifest.h, gusuku/assets/bakeset_manifest_json.h, docs/bakeset.md): a
 // manifest written and read back is the same manifest and the same bytes; every reader error names the file and
 // the field (JSON pointer); the writer refuses what the reader would refuse; and a manifest written by a real
 // small bake reads back, with the bytes the baker wrote reproduced by the shared writer.
@@ -15,10 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku_bake/bake_job.h"
 #include "mini_site.h"

@@ -1,4 +1,4 @@
-// Both bake set readers refuse what gusuku/maths/bakeset_ranges.h refuses: for every row of the table (iterated,
+// Both bake set readers refuse what gusuku/formats/bakeset_ranges.h refuses: for every row of the table (iterated,
 // so a new row is tested without a new test), the same value outside the row is written into a real bake of the
 // mini site (its manifest.json, or a texel of its EXR) and into its runtime pack (the pack's manifest.json, or the
 // texel of its KTX2), and loadBakeSet and loadRuntimePack must each refuse it in one line naming the field. Also:
@@ -23,10 +23,10 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/loader/runtime_pack.h"
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/ktx2.h"
-#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/ktx2.h"
+#include "gusuku/formats/pack_geometry.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/runtime_pack.h"
 #include "mini_site.h"

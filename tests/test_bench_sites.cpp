@@ -15,7 +15,7 @@
 
 #include "bench_views.h"
 #include "gusuku/assets/site.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::bench {
 namespace {

@@ -24,7 +24,7 @@
 #include "bvh_probe_comp_spv.h"
 #include "gpu_test_support.h"
 #include "gusuku/gpu/gpu_compute.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {

@@ -26,7 +26,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_validate.h"
 #include "gusuku/maths/colour_match.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/runtime/runtime.h"

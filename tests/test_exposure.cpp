@@ -9,7 +9,7 @@
 
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/exposure.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun_irradiance.h"
 
 namespace {

@@ -19,7 +19,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Ground grid addressing and the shadow-catcher ratio (gusuku/maths/ground_grid.h): the C++ against values worked
+// Ground grid addressing and the shadow-catcher ratio (gusuku/formats/ground_grid.h): the C++ against values worked
 // out by hand from docs/bakeset.md and docs/design.md 3, the baker's grid builder against the shared addressing, and
 // the GLSL twin (shaders/include/ground_ratio.glsl, through shaders/tests/ground_ratio_probe.comp) against the
 // C++ on a spread of inputs.
@@ -17,7 +17,7 @@
 #include "gpu_test_support.h"
 #include "ground_ratio_probe_comp_spv.h"
 #include "gusuku/gpu/gpu_compute.h"
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 #include "gusuku_bake/ground_grid.h"
 
 namespace {

@@ -17,7 +17,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace {
 

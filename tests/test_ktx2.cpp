@@ -1,4 +1,4 @@
-// The runtime pack's KTX 2.0 containers (gusuku/maths/ktx2.h): the bytes at the offsets the KTX 2.0
+// The runtime pack's KTX 2.0 containers (gusuku/formats/ktx2.h): the bytes at the offsets the KTX 2.0
 // specification gives them (read here by hand, not by the reader under test), a round trip of every format, and
 // each kind of bad file refused in one line naming the file and the field.
 
@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/ktx2.h"
 
 namespace gusuku {
 namespace {

@@ -1,4 +1,4 @@
-// The runtime pack's KTX 2.0 mip chains (gusuku/maths/ktx2.h), as the ASTC 6x6 sRGB base-colour textures use them:
+// The runtime pack's KTX 2.0 mip chains (gusuku/formats/ktx2.h), as the ASTC 6x6 sRGB base-colour textures use them:
 // the level index, the DFD's block dimensions and transfer, and the levels' layout (smallest first, each aligned)
 // read here by hand at the KTX 2.0 specification's offsets; a round trip of every level; each kind of bad chain
 // refused in one line naming the file and the field.
@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/ktx2.h"
 
 namespace gusuku {
 namespace {

@@ -15,7 +15,7 @@
 
 #include "gpu_test_support.h"
 #include "gusuku/assets/gltf_loader.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 
 namespace {

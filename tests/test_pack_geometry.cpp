@@ -1,4 +1,4 @@
-// pack.bin, the runtime pack's geometry (gusuku/maths/pack_geometry.h): a textured, two-material mesh with an
+// pack.bin, the runtime pack's geometry (gusuku/formats/pack_geometry.h): a textured, two-material mesh with an
 // occluder round-trips exactly, its bytes are where the documented layout puts them, and bad files are refused in
 // one line naming the file and the field.
 
@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "bake_output_checks.h"
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/pack_geometry.h"
 
 namespace gusuku {
 namespace {

@@ -11,7 +11,7 @@
 #include "camera_image.h"
 #include "gpu_test_support.h"
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace {
 

@@ -22,7 +22,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/loader/runtime_pack.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku_bake/astc_lightmap.h"
 #include "gusuku_bake/bake_job.h"

@@ -16,7 +16,7 @@
 
 #include "bake_command.h"
 #include "gpu_test_support.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 
 namespace {

@@ -29,7 +29,7 @@
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/equirect.h"
 #include "gusuku/maths/exposure.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun_air_mass.h"
 #include "gusuku/maths/sun_irradiance.h"
 #include "gusuku_bake/sky_model.h"

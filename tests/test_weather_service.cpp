@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gusuku/weather/weather_service.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/time_utc.h"
 
 namespace {

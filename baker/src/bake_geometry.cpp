@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "gusuku/assets/gltf_loader.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gusuku/assets/atomic_file.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::bake {
 

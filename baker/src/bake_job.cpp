@@ -22,7 +22,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/dispatch_budget.h"

@@ -9,7 +9,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/bake_folder_lock.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/output_guard.h"

@@ -9,7 +9,7 @@
 
 #include <glm/vec4.hpp>
 #include "bake_geometry.h"
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bake_geometry.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/sun.h"
 #include "gusuku_bake/sky_light.h"

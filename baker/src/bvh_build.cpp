@@ -19,7 +19,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/bvh.h"
 
 namespace gusuku::bake {

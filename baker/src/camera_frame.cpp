@@ -6,7 +6,7 @@
 
 #include "gusuku/maths/colour.h"
 #include "gusuku/assets/gltf_loader.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "bake_geometry.h"
 #include "gusuku_bake/camera_denoise.h"
 #include "gusuku_bake/ground_grid.h"

@@ -13,7 +13,7 @@
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/sky_photo.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/mesh.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/time_utc.h"

@@ -8,7 +8,7 @@
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/convergence.h"

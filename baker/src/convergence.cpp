@@ -11,7 +11,7 @@
 #include "bake_geometry.h"
 #include "bake_outputs.h"
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/irradiance_tracer.h"

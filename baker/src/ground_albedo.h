@@ -13,7 +13,7 @@ namespace gusuku::bake {
 /// The bake set's file of the ground albedo (manifest ground_grid.albedo).
 inline constexpr const char* kGroundAlbedoFile = "ground_albedo.exr";
 
-/// Per cell (texel order, gusuku/maths/ground_grid.h): RGB the linear base colour (material factor times its texture,
+/// Per cell (texel order, gusuku/formats/ground_grid.h): RGB the linear base colour (material factor times its texture,
 /// the texel nearest the hit's uv) of the site's triangles, averaged over 4 x 4 points spread evenly over the cell,
 /// A 1; cells without ground (no SfM mesh under the centre, as ground_cells says) (0, 0, 0, 0). Each point's
 /// triangle is found as sampleGround finds the centre's (a ray straight down from above the scene, the building's

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "lightmap_charting.h"
 #include "lightmap_pack.h"

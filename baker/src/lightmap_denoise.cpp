@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
 namespace gusuku::bake {

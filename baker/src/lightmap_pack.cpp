@@ -18,7 +18,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "lightmap_pack.h"
 

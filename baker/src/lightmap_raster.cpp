@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::bake::detail {
 namespace {

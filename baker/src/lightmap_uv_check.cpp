@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/lightmap_uv.h"
 #include "lightmap_raster.h"
 

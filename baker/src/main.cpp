@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace {
 

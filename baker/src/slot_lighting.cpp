@@ -11,7 +11,7 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/sky_photo.h"
 #include "gusuku/maths/exposure.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun_air_mass.h"
 
 namespace gusuku::bake {

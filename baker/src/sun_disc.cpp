@@ -12,7 +12,7 @@
 
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/equirect.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/sky_light.h"
 
 namespace gusuku::bake {

@@ -9,7 +9,7 @@
 #include "camera_response.h"
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::bench {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "gusuku/assets/bakeset_loader.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/time_utc.h"
 
 namespace gusuku::bench_common {

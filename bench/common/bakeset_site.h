@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku::bench_common {
 

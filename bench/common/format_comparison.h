@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku::bench_common {
 

@@ -15,7 +15,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/tools/command_line.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/gpu/vulkan_context.h"

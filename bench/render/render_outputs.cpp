@@ -4,7 +4,7 @@
 #include <system_error>
 #include <utility>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku_bake/output_guard.h"
 
 namespace gusuku::render_cli {

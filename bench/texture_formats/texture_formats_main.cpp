@@ -24,7 +24,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/loader/runtime_pack.h"
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/ktx2.h"
 #include "gusuku/maths/srgb_mip_chain.h"
 #include "gusuku/maths/texture_coverage.h"
 #include "gusuku/maths/time_utc.h"

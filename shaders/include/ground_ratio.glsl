@@ -1,4 +1,4 @@
-// Ground grid addressing and the shadow-catcher ratio: the GLSL twin of engine/include/gusuku/maths/ground_grid.h,
+// Ground grid addressing and the shadow-catcher ratio: the GLSL twin of engine/include/gusuku/formats/ground_grid.h,
 // same names, same expressions in the same order, float32. The contracts (frame, units, image convention, the
 // guards) are documented there; tests/test_ground_ratio.cpp holds this file to the C++ through
 // shaders/tests/ground_ratio_probe.comp.

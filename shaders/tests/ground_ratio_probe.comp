@@ -1,6 +1,6 @@
 #version 450
 // Test kernel for shaders/include/ground_ratio.glsl: evaluates every function of the include for a list of
-// probes, so tests/test_ground_ratio.cpp can compare them with gusuku/maths/ground_grid.h on the CPU.
+// probes, so tests/test_ground_ratio.cpp can compare them with gusuku/formats/ground_grid.h on the CPU.
 // Bindings: 0 float inputs (per probe 6 vec4: (x, y, 0, 0), (E_with, V_bld), (E_without, V_scene), (I_sun, 0),
 // (normal, 0), (sun direction, 0)), 1 integer inputs (per probe ivec4(column, row, index, 0)), 2 outputs (per
 // probe 5 vec4: (cell centre, uv of the point), (found, cell at the point, index of the cell),

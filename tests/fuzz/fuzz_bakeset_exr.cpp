@@ -6,7 +6,7 @@
 
 #include "fuzz_workdir.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 // The bake set loader decodes only a file whose header declares the manifest's size (loadExr reads the size
 // first), so the harness decodes only headers up to that of a large lightmap: a corrupt header declaring 10^8

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

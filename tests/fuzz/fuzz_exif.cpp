@@ -13,7 +13,7 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/assets/sky_photo.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 // A decoded photo under AddressSanitizer: headers declaring more are not decoded (the reader would, band by band,
 // but a fuzzed 8192 x 4096 photo takes longer than the 10 s that count as a hang).

@@ -8,7 +8,7 @@
 
 #include "fuzz_workdir.h"
 #include "gusuku/assets/gltf_loader.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #ifdef GUSUKU_FUZZ_GLB

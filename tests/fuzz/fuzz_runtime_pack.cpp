@@ -1,7 +1,7 @@
 // libFuzzer target: the runtime pack's readers (standard library only, gusuku_pack_loader) on arbitrary bytes. The
 // first byte chooses the reader (modulo 9): 0-3 decodeKtx2 expecting E5B9G9R9, R8, RGBA32F or RGBA8 sRGB;
 // 4 decodePackGeometry (pack.bin); 5 readPackManifest (manifest.json and its JSON reader, with every range of
-// gusuku/maths/bakeset_ranges.h: the seeds seed_5_* are a real pack's manifest with numbers varied); 6 decodeKtx2
+// gusuku/formats/bakeset_ranges.h: the seeds seed_5_* are a real pack's manifest with numbers varied); 6 decodeKtx2
 // expecting ASTC 4x4 HDR (the lightmaps); 7 decodeKtx2MipChain expecting ASTC 6x6 sRGB (the textures' mip chains);
 // 8 decodeKtx2 expecting RGBA32F, then its texels against the ground geometry's or the irradiance's rows
 // (findBakeSetTexelProblem, as loadRuntimePack checks them). Bad input must end in gusuku::InputError or a texel
@@ -11,10 +11,10 @@
 #include <cstring>
 #include <string>
 
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/ktx2.h"
-#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/ktx2.h"
+#include "gusuku/formats/pack_geometry.h"
 #include "pack_manifest.h"
 
 namespace {

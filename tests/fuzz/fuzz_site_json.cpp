@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "fuzz_workdir.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/assets/site.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

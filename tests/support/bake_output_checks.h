@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku::testing {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku::bake {
 

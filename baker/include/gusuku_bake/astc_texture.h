@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "gusuku/maths/bakeset_data.h"
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/bakeset_data.h"
+#include "gusuku/formats/ktx2.h"
 
 namespace gusuku::bake {
 

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/gpu/vulkan_context.h"
 
 namespace gusuku::bake {
 
-// The bake set layout's version, kBakeSetFormat, is gusuku/maths/bakeset_manifest.h's (gusuku::kBakeSetFormat).
+// The bake set layout's version, kBakeSetFormat, is gusuku/formats/bakeset_manifest.h's (gusuku::kBakeSetFormat).
 
 /// The side the bake set's building textures are held to by default (BakeOptions::building_texture_size): the
 /// camera tracer's own (camera_tracer.h), so that the runtime draws the texture detail the bench's truth traces.

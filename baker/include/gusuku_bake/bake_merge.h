@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 
 namespace gusuku::bake {
 

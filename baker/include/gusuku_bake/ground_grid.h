@@ -5,7 +5,7 @@
 // the building. The runtime turns those into the shadow-catcher ratio.
 //
 // The grid's addressing (cell <-> ENU position, image order) is shared with the runtime and lives in
-// gusuku/maths/ground_grid.h (column 0 west, row 0 NORTH); this header chooses the region and samples the ground.
+// gusuku/formats/ground_grid.h (column 0 west, row 0 NORTH); this header chooses the region and samples the ground.
 
 #include <cstdint>
 #include <vector>
@@ -13,7 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 #include "gusuku/maths/mesh.h"
 #include "gusuku_bake/bvh.h"
 

@@ -12,7 +12,7 @@
 
 #include <unistd.h>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "regular_file.h"
 
 namespace gusuku {

@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "gusuku/assets/bakeset_manifest_json.h"
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/bakeset_validate.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku {
 
@@ -107,7 +107,7 @@ BakeSetOccluder loadOccluder(const std::string& path, uint64_t expected_triangle
 }
 
 /// An EXR of 4 float32 channels at the manifest's size (`size_source` says which field sets it), every texel
-/// within `ranges` (gusuku/maths/bakeset_ranges.h, as the runtime pack's reader holds its KTX2 texels). The first
+/// within `ranges` (gusuku/formats/bakeset_ranges.h, as the runtime pack's reader holds its KTX2 texels). The first
 /// bad texel is named.
 BakeSetImage loadExr(const std::string& path, int width, int height, const std::string& size_source,
                      std::initializer_list<BakeSetRange> ranges) {

@@ -17,9 +17,9 @@
 #include <nlohmann/json.hpp>
 
 #include "gusuku/assets/atomic_file.h"
-#include "gusuku/maths/bakeset_ranges.h"
+#include "gusuku/formats/bakeset_ranges.h"
 #include "gusuku/maths/time_utc.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "site_json_reader.h"
 
 namespace gusuku {
@@ -199,7 +199,7 @@ int readInt(const ObjectReader& reader, const std::string& name, int min, int ma
     return int(number);
 }
 
-/// A number within its row of gusuku/maths/bakeset_ranges.h (whole when the row says so), refused as the pack
+/// A number within its row of gusuku/formats/bakeset_ranges.h (whole when the row says so), refused as the pack
 /// reader refuses it.
 double readRanged(const ObjectReader& reader, const std::string& name, const BakeSetRange& range) {
     const json& value = reader.required(name);
@@ -239,7 +239,7 @@ void readFixedText(const ObjectReader& reader, const std::string& name, const ch
         reader.fail(name, std::string("expected \"") + expected + "\" (fixed by " + kBakeSetFormat + ")");
 }
 
-/// `count` numbers, each within its row of gusuku/maths/bakeset_ranges.h, refused as the pack reader refuses them.
+/// `count` numbers, each within its row of gusuku/formats/bakeset_ranges.h, refused as the pack reader refuses them.
 std::vector<double> readRangedArray(const ObjectReader& reader, const std::string& name, size_t count,
                                     const BakeSetRange& range) {
     const std::vector<double> values = reader.numberArray(name, count, kAnyFinite);

@@ -23,7 +23,7 @@
 #include <tiny_gltf.h>
 
 #include "gusuku/assets/image.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "one_line.h"
 #include "gusuku/assets/atomic_file.h"  // kMaxInputFileBytes
 #include "regular_file.h"

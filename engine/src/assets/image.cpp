@@ -14,7 +14,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "gusuku/assets/atomic_file.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku {
 

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun.h"
 #include "gusuku/maths/time_utc.h"
 #include "regular_file.h"

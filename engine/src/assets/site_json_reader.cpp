@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::json_reader {
 

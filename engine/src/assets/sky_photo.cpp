@@ -14,7 +14,7 @@
 
 #include "gusuku/assets/image.h"
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku {
 

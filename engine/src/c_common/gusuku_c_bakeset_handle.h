@@ -3,7 +3,7 @@
 // gusuku_pack_loader (gusuku_bakeset_load_pack) and gusuku_loader (gusuku_bakeset_load), read by the runtime.
 // Library gusuku_c_common, so that none of them includes another's private sources. Not installed.
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/runtime/gusuku.h"
 
 /// The bake set handle: a complete, checked BakeSetData in host memory.

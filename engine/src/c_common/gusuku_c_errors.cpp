@@ -6,7 +6,7 @@
 #include <exception>
 #include <new>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/gusuku.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku_c_errors.h"

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cstdint>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku::json_detail {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/maths/colour_match.h"
 
 namespace gusuku {

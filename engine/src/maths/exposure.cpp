@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun_irradiance.h"
 
 namespace gusuku {

@@ -3,7 +3,7 @@
 // no TZ).
 #include "gusuku/maths/time_utc.h"
 
-#include "gusuku/maths/input_error.h"  // quotedForMessage
+#include "gusuku/formats/input_error.h"  // quotedForMessage
 
 #include <cmath>
 #include <cstdint>

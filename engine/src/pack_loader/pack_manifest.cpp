@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/input_error.h"
 #include "json_reader.h"
 
 namespace gusuku::pack_detail {
@@ -38,7 +38,7 @@ public:
     std::string text(const std::string& key) const { return get(key, Type::kString, "a string").text; }
     bool boolean(const std::string& key) const { return get(key, Type::kBool, "true or false").boolean; }
     double number(const std::string& key) const { return get(key, Type::kNumber, "a number").number; }
-    /// A number within its row of gusuku/maths/bakeset_ranges.h, refused as the tools' reader refuses it.
+    /// A number within its row of gusuku/formats/bakeset_ranges.h, refused as the tools' reader refuses it.
     double ranged(const std::string& key, const BakeSetRange& range) const {
         const double value = number(key);
         if (const std::optional<std::string> problem = bakeSetValueProblem(range, value)) fail(key, *problem);

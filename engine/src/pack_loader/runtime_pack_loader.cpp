@@ -10,11 +10,11 @@
 #include <string>
 #include <utility>
 
-#include "gusuku/maths/bakeset_ranges.h"
-#include "gusuku/maths/bakeset_validate.h"
-#include "gusuku/maths/input_error.h"
-#include "gusuku/maths/ktx2.h"
-#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/formats/bakeset_ranges.h"
+#include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/formats/input_error.h"
+#include "gusuku/formats/ktx2.h"
+#include "gusuku/formats/pack_geometry.h"
 #include "gusuku/maths/shared_exponent.h"
 #include "pack_manifest.h"
 
@@ -66,7 +66,7 @@ std::string formatScale(float scale) {
     return text;
 }
 
-// Every decoded texel within the rows of gusuku/maths/bakeset_ranges.h, as the EXR set's loader holds its texels.
+// Every decoded texel within the rows of gusuku/formats/bakeset_ranges.h, as the EXR set's loader holds its texels.
 void requireTexelsInRange(const std::string& path, const BakeSetImage& image,
                           std::initializer_list<BakeSetRange> ranges, const std::string& note = "") {
     if (const std::optional<BakeSetTexelProblem> problem = findBakeSetTexelProblem(image, ranges))

@@ -11,11 +11,11 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/colour_match.h"
 #include "gusuku/maths/frame_lighting.h"
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 #include "gusuku/maths/shadow_fit.h"
 #include "gusuku/maths/sun.h"
 #include "gusuku/runtime/runtime.h"

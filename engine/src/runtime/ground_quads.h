@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 
 namespace gusuku::runtime_detail {
 

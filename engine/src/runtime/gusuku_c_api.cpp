@@ -11,8 +11,8 @@
 #include <string>
 #include <tuple>
 
-#include "gusuku/maths/bakeset_validate.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/runtime/runtime_version.h"
 #include "gusuku_c_api_detail.h"

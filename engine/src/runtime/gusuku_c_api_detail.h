@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/runtime/gusuku.h"
 #include "gusuku_c_bakeset_handle.h"
 #include "gusuku_c_errors.h"

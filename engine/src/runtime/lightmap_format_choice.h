@@ -3,7 +3,7 @@
 // formats"). Private to gusuku_runtime.
 
 #include "gusuku/gpu/gpu_device.h"
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/runtime/runtime.h"
 
 namespace gusuku::runtime_detail {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gusuku/gpu/vulkan_context.h"
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_validate.h"
 #include "device_requirements.h"
 #include "lightmap_format_choice.h"
 #include "runtime_error_category.h"

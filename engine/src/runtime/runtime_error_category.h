@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 
 namespace gusuku::runtime_detail {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "ground_quads.h"
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_validate.h"
 #include "runtime_camera.h"
 #include "runtime_impl.h"
 

@@ -8,7 +8,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"

@@ -4,7 +4,7 @@
 #include <exception>
 #include <string>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/weather/gusuku_weather.h"
 #include "gusuku/weather/weather_service.h"
 #include "gusuku_c_errors.h"

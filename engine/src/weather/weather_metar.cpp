@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gusuku/weather/weather_service.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/time_utc.h"
 
 namespace gusuku {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "gusuku/weather/weather_service.h"
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/time_utc.h"
 #include "json_reader.h"
 

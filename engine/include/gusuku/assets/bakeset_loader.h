@@ -1,11 +1,11 @@
 #pragma once
 // Reads a bake set folder (docs/bakeset.md) into the in-memory BakeSetData the runtime draws from
-// (gusuku/maths/bakeset_data.h). Part of gusuku_assets (glTF, OpenEXR and JSON readers); an app that holds its bake
+// (gusuku/formats/bakeset_data.h). Part of gusuku_assets (glTF, OpenEXR and JSON readers); an app that holds its bake
 // set some other way fills BakeSetData itself and never links this.
 
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku {
 
@@ -22,7 +22,7 @@ namespace gusuku {
 /// building_irradiance: ..."); an EXR whose size is not the manifest's (naming the expected size); a NaN,
 /// infinite or (irradiance RGB) negative texel, naming the first one as "texel (x, y) channel C"; a building.glb
 /// without TEXCOORD_1 or without triangles; an occluder whose triangle count is not the manifest's; then
-/// whatever findBakeSetProblem (gusuku/maths/bakeset_validate.h) finds, as "FOLDER: FIELD: PROBLEM". Nothing is
+/// whatever findBakeSetProblem (gusuku/formats/bakeset_validate.h) finds, as "FOLDER: FIELD: PROBLEM". Nothing is
 /// half-loaded: it returns a complete, consistent BakeSetData or throws.
 /// A partial set (a manifest with "partial", one slot of a split bake) is refused as
 /// "FOLDER/manifest.json: /partial: ...", naming its slot: join partial sets with `gusuku-bake merge` first.

@@ -1,10 +1,10 @@
 #pragma once
 // manifest.json of a bake set (docs/bakeset.md) to and from gusuku::BakeSetManifest. Part of gusuku_assets (the
-// I/O stack: nlohmann json); the struct itself is in gusuku/maths/bakeset_manifest.h and needs none of it.
+// I/O stack: nlohmann json); the struct itself is in gusuku/formats/bakeset_manifest.h and needs none of it.
 
 #include <string>
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 
 namespace gusuku {
 

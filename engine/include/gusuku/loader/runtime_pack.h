@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku {
 

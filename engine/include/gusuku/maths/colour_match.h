@@ -98,7 +98,7 @@
 #include <glm/vec3.hpp>
 
 #include "gusuku/maths/colour.h"
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 
 namespace gusuku {
 
@@ -236,7 +236,7 @@ struct GroundMatchCell {
 /// The bake set's ground as the match needs it.
 struct GroundMatchScene {
     GroundGrid grid;
-    std::vector<GroundMatchCell> cells;                       ///< texel order (gusuku/maths/ground_grid.h)
+    std::vector<GroundMatchCell> cells;                       ///< texel order (gusuku/formats/ground_grid.h)
     std::vector<std::vector<glm::vec3>> irradiance_without;  ///< per slot, per cell: E_without, bake set units
     float start_height_m = 0.0f;  ///< mean height of the cells with ground: the ray's first plane
 };

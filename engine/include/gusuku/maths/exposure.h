@@ -46,7 +46,7 @@
 // White balance: the runtime takes one scalar exposure today; the gains below (vec3, linear Rec.709, relative to
 // D65) are for an app that tints the composite or its own content: the runtime does not apply them.
 //
-// Errors: every function throws gusuku::InputError (gusuku/maths/input_error.h) naming the argument for NaN,
+// Errors: every function throws gusuku::InputError (gusuku/formats/input_error.h) naming the argument for NaN,
 // infinite, zero or negative intensities and out-of-range values. Pure functions, no state.
 
 #include <glm/vec2.hpp>

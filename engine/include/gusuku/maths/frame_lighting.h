@@ -24,7 +24,7 @@
 //     (carryMeasuredSunRgb of gusuku/maths/sun_air_mass.h, the baker's air-mass model: the aerosol depth refitted to
 //     the slot's own colour is the one the baker used), blended with the slot weights.
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 #include "gusuku/maths/sun.h"
 
 namespace gusuku {

@@ -118,7 +118,7 @@ const char* gusuku_version(void);
 uint32_t gusuku_api_version(void);
 
 /* ------------------------------------------------------------------------------------------------------------ */
-/* The bake set in memory (mirrors gusuku/maths/bakeset_data.h, keeping only what the runtime draws from)               */
+/* The bake set in memory (mirrors gusuku/formats/bakeset_data.h, keeping only what the runtime draws from)               */
 
 /* A float RGBA image: width * height * 4 floats, row 0 at the top. */
 typedef struct gusuku_image {
@@ -191,7 +191,7 @@ typedef struct gusuku_bakeset_desc {
     const uint32_t* occluder_indices; /* 3 per triangle */
     uint32_t occluder_index_count;
 
-    /* The ground grid (gusuku/maths/ground_grid.h): column 0 west, row 0 north, square cells. */
+    /* The ground grid (gusuku/formats/ground_grid.h): column 0 west, row 0 north, square cells. */
     double ground_origin_enu_m[2];    /* south-west corner, ENU x and y */
     double ground_cell_m;
     int32_t ground_columns;
@@ -218,7 +218,7 @@ typedef struct gusuku_bakeset gusuku_bakeset;
 
 /* Copies desc into a new bake set and checks it. A NULL array with a non-zero count: INVALID_ARGUMENT naming the
  * desc's field ("desc.normals: NULL with vertex_count 24"); bad data (every size, index and texel is checked):
- * INVALID_BAKE_SET naming the field as gusuku/maths/bakeset_data.h does (desc.indices is building.indices, desc.slots[i]
+ * INVALID_BAKE_SET naming the field as gusuku/formats/bakeset_data.h does (desc.indices is building.indices, desc.slots[i]
  * .building is slots[i].building: "bake set: slots[2].building: texel (4, 0) channel R is NaN"). O(data size)
  * time and host memory; the app may free its arrays when it returns. */
 gusuku_result gusuku_bakeset_create(const gusuku_bakeset_desc* desc, gusuku_bakeset** out_bake_set);

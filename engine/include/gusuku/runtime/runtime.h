@@ -55,7 +55,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 #include "gusuku/maths/colour_match.h"
 #include "gusuku/gpu/gpu_device.h"
 

@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "gusuku/maths/input_error.h"  // quotedForMessage
+#include "gusuku/formats/input_error.h"  // quotedForMessage
 
 namespace gusuku {
 
@@ -27,7 +27,7 @@ namespace gusuku {
 /// leading or trailing spaces. nullopt when the text is not one, or is beyond double's range.
 std::optional<double> parseDecimal(const std::string& text);
 
-/// quotedForMessage (gusuku/maths/input_error.h) quotes values in its messages.
+/// quotedForMessage (gusuku/formats/input_error.h) quotes values in its messages.
 
 /// A bad command line: an unknown option, a missing value, an unexpected argument. Conventionally exit 2.
 class UsageError : public std::runtime_error {

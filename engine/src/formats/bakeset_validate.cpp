@@ -1,12 +1,12 @@
-// findBakeSetProblem (gusuku/maths/bakeset_validate.h): every size, count, index and number the runtime relies on,
+// findBakeSetProblem (gusuku/formats/bakeset_validate.h): every size, count, index and number the runtime relies on,
 // checked once, reported as the first "FIELD: PROBLEM".
-#include "gusuku/maths/bakeset_validate.h"
+#include "gusuku/formats/bakeset_validate.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/ktx2.h"
 
 namespace gusuku {
 

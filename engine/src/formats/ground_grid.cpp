@@ -1,7 +1,7 @@
-// Ground grid addressing and the shadow-catcher ratio (gusuku/maths/ground_grid.h). The GLSL twin in
+// Ground grid addressing and the shadow-catcher ratio (gusuku/formats/ground_grid.h). The GLSL twin in
 // shaders/include/ground_ratio.glsl mirrors each function line for line; change both together.
 
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 
 #include <algorithm>
 #include <cmath>

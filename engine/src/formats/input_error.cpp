@@ -1,4 +1,4 @@
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 #include <utility>
 

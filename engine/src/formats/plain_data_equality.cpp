@@ -1,4 +1,4 @@
-// Member-wise equality of the plain data in gusuku/maths/ground_grid.h and gusuku/maths/bakeset_manifest.h,
+// Member-wise equality of the plain data in gusuku/formats/ground_grid.h and gusuku/formats/bakeset_manifest.h,
 // written out because the installed headers are C++17 (a defaulted operator== is C++20). Each struct's members
 // are named once, in a structured binding: a binding must name every data member, so a member added to a struct
 // and not here fails to compile instead of being silently left out of the comparison.
@@ -8,8 +8,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/bakeset_manifest.h"
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/bakeset_manifest.h"
+#include "gusuku/formats/ground_grid.h"
 
 namespace gusuku {
 namespace {

@@ -16,7 +16,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "gusuku/maths/ground_grid.h"
+#include "gusuku/formats/ground_grid.h"
 
 namespace gusuku {
 
@@ -68,7 +68,7 @@ struct BakeSetBuilding {
     bool operator!=(const BakeSetBuilding& other) const { return !(*this == other); }
 };
 
-/// The ground grid: its addressing is gusuku/maths/ground_grid.h (column 0 west, row 0 north).
+/// The ground grid: its addressing is gusuku/formats/ground_grid.h (column 0 west, row 0 north).
 struct BakeSetGroundGrid {
     std::string geometry = "ground_geometry.exr";  ///< RGB: unit normal (ENU), A: height (ENU z, metres)
     GroundGrid grid;

@@ -1,11 +1,11 @@
 // pack.bin's writer and reader (pack_geometry.h).
 
-#include "gusuku/maths/pack_geometry.h"
+#include "gusuku/formats/pack_geometry.h"
 
 #include <cmath>
 #include <cstring>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku {
 namespace {

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku {
 

@@ -1,5 +1,5 @@
-// The bake set's range checks (gusuku/maths/bakeset_ranges.h), shared by both bake set readers.
-#include "gusuku/maths/bakeset_ranges.h"
+// The bake set's range checks (gusuku/formats/bakeset_ranges.h), shared by both bake set readers.
+#include "gusuku/formats/bakeset_ranges.h"
 
 #include <cmath>
 #include <cstdio>

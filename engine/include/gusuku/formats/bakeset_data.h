@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "gusuku/maths/bakeset_manifest.h"
+#include "gusuku/formats/bakeset_manifest.h"
 
 namespace gusuku {
 

@@ -1,12 +1,12 @@
 #pragma once
-// Is an in-memory bake set (gusuku/maths/bakeset_data.h) consistent enough for the runtime to upload and draw? The
+// Is an in-memory bake set (gusuku/formats/bakeset_data.h) consistent enough for the runtime to upload and draw? The
 // runtime checks it when it opens (an app may fill BakeSetData itself); gusuku_assets' loadBakeSet checks what
 // it read with the same function. gusuku_maths: glm and the standard library only.
 
 #include <optional>
 #include <string>
 
-#include "gusuku/maths/bakeset_data.h"
+#include "gusuku/formats/bakeset_data.h"
 
 namespace gusuku {
 

@@ -1,14 +1,14 @@
 // KTX 2.0 containers for the runtime pack (ktx2.h): the layout written from the KTX 2.0 specification's file
 // structure, the DFD from the Data Format Specification 1.3's basic descriptor block.
 
-#include "gusuku/maths/ktx2.h"
+#include "gusuku/formats/ktx2.h"
 
 #include <algorithm>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
 
-#include "gusuku/maths/input_error.h"
+#include "gusuku/formats/input_error.h"
 
 namespace gusuku {
 namespace {
