@@ -1,15 +1,16 @@
 # `cmake --install BUILD --prefix P` installs what an app links, as the CMake package "gusuku" (find_package):
-#   component runtime  gusuku_formats, gusuku_maths, gusuku_gpu, gusuku_runtime and gusuku_pack_loader (static), their headers
-#                      (gusuku/formats/, gusuku/maths/, gusuku/gpu/, gusuku/runtime/: the C++ API runtime.h and the C API gusuku.h
-#                      among them; of gusuku/loader/ the pack reader's runtime_pack.h and the C gusuku_loader.h,
-#                      whose gusuku_bakeset_load_pack it defines), the licence and the package files;
+#   component runtime  gusuku_formats, gusuku_maths, gusuku_gpu, gusuku_runtime and gusuku_pack_loader (static), the
+#                      headers an app includes (the C++ API runtime.h, the C API gusuku.h, the pack reader's
+#                      gusuku/pack_loader/, the weather readers') and what those include (the list below), the
+#                      licence and the package files;
 #                      find_package(gusuku) gives gusuku::runtime and gusuku::pack_loader, which need Vulkan and
 #                      glm only: a phone app reads the bake set's runtime pack without the tools' I/O stack;
 #                      gusuku_weather (gusuku/weather/: the METAR and Open-Meteo readers, C++ and C) and
 #                      gusuku_json (their private JSON reader: the archive only, no header) likewise, and
 #                      gusuku_c_common (the C API's error reporting that they all share: the archive only)
 #   component loader   gusuku_loader and gusuku_assets (static): find_package(gusuku COMPONENTS loader) gives
-#                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/); it needs the tools'
+#                      gusuku::loader, with their headers (gusuku/assets/, gusuku/loader/ and what those include
+#                      beyond the runtime component's); it needs the tools'
 #                      I/O stack (OpenImageIO, OpenColorIO, tinygltf, nlohmann-json, GeographicLib: Debian
 #                      packages, found again by the package config)
 # A runtime-only build (GUSUKU_RUNTIME_ONLY) installs the runtime component alone.
@@ -46,16 +47,30 @@ install(TARGETS gusuku_formats gusuku_maths gusuku_gpu gusuku_runtime gusuku_pac
         EXPORT gusukuRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-# Headers by library: engine/include/gusuku/<library>/ holds the public headers of gusuku_<library>, and each
-# component installs the folders of exactly the libraries it installs.
-foreach(library formats maths gpu runtime weather)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku
-          COMPONENT runtime FILES_MATCHING PATTERN "*.h")
-endforeach()
-set(GUSUKU_PACK_LOADER_HEADERS runtime_pack.h gusuku_loader.h)
-foreach(header ${GUSUKU_PACK_LOADER_HEADERS})
-  install(FILES ${PROJECT_SOURCE_DIR}/engine/include/gusuku/loader/${header}
-          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku/loader COMPONENT runtime)
+# Headers: what an app includes and what those include, nothing else, so an app's public surface is its API and
+# not the libraries' internals. The runtime component's entry headers, each for:
+#   gusuku/runtime/gusuku.h                the C API
+#   gusuku/runtime/runtime.h               the C++ API
+#   gusuku/runtime/runtime_version.h       the C++ version query (runtimeVersion)
+#   gusuku/pack_loader/gusuku_pack_loader.h, runtime_pack.h    the runtime pack's reader, C and C++
+#   gusuku/weather/gusuku_weather.h, weather_service.h         the weather services' readers, C and C++
+# and, because those include them (gusuku_header_closure walks the "gusuku/..." include lines, so an include added
+# there is installed at the next build and the list below is only an account of today's):
+#   gusuku/formats/bakeset_data.h, bakeset_manifest.h, ground_grid.h    runtime.h's BakeSetData, what open() takes
+#   gusuku/maths/colour_match.h, colour.h, const_span.h                 runtime.h's colour match settings
+#   gusuku/gpu/gpu_device.h                                             runtime.h's app-owned device
+# Each header sits in engine/include/gusuku/<library>/, the folder of the library that provides it.
+# install_and_consume checks that every installed header is reached from an entry header, and compiles each alone.
+include(${CMAKE_CURRENT_LIST_DIR}/GusukuHeaderClosure.cmake)
+set(GUSUKU_INCLUDE_ROOT ${PROJECT_SOURCE_DIR}/engine/include)
+gusuku_header_closure(GUSUKU_RUNTIME_HEADERS ${GUSUKU_INCLUDE_ROOT}
+  gusuku/runtime/gusuku.h gusuku/runtime/runtime.h gusuku/runtime/runtime_version.h
+  gusuku/pack_loader/gusuku_pack_loader.h gusuku/pack_loader/runtime_pack.h
+  gusuku/weather/gusuku_weather.h gusuku/weather/weather_service.h)
+foreach(header ${GUSUKU_RUNTIME_HEADERS})
+  get_filename_component(header_folder ${header} DIRECTORY)
+  install(FILES ${GUSUKU_INCLUDE_ROOT}/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${header_folder}
+          COMPONENT runtime)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
@@ -66,10 +81,16 @@ if(NOT GUSUKU_RUNTIME_ONLY)
   install(TARGETS gusuku_assets gusuku_loader EXPORT gusukuLoaderTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT loader
           INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  foreach(library assets loader)
-    install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/gusuku/${library}
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gusuku COMPONENT loader FILES_MATCHING PATTERN "*.h"
-            PATTERN runtime_pack.h EXCLUDE PATTERN gusuku_loader.h EXCLUDE)  # the runtime component's
+  # The loader component's entry headers: gusuku/loader/ (the C gusuku_bakeset_load) and gusuku/assets/ (the C++
+  # loadBakeSet and the tools' readers it is built from), and what they include beyond the runtime component's.
+  file(GLOB loader_entry_headers RELATIVE ${GUSUKU_INCLUDE_ROOT}
+       ${GUSUKU_INCLUDE_ROOT}/gusuku/loader/*.h ${GUSUKU_INCLUDE_ROOT}/gusuku/assets/*.h)
+  gusuku_header_closure(GUSUKU_LOADER_HEADERS ${GUSUKU_INCLUDE_ROOT} ${loader_entry_headers})
+  list(REMOVE_ITEM GUSUKU_LOADER_HEADERS ${GUSUKU_RUNTIME_HEADERS})
+  foreach(header ${GUSUKU_LOADER_HEADERS})
+    get_filename_component(header_folder ${header} DIRECTORY)
+    install(FILES ${GUSUKU_INCLUDE_ROOT}/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${header_folder}
+            COMPONENT loader)
   endforeach()
   install(EXPORT gusukuLoaderTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT loader)
   # The package config recreates GeographicLib::GeographicLib with it (the exported link names that target).

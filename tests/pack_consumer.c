@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "gusuku/loader/gusuku_loader.h"
+#include "gusuku/pack_loader/gusuku_pack_loader.h"
 #include "gusuku/runtime/gusuku.h"
 
 int main(int argc, char** argv) {

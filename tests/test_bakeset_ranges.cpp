@@ -22,7 +22,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/site.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku/formats/bakeset_ranges.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/formats/ktx2.h"

@@ -20,7 +20,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/loader/gusuku_loader.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/formats/ktx2.h"
 #include "gusuku/runtime/runtime.h"

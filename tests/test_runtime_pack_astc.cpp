@@ -21,7 +21,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku_bake/astc_lightmap.h"

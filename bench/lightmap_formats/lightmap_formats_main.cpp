@@ -28,7 +28,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/time_utc.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku/runtime/runtime.h"
 #include "format_comparison.h"
 #include "gusuku_bake/astc_lightmap.h"

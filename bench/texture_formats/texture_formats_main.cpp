@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "gusuku/assets/bakeset_loader.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/formats/ktx2.h"
 #include "gusuku/maths/srgb_mip_chain.h"

@@ -32,7 +32,7 @@ endfunction()
 run_step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/staging)
 file(RENAME ${WORK_DIR}/staging ${prefix})  # the package is used where it was not installed
 set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtime.h
-                   include/gusuku/loader/runtime_pack.h include/gusuku/loader/gusuku_loader.h
+                   include/gusuku/pack_loader/runtime_pack.h include/gusuku/pack_loader/gusuku_pack_loader.h
                    lib/libgusuku_pack_loader.a
                    include/gusuku/weather/gusuku_weather.h include/gusuku/weather/weather_service.h
                    lib/libgusuku_weather.a lib/libgusuku_json.a lib/libgusuku_c_common.a
@@ -41,7 +41,7 @@ if(WITH_LOADER)
   list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)
 else()
   foreach(absent lib/libgusuku_assets.a lib/libgusuku_loader.a lib/cmake/gusuku/gusukuLoaderTargets.cmake
-          include/gusuku/assets include/gusuku/loader/weather_service.h include/gusuku/tools)
+          include/gusuku/assets include/gusuku/loader include/gusuku/tools)
     if(EXISTS ${prefix}/${absent})
       message(FATAL_ERROR "install: ${absent} is in the prefix of a runtime-only build")
     endif()
@@ -93,25 +93,43 @@ foreach(library runtime pack_loader weather json)
     message(FATAL_ERROR "install --component runtime: lib/libgusuku_${library}.a is missing")
   endif()
 endforeach()
-# Of gusuku/loader/, the pack reader's two headers and nothing else (the EXR loader's are the loader component's).
-file(GLOB runtime_only_loader_headers RELATIVE ${WORK_DIR}/runtime_only/include/gusuku/loader
-     ${WORK_DIR}/runtime_only/include/gusuku/loader/*)
-list(SORT runtime_only_loader_headers)
-if(NOT runtime_only_loader_headers STREQUAL "gusuku_loader.h;runtime_pack.h")
-  message(FATAL_ERROR "install --component runtime: include/gusuku/loader/ holds '${runtime_only_loader_headers}', "
-                      "not the pack reader's gusuku_loader.h and runtime_pack.h")
-endif()
-# Headers by library: the runtime component carries the headers of the libraries it installs and no others.
-foreach(folder formats maths gpu runtime weather)
+# Headers by library: the runtime component carries the headers of the libraries it installs and no others (the
+# pack reader's in gusuku/pack_loader/; gusuku/loader/, the EXR loader's, is the loader component's alone).
+foreach(folder formats maths gpu runtime weather pack_loader)
   if(NOT IS_DIRECTORY ${WORK_DIR}/runtime_only/include/gusuku/${folder})
     message(FATAL_ERROR "install --component runtime: include/gusuku/${folder}/ is missing")
   endif()
 endforeach()
-file(GLOB runtime_only_entries RELATIVE ${WORK_DIR}/runtime_only/include/gusuku ${WORK_DIR}/runtime_only/include/gusuku/*)
-list(REMOVE_ITEM runtime_only_entries formats maths gpu runtime weather loader)
+file(GLOB runtime_only_entries RELATIVE ${WORK_DIR}/runtime_only/include/gusuku
+     ${WORK_DIR}/runtime_only/include/gusuku/*)
+list(REMOVE_ITEM runtime_only_entries formats maths gpu runtime weather pack_loader)
 if(runtime_only_entries)
   message(FATAL_ERROR "install --component runtime: include/gusuku/ also holds ${runtime_only_entries}, "
                       "headers of libraries the component does not install")
+endif()
+# Only what an app includes: each header of the runtime component is an entry header (what an app includes:
+# the C and C++ APIs, the pack reader's, the weather readers') or named by an include line of another installed
+# header; cmake/GusukuInstall.cmake says why each is there.
+set(runtime_entry_headers gusuku/runtime/gusuku.h gusuku/runtime/runtime.h gusuku/runtime/runtime_version.h
+    gusuku/pack_loader/gusuku_pack_loader.h gusuku/pack_loader/runtime_pack.h gusuku/weather/gusuku_weather.h
+    gusuku/weather/weather_service.h)
+file(GLOB_RECURSE runtime_only_headers RELATIVE ${WORK_DIR}/runtime_only/include
+     ${WORK_DIR}/runtime_only/include/gusuku/*.h)
+set(runtime_included_headers)
+foreach(header ${runtime_only_headers})
+  file(STRINGS ${WORK_DIR}/runtime_only/include/${header} include_lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]gusuku/")
+  foreach(line ${include_lines})
+    string(REGEX MATCH "gusuku/[^>\"]+" included "${line}")
+    list(APPEND runtime_included_headers ${included})
+  endforeach()
+endforeach()
+set(runtime_unreached_headers ${runtime_only_headers})
+list(REMOVE_ITEM runtime_unreached_headers ${runtime_entry_headers} ${runtime_included_headers})
+list(LENGTH runtime_only_headers runtime_only_header_count)
+message(STATUS "install --component runtime: ${runtime_only_header_count} headers")
+if(runtime_unreached_headers)
+  message(FATAL_ERROR "install --component runtime: ${runtime_unreached_headers} installed, yet no app includes "
+                      "them (neither an entry header nor included by an installed header)")
 endif()
 if(NOT EXISTS ${WORK_DIR}/runtime_only/share/doc/gusuku/LICENSE)
   message(FATAL_ERROR "install --component runtime: share/doc/gusuku/LICENSE is missing")

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <gusuku/loader/gusuku_loader.h>
+#include <gusuku/pack_loader/gusuku_pack_loader.h>
 
 int main(void) {
     gusuku_bakeset* bake_set = NULL;

@@ -1,8 +1,8 @@
-// gusuku_bakeset_load_pack (gusuku_loader.h): loadRuntimePack behind the C API's error convention.
+// gusuku_bakeset_load_pack (gusuku_pack_loader.h): loadRuntimePack behind the C API's error convention.
 #include <memory>
 
-#include "gusuku/loader/gusuku_loader.h"
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/gusuku_pack_loader.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 #include "gusuku_c_bakeset_handle.h"
 #include "gusuku_c_errors.h"
 

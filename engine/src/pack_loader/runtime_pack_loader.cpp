@@ -1,6 +1,6 @@
-// The runtime pack reader (gusuku/loader/runtime_pack.h): standard library only.
+// The runtime pack reader (gusuku/pack_loader/runtime_pack.h): standard library only.
 
-#include "gusuku/loader/runtime_pack.h"
+#include "gusuku/pack_loader/runtime_pack.h"
 
 #include <cstdio>
 #include <cstring>

@@ -2,7 +2,7 @@
 // The runtime pack reader (docs/bakeset.md, "The runtime pack"): BAKESET/pack/ into gusuku::BakeSetData with the
 // C++ standard library alone (library gusuku_pack_loader, CMake gusuku::pack_loader, which a phone app links
 // beside gusuku::runtime; also built with GUSUKU_RUNTIME_ONLY). The C API's entry is gusuku_bakeset_load_pack
-// (gusuku/loader/gusuku_loader.h).
+// (gusuku/pack_loader/gusuku_pack_loader.h).
 
 #include <string>
 

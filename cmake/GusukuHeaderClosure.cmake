@@ -1,0 +1,26 @@
+# gusuku_header_closure(OUT ROOT INCLUDE_DIR HEADER...): OUT gets the headers (paths relative to INCLUDE_DIR) that
+# HEADER... include, directly or through each other, by their quoted or angled "gusuku/..." include lines, the
+# roots among them, sorted. Each header read becomes a configure dependency, so an include added to an installed
+# header changes the install set at the next build.
+function(gusuku_header_closure out include_dir)
+  set(closure)
+  set(pending ${ARGN})
+  while(pending)
+    list(POP_FRONT pending header)
+    if(header IN_LIST closure)
+      continue()
+    endif()
+    if(NOT EXISTS ${include_dir}/${header})
+      message(FATAL_ERROR "gusuku_header_closure: ${header} is included but not in ${include_dir}")
+    endif()
+    list(APPEND closure ${header})
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${include_dir}/${header})
+    file(STRINGS ${include_dir}/${header} include_lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]gusuku/")
+    foreach(line ${include_lines})
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[<\"](gusuku/[^>\"]+)[>\"].*$" "\\1" included "${line}")
+      list(APPEND pending ${included})
+    endforeach()
+  endwhile()
+  list(SORT closure)
+  set(${out} ${closure} PARENT_SCOPE)
+endfunction()
