@@ -287,7 +287,8 @@ void CameraInput::pointSlotAt(uint32_t slot, VkImageView plane0, VkImageView pla
     source.layout = layout;
 }
 
-void CameraInput::prepare(uint32_t slot, const FrameInput& frame) {
+void CameraInput::prepare(uint32_t slot, const FrameInput& frame, const ColourStatisticsGrid* pack_grid) {
+    pack_grid_ = pack_grid;
     if (frame.camera_image == VK_NULL_HANDLE) {
         stageHostPixels(slot, frame);
         pointSlotAt(slot, plane0_.view(), isYuv(format_) ? plane1_.view() : plane0_.view(),

@@ -7,7 +7,8 @@
 //     four-byte plane, or Y' and interleaved chroma planes): the one host copy an app that hands bytes asks for.
 //   - The app's VkImage is read through a view the runtime keeps (a small cache, views made the first time an
 //     image is met), in its own layout; TRANSFER_SRC_OPTIMAL is moved to SHADER_READ_ONLY_OPTIMAL and back.
-// Each frame slot has its own descriptor set, updated only when its source changes. Private to gusuku_runtime.
+// Each frame slot has its own descriptor set, updated only when its source changes. The frame's first pass in the
+// list (frame_pass.h): its draw is the main pass's first. Private to gusuku_runtime.
 
 #include <array>
 #include <cstdint>
@@ -15,6 +16,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "frame_pass.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_device.h"
 #include "gusuku/gpu/gpu_image.h"
@@ -30,12 +32,12 @@ struct CameraPlaneFormats {
 };
 CameraPlaneFormats cameraPlaneFormats(CameraFormat format);
 
-class CameraInput {
+class CameraInput final : public FramePass {
 public:
     /// The set layout, sampler, per-slot sets and staging buffers, the runtime's plane images (left in
     /// SHADER_READ_ONLY_OPTIMAL) and, when `pack` (a colour match is possible), the packed buffer and its kernel.
     CameraInput(const GpuDevice& gpu, const RuntimeOptions& options, uint32_t slot_count, bool pack);
-    ~CameraInput();
+    ~CameraInput() override;
     CameraInput(const CameraInput&) = delete;
     CameraInput& operator=(const CameraInput&) = delete;
 
@@ -46,8 +48,9 @@ public:
     /// buffer, or the app image's view found or made; the slot's set pointed at the source when it changed.
     /// With the view cache full, the least recently used view is let go first: the caller must have waited for
     /// every frame in flight when needsEviction(frame) said so. Throws RuntimeError kInvalidFrame for a bad
-    /// camera_image_format, kDevice when a view cannot be made.
-    void prepare(uint32_t slot, const FrameInput& frame);
+    /// camera_image_format, kDevice when a view cannot be made. pack_grid: the colour match's sample grid this
+    /// frame (ColourMatchPass::packGrid), or null.
+    void prepare(uint32_t slot, const FrameInput& frame, const ColourStatisticsGrid* pack_grid);
     bool needsEviction(const FrameInput& frame) const;
 
     /// Before the frame's passes, outside a render pass: the staged pixels into the plane images, the app
@@ -59,6 +62,13 @@ public:
     void recordDraw(VkCommandBuffer cmd, uint32_t slot) const;
     /// After the frame's passes: the app image back to TRANSFER_SRC_OPTIMAL when it came so.
     void recordAfterPasses(VkCommandBuffer cmd, const FrameInput& frame) const;
+
+    // The frame's hooks (frame_pass.h), in the slot and with the pack grid prepare() was given.
+    void recordBefore(PassRecording& recording) override {
+        recordBeforePasses(recording.cmd, recording.slot, *recording.frame, pack_grid_);
+    }
+    void recordInMainPass(PassRecording& recording) override { recordDraw(recording.cmd, recording.slot); }
+    void recordAfter(PassRecording& recording) override { recordAfterPasses(recording.cmd, *recording.frame); }
 
     /// The packed camera (frame_width * frame_height RGBA8 words), written by recordBeforePasses at the pixels of
     /// its pack_grid (the others hold older frames' words or nothing).
@@ -104,6 +114,7 @@ private:
     std::vector<VkDescriptorSet> slot_sets_;
     std::array<CachedView, kViewCacheSize> views_{};
     uint64_t use_counter_ = 0;
+    const ColourStatisticsGrid* pack_grid_ = nullptr;  // this frame's (prepare)
 
     VkSampler sampler_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;

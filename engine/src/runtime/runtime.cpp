@@ -95,67 +95,60 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     }
 }
 
-namespace {
-
-std::vector<LabStatistics> slotColourStatistics(const BakeSetManifest& manifest) {
-    std::vector<LabStatistics> per_slot;
-    for (const BakeSetSlot& slot : manifest.slots) {
-        LabStatistics statistics;
-        if (slot.colour_statistics) {
-            statistics.mean = glm::vec3(slot.colour_statistics->lab_mean);
-            statistics.standard_deviation = glm::vec3(slot.colour_statistics->lab_sigma);
-        }
-        per_slot.push_back(statistics);
-    }
-    return per_slot;
-}
-
-}  // namespace
-
 RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options)
     : gpu_(gpu), options_(options), manifest_(bake_set.manifest) {
     checkRuntimeOptions(options);
     if (const std::optional<std::string> problem = findBakeSetProblem(bake_set))
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
-    slot_colour_statistics_ = slotColourStatistics(manifest_);
     options_.lightmap_format = chooseLightmapFormat(gpu_, bake_set, options_);
     checkDeviceRequirements(gpu_, options_);
     try {
         scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format,
                              options_.texture_compression_astc_ldr && deviceSamplesAstcLdr(gpu_));
-        createGroundSelectionArrays();
-        createTargets();
-        // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
-        const std::optional<GroundMatchScene> ground = groundMatchSceneFrom(bake_set);
-        // The colour matches need subgroup arithmetic (Vulkan 1.1); the default frame (match off) does not, so a
-        // device without it opens with no statistics pass and refuses frames that ask for a match.
-        if (ColourStatisticsPass::deviceSupports(gpu_))
-            statistics_ = std::make_unique<ColourStatisticsPass>(gpu_, options.frame_width, options.frame_height,
-                                                                 options.statistics_stride,
-                                                                 // T frames = T / interval measurements
-                                                                 options.statistics_smoothing_frames /
-                                                                     float(kColourStatisticsInterval),
-                                                                 ground ? &*ground : nullptr);
-        else
-            colour_state_without_match_ =
-                GpuBuffer(gpu_, sizeof(shader_interface::ColourMatchState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                          GpuMemory::kDeviceLocal);
-        if (!statistics_) {
-            const shader_interface::ColourMatchState match_off{};  // zeros: mode off, the identity transfer
-            colour_state_without_match_.upload(&match_off, sizeof match_off);
-        }
-        camera_ = std::make_unique<CameraInput>(gpu_, options_, uint32_t(slots_.size()), statistics_ != nullptr);
-        createDescriptors();
-        createPipelines();
-        camera_->createDrawPipeline(main_passes_[0], mainPassSamples());
-        createCommands();
+        makePasses(bake_set);
     } catch (...) {
-        destroy();
-        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidBakeSet, kOpening);
+        rethrowAsRuntimeError(RuntimeErrorCode::kInvalidBakeSet, kOpening);  // the passes made release themselves
     }
 }
 
-RuntimeImpl::~RuntimeImpl() { destroy(); }
+// Each pass made from what it reads, in that order; then the list, in the frame's order, with the PassTimings
+// figure each hook counts toward in the profiled frame (the camera's draw with the occluder's, its layout's
+// return with the ground's: they share those submissions).
+void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
+    const PassContext context = passContext();
+    targets_ = std::make_unique<MainTargets>(context, options_.frames_in_flight);
+    submission_ = std::make_unique<FrameSubmission>(context, *targets_);
+    materials_ = std::make_unique<MaterialSets>(context);
+    shadows_ = std::make_unique<ShadowPass>(context, *materials_);
+    camera_ = std::make_unique<CameraInput>(gpu_, options_, options_.frames_in_flight,
+                                            ColourStatisticsPass::deviceSupports(gpu_));
+    // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
+    const std::optional<GroundMatchScene> ground = groundMatchSceneFrom(bake_set);
+    colour_ = std::make_unique<ColourMatchPass>(context, manifest_, ground ? &*ground : nullptr,
+                                                camera_->packedBuffer());
+    frame_set_ = std::make_unique<FrameSet>(context, *shadows_, *materials_, colour_->stateBuffer());
+    const VkRenderPass main_pass = targets_->renderPass(MainPassVariant::kWhole);
+    camera_->createDrawPipeline(main_pass, targets_->samples());
+    occluder_ = std::make_unique<OccluderPass>(context, main_pass, targets_->samples());
+    building_ = std::make_unique<BuildingPass>(context, *frame_set_, *materials_, main_pass, targets_->samples());
+    ground_ = std::make_unique<GroundPass>(context, manifest_.ground_grid.grid, *frame_set_, options_.frames_in_flight,
+                                           main_pass, targets_->samples());
+    using T = PassTimings;
+    passes_ = {{
+        {frame_set_.get(), &T::upload_ms, nullptr, nullptr},
+        {camera_.get(), &T::upload_ms, &T::occluder_ms, &T::ground_ms},
+        {colour_.get(), &T::statistics_ms, nullptr, nullptr},
+        {shadows_.get(), &T::shadow_ms, nullptr, nullptr},
+        {occluder_.get(), nullptr, &T::occluder_ms, nullptr},
+        {building_.get(), nullptr, &T::building_ms, nullptr},
+        {ground_.get(), nullptr, &T::ground_ms, nullptr},
+        {submission_.get(), nullptr, nullptr, &T::readback_ms},
+    }};
+}
+
+RuntimeImpl::~RuntimeImpl() {
+    if (gpu_.device != VK_NULL_HANDLE) vkDeviceWaitIdle(gpu_.device);  // then the passes release themselves
+}
 
 }  // namespace runtime_detail
 

@@ -19,7 +19,7 @@ namespace gusuku::runtime_detail {
 /// gets a valid buffer to bind, of one vec4.
 constexpr size_t kMinBufferBytes = 16;
 
-/// The building's vertex layout (runtime_frame_pipelines.cpp's vertex input): position, normal, base colour uv, lightmap uv.
+/// The building's vertex layout (building_pass.cpp's vertex input): position, normal, base colour uv, lightmap uv.
 struct BuildingVertex {
     float position[3];
     float normal[3];
