@@ -3,10 +3,13 @@
 // pack other than its own previous output, in one line naming the path, with exit 1; every set, pack and input
 // is byte-identical afterwards. Its own previous output is still replaced, and a pack is written beside its
 // folder and renamed into place, so a failure half-way leaves the old pack whole, manifest and all.
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +59,29 @@ std::vector<std::string> namesIn(const std::string& dir) {
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// While it lives, files this process and its children write may not grow past `bytes` (a write past it fails with
+// EFBIG), and SIGXFSZ is ignored so that the write fails instead of the process dying.
+class FileSizeLimit {
+public:
+    explicit FileSizeLimit(size_t bytes) {
+        getrlimit(RLIMIT_FSIZE, &previous_limit_);
+        previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit = previous_limit_;
+        limit.rlim_cur = rlim_t(bytes);
+        setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    ~FileSizeLimit() {
+        setrlimit(RLIMIT_FSIZE, &previous_limit_);
+        std::signal(SIGXFSZ, previous_handler_);
+    }
+    FileSizeLimit(const FileSizeLimit&) = delete;
+    FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+private:
+    rlimit previous_limit_{};
+    void (*previous_handler_)(int) = SIG_DFL;
+};
 
 // One refused command: exit 1, one line "gusuku-bake: error: OUT: FIELD: ..." holding `problem`, nothing on stdout.
 void expectRefused(const CommandResult& result, const std::string& output, const std::string& field,
@@ -234,14 +260,25 @@ TEST_F(OutputGuardTest, AFailureHalfWayThroughAPackLeavesTheOldPackWithItsManife
     const std::string phone = dir_ + "/phone";
     ASSERT_EQ(runBakeCommand({"pack", set_, "-o", phone}, dir_).exit_code, 0);
     const std::map<std::string, std::string> phone_before = filesBelow(phone);
-    // The writer fails after 3 files, as a full disk would (the env variable only tests set).
-    ::setenv("GUSUKU_TEST_PACK_FAIL_AFTER_FILES", "3", 1);
-    const CommandResult into_phone = runBakeCommand({"pack", set_, "-o", phone}, dir_);
-    const CommandResult into_own = runBakeCommand({"pack", set_}, dir_);
-    ::unsetenv("GUSUKU_TEST_PACK_FAIL_AFTER_FILES");
+    size_t largest_file_bytes = 0, smallest_file_bytes = SIZE_MAX;
+    for (const auto& [name, bytes] : phone_before) {
+        largest_file_bytes = std::max(largest_file_bytes, bytes.size());
+        smallest_file_bytes = std::min(smallest_file_bytes, bytes.size());
+    }
+    ASSERT_LT(smallest_file_bytes, largest_file_bytes) << "the pack's files must differ in size for the limit below";
+    // A real write failure, with no hook in the product: the commands run with a file-size limit (RLIMIT_FSIZE,
+    // which the shell and gusuku-bake inherit) that the pack's small files fit under and its larger lightmaps do
+    // not, so a write fails with EFBIG part-way through the pack, as a full disk fails one. SIGXFSZ, whose default
+    // action would kill the process instead, is ignored for the time (an ignored signal stays ignored across exec).
+    CommandResult into_phone, into_own;
+    {
+        const FileSizeLimit limit(largest_file_bytes - 1);
+        into_phone = runBakeCommand({"pack", set_, "-o", phone}, dir_);
+        into_own = runBakeCommand({"pack", set_}, dir_);
+    }
     EXPECT_EQ(into_phone.exit_code, 1);
     EXPECT_EQ(into_phone.stderr_text.rfind("gusuku-bake: error: " + phone + "/", 0), 0u) << into_phone.stderr_text;
-    EXPECT_TRUE(contains(into_phone.stderr_text, "injected failure")) << into_phone.stderr_text;
+    EXPECT_TRUE(contains(into_phone.stderr_text, "File too large")) << into_phone.stderr_text;
     EXPECT_EQ(into_own.exit_code, 1) << into_own.stderr_text;
     EXPECT_EQ(filesBelow(phone), phone_before);
     expectNothingChanged();

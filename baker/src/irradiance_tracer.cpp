@@ -23,15 +23,17 @@ namespace {
 // Bindings and push constants are written once, in shaders/include/bake_{irradiance,accumulate}_interface.h.
 using BakePushConstants = shader_interface::BakeIrradiancePushConstants;
 using AccumulatePushConstants = shader_interface::BakeAccumulatePushConstants;
-static_assert(sizeof(BakePushConstants) == 80 && offsetof(BakePushConstants, bounces_before_roulette) == 68 &&
-                  offsetof(BakePushConstants, sky_rays_at_point) == 72 &&
-                  offsetof(BakePushConstants, first_point) == 76 &&
+static_assert(sizeof(BakePushConstants) == 72 && offsetof(BakePushConstants, first_point) == 4 &&
                   offsetof(BakePushConstants, sun_direction_cos_max) == 32 &&
                   offsetof(BakePushConstants, sun_irradiance_ray_offset) == 48 &&
-                  offsetof(BakePushConstants, sky_next_event) == 64,
+                  offsetof(BakePushConstants, sky_next_event) == 64 &&
+                  offsetof(BakePushConstants, sky_rays_at_point) == 68,
               "std430 offsets of bake_irradiance_interface.h's push constants");
 static_assert(uint32_t(TraceMode::IndirectIrradiance) == BAKE_MODE_INDIRECT &&
               uint32_t(TraceMode::SunDirect) == BAKE_MODE_SUN_DIRECT);
+// ComputePipeline takes the values of constant_id 0, 1, 2, ... in order (gpu_compute.h).
+static_assert(BAKE_SKY_NEXT_EVENT_CONSTANT == 1 && BAKE_TRACE_MODE_CONSTANT == 2 &&
+              IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT == 3);
 
 constexpr uint32_t kWorkgroupSize = BAKE_WORKGROUP_SIZE;
 static_assert(BAKE_ACCUMULATE_WORKGROUP_SIZE == BAKE_WORKGROUP_SIZE, "one point_groups count serves both kernels");
@@ -67,16 +69,28 @@ IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& sce
 
 IrradianceTracer::~IrradianceTracer() = default;
 
-ComputePipeline& IrradianceTracer::pipelineFor(bool sky_next_event) {
-    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[sky_next_event ? 1 : 0];
+ComputePipeline& IrradianceTracer::pipelineFor(const TraceKernelVariant& variant) {
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[variant];
     if (!pipeline) {
-        std::vector<uint32_t> specialization = traceKernelSpecialization(scene_);
-        specialization.push_back(sky_next_event ? 1u : 0u);  // constant_id 1: BAKE_SKY_NEXT_EVENT
+        std::vector<uint32_t> specialization = traceKernelSpecialization(scene_);  // constant_id 0
+        specialization.push_back(variant.sky_next_event ? 1u : 0u);               // BAKE_SKY_NEXT_EVENT_CONSTANT
+        specialization.push_back(uint32_t(variant.mode));                         // BAKE_TRACE_MODE_CONSTANT
+        specialization.push_back(variant.bounces_before_roulette);  // IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT
         pipeline = std::make_unique<ComputePipeline>(
             context_, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv), BAKE_IRRADIANCE_BINDING_COUNT,
             uint32_t(sizeof(BakePushConstants)), traceInputTexelBindings(), specialization);
     }
     return *pipeline;
+}
+
+TraceKernelVariant IrradianceTracer::kernelVariantFor(const TracePass& pass) const {
+    TraceKernelVariant variant;
+    variant.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap;
+    variant.mode = pass.mode;
+    // 0 would end every path at its first reflection's roulette just as 1 does: the kernel clamped it to 1 before
+    // it was a specialisation constant, and so does this.
+    variant.bounces_before_roulette = std::max(pass.bounces_before_roulette, 1u);
+    return variant;
 }
 
 void IrradianceTracer::setSky(const SkySamplingTables& sky) {
@@ -102,22 +116,21 @@ BakePushConstants IrradianceTracer::pushConstantsFor(const TracePass& pass) cons
     push.max_bounces = pass.max_bounces;
     push.seed = pass.seed;
     push.skip_flags = pass.skip_flags;
-    push.mode = uint32_t(pass.mode);
     push.sun_present = pass.sun.present ? 1u : 0u;
     packSunLight(pass.sun, pass.ray_offset_m, push.sun_direction_cos_max.components,
                  push.sun_irradiance_ray_offset.components);
     push.sky_next_event = resolvedSkySampling(pass.sky_sampling) == SkySampling::CosineAndMap ? 1u : 0u;
-    push.bounces_before_roulette = pass.bounces_before_roulette;
     push.sky_rays_at_point = resolvedSkyRaysAtPoint(pass);
     return push;
 }
 
-uint64_t IrradianceTracer::dispatchRange(PointAccumulator& accumulator, BakePushConstants push, uint32_t first_point,
+uint64_t IrradianceTracer::dispatchRange(PointAccumulator& accumulator, const TraceKernelVariant& variant,
+                                         BakePushConstants push, uint32_t first_point,
                                          uint32_t point_count, uint32_t first_sample, uint32_t sample_count) {
     const size_t scratch_bytes = size_t(point_count) * size_t(sample_count) * sizeof(glm::vec4);
     if (sample_estimates_.size() < scratch_bytes) sample_estimates_ = GpuBuffer(context_, scratch_bytes);
     static_assert(BAKE_QUERY_POINT_BINDING == 7 && BAKE_SAMPLE_ESTIMATE_BINDING == 8 && BAKE_RAY_COUNTER_BINDING == 9);
-    ComputePipeline& pipeline = pipelineFor(push.sky_next_event != 0u);
+    ComputePipeline& pipeline = pipelineFor(variant);
     pipeline.bindBuffers(traceInputBuffers(scene_, sky_, {&accumulator.points, &sample_estimates_, &ray_counter_}));
     accumulate_pipeline_->bindBuffers({&sample_estimates_, &accumulator.sums, &accumulator.luminance_square_sums});
     push.point_count = point_count;
@@ -149,12 +162,13 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
         return 0;
     }
     const BakePushConstants push = pushConstantsFor(pass);
+    const TraceKernelVariant variant = kernelVariantFor(pass);
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
     const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
     uint64_t rays = 0;
     for (uint32_t done = 0; done < sample_count;) {
         const uint32_t chunk = std::min(max_chunk, sample_count - done);
-        rays += dispatchRange(accumulator, push, 0, accumulator.point_count, accumulator.samples_done, chunk);
+        rays += dispatchRange(accumulator, variant, push, 0, accumulator.point_count, accumulator.samples_done, chunk);
         accumulator.samples_done += chunk;
         done += chunk;
     }
@@ -167,7 +181,8 @@ uint64_t IrradianceTracer::addSampleToNextPoints(PointAccumulator& accumulator, 
     const uint32_t count = std::min(point_count, accumulator.point_count - first_point);
     uint64_t rays = 0;
     if (count > 0)
-        rays = dispatchRange(accumulator, pushConstantsFor(pass), first_point, count, accumulator.samples_done, 1);
+        rays = dispatchRange(accumulator, kernelVariantFor(pass), pushConstantsFor(pass), first_point, count,
+                             accumulator.samples_done, 1);
     accumulator.points_with_next_sample += count;
     if (accumulator.points_with_next_sample >= accumulator.point_count) {
         accumulator.points_with_next_sample = 0;

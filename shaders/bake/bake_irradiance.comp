@@ -19,7 +19,10 @@ layout(local_size_x = BAKE_WORKGROUP_SIZE) in;
 // alone (IrradianceTracer::pipelineFor): llvmpipe runs the map's next-event block masked for the whole SIMD group
 // even when the push constant turns it off (its draws, CDF searches and one pass of the shadow ray's traversal
 // loops at every vertex), so that pipeline compiles it out. With it true the push constant decides, as before.
-layout(constant_id = 1) const bool BAKE_SKY_NEXT_EVENT = true;
+layout(constant_id = BAKE_SKY_NEXT_EVENT_CONSTANT) const bool BAKE_SKY_NEXT_EVENT = true;
+// What this pipeline traces (BAKE_MODE_*): every bake's pipeline keeps the default; only tests make one with the
+// sun-direct mode, so the bake's kernel carries no branch for it.
+layout(constant_id = BAKE_TRACE_MODE_CONSTANT) const uint BAKE_TRACE_MODE = BAKE_MODE_INDIRECT;
 
 #define BVH_NODE_BINDING BAKE_BVH_NODE_BINDING
 #define BVH_TRIANGLE_BINDING BAKE_BVH_TRIANGLE_BINDING
@@ -68,7 +71,6 @@ void main() {
         settings.sun_irradiance = pc.sun_irradiance_ray_offset.xyz;
         settings.ray_offset = pc.sun_irradiance_ray_offset.w;
         settings.sky_next_event = BAKE_SKY_NEXT_EVENT && pc.sky_next_event != 0u;
-        g_bounces_before_roulette = max(pc.bounces_before_roulette, 1u);
         g_sky_rays_at_point = max(pc.sky_rays_at_point, 1u);
 
         // The face plane on the shading normal's side: the half-space light may come from (irradiance_paths.glsl).
@@ -84,7 +86,7 @@ void main() {
         uint first_sample = stream_plus_one == 0u ? 0u : floatBitsToUint(point.face_normal.w);
         Rng rng = rngForSample(pc.seed, stream, first_sample + pc.first_sample + sample_in_chunk);
         vec4 estimate = vec4(0.0);
-        if (pc.mode == BAKE_MODE_SUN_DIRECT) {
+        if (BAKE_TRACE_MODE == BAKE_MODE_SUN_DIRECT) {
             estimate.xyz = sunIrradianceAt(point.position.xyz, point.normal.xyz, face_normal, rng, settings);
         } else {
             float backface_score;

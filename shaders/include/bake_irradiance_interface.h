@@ -21,25 +21,30 @@
 #define BAKE_RAY_COUNTER_BINDING 9       // uint rays traced
 #define BAKE_IRRADIANCE_BINDING_COUNT 10
 
-// bake_irradiance.comp: what one dispatch traces (mode values below).
-#define BAKE_MODE_INDIRECT 0u    // E_ind: everything but the direct sun at the point
-#define BAKE_MODE_SUN_DIRECT 1u  // the direct sun term alone (tests)
+// bake_irradiance.comp's specialisation constants. What a pipeline traces is fixed when it is made, not pushed
+// per dispatch: the production kernel (the defaults) has the test paths compiled out, and a test that wants one
+// gets a pipeline of its own (IrradianceTracer::pipelineFor).
+#define BAKE_SKY_NEXT_EVENT_CONSTANT 1                 // bool: the sky map's next-event block compiled in
+#define BAKE_TRACE_MODE_CONSTANT 2                     // uint: BAKE_MODE_* below
+#define IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT 3  // uint: irradiance_paths.glsl's kBouncesBeforeRoulette
+
+// bake_irradiance.comp: what a pipeline traces (BAKE_TRACE_MODE_CONSTANT).
+#define BAKE_MODE_INDIRECT 0u    // E_ind: everything but the direct sun at the point (every bake)
+#define BAKE_MODE_SUN_DIRECT 1u  // the direct sun term alone: tests check the sun's sampling against analytic cases
 
 GUSUKU_PUSH_CONSTANTS_BEGIN(BakeIrradiancePushConstants)
-    uint point_count;                // points in this dispatch's range (first_point below)
+    uint point_count;                // points in this dispatch's range
+    uint first_point;                // this dispatch traces points [first_point, first_point + point_count)
     uint first_sample;
     uint sample_count;
     uint max_bounces;
     uint seed;
     uint skip_flags;
-    uint mode;
     uint sun_present;
     vec4 sun_direction_cos_max;      // xyz unit ENU towards the sun, w cos of the disc's angular radius
     vec4 sun_irradiance_ray_offset;  // xyz E_sun (W/m^2 per channel), w ray offset (metres)
     uint sky_next_event;             // 1: sample the sky map too (MIS), 0: cosine lobe alone
-    uint bounces_before_roulette;    // Russian roulette from this many reflections on (irradiance_paths.glsl)
     uint sky_rays_at_point;          // sky next-event rays at the query point itself (irradiance_paths.glsl)
-    uint first_point;                // this dispatch traces points [first_point, first_point + point_count)
 GUSUKU_PUSH_CONSTANTS_END(BakeIrradiancePushConstants, pc)
 
 // local_size_x of bake_irradiance.comp and bake_accumulate.comp

@@ -39,10 +39,14 @@ uint g_rays_traced = 0u;
 // cuts the error for the rays spent and makes it fall faster with the samples (gusuku-bake converge on the
 // sample; the figures are in docs/measurements.md). Past three reflections the weight
 // is rho^3 (under 0.03 for stone and plaster), where roulette's extra noise is small and it saves long paths.
-const uint kBouncesBeforeRoulette = 3u;
-// What the paths use; a kernel may override it before tracing (bake_irradiance.comp takes it from its push
-// constants so that tests can run the earlier estimator, 1, side by side with this one).
-uint g_bounces_before_roulette = kBouncesBeforeRoulette;
+// A specialisation constant (constant_id 3, IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT in
+// bake_irradiance_interface.h) rather than a push constant: every production pipeline keeps this default, so the
+// comparison is folded at compile time, and only the test that runs the estimator before issue 11.1 (1) beside
+// this one makes a pipeline of its own with another value.
+#if defined(IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT) && IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT != 3
+#error "irradiance_paths.glsl declares kBouncesBeforeRoulette as constant_id 3"
+#endif
+layout(constant_id = 3) const uint kBouncesBeforeRoulette = 3u;
 // Sky next-event rays at the query point (depth 0), a power of two; 1 at every later vertex. Their draws are one
 // aligned block of the sample's Sobol sequence (rngNext2Split), and the MIS weights count them (Veach's
 // multi-sample power heuristic: n_map p_map against p_cos), so the estimate stays unbiased for any count.
@@ -159,7 +163,7 @@ vec3 estimateIndirectIrradiance(vec3 position, vec3 normal, vec3 face_normal, in
         if (depth >= settings.max_bounces) break;
 
         path_weight *= surface.albedo;
-        if (depth + 1u >= g_bounces_before_roulette) {
+        if (depth + 1u >= kBouncesBeforeRoulette) {
             // Russian roulette on the path weight: unbiased, and ends dark paths early; only past the first
             // kBouncesBeforeRoulette reflections (see there).
             float survival = clamp(max(path_weight.r, max(path_weight.g, path_weight.b)), 0.05, 0.95);

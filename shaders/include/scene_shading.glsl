@@ -58,17 +58,31 @@ vec3 fetchTexel(uvec4 info, int x, int y) {
     return srgbDecode(encoded);
 }
 
-// Bilinear lookup with repeat wrapping (glTF's default sampler).
-vec3 sampleBaseColorTexture(uvec4 info, vec2 uv) {
+// The four texels and the weights of a bilinear lookup with repeat wrapping (glTF's default sampler), shared by
+// the colour and the alpha lookups so that an alpha-masked texel's hole lines up with its colour.
+struct BilinearTaps {
+    int x0, y0, x1, y1;
+    vec2 weight;
+};
+
+BilinearTaps bilinearRepeatTaps(uvec4 info, vec2 uv) {
     vec2 texel_coordinate = uv * vec2(info.yz) - 0.5;
     vec2 base = floor(texel_coordinate);
-    vec2 weight = texel_coordinate - base;
     int w = int(info.y), h = int(info.z);
-    int x0 = int(mod(base.x, float(w))), y0 = int(mod(base.y, float(h)));
-    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
-    vec3 top = mix(fetchTexel(info, x0, y0), fetchTexel(info, x1, y0), weight.x);
-    vec3 bottom = mix(fetchTexel(info, x0, y1), fetchTexel(info, x1, y1), weight.x);
-    return mix(top, bottom, weight.y);
+    BilinearTaps taps;
+    taps.weight = texel_coordinate - base;
+    taps.x0 = int(mod(base.x, float(w)));
+    taps.y0 = int(mod(base.y, float(h)));
+    taps.x1 = (taps.x0 + 1) % w;
+    taps.y1 = (taps.y0 + 1) % h;
+    return taps;
+}
+
+vec3 sampleBaseColorTexture(uvec4 info, vec2 uv) {
+    BilinearTaps t = bilinearRepeatTaps(info, uv);
+    vec3 top = mix(fetchTexel(info, t.x0, t.y0), fetchTexel(info, t.x1, t.y0), t.weight.x);
+    vec3 bottom = mix(fetchTexel(info, t.x0, t.y1), fetchTexel(info, t.x1, t.y1), t.weight.x);
+    return mix(top, bottom, t.weight.y);
 }
 
 // The texture's alpha (stored linear in the word's top byte), bilinear with repeat wrapping as the colour.
@@ -77,15 +91,10 @@ float fetchTexelAlpha(uvec4 info, int x, int y) {
 }
 
 float sampleBaseColorAlpha(uvec4 info, vec2 uv) {
-    vec2 texel_coordinate = uv * vec2(info.yz) - 0.5;
-    vec2 base = floor(texel_coordinate);
-    vec2 weight = texel_coordinate - base;
-    int w = int(info.y), h = int(info.z);
-    int x0 = int(mod(base.x, float(w))), y0 = int(mod(base.y, float(h)));
-    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
-    float top = mix(fetchTexelAlpha(info, x0, y0), fetchTexelAlpha(info, x1, y0), weight.x);
-    float bottom = mix(fetchTexelAlpha(info, x0, y1), fetchTexelAlpha(info, x1, y1), weight.x);
-    return mix(top, bottom, weight.y);
+    BilinearTaps t = bilinearRepeatTaps(info, uv);
+    float top = mix(fetchTexelAlpha(info, t.x0, t.y0), fetchTexelAlpha(info, t.x1, t.y0), t.weight.x);
+    float bottom = mix(fetchTexelAlpha(info, t.x0, t.y1), fetchTexelAlpha(info, t.x1, t.y1), t.weight.x);
+    return mix(top, bottom, t.weight.y);
 }
 
 // Below this base-colour alpha a masked material is a hole (bvh_alpha_mask.glsl).

@@ -4,7 +4,9 @@
 // transport itself is in shaders/include/irradiance_paths.glsl; this class only moves data and dispatches.
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -75,10 +77,25 @@ struct TracePass {
     SkySampling sky_sampling = SkySampling::Automatic;
     /// Russian roulette ends paths only from this many reflections on (shaders/include/irradiance_paths.glsl's
     /// kBouncesBeforeRoulette, 3, says why); 1 is the estimator before issue 11.1, for tests that compare the two.
+    /// Like `mode`, a value other than the default gets a kernel of its own (TraceKernelVariant): the bake's kernel
+    /// carries no switch for it.
     uint32_t bounces_before_roulette = kBouncesBeforeRoulette;
     /// With the map sampled (CosineAndMap): sky next-event rays at the query point itself, a power of two up to
     /// 64 (irradiance_paths.glsl); every later vertex sends one. 0: resolvedSkyRaysAtPoint decides.
     uint32_t sky_rays_at_point = 0;
+};
+
+/// What a bake kernel pipeline is specialised for (bake_irradiance_interface.h's specialisation constants): a
+/// pass's choices that select code, fixed when the pipeline is made so that the bake's own pipeline has the test
+/// paths (the sun-direct mode, the earlier roulette) compiled out.
+struct TraceKernelVariant {
+    bool sky_next_event = true;
+    TraceMode mode = TraceMode::IndirectIrradiance;
+    uint32_t bounces_before_roulette = kBouncesBeforeRoulette;
+    bool operator<(const TraceKernelVariant& other) const {
+        return std::tie(sky_next_event, mode, bounces_before_roulette) <
+               std::tie(other.sky_next_event, other.mode, other.bounces_before_roulette);
+    }
 };
 
 /// Sky next-event rays at the query point when a pass has no sun and samples the map (TracePass::sky_rays_at_point
@@ -166,16 +183,18 @@ private:
     shader_interface::BakeIrradiancePushConstants pushConstantsFor(const TracePass& pass) const;
     /// Samples [first_sample, first_sample + sample_count) of points [first_point, first_point + point_count),
     /// traced and added onto their sums in one submission; returns the rays traced.
-    uint64_t dispatchRange(PointAccumulator& accumulator, shader_interface::BakeIrradiancePushConstants push,
-                           uint32_t first_point, uint32_t point_count, uint32_t first_sample, uint32_t sample_count);
+    uint64_t dispatchRange(PointAccumulator& accumulator, const TraceKernelVariant& variant,
+                           shader_interface::BakeIrradiancePushConstants push, uint32_t first_point,
+                           uint32_t point_count, uint32_t first_sample, uint32_t sample_count);
 
-    /// The bake kernel for passes with or without the sky map's next-event rays, made on first use: the one
-    /// without has that block compiled out (BAKE_SKY_NEXT_EVENT false, bake_irradiance.comp).
-    ComputePipeline& pipelineFor(bool sky_next_event);
+    TraceKernelVariant kernelVariantFor(const TracePass& pass) const;
+    /// The bake kernel specialised for `variant`, made on first use: a bake makes one or two (with and without
+    /// the sky map's next-event block, BAKE_SKY_NEXT_EVENT), tests a few more.
+    ComputePipeline& pipelineFor(const TraceKernelVariant& variant);
 
     VulkanContext& context_;
-    /// bake_irradiance.comp, one path per invocation: [0] the cosine lobe alone, [1] with the sky map.
-    std::unique_ptr<ComputePipeline> pipelines_[2];
+    /// bake_irradiance.comp, one path per invocation, by specialisation.
+    std::map<TraceKernelVariant, std::unique_ptr<ComputePipeline>> pipelines_;
     std::unique_ptr<ComputePipeline> accumulate_pipeline_;  ///< bake_accumulate.comp: ordered sums
     GpuBuffer sample_estimates_;                            ///< one chunk's per-sample estimates
     TraceSceneGpu scene_;  ///< bindings 0-4
