@@ -30,7 +30,7 @@
 #include "gusuku/maths/colour_match.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

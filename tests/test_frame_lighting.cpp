@@ -10,7 +10,7 @@
 #include "gusuku/maths/frame_lighting.h"
 #include "gusuku/maths/shadow_fit.h"
 #include "gusuku/maths/sun.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

@@ -1,4 +1,4 @@
-// The runtime on lavapipe with validation on, against a closed-form bake set (tests/support/synthetic_bakeset.h):
+// The runtime on lavapipe with validation on, against a closed-form bake set (gusuku/synthetic/synthetic_bakeset.h):
 // the camera convention, pixels outside the building's reach passing through bit for bit, the building's shaded
 // value, the shadow's side and length on flat ground, no shimmer, and bad input.
 
@@ -18,7 +18,7 @@
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

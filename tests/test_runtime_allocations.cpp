@@ -13,7 +13,7 @@
 
 #include "allocation_counter.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

@@ -18,7 +18,7 @@
 #include "gusuku/maths/srgb_mip_chain.h"
 #include "gusuku/runtime/runtime.h"
 #include "shadow_scenes.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

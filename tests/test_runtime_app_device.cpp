@@ -19,7 +19,7 @@
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

@@ -19,7 +19,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

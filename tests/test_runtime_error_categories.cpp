@@ -23,7 +23,7 @@
 #include "gusuku/runtime/gusuku.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku_c_api_detail.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace {
 

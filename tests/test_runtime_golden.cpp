@@ -1,4 +1,4 @@
-// Golden images of the runtime: the closed-form bake set (tests/support/synthetic_bakeset.h, with a step in the
+// Golden images of the runtime: the closed-form bake set (gusuku/synthetic/synthetic_bakeset.h, with a step in the
 // ground) drawn into a fixed camera pattern at a few conditions and modes, compared with tests/golden/*.png.
 // They catch any change in what the runtime draws that the analytic tests would let through (shadow filtering,
 // bias, blending, the colour match). Tolerance: every channel within 2 of the golden on all but 0.5 % of the
@@ -18,7 +18,7 @@
 #include "gusuku/maths/colour.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

@@ -15,7 +15,7 @@
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/shared_exponent.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

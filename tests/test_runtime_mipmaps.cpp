@@ -24,7 +24,7 @@
 #include "gusuku/runtime/runtime.h"
 #include "runtime_impl.h"
 #include "runtime_scene.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

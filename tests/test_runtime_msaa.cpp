@@ -1,5 +1,5 @@
 // Anti-aliasing by multisampling (RuntimeOptions::msaa_samples), on lavapipe with validation on, against the
-// closed-form bake set (tests/support/synthetic_bakeset.h):
+// closed-form bake set (gusuku/synthetic/synthetic_bakeset.h):
 //   - the option's checks: a count that is not 1, 2, 4 or 8 is refused by name, one the device lacks as kDevice;
 //   - the box's silhouette at msaa 4 is much nearer a 4 x 4 supersampled reference (the same frame at 4 times
 //     the resolution and msaa 1, box-filtered in linear light) than msaa 1 is;
@@ -22,7 +22,7 @@
 #include "gpu_test_support.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/runtime/runtime.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

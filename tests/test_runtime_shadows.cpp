@@ -23,7 +23,7 @@
 #include "gusuku/maths/sun.h"
 #include "gusuku/runtime/runtime.h"
 #include "shadow_scenes.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku {
 namespace {

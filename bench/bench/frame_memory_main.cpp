@@ -1,5 +1,5 @@
 // gusuku-frame-memory: the runtime's host memory over many frames. A benchmark, not a test: it renders N frames
-// (--frames N, default 10000) headless on a small in-memory bake set (tests/support/synthetic_bakeset.h, a box on
+// (--frames N, default 10000) headless on a small in-memory bake set (gusuku/synthetic/synthetic_bakeset.h, a box on
 // flat ground), through the C++ Runtime as the C API's gusuku_runtime_render does, and prints the process's
 // resident set (VmRSS) after a warm-up and at the end, and the growth per frame. tests/test_runtime_memory.cpp
 // holds the pass/fail bound; this shows the figure over a longer run.
@@ -16,7 +16,7 @@
 
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/tools/command_line.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace {
 

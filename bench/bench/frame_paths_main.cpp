@@ -3,7 +3,7 @@
 //             (0.1.0's only path; tools and tests keep it);
 //   resident  host bytes in, no read-back, frames_in_flight slots: the host records frame N+1 while the GPU
 //             draws frame N, and waits only when every slot is busy (an app then takes compositeImage()).
-// Both on the same in-memory bake set (tests/support/synthetic_bakeset.h) at the given size, for each
+// Both on the same in-memory bake set (gusuku/synthetic/synthetic_bakeset.h) at the given size, for each
 // multisample count of --msaa (RuntimeOptions::msaa_samples) and each render mode of --mode; rounds run every
 // combination in turn (the order reversed every other round) so that a noisy shared machine slows them alike.
 // Prints each one's median milliseconds a frame, resident over fenced, and each count's cost over the first's.
@@ -19,7 +19,7 @@
 
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/tools/command_line.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace {
 

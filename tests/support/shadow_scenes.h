@@ -17,7 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "gusuku/formats/bakeset_data.h"
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 namespace gusuku::testing {
 

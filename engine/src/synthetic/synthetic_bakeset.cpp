@@ -1,6 +1,6 @@
 // The closed-form bake set of synthetic_bakeset.h.
 
-#include "synthetic_bakeset.h"
+#include "gusuku/synthetic/synthetic_bakeset.h"
 
 #include <cmath>
 #include <string>
