@@ -1,5 +1,6 @@
-// The runtime pack's ASTC 4x4 HDR lightmaps (docs/runtime.md, "Lightmap formats") on a real bake of the mini site:
-// `gusuku-bake pack` writes building_<slot>_astc.ktx2 beside the E5B9G9R9 file, its header as the KTX 2.0
+// The runtime pack's ASTC HDR lightmaps (docs/runtime.md, "Lightmap formats"; every lightmap row of
+// gusuku/formats/format_table.h with a pack file) on a real bake of the mini site: `gusuku-bake pack` writes
+// building_<slot>_astc.ktx2 beside the E5B9G9R9 file, its header as the KTX 2.0
 // specification says (read here by hand); loadRuntimePack (standard library only) carries the blocks as they are;
 // astcenc decodes them to the EXR lightmap within ASTC's error; bad or partial ASTC files are refused in one line;
 // and the runtime takes E5B9G9R9 wherever the device cannot sample ASTC HDR (lavapipe), saying so, and refuses a
@@ -22,6 +23,7 @@
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/pack_loader/runtime_pack.h"
+#include "gusuku/formats/format_table.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku_bake/astc_lightmap.h"
@@ -32,6 +34,14 @@ namespace gusuku {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The lightmap rows the pack carries blocks of (ASTC 4x4 HDR).
+std::vector<const formats::FormatRow*> packedBlockRows() {
+    std::vector<const formats::FormatRow*> rows;
+    for (const formats::FormatRow& row : formats::kFormatRows)
+        if (row.pack_suffix != nullptr) rows.push_back(&row);
+    return rows;
+}
 
 std::vector<uint8_t> readBytes(const std::string& path) {
     std::ifstream stream(path, std::ios::binary);
@@ -67,7 +77,7 @@ protected:
         ASSERT_TRUE(bake::runBake(context(), loadSiteConfig(testing::writeMiniSite(dir, site_options)), options).completed);
         const testing::CommandResult packed = testing::runBakeCommand({"pack", options.output_dir}, dir);
         ASSERT_EQ(packed.exit_code, 0) << packed.stderr_text;
-        EXPECT_NE(packed.stdout_text.find("ASTC 4x4 HDR"), std::string::npos) << packed.stdout_text;
+        EXPECT_NE(packed.stdout_text.find("astc 4x4 hdr"), std::string::npos) << packed.stdout_text;
         folder_ = options.output_dir;
     }
 
@@ -77,10 +87,11 @@ protected:
         return copy;
     }
 
-    // The pack's ASTC file of slot `slot` (the manifest's building_irradiance, .exr -> _astc.ktx2).
-    std::string astcFile(const std::string& pack, size_t slot) {
+    // The pack's block file of slot `slot` in the row's format (the manifest's building_irradiance, .exr ->
+    // _astc.ktx2 for ASTC 4x4 HDR).
+    std::string astcFile(const std::string& pack, size_t slot, const char* suffix = "_astc") {
         const std::string exr = loadBakeSet(bakedSet()).manifest.slots[slot].building_irradiance;
-        return pack + "/" + exr.substr(0, exr.rfind('.')) + "_astc.ktx2";
+        return pack + "/" + exr.substr(0, exr.rfind('.')) + suffix + ".ktx2";
     }
 
     static std::string folder_;
@@ -91,22 +102,32 @@ TEST_F(RuntimePackAstcTest, EachSlotsAstcFileHoldsItsLightmapsBlocksAsTheSpecifi
     const BakeSetData exr = loadBakeSet(bakedSet());
     const BakeSetData pack = loadRuntimePack(bakedSet());
     const uint32_t side = uint32_t(exr.manifest.building.lightmap_resolution);
-    const uint64_t blocks_bytes = uint64_t((side + 3) / 4) * ((side + 3) / 4) * 16;
-    EXPECT_EQ(pack.building_astc_scale, 1.0f);  // the mini site's light is far below 65408
+    EXPECT_EQ(pack.building_blocks_scale, 1.0f);  // the mini site's light is far below 65408
+    // Known values, not the table's: VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK (vulkan_core.h), 4 texels.
+    const std::vector<std::pair<uint32_t, uint32_t>> formats_and_sides = {{1000066000u, 4}};
+    ASSERT_EQ(packedBlockRows().size(), formats_and_sides.size());
+    for (size_t index = 0; index < formats_and_sides.size(); ++index)
     for (size_t slot = 0; slot < exr.slots.size(); ++slot) {
-        const std::vector<uint8_t> file = readBytes(astcFile(bakedSet() + "/pack", slot));
-        ASSERT_GE(file.size(), 104u);
-        EXPECT_EQ(u32At(file, 12), 1000066000u);  // VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK
+        const auto [vk_format, block_side] = formats_and_sides[index];
+        SCOPED_TRACE(std::string(packedBlockRows()[index]->name) + ", slot " + std::to_string(slot));
+        const uint64_t blocks_bytes = uint64_t((side + block_side - 1) / block_side) *
+                                      ((side + block_side - 1) / block_side) * 16;
+        const std::vector<uint8_t> file =
+            readBytes(astcFile(bakedSet() + "/pack", slot, packedBlockRows()[index]->pack_suffix));
+        ASSERT_GE(file.size(), 124u);
+        EXPECT_EQ(u32At(file, 12), vk_format);
         EXPECT_EQ(u32At(file, 16), 1u);           // typeSize
         EXPECT_EQ(u32At(file, 20), side);         // pixelWidth, pixelHeight: the lightmap's, in texels
         EXPECT_EQ(u32At(file, 24), side);
         EXPECT_EQ(u32At(file, 40), 1u);           // levelCount: one level (no mips)
         EXPECT_EQ(u32At(file, 116) & 0xFFu, 162u);  // DFD colour model KHR_DF_MODEL_ASTC
+        EXPECT_EQ(u32At(file, 120), (block_side - 1) | (block_side - 1) << 8);  // texelBlockDimension0, 1
         const uint64_t offset = u64At(file, 80), length = u64At(file, 88);
         EXPECT_EQ(length, blocks_bytes);
         ASSERT_EQ(file.size(), offset + length);
         // The loader carries the blocks as they are.
-        EXPECT_EQ(pack.slots[slot].building_astc, std::vector<uint8_t>(file.begin() + long(offset), file.end()));
+        EXPECT_EQ(pack.slots[slot].building_blocks.at(vk_format),
+                  std::vector<uint8_t>(file.begin() + long(offset), file.end()));
     }
 }
 
@@ -114,8 +135,12 @@ TEST_F(RuntimePackAstcTest, ThePacksBlocksDecodeToTheExrLightmapsWithinAstcsErro
     const BakeSetData exr = loadBakeSet(bakedSet());
     const BakeSetData pack = loadRuntimePack(bakedSet());
     const int side = exr.manifest.building.lightmap_resolution;
+    for (const formats::FormatRow* row : packedBlockRows())
     for (size_t slot = 0; slot < exr.slots.size(); ++slot) {
-        const BakeSetImage decoded = bake::decodeAstcLightmap(pack.slots[slot].building_astc, side, side);
+        SCOPED_TRACE(std::string(row->name) + ", slot " + std::to_string(slot));
+        const int b = int(row->block_side);
+        const BakeSetImage decoded =
+            bake::decodeAstcLightmap(pack.slots[slot].building_blocks.at(row->vk_format), side, side, row->block_side);
         const std::vector<float>& original = exr.slots[slot].building.rgba;
         // Error relative to the block's brightest channel (ASTC's endpoints are per block; a dim texel beside a
         // bright one in one block takes the block's step), over the valid texels.
@@ -125,8 +150,8 @@ TEST_F(RuntimePackAstcTest, ThePacksBlocksDecodeToTheExrLightmapsWithinAstcsErro
                 const size_t texel = size_t(y) * side + x;
                 if (original[texel * 4 + 3] <= 0.0f) continue;
                 float block_largest = 1e-6f;
-                for (int by = y / 4 * 4; by < std::min(side, y / 4 * 4 + 4); ++by)
-                    for (int bx = x / 4 * 4; bx < std::min(side, x / 4 * 4 + 4); ++bx)
+                for (int by = y / b * b; by < std::min(side, y / b * b + b); ++by)
+                    for (int bx = x / b * b; bx < std::min(side, x / b * b + b); ++bx)
                         for (int channel = 0; channel < 3; ++channel)
                             block_largest = std::max(block_largest, original[(size_t(by) * side + bx) * 4 + channel]);
                 for (int channel = 0; channel < 3; ++channel) {
@@ -179,10 +204,11 @@ TEST_F(RuntimePackAstcTest, BadOrPartialAstcFilesAreRefusedAndAPackWithoutThemSt
     {
         const std::string pack = packCopy("partial");
         fs::remove(astcFile(pack, 1));
-        expectStart(refusal(pack), pack + ": bake set: slots[1].building_astc: missing, but slots[0].building_astc is present");
+        expectStart(refusal(pack), pack + ": bake set: slots[1].building_blocks[VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK]: "
+                                          "missing, but slots[0].building_blocks has them");
         for (size_t slot = 0; slot < slots; ++slot) fs::remove(astcFile(pack, slot));
         const BakeSetData old_pack = loadRuntimePack(pack);  // a pack from before the ASTC files
-        for (const BakeSetSlotImages& slot : old_pack.slots) EXPECT_TRUE(slot.building_astc.empty());
+        for (const BakeSetSlotImages& slot : old_pack.slots) EXPECT_TRUE(slot.building_blocks.empty());
     }
 }
 
@@ -233,7 +259,7 @@ TEST_F(RuntimePackAstcTest, TheRuntimeTakesE5b9g9r9WhereAstcHdrCannotBeSampledAn
               std::string::npos);
     EXPECT_NE(openError(context().gpu(), loadBakeSet(bakedSet()), smallFrame(LightmapFormat::kAstc4x4Hdr, true),
                         RuntimeErrorCode::kInvalidBakeSet)
-                  .find("the bake set has no ASTC lightmaps"),
+                  .find("the bake set has no astc 4x4 hdr lightmaps"),
               std::string::npos);
 }
 

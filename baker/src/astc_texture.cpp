@@ -9,12 +9,16 @@
 #include <thread>
 
 #include "astcenc_session.h"
+#include "gusuku/formats/format_table.h"
 #include "gusuku/maths/srgb_mip_chain.h"
 
 namespace gusuku::bake {
 namespace {
 
-constexpr unsigned kBlockSide = 6;
+// The texture row of the format table (gusuku/formats/format_table.h) the blocks are written as.
+constexpr const formats::FormatRow& kTextureRow = *formats::findFormat(uint32_t(Ktx2Format::kAstc6x6Srgb));
+static_assert(kTextureRow.codec == formats::TexelCodec::kAstcLdrSrgb);
+constexpr unsigned kBlockSide = kTextureRow.block_side;
 constexpr float kMaskedAlphaWeight = 8.0f;
 
 // Profile LDR sRGB: astcenc decodes RGB from sRGB before it measures its error, as a sampler does before

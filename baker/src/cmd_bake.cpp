@@ -22,10 +22,10 @@ namespace {
 // The runtime pack beside the EXRs (gusuku_bake/runtime_pack.h), for a whole bake set; partial sets have none.
 void writePackOf(const std::string& folder) {
     const bake::RuntimePackReport pack = bake::writeRuntimePack(folder);
-    std::printf("runtime pack:    %s (%.2f MiB; lightmaps E5B9G9R9 %.2f MiB, ASTC 4x4 HDR %.2f MiB; textures RGBA8 "
+    std::printf("runtime pack:    %s (%.2f MiB; lightmaps E5B9G9R9 %.2f MiB, %s; textures RGBA8 "
                 "%.2f MiB, ASTC 6x6 with mips %.2f MiB; ASTC encoded in %.1f s)\n",
                 pack.folder.c_str(), double(pack.bytes) / 1048576.0, double(pack.lightmap_bytes) / 1048576.0,
-                double(pack.astc_lightmap_bytes) / 1048576.0, double(pack.texture_bytes) / 1048576.0,
+                bake::blockLightmapSummary(pack).c_str(), double(pack.texture_bytes) / 1048576.0,
                 double(pack.astc_texture_bytes) / 1048576.0, pack.astc_encode_seconds);
 }
 

@@ -18,6 +18,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/assets/bakeset_manifest_json.h"
+#include "gusuku/formats/format_table.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/formats/ktx2.h"
 #include "gusuku/formats/pack_geometry.h"
@@ -75,11 +76,13 @@ Ktx2Image validityMask(const BakeSetImage& image) {
     return out;
 }
 
-// The lightmap's RGB / scale as ASTC 4x4 HDR blocks (the same scale as the E5B9G9R9 file, so pack.bin's
-// lightmap_scale serves both; HDR ASTC's largest, 65504, is above E5B9G9R9's 65408).
-Ktx2Image astcLightmap(const BakeSetImage& image, float inverse_scale) {
-    return {Ktx2Format::kAstc4x4Sfloat, uint32_t(image.width), uint32_t(image.height),
-            encodeAstcLightmap(image, inverse_scale)};
+// The lightmap's RGB / scale as the blocks of a lightmap row with a pack file (the same scale as the E5B9G9R9
+// file, so pack.bin's lightmap_scale serves all; HDR ASTC's largest, 65504, is above E5B9G9R9's 65408).
+Ktx2Image blockLightmap(const formats::FormatRow& row, const BakeSetImage& image, float inverse_scale) {
+    if (row.codec != formats::TexelCodec::kAstcHdr)
+        throw std::logic_error(std::string("blockLightmap: no encoder for ") + row.vk_name);
+    return {Ktx2Format(row.vk_format), uint32_t(image.width), uint32_t(image.height),
+            encodeAstcLightmap(image, inverse_scale, kAstcBakeQuality, 0, row.block_side)};
 }
 
 Ktx2Image floatImage(const BakeSetImage& image) {
@@ -101,15 +104,9 @@ std::string packManifestText(BakeSetManifest manifest) {
 class PackFiles {
 public:
     PackFiles(std::string staging_folder, std::string pack_folder)
-        : staging_folder_(std::move(staging_folder)), pack_folder_(std::move(pack_folder)) {
-        // Tests stand in for a full disk or a failing device here: the pack fails after this many files.
-        if (const char* limit = std::getenv("GUSUKU_TEST_PACK_FAIL_AFTER_FILES")) failing_after_files_ = std::atoll(limit);
-    }
+        : staging_folder_(std::move(staging_folder)), pack_folder_(std::move(pack_folder)) {}
     uint64_t write(const std::string& name, const std::vector<uint8_t>& bytes) {
         const std::string staged = staging_folder_ + "/" + name;
-        if (failing_after_files_ >= 0 && files_ >= failing_after_files_)
-            throw std::runtime_error(pack_folder_ + "/" + name + ": write failed: injected failure after " +
-                                     std::to_string(files_) + " files (GUSUKU_TEST_PACK_FAIL_AFTER_FILES)");
         try {
             writeBytesAtomically(staged, bytes.data(), bytes.size());
         } catch (const std::exception& error) {
@@ -119,7 +116,6 @@ public:
                 message.replace(at, staging_folder_.size(), pack_folder_);
             throw std::runtime_error(message);
         }
-        ++files_;
         bytes_ += bytes.size();
         return bytes.size();
     }
@@ -130,8 +126,6 @@ private:
     std::string staging_folder_;
     std::string pack_folder_;
     uint64_t bytes_ = 0;
-    long long files_ = 0;
-    long long failing_after_files_ = -1;
 };
 
 // Where a pack is written before it is renamed into place: a fresh sibling of the pack's folder (same file
@@ -257,11 +251,15 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
             files.writeKtx2(packName(entry.building_irradiance),
                             sharedExponentLightmap(images.building, 1.0f / report.lightmap_scale));
         files.writeKtx2(lightmapCompanionName(entry.building_irradiance, "_valid"), validityMask(images.building));
-        const auto encode_start = std::chrono::steady_clock::now();
-        const Ktx2Image astc = astcLightmap(images.building, 1.0f / report.lightmap_scale);
-        report.astc_encode_seconds +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
-        report.astc_lightmap_bytes += files.writeKtx2(lightmapCompanionName(entry.building_irradiance, "_astc"), astc);
+        for (const formats::FormatRow& row : formats::kFormatRows) {
+            if (row.pack_suffix == nullptr) continue;
+            const auto encode_start = std::chrono::steady_clock::now();
+            const Ktx2Image blocks = blockLightmap(row, images.building, 1.0f / report.lightmap_scale);
+            report.astc_encode_seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - encode_start).count();
+            report.block_lightmap_bytes[row.vk_format] +=
+                files.writeKtx2(lightmapCompanionName(entry.building_irradiance, row.pack_suffix), blocks);
+        }
         files.writeKtx2(packName(entry.ground_irradiance_with_building), floatImage(images.ground_with));
         files.writeKtx2(packName(entry.ground_irradiance_without_building), floatImage(images.ground_without));
     }
@@ -281,12 +279,28 @@ bool runtimePackIsUpToDate(const std::string& bake_set_folder) {
         // building without textures has no texture_0 of either kind.)
         const std::string pack = bake_set_folder + "/" + kRuntimePackFolder + "/";
         for (const BakeSetSlot& slot : manifest.slots)
-            if (!fs::exists(pack + lightmapCompanionName(slot.building_irradiance, "_astc"))) return false;
+            for (const formats::FormatRow& row : formats::kFormatRows)
+                if (row.pack_suffix != nullptr &&
+                    !fs::exists(pack + lightmapCompanionName(slot.building_irradiance, row.pack_suffix)))
+                    return false;
         if (fs::exists(pack + "texture_0.ktx2") && !fs::exists(pack + "texture_0_astc.ktx2")) return false;
         return readWholeFile(packed) == packManifestText(manifest);
     } catch (const std::exception&) {
         return false;
     }
+}
+
+std::string blockLightmapSummary(const RuntimePackReport& report) {
+    std::string text;
+    for (const formats::FormatRow& row : formats::kFormatRows) {
+        const auto found = report.block_lightmap_bytes.find(row.vk_format);
+        if (row.pack_suffix == nullptr || found == report.block_lightmap_bytes.end()) continue;
+        char part[96];
+        std::snprintf(part, sizeof part, "%s%s %.2f MiB", text.empty() ? "" : ", ", row.name,
+                      double(found->second) / 1048576.0);
+        text += part;
+    }
+    return text;
 }
 
 }  // namespace gusuku::bake

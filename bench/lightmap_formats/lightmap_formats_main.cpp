@@ -8,9 +8,10 @@
 // at display value 0.6; no colour match (exposure known). Without --position the camera stands south-east of the
 // building's bounds, 1.8 radii out and 0.6 up, looking at their centre. Each slot is drawn at its own instant
 // (overcast slots at the first sunny slot's, with cloud cover 1). "region" is the pixels where the float32
-// composite differs from the camera frame; "frame" is every pixel. ASTC 4x4 HDR, which lavapipe cannot sample:
-// the runtime pack's blocks (BAKESET/pack/building_<slot>_astc.ktx2, read by loadRuntimePack), decoded on the CPU
-// by astcenc and drawn as float32, which is what a device that samples ASTC HDR shows at its 1 byte a texel; and
+// composite differs from the camera frame; "frame" is every pixel. The formats are the lightmap rows of
+// gusuku/formats/format_table.h. ASTC HDR (each row of codec kAstcHdr), which lavapipe cannot sample: the runtime
+// pack's blocks (BAKESET/pack/building_<slot><row's pack_suffix>.ktx2, read by loadRuntimePack), decoded on the CPU
+// by astcenc and drawn as float32, which is what a device that samples ASTC HDR shows at its bytes a texel; and
 // with --astc-quality, the EXR lightmaps encoded at each astcenc quality given (timed), decoded and drawn alike.
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/formats/format_table.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/pack_loader/runtime_pack.h"
@@ -87,7 +89,7 @@ void placeCamera(const BakeSetData& bake_set, Request& request) {
 
 struct FormatRun {
     std::string name;
-    uint32_t bytes_per_texel_x16;  // GPU bytes a texel, times 16 (ASTC 4x4: 16 bytes a block, 1 a texel)
+    const formats::FormatRow* row;  // the format the lightmaps are held in on a device that samples it
     uint64_t device_bytes = 0;
     std::vector<std::vector<uint8_t>> composites;  // one per slot
 };
@@ -121,16 +123,15 @@ void drawSlots(const BakeSetData& bake_set, LightmapFormat format, const Request
 
 void report(const BakeSetData& bake_set, const Request& request, const std::vector<uint8_t>& camera,
             const std::vector<FormatRun>& runs) {
-    const uint64_t texels = uint64_t(bake_set.manifest.building.lightmap_resolution) *
-                            bake_set.manifest.building.lightmap_resolution * bake_set.slots.size();
+    const uint32_t side = uint32_t(bake_set.manifest.building.lightmap_resolution);
     std::printf("bake set: %s, %zu slots, lightmap %d^2, camera %.1f,%.1f,%.1f -> %.1f,%.1f,%.1f, %ux%u\n",
                 request.folder.c_str(), bake_set.slots.size(), bake_set.manifest.building.lightmap_resolution,
                 request.position.x, request.position.y, request.position.z, request.look_at.x, request.look_at.y,
                 request.look_at.z, request.width, request.height);
     for (const FormatRun& run : runs) {
-        std::printf("%-16s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB; ASTC: drawn from decoded floats)\n",
-                    run.name.c_str(),
-                    double(texels * run.bytes_per_texel_x16) / 16.0 / 1048576.0, double(run.device_bytes) / 1048576.0);
+        const uint64_t lightmap_bytes = formats::levelBytes(*run.row, side, side) * bake_set.slots.size();
+        std::printf("%-20s lightmaps %8.2f MiB on the GPU (runtime total %.2f MiB; ASTC: drawn from decoded floats)\n",
+                    run.name.c_str(), double(lightmap_bytes) / 1048576.0, double(run.device_bytes) / 1048576.0);
         for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
             const std::vector<uint8_t>& reference = runs[0].composites[slot];
             const std::vector<uint8_t> region = bench_common::changedRegion(reference, camera);
@@ -143,45 +144,56 @@ void report(const BakeSetData& bake_set, const Request& request, const std::vect
     }
 }
 
-// The bake set with each slot's lightmap RGB replaced by its ASTC blocks decoded (times `scale`), alpha kept.
-BakeSetData withDecodedAstc(const BakeSetData& bake_set, const std::vector<std::vector<uint8_t>>& blocks, float scale) {
+// The bake set with each slot's lightmap RGB replaced by its ASTC blocks (of `row`) decoded (times `scale`),
+// alpha kept.
+BakeSetData withDecodedAstc(const BakeSetData& bake_set, const formats::FormatRow& row,
+                            const std::vector<std::vector<uint8_t>>& blocks, float scale) {
     BakeSetData decoded = bake_set;
     for (size_t slot = 0; slot < decoded.slots.size(); ++slot) {
         BakeSetImage& lightmap = decoded.slots[slot].building;
-        const BakeSetImage texels = bake::decodeAstcLightmap(blocks[slot], lightmap.width, lightmap.height);
+        const BakeSetImage texels =
+            bake::decodeAstcLightmap(blocks[slot], lightmap.width, lightmap.height, row.block_side);
         for (size_t index = 0; index < texels.rgba.size(); ++index)
             if (index % 4 != 3) lightmap.rgba[index] = texels.rgba[index] * scale;
     }
     return decoded;
 }
 
-// ASTC 4x4 HDR: the pack's blocks when it has them, and the EXR lightmaps encoded at each --astc-quality.
+// Each ASTC HDR row of the format table: the pack's blocks when it has them, and the EXR lightmaps encoded at each
+// --astc-quality.
 void addAstcRuns(const BakeSetData& bake_set, const Request& request, const std::string& sunny_utc,
                  const std::vector<uint8_t>& camera, std::vector<FormatRun>& runs) {
-    if (std::filesystem::exists(request.folder + "/pack/manifest.json")) {
-        const BakeSetData pack = loadRuntimePack(request.folder);
-        std::vector<std::vector<uint8_t>> blocks;
-        for (const BakeSetSlotImages& slot : pack.slots) blocks.push_back(slot.building_astc);
-        if (!blocks.empty() && !blocks[0].empty()) {
-            runs.push_back({"astc (pack)", 16});
-            drawSlots(withDecodedAstc(bake_set, blocks, pack.building_astc_scale), LightmapFormat::kRgba32f, request,
-                      sunny_utc, camera, runs.back());
-        } else {
-            std::printf("the pack has no ASTC lightmaps (written before them: gusuku-bake pack %s adds them)\n",
-                        request.folder.c_str());
+    const bool has_pack = std::filesystem::exists(request.folder + "/pack/manifest.json");
+    const BakeSetData pack = has_pack ? loadRuntimePack(request.folder) : BakeSetData{};
+    for (const formats::FormatRow& row : formats::kFormatRows) {
+        if (row.family != formats::FormatFamily::kLightmap || row.codec != formats::TexelCodec::kAstcHdr) continue;
+        if (has_pack) {
+            std::vector<std::vector<uint8_t>> blocks;
+            for (const BakeSetSlotImages& slot : pack.slots)
+                if (slot.building_blocks.count(row.vk_format) != 0) blocks.push_back(slot.building_blocks.at(row.vk_format));
+            if (!blocks.empty() && blocks.size() == pack.slots.size()) {
+                runs.push_back({std::string(row.name) + " (pack)", &row});
+                drawSlots(withDecodedAstc(bake_set, row, blocks, pack.building_blocks_scale), LightmapFormat::kRgba32f,
+                          request, sunny_utc, camera, runs.back());
+            } else {
+                std::printf("the pack has no %s lightmaps (written before them: gusuku-bake pack %s adds them)\n",
+                            row.name, request.folder.c_str());
+            }
         }
-    }
-    for (const float quality : request.astc_qualities) {
-        std::vector<std::vector<uint8_t>> blocks;
-        const auto start = std::chrono::steady_clock::now();
-        for (const BakeSetSlotImages& slot : bake_set.slots) blocks.push_back(bake::encodeAstcLightmap(slot.building, 1.0f, quality));
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        char name[64];
-        std::snprintf(name, sizeof name, "astc q%g", double(quality));
-        std::printf("%s: %zu slots encoded in %.2f s (%u threads)\n", name, blocks.size(), seconds,
-                    std::max(1u, std::thread::hardware_concurrency()));
-        runs.push_back({name, 16});
-        drawSlots(withDecodedAstc(bake_set, blocks, 1.0f), LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
+        for (const float quality : request.astc_qualities) {
+            std::vector<std::vector<uint8_t>> blocks;
+            const auto start = std::chrono::steady_clock::now();
+            for (const BakeSetSlotImages& slot : bake_set.slots)
+                blocks.push_back(bake::encodeAstcLightmap(slot.building, 1.0f, quality, 0, row.block_side));
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            char name[64];
+            std::snprintf(name, sizeof name, "%s q%g", row.name, double(quality));
+            std::printf("%s: %zu slots encoded in %.2f s (%u threads)\n", name, blocks.size(), seconds,
+                        std::max(1u, std::thread::hardware_concurrency()));
+            runs.push_back({name, &row});
+            drawSlots(withDecodedAstc(bake_set, row, blocks, 1.0f), LightmapFormat::kRgba32f, request, sunny_utc, camera,
+                      runs.back());
+        }
     }
 }
 
@@ -197,9 +209,18 @@ int main(int argc, char** argv) {
             if (slot.sky == BakeSetSky::Sunny && sunny_utc.empty()) sunny_utc = slot.utc;
         if (sunny_utc.empty()) throw std::invalid_argument(request.folder + ": no sunny slot to take an instant from");
         const std::vector<uint8_t> camera(size_t(request.width) * request.height * 4, 128);
-        std::vector<FormatRun> runs = {{"rgba32f", 256}, {"rgba16f", 128}, {"e5b9g9r9", 64}};
-        const LightmapFormat formats[3] = {LightmapFormat::kRgba32f, LightmapFormat::kRgba16f, LightmapFormat::kE5b9g9r9};
-        for (int index = 0; index < 3; ++index) drawSlots(bake_set, formats[index], request, sunny_utc, camera, runs[index]);
+        // The texel formats the runtime makes itself, the reference (rgba32f) first: every run is measured against
+        // it; then the others in the table's order.
+        std::vector<FormatRun> runs;
+        const formats::FormatRow* reference = formats::findLightmapFormat(int(LightmapFormat::kRgba32f));
+        runs.push_back({reference->name, reference});
+        drawSlots(bake_set, LightmapFormat::kRgba32f, request, sunny_utc, camera, runs.back());
+        for (const formats::FormatRow& row : formats::kFormatRows) {
+            if (row.family != formats::FormatFamily::kLightmap || formats::isBlockCodec(row.codec) || &row == reference)
+                continue;
+            runs.push_back({row.name, &row});
+            drawSlots(bake_set, LightmapFormat(row.c_enum), request, sunny_utc, camera, runs.back());
+        }
         addAstcRuns(bake_set, request, sunny_utc, camera, runs);
         report(bake_set, request, camera, runs);
         return 0;

@@ -4,6 +4,7 @@
 // bake` after the bake set's manifest, from the finished bake set (so it holds exactly what loadBakeSet reads).
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 namespace gusuku::bake {
@@ -22,7 +23,9 @@ struct RuntimePackReport {
     std::string folder;     ///< BAKESET/pack
     uint64_t bytes = 0;     ///< all its files
     uint64_t lightmap_bytes = 0;  ///< its building_<slot>.ktx2 files (E5B9G9R9)
-    uint64_t astc_lightmap_bytes = 0;  ///< its building_<slot>_astc.ktx2 files (ASTC 4x4 HDR)
+    /// Its lightmap block files, by the format row's vk_format (gusuku/formats/format_table.h: each lightmap row
+    /// with a pack_suffix: building_<slot><suffix>.ktx2, as building_<slot>_astc.ktx2 for ASTC 4x4 HDR).
+    std::map<uint32_t, uint64_t> block_lightmap_bytes;
     uint64_t texture_bytes = 0;        ///< its texture_<n>.ktx2 files (RGBA8, level 0)
     uint64_t astc_texture_bytes = 0;   ///< its texture_<n>_astc.ktx2 files (ASTC 6x6 sRGB, full mip chains)
     double astc_encode_seconds = 0.0;  ///< wall time astcenc took for all slots and textures
@@ -40,12 +43,14 @@ struct RuntimePackReport {
 /// and all. A partial set (loadBakeSet refuses it) has no pack. Throws InputError naming the bake set's file
 /// and field or the refused folder, or std::runtime_error on a write failure naming the pack's file.
 /// `textures` chooses the texture files; the folder holds no other kind's files afterwards.
-/// Tests stand in for a failing disk with the environment variable GUSUKU_TEST_PACK_FAIL_AFTER_FILES=N: the
-/// write fails after N files, as a full disk would.
 RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std::string& pack_folder = "",
                                    PackTextures textures = PackTextures::kBoth);
 
 /// True when bake_set_folder/pack/manifest.json is the pack manifest of bake_set_folder/manifest.json.
 bool runtimePackIsUpToDate(const std::string& bake_set_folder);
+
+/// "astc 4x4 hdr 0.25 MiB, ...": the report's lightmap block files, each by its row's name, in the format table's
+/// order, for the pack line gusuku-bake prints.
+std::string blockLightmapSummary(const RuntimePackReport& report);
 
 }  // namespace gusuku::bake

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gusuku/formats/format_table.h"
 #include "gusuku/formats/ktx2.h"
 
 namespace gusuku {
@@ -184,19 +185,31 @@ Problem checkOccluder(const BakeSetOccluder& occluder, const BakeSetManifest& ma
     return std::nullopt;
 }
 
-// A slot's ASTC blocks: none, or 16 bytes for each started 4 x 4 block of the lightmap; every slot or none has
-// them (the runtime holds one array of one format).
-Problem checkAstcBlocks(const BakeSetData& bake_set, size_t slot, const std::string& lightmap_size) {
-    const size_t bytes = bake_set.slots[slot].building_astc.size();
-    const size_t side = size_t(bake_set.manifest.building.lightmap_resolution);
-    const size_t expected = (side + 3) / 4 * ((side + 3) / 4) * 16;
-    const std::string field = "slots[" + std::to_string(slot) + "].building_astc";
-    if (bytes != 0 && bytes != expected)
-        return field + ": " + std::to_string(bytes) + " bytes, not the " + std::to_string(expected) +
-               " of 4 x 4 blocks (" + lightmap_size + ")";
-    if ((bytes == 0) != bake_set.slots[0].building_astc.empty())
-        return field + ": " + (bytes == 0 ? "missing" : "present") + ", but slots[0].building_astc is " +
-               (bytes == 0 ? "present" : "missing") + " (every slot or none has ASTC blocks)";
+// A slot's lightmap blocks: each a lightmap block format of the format table, of the row's block_bytes for each
+// started block of the lightmap; every slot has the formats slot 0 has (the runtime holds one array of one
+// format).
+Problem checkLightmapBlocks(const BakeSetData& bake_set, size_t slot, const std::string& lightmap_size) {
+    const uint32_t side = uint32_t(bake_set.manifest.building.lightmap_resolution);
+    const std::string field = "slots[" + std::to_string(slot) + "].building_blocks";
+    const auto& blocks = bake_set.slots[slot].building_blocks;
+    const auto& first = bake_set.slots[0].building_blocks;
+    for (const auto& [vk_format, bytes] : blocks) {
+        const formats::FormatRow* row = formats::findFormat(vk_format);
+        if (row == nullptr || row->family != formats::FormatFamily::kLightmap || !formats::isBlockCodec(row->codec))
+            return field + ": " + ktx2FormatName(vk_format) + " is not a lightmap block format";
+        const uint64_t expected = formats::levelBytes(*row, side, side);
+        if (bytes.size() != expected)
+            return field + "[" + row->vk_name + "]: " + std::to_string(bytes.size()) + " bytes, not the " +
+                   std::to_string(expected) + " of " + std::to_string(row->block_side) + " x " +
+                   std::to_string(row->block_side) + " blocks (" + lightmap_size + ")";
+        if (first.count(vk_format) == 0)
+            return field + "[" + row->vk_name + "]: present, but slots[0].building_blocks has none (every slot or "
+                   "none has each format's blocks)";
+    }
+    for (const auto& [vk_format, bytes] : first)
+        if (blocks.count(vk_format) == 0)
+            return field + "[" + ktx2FormatName(vk_format) + "]: missing, but slots[0].building_blocks has them "
+                   "(every slot or none has each format's blocks)";
     return std::nullopt;
 }
 
@@ -237,10 +250,10 @@ std::optional<std::string> findBakeSetProblem(const BakeSetData& bake_set) {
         if (Problem p = checkImage(slot.ground_without, field + ".ground_without", grid.columns, grid.rows, grid_size,
                                    true))
             return p;
-        if (Problem p = checkAstcBlocks(bake_set, s, lightmap_size)) return p;
+        if (Problem p = checkLightmapBlocks(bake_set, s, lightmap_size)) return p;
     }
-    if (!(bake_set.building_astc_scale > 0.0f && std::isfinite(bake_set.building_astc_scale)))
-        return "building_astc_scale: " + std::to_string(bake_set.building_astc_scale) + " is not a positive number";
+    if (!(bake_set.building_blocks_scale > 0.0f && std::isfinite(bake_set.building_blocks_scale)))
+        return "building_blocks_scale: " + std::to_string(bake_set.building_blocks_scale) + " is not a positive number";
     return std::nullopt;
 }
 

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "gusuku/formats/format_table.h"
 #include "gusuku/formats/input_error.h"
 
 namespace gusuku {
@@ -32,32 +33,42 @@ struct Sample {
     uint32_t bit_offset, bit_length, channel_type, lower, upper;
 };
 
-// Block-compressed formats have a typeSize of 1 (the KTX 2.0 specification, "typeSize").
-uint32_t typeSizeOf(Ktx2Format format) {
-    return format == Ktx2Format::kR8Unorm || format == Ktx2Format::kR8g8b8a8Srgb || ktx2IsBlockFormat(format) ? 1u
-                                                                                                               : 4u;
+constexpr uint32_t kHalfMinusOne = 0xBC00u, kHalfOne = 0x3C00u;
+
+// The format table's row of a format (gusuku/formats/format_table.h); a format no row describes is the caller's
+// mistake (encodeKtx2 checks the image's; decoding compares the file's with `expected` first).
+const formats::FormatRow& rowOf(Ktx2Format format) {
+    const formats::FormatRow* row = formats::findFormat(uint32_t(format));
+    if (row == nullptr) throw std::invalid_argument("ktx2: " + ktx2FormatName(uint32_t(format)) + " has no format row");
+    return *row;
 }
 
-bool isKnown(uint32_t vk_format) {
-    for (Ktx2Format format : {Ktx2Format::kR8Unorm, Ktx2Format::kR8g8b8a8Srgb, Ktx2Format::kR32g32b32a32Sfloat,
-                              Ktx2Format::kE5b9g9r9Ufloat, Ktx2Format::kAstc4x4Sfloat, Ktx2Format::kAstc6x6Srgb})
-        if (uint32_t(format) == vk_format) return true;
-    return false;
-}
+// The KTX 2.0 specification's typeSize: 1 for block-compressed formats, else the component's size (the table's).
+uint32_t typeSizeOf(Ktx2Format format) { return rowOf(format).ktx2_type_size; }
 
+bool isKnown(uint32_t vk_format) { return formats::findFormat(vk_format) != nullptr; }
+
+// The DFD's samples, by how the row's texels are laid out (its codec).
 std::vector<Sample> samplesOf(Ktx2Format format) {
-    switch (format) {
-        case Ktx2Format::kR8Unorm: return {{0, 8, 0, 0, 255}};
-        case Ktx2Format::kR8g8b8a8Srgb:
+    switch (rowOf(format).codec) {
+        case formats::TexelCodec::kUnorm8: return {{0, 8, 0, 0, 255}};
+        case formats::TexelCodec::kRgba8Srgb:
             return {{0, 8, 0, 0, 255}, {8, 8, 1, 0, 255}, {16, 8, 2, 0, 255},
                     {24, 8, kChannelAlpha | kQualifierLinear, 0, 255}};
-        case Ktx2Format::kR32g32b32a32Sfloat: {
+        case formats::TexelCodec::kHalfFloat: {
+            // Half floats: the limits -1 and 1 in the sample's own 16 bits.
+            const uint32_t real = kQualifierFloat | kQualifierSigned;
+            return {{0, 16, 0 | real, kHalfMinusOne, kHalfOne}, {16, 16, 1 | real, kHalfMinusOne, kHalfOne},
+                    {32, 16, 2 | real, kHalfMinusOne, kHalfOne},
+                    {48, 16, kChannelAlpha | real, kHalfMinusOne, kHalfOne}};
+        }
+        case formats::TexelCodec::kFloat32: {
             const uint32_t real = kQualifierFloat | kQualifierSigned;
             return {{0, 32, 0 | real, kFloatMinusOne, kFloatOne}, {32, 32, 1 | real, kFloatMinusOne, kFloatOne},
                     {64, 32, 2 | real, kFloatMinusOne, kFloatOne},
                     {96, 32, kChannelAlpha | real, kFloatMinusOne, kFloatOne}};
         }
-        case Ktx2Format::kE5b9g9r9Ufloat: {
+        case formats::TexelCodec::kSharedExponent: {
             // Each channel: its 9-bit mantissa, then the shared 5-bit exponent (bias 15) as an exponent sample;
             // the limits are those libktx's vk2dfd gives the format (mantissa upper 8448, exponent 15 to 31).
             std::vector<Sample> samples;
@@ -67,11 +78,11 @@ std::vector<Sample> samplesOf(Ktx2Format format) {
             }
             return samples;
         }
-        case Ktx2Format::kAstc4x4Sfloat:
+        case formats::TexelCodec::kAstcHdr:
             // One sample over the 128-bit block, channel ASTC_DATA (0), signed float (the Data Format
             // Specification's compressed-format table for the HDR ASTC formats).
             return {{0, 128, 0 | kQualifierFloat | kQualifierSigned, kFloatMinusOne, kBlockFloatUpper}};
-        case Ktx2Format::kAstc6x6Srgb:
+        case formats::TexelCodec::kAstcLdrSrgb:
             // One sample over the block, channel ASTC_DATA, unsigned normalised (limits 0 and 0xFFFFFFFF, as
             // vk2dfd gives the LDR ASTC formats); the sRGB transfer is the descriptor's, not the sample's.
             return {{0, 128, 0, 0, 0xFFFFFFFFu}};
@@ -83,7 +94,8 @@ std::vector<Sample> samplesOf(Ktx2Format format) {
 std::vector<uint32_t> dfdWords(Ktx2Format format) {
     const std::vector<Sample> samples = samplesOf(format);
     const uint32_t block_bytes = 24 + 16 * uint32_t(samples.size());
-    const bool srgb = format == Ktx2Format::kR8g8b8a8Srgb || format == Ktx2Format::kAstc6x6Srgb;
+    const formats::TexelCodec codec = rowOf(format).codec;
+    const bool srgb = codec == formats::TexelCodec::kRgba8Srgb || codec == formats::TexelCodec::kAstcLdrSrgb;
     const uint32_t transfer = srgb ? kTransferSrgb : kTransferLinear;
     const bool astc = ktx2IsBlockFormat(format);
     const uint32_t side = ktx2BlockSide(format);
@@ -151,27 +163,18 @@ uint64_t getU64(const uint8_t* bytes) { return uint64_t(getU32(bytes)) | uint64_
 }  // namespace
 
 std::string ktx2FormatName(uint32_t vk_format) {
-    switch (vk_format) {
-        case uint32_t(Ktx2Format::kR8Unorm): return "VK_FORMAT_R8_UNORM";
-        case uint32_t(Ktx2Format::kR8g8b8a8Srgb): return "VK_FORMAT_R8G8B8A8_SRGB";
-        case uint32_t(Ktx2Format::kR32g32b32a32Sfloat): return "VK_FORMAT_R32G32B32A32_SFLOAT";
-        case uint32_t(Ktx2Format::kE5b9g9r9Ufloat): return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
-        case uint32_t(Ktx2Format::kAstc4x4Sfloat): return "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK";
-        case uint32_t(Ktx2Format::kAstc6x6Srgb): return "VK_FORMAT_ASTC_6x6_SRGB_BLOCK";
-        default: return "VkFormat " + std::to_string(vk_format);
-    }
+    const formats::FormatRow* row = formats::findFormat(vk_format);
+    return row != nullptr ? row->vk_name : "VkFormat " + std::to_string(vk_format);
 }
 
 bool ktx2IsBlockFormat(Ktx2Format format) {
-    return format == Ktx2Format::kAstc4x4Sfloat || format == Ktx2Format::kAstc6x6Srgb;
+    const formats::FormatRow* row = formats::findFormat(uint32_t(format));
+    return row != nullptr && formats::isBlockCodec(row->codec);
 }
 
 uint32_t ktx2BlockSide(Ktx2Format format) {
-    switch (format) {
-        case Ktx2Format::kAstc4x4Sfloat: return 4;
-        case Ktx2Format::kAstc6x6Srgb: return 6;
-        default: return 1;
-    }
+    const formats::FormatRow* row = formats::findFormat(uint32_t(format));
+    return row != nullptr ? row->block_side : 1;
 }
 
 uint32_t ktx2FullLevelCount(uint32_t width, uint32_t height) {
@@ -181,13 +184,8 @@ uint32_t ktx2FullLevelCount(uint32_t width, uint32_t height) {
 }
 
 uint32_t ktx2TexelBytes(Ktx2Format format) {
-    switch (format) {
-        case Ktx2Format::kR8Unorm: return 1;
-        case Ktx2Format::kR32g32b32a32Sfloat: return 16;
-        case Ktx2Format::kAstc4x4Sfloat: return 16;
-        case Ktx2Format::kAstc6x6Srgb: return 16;
-        default: return 4;
-    }
+    const formats::FormatRow* row = formats::findFormat(uint32_t(format));
+    return row != nullptr ? row->block_bytes : 0;
 }
 
 uint64_t ktx2LevelBytes(Ktx2Format format, uint32_t width, uint32_t height) {

@@ -8,29 +8,29 @@
 #include <string>
 #include <utility>
 
+#include "gusuku/formats/format_table.h"
 #include "gusuku/gpu/gpu_compute.h"
 
 namespace gusuku {
 
 uint32_t bytesPerTexel(VkFormat format) {
+    // The stored formats (lightmaps, textures, the pack's data) from the format table; the rest are the
+    // runtime's own attachments and camera planes.
+    if (const formats::FormatRow* row = formats::findFormat(uint32_t(format)))
+        return row->block_side == 1 ? row->block_bytes : 0;
     switch (format) {
-        case VK_FORMAT_R8_UNORM: return 1;
         case VK_FORMAT_R8G8_UNORM: return 2;
-        case VK_FORMAT_R8G8B8A8_SRGB:
         case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_B8G8R8A8_SRGB:
         case VK_FORMAT_B8G8R8A8_UNORM:
-        case VK_FORMAT_E5B9G9R9_UFLOAT_PACK32:
         case VK_FORMAT_D32_SFLOAT: return 4;
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
         default: return 0;
     }
 }
 
 size_t levelByteCount(VkFormat format, uint32_t width, uint32_t height) {
-    if (format == VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK) return (size_t(width) + 3) / 4 * ((size_t(height) + 3) / 4) * 16;
-    if (format == VK_FORMAT_ASTC_6x6_SRGB_BLOCK) return (size_t(width) + 5) / 6 * ((size_t(height) + 5) / 6) * 16;
+    if (const formats::FormatRow* row = formats::findFormat(uint32_t(format)))
+        return size_t(formats::levelBytes(*row, width, height));
     return size_t(width) * height * bytesPerTexel(format);
 }
 

@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <utility>
 
 #include "gusuku/formats/bakeset_ranges.h"
 #include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/formats/format_table.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/formats/ktx2.h"
 #include "gusuku/formats/pack_geometry.h"
@@ -106,13 +108,19 @@ BakeSetImage lightmapImage(const std::string& path, uint32_t resolution, float s
     return out;
 }
 
-// The slot's ASTC 4x4 HDR blocks (building_<slot>_astc.ktx2) when the pack has them; a pack written before them
-// has none, and the runtime then draws the E5B9G9R9 lightmap.
-std::vector<uint8_t> astcLightmapBlocks(const std::string& lightmap_path, uint32_t resolution) {
-    const std::string path = lightmap_path.substr(0, lightmap_path.size() - 5) + "_astc.ktx2";
-    std::error_code error;
-    if (!fs::exists(path, error)) return {};
-    return readKtx2(path, Ktx2Format::kAstc4x4Sfloat, resolution, resolution).texels;
+// The slot's lightmap blocks in each block format the format table gives a pack file (building_<slot>_astc.ktx2
+// for ASTC 4x4 HDR), those the pack has; a pack written before them has none, and the
+// runtime then draws the E5B9G9R9 lightmap.
+std::map<uint32_t, std::vector<uint8_t>> lightmapBlocks(const std::string& lightmap_path, uint32_t resolution) {
+    std::map<uint32_t, std::vector<uint8_t>> blocks;
+    for (const formats::FormatRow& row : formats::kFormatRows) {
+        if (row.pack_suffix == nullptr) continue;
+        const std::string path = lightmap_path.substr(0, lightmap_path.size() - 5) + row.pack_suffix + ".ktx2";
+        std::error_code error;
+        if (!fs::exists(path, error)) continue;
+        blocks[row.vk_format] = readKtx2(path, Ktx2Format(row.vk_format), resolution, resolution).texels;
+    }
+    return blocks;
 }
 
 // A base-colour texture: texture_<n>.ktx2 (RGBA8) and texture_<n>_astc.ktx2 (ASTC 6x6 blocks, the full chain),
@@ -178,7 +186,7 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
         const std::string lightmap_path =
             packFileOf(folder, manifest_path, pointer + "building_irradiance", entry.building_irradiance);
         images.building = lightmapImage(lightmap_path, resolution, geometry.lightmap_scale);
-        images.building_astc = astcLightmapBlocks(lightmap_path, resolution);
+        images.building_blocks = lightmapBlocks(lightmap_path, resolution);
         images.ground_with = floatImage(packFileOf(folder, manifest_path, pointer + "ground_irradiance_with_building",
                                                    entry.ground_irradiance_with_building),
                                         columns, rows, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
@@ -187,7 +195,7 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
                                            columns, rows, {kBakeSetTexelIrradiance, kBakeSetTexelCoverage});
         data.slots.push_back(std::move(images));
     }
-    data.building_astc_scale = geometry.lightmap_scale;
+    data.building_blocks_scale = geometry.lightmap_scale;
     if (const std::optional<std::string> problem = findBakeSetProblem(data))
         throw InputError(folder, "bake set", *problem);
     return data;

@@ -69,10 +69,15 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
     if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
                            "options.msaa_samples: " + std::to_string(samples) + " is not 1, 2, 4 or 8");
-    if (uint32_t(options.lightmap_format) > uint32_t(LightmapFormat::kAuto))
-        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
-                           "options.lightmap_format: " + std::to_string(uint32_t(options.lightmap_format)) +
-                               " is not e5b9g9r9, rgba16f, rgba32f, astc 4x4 hdr or auto");
+    if (options.lightmap_format != LightmapFormat::kAuto &&
+        formats::findLightmapFormat(int(options.lightmap_format)) == nullptr) {
+        std::string names;  // the table's lightmap rows: "e5b9g9r9, rgba16f, ... or auto"
+        for (const formats::FormatRow& row : formats::kFormatRows)
+            if (row.family == formats::FormatFamily::kLightmap) names += std::string(row.name) + ", ";
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.lightmap_format: " +
+                                                                std::to_string(uint32_t(options.lightmap_format)) +
+                                                                " is not " + names.substr(0, names.size() - 2) + " or auto");
+    }
     const uint32_t camera_format = uint32_t(options.camera_format);
     if (camera_format > uint32_t(CameraFormat::kNv21))
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, "options.camera_format: " + std::to_string(camera_format) +

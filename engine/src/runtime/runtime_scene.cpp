@@ -16,6 +16,7 @@
 #include "gusuku/maths/srgb_mip_chain.h"
 #include "gusuku/maths/texture_coverage.h"
 #include "ground_quads.h"
+#include "lightmap_format_choice.h"
 
 namespace gusuku::runtime_detail {
 namespace {
@@ -178,20 +179,21 @@ float irradianceScaleOf(const std::vector<BakeSetSlotImages>& slots) {
 
 namespace {
 
-// One slot's lightmap RGB / irradiance scale in `format`'s texel layout (alpha, the bake set's validity, is not
-// read by the shaders: 1 in the 16- and 32-bit formats, absent in E5B9G9R9).
-std::vector<uint8_t> lightmapTexels(const BakeSetImage& image, float inverse_scale, LightmapFormat format) {
+// One slot's lightmap RGB / irradiance scale in the texel layout of `codec` (a texel format's: the block formats
+// come from the bake; alpha, the bake set's validity, is not read by the shaders: 1 in the 16- and 32-bit
+// formats, absent in E5B9G9R9).
+std::vector<uint8_t> lightmapTexels(const BakeSetImage& image, float inverse_scale, formats::TexelCodec codec) {
     const size_t texels = image.rgba.size() / 4;
     const float* rgba = image.rgba.data();
     std::vector<uint8_t> bytes;
-    if (format == LightmapFormat::kE5b9g9r9) {
+    if (codec == formats::TexelCodec::kSharedExponent) {
         bytes.resize(texels * 4);
         for (size_t texel = 0; texel < texels; ++texel) {
             const uint32_t packed = packE5b9g9r9(rgba[texel * 4] * inverse_scale, rgba[texel * 4 + 1] * inverse_scale,
                                                  rgba[texel * 4 + 2] * inverse_scale);
             std::memcpy(&bytes[texel * 4], &packed, 4);
         }
-    } else if (format == LightmapFormat::kRgba16f) {
+    } else if (codec == formats::TexelCodec::kHalfFloat) {
         const std::vector<uint16_t> halves = toHalf(image, inverse_scale);
         bytes.resize(halves.size() * 2);
         std::memcpy(bytes.data(), halves.data(), bytes.size());
@@ -215,18 +217,19 @@ void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float in
                      GpuScene& scene) {
     const uint32_t slot_count = uint32_t(bake_set.slots.size());
     const int resolution = bake_set.manifest.building.lightmap_resolution;
+    const formats::FormatRow& row = lightmapRow(format);
     GpuImageDescription description;
-    description.format = lightmapVkFormat(format);
+    description.format = VkFormat(row.vk_format);
     description.width = uint32_t(resolution);
     description.height = uint32_t(resolution);
     description.layers = slot_count;
     description.array_view = true;
     scene.lightmaps = GpuImage(gpu, description);
     for (uint32_t slot = 0; slot < slot_count; ++slot) {
-        // ASTC: the blocks as the bake encoded them (chooseLightmapFormat made sure their scale is the runtime's).
-        const std::vector<uint8_t> texels = format == LightmapFormat::kAstc4x4Hdr
-                                                ? bake_set.slots[slot].building_astc
-                                                : lightmapTexels(bake_set.slots[slot].building, inverse_scale, format);
+        // Blocks (ASTC) as the bake encoded them (chooseLightmapFormat made sure their scale is the runtime's).
+        const std::vector<uint8_t> texels = formats::isBlockCodec(row.codec)
+                                                ? bake_set.slots[slot].building_blocks.at(row.vk_format)
+                                                : lightmapTexels(bake_set.slots[slot].building, inverse_scale, row.codec);
         scene.lightmaps.upload(texels.data(), texels.size(), slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 }
@@ -362,30 +365,13 @@ GpuImage uploadAstcBaseColourTexture(const GpuDevice& gpu, const BakeSetTexture&
 }
 
 bool deviceSamplesAstcLdr(const GpuDevice& gpu) {
-    VkFormatProperties properties{};
-    vkGetPhysicalDeviceFormatProperties(gpu.physical_device, VK_FORMAT_ASTC_6x6_SRGB_BLOCK, &properties);
-    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
-                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
-                                        VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
-    return (properties.optimalTilingFeatures & needed) == needed;
+    return deviceSamples(gpu, *formats::findFormat(formats::kVkAstc6x6Srgb));
 }
 
-VkFormat lightmapVkFormat(LightmapFormat format) {
-    switch (format) {
-        case LightmapFormat::kRgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
-        case LightmapFormat::kRgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
-        case LightmapFormat::kAstc4x4Hdr: return VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK;
-        default: return VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
-    }
-}
+VkFormat lightmapVkFormat(LightmapFormat format) { return VkFormat(lightmapRow(format).vk_format); }
 
 const char* lightmapFormatName(LightmapFormat format) {
-    switch (format) {
-        case LightmapFormat::kRgba16f: return "R16G16B16A16_SFLOAT";
-        case LightmapFormat::kRgba32f: return "R32G32B32A32_SFLOAT";
-        case LightmapFormat::kAstc4x4Hdr: return "ASTC_4x4_SFLOAT_BLOCK";
-        default: return "E5B9G9R9_UFLOAT_PACK32";
-    }
+    return lightmapRow(format).vk_name + (sizeof "VK_FORMAT_" - 1);  // "E5B9G9R9_UFLOAT_PACK32"
 }
 
 GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float change_threshold,

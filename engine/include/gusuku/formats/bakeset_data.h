@@ -6,6 +6,7 @@
 // bake set's units (sky radiance units times steradians).
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -71,12 +72,13 @@ struct BakeSetSlotImages {
     BakeSetImage building;
     BakeSetImage ground_with;
     BakeSetImage ground_without;
-    /// Optional: `building`'s RGB as ASTC 4x4 HDR blocks (VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK, alpha 1), encoded at
-    /// bake time, which a device that samples ASTC HDR draws as they are (RuntimeOptions::lightmap_format). 16
-    /// bytes for each started 4 x 4 block of the lightmap, blocks row by row from the top; the decoded RGB times
-    /// BakeSetData::building_astc_scale is `building`'s. Empty: none (the runtime then uses E5B9G9R9). The
+    /// Optional: `building`'s RGB in block formats (the lightmap rows of gusuku/formats/format_table.h with a
+    /// pack_suffix: ASTC HDR, alpha 1), encoded at bake time, which a device that samples them draws
+    /// as they are (RuntimeOptions::lightmap_format), keyed by the row's vk_format. Each holds the row's
+    /// block_bytes for each started block of the lightmap, blocks row by row from the top; the decoded RGB times
+    /// BakeSetData::building_blocks_scale is `building`'s. Empty: none (the runtime then uses E5B9G9R9). The
     /// runtime pack carries them; loadBakeSet (the EXRs) leaves them empty.
-    std::vector<uint8_t> building_astc;
+    std::map<uint32_t, std::vector<uint8_t>> building_blocks;
 };
 
 struct BakeSetData {
@@ -88,8 +90,8 @@ struct BakeSetData {
     /// names no ground_grid.albedo (an older bake set).
     BakeSetImage ground_albedo;
     std::vector<BakeSetSlotImages> slots;   ///< one per manifest.slots entry, same order
-    /// The slots' building_astc, decoded, times this are the bake set's irradiance (the pack's lightmap_scale).
-    float building_astc_scale = 1.0f;
+    /// The slots' building_blocks, decoded, times this are the bake set's irradiance (the pack's lightmap_scale).
+    float building_blocks_scale = 1.0f;
 };
 
 }  // namespace gusuku

@@ -18,7 +18,9 @@
 
 namespace gusuku {
 
-/// The VkFormat values the pack uses (gusuku_maths has no Vulkan headers; the values are Vulkan's).
+/// VkFormat values (the library has no Vulkan headers; the values are Vulkan's). Every function here accepts
+/// any format with a row in gusuku/formats/format_table.h, which says its block size, bytes and DFD; a
+/// Ktx2Format(row.vk_format) needs no enumerator here (RGBA16F has none).
 enum class Ktx2Format : uint32_t {
     kR8Unorm = 9,              ///< VK_FORMAT_R8_UNORM: the lightmaps' validity (0 or 255)
     kR8g8b8a8Srgb = 43,        ///< VK_FORMAT_R8G8B8A8_SRGB: base-colour textures (A linear)

@@ -83,9 +83,9 @@ void recordImageLayoutTransition(VkCommandBuffer cmd, VkImage image, VkImageAspe
 
 /// Bytes per texel of the formats the runtime uses; 0 for others (and for block-compressed ones).
 uint32_t bytesPerTexel(VkFormat format);
-/// Bytes one width x height level of `format` takes: texels times bytesPerTexel, or for
-/// VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK (VK_FORMAT_ASTC_6x6_SRGB_BLOCK) 16 bytes for every started 4 x 4 (6 x 6) block;
-/// 0 for formats the runtime does not use.
+/// Bytes one width x height level of `format` takes: texels times bytesPerTexel, or for a block format of the
+/// format table (gusuku/formats/format_table.h: ASTC) its block_bytes for every started block; 0 for formats the
+/// runtime does not use.
 size_t levelByteCount(VkFormat format, uint32_t width, uint32_t height);
 
 }  // namespace gusuku

@@ -156,12 +156,13 @@ enum class YcbcrModel { kBt601 = 0, kBt709 = 1 };
 enum class YcbcrRange { kNarrow = 0, kFull = 1 };
 
 /// How the runtime holds the building's lightmaps on the GPU (docs/runtime.md, "Lightmap formats"). The RGB is
-/// all the shaders read; the bake set's validity alpha stays on the CPU.
+/// all the shaders read; the bake set's validity alpha stays on the CPU. Each value but kAuto is a lightmap row of
+/// gusuku/formats/format_table.h (its c_enum), which says its Vulkan format, encoder and device feature.
 enum class LightmapFormat {
     kE5b9g9r9 = 0,  ///< shared exponent, 4 bytes a texel; every Vulkan device samples and filters it
     kRgba16f = 1,   ///< half floats, 8 bytes a texel (the runtime's format before kE5b9g9r9)
     kRgba32f = 2,   ///< float32, 16 bytes a texel: the reference; needs linear filtering of R32G32B32A32_SFLOAT
-    /// ASTC 4x4 HDR (VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK), 1 byte a texel: the bake set's building_astc blocks (the
+    /// ASTC 4x4 HDR (VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK), 1 byte a texel: the bake set's building_blocks (the
     /// runtime pack's, encoded at bake time) as they are. Needs RuntimeOptions::texture_compression_astc_hdr.
     kAstc4x4Hdr = 3,
     /// kAstc4x4Hdr where the app enabled textureCompressionASTC_HDR (texture_compression_astc_hdr), the device
