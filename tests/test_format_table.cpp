@@ -52,9 +52,10 @@ TEST(FormatTable, EveryRowRoundTripsThroughTheKtx2WriterAndReader) {
 TEST(FormatTable, BlockAndTexelSizesAreTheFormatsOwn) {
     // Known sizes of a 1024^2 lightmap: 4 bytes a texel (E5B9G9R9), 8 (RGBA16F), 16 (RGBA32F); 16-byte ASTC
     // blocks, 256^2 of 4x4 and 171^2 of 6x6 (1024 / 6 rounded up).
-    const std::vector<std::pair<uint32_t, uint64_t>> known = {{123u, 4194304u},  {97u, 8388608u},
-                                                              {109u, 16777216u}, {1000066000u, 1048576u},
-                                                              {166u, 467856u},   {43u, 4194304u}};
+    const std::vector<std::pair<uint32_t, uint64_t>> known = {{123u, 4194304u},        {97u, 8388608u},
+                                                              {109u, 16777216u},       {1000066000u, 1048576u},
+                                                              {1000066004u, 467856u}, {166u, 467856u},
+                                                              {43u, 4194304u}};
     for (const auto& [vk_format, bytes] : known) {
         const formats::FormatRow* row = formats::findFormat(vk_format);
         ASSERT_NE(row, nullptr) << vk_format;
@@ -75,6 +76,7 @@ TEST(FormatTable, TheLightmapRowsAreTheCAndCppEnums) {
         {GUSUKU_LIGHTMAP_RGBA16F, LightmapFormat::kRgba16f, 97u, "rgba16f"},
         {GUSUKU_LIGHTMAP_RGBA32F, LightmapFormat::kRgba32f, 109u, "rgba32f"},
         {GUSUKU_LIGHTMAP_ASTC_4X4_HDR, LightmapFormat::kAstc4x4Hdr, 1000066000u, "astc 4x4 hdr"},
+        {GUSUKU_LIGHTMAP_ASTC_6X6_HDR, LightmapFormat::kAstc6x6Hdr, 1000066004u, "astc 6x6 hdr"},
     };
     std::set<int> listed;
     for (const Known& entry : known) {
@@ -110,7 +112,7 @@ TEST(FormatTable, EachPackFileSuffixIsItsOwnAndTheAstcRowsNeedTheirDeviceFeature
         }
     }
     // The files docs/bakeset.md names.
-    EXPECT_EQ(suffixes, (std::set<std::string>{"_astc"}));
+    EXPECT_EQ(suffixes, (std::set<std::string>{"_astc", "_astc6x6"}));
 }
 
 }  // namespace

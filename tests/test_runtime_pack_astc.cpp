@@ -1,6 +1,6 @@
-// The runtime pack's ASTC HDR lightmaps (docs/runtime.md, "Lightmap formats"; every lightmap row of
+// The runtime pack's ASTC HDR lightmaps, 4x4 and 6x6 (docs/runtime.md, "Lightmap formats"; every lightmap row of
 // gusuku/formats/format_table.h with a pack file) on a real bake of the mini site: `gusuku-bake pack` writes
-// building_<slot>_astc.ktx2 beside the E5B9G9R9 file, its header as the KTX 2.0
+// building_<slot>_astc.ktx2 and _astc6x6.ktx2 beside the E5B9G9R9 file, each header as the KTX 2.0
 // specification says (read here by hand); loadRuntimePack (standard library only) carries the blocks as they are;
 // astcenc decodes them to the EXR lightmap within ASTC's error; bad or partial ASTC files are refused in one line;
 // and the runtime takes E5B9G9R9 wherever the device cannot sample ASTC HDR (lavapipe), saying so, and refuses a
@@ -35,7 +35,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The lightmap rows the pack carries blocks of (ASTC 4x4 HDR).
+// The lightmap rows the pack carries blocks of (ASTC 4x4 HDR, ASTC 6x6 HDR).
 std::vector<const formats::FormatRow*> packedBlockRows() {
     std::vector<const formats::FormatRow*> rows;
     for (const formats::FormatRow& row : formats::kFormatRows)
@@ -78,6 +78,7 @@ protected:
         const testing::CommandResult packed = testing::runBakeCommand({"pack", options.output_dir}, dir);
         ASSERT_EQ(packed.exit_code, 0) << packed.stderr_text;
         EXPECT_NE(packed.stdout_text.find("astc 4x4 hdr"), std::string::npos) << packed.stdout_text;
+        EXPECT_NE(packed.stdout_text.find("astc 6x6 hdr"), std::string::npos) << packed.stdout_text;
         folder_ = options.output_dir;
     }
 
@@ -103,8 +104,8 @@ TEST_F(RuntimePackAstcTest, EachSlotsAstcFileHoldsItsLightmapsBlocksAsTheSpecifi
     const BakeSetData pack = loadRuntimePack(bakedSet());
     const uint32_t side = uint32_t(exr.manifest.building.lightmap_resolution);
     EXPECT_EQ(pack.building_blocks_scale, 1.0f);  // the mini site's light is far below 65408
-    // Known values, not the table's: VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK (vulkan_core.h), 4 texels.
-    const std::vector<std::pair<uint32_t, uint32_t>> formats_and_sides = {{1000066000u, 4}};
+    // Known values, not the table's: VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK and _6x6_ (vulkan_core.h), 4 and 6 texels.
+    const std::vector<std::pair<uint32_t, uint32_t>> formats_and_sides = {{1000066000u, 4}, {1000066004u, 6}};
     ASSERT_EQ(packedBlockRows().size(), formats_and_sides.size());
     for (size_t index = 0; index < formats_and_sides.size(); ++index)
     for (size_t slot = 0; slot < exr.slots.size(); ++slot) {
@@ -202,10 +203,20 @@ TEST_F(RuntimePackAstcTest, BadOrPartialAstcFilesAreRefusedAndAPackWithoutThemSt
                     astc + ": vkFormat: VK_FORMAT_E5B9G9R9_UFLOAT_PACK32 is not VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK");
     }
     {
+        // 4x4 blocks where 6x6 belong: another format, refused by name.
+        const std::string pack = packCopy("swapped"), astc6 = astcFile(pack, 0, "_astc6x6");
+        fs::copy_file(astcFile(pack, 0), astc6, fs::copy_options::overwrite_existing);
+        expectStart(refusal(pack),
+                    astc6 + ": vkFormat: VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK is not VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK");
+    }
+    {
         const std::string pack = packCopy("partial");
-        fs::remove(astcFile(pack, 1));
-        expectStart(refusal(pack), pack + ": bake set: slots[1].building_blocks[VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK]: "
+        fs::remove(astcFile(pack, 1, "_astc6x6"));
+        expectStart(refusal(pack), pack + ": bake set: slots[1].building_blocks[VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK]: "
                                           "missing, but slots[0].building_blocks has them");
+        for (size_t slot = 0; slot < slots; ++slot) fs::remove(astcFile(pack, slot, "_astc6x6"));
+        const BakeSetData without_6x6 = loadRuntimePack(pack);  // a pack from before the 6x6 files
+        for (const BakeSetSlotImages& slot : without_6x6.slots) EXPECT_EQ(slot.building_blocks.size(), 1u);
         for (size_t slot = 0; slot < slots; ++slot) fs::remove(astcFile(pack, slot));
         const BakeSetData old_pack = loadRuntimePack(pack);  // a pack from before the ASTC files
         for (const BakeSetSlotImages& slot : old_pack.slots) EXPECT_TRUE(slot.building_blocks.empty());
@@ -260,6 +271,17 @@ TEST_F(RuntimePackAstcTest, TheRuntimeTakesE5b9g9r9WhereAstcHdrCannotBeSampledAn
     EXPECT_NE(openError(context().gpu(), loadBakeSet(bakedSet()), smallFrame(LightmapFormat::kAstc4x4Hdr, true),
                         RuntimeErrorCode::kInvalidBakeSet)
                   .find("the bake set has no astc 4x4 hdr lightmaps"),
+              std::string::npos);
+    // ASTC 6x6 HDR (a row of the format table, nothing else of its own) is refused alike.
+    EXPECT_NE(openError(context().gpu(), pack, smallFrame(LightmapFormat::kAstc6x6Hdr, false), RuntimeErrorCode::kDevice)
+                  .find("options.lightmap_format: astc 6x6 hdr needs textureCompressionASTC_HDR"),
+              std::string::npos);
+    EXPECT_NE(openError(context().gpu(), pack, smallFrame(LightmapFormat::kAstc6x6Hdr, true), RuntimeErrorCode::kDevice)
+                  .find("for ASTC_6x6_SFLOAT_BLOCK (VkFormat 1000066004, the lightmaps (options.lightmap_format))"),
+              std::string::npos);
+    EXPECT_NE(openError(context().gpu(), loadBakeSet(bakedSet()), smallFrame(LightmapFormat::kAstc6x6Hdr, true),
+                        RuntimeErrorCode::kInvalidBakeSet)
+                  .find("the bake set has no astc 6x6 hdr lightmaps"),
               std::string::npos);
 }
 

@@ -85,7 +85,7 @@ struct FormatRow {
 // VkFormat values (Vulkan's vulkan_core.h).
 inline constexpr uint32_t kVkR8Unorm = 9, kVkR8g8b8a8Srgb = 43, kVkR16g16b16a16Sfloat = 97,
                           kVkR32g32b32a32Sfloat = 109, kVkE5b9g9r9Ufloat = 123, kVkAstc6x6Srgb = 166,
-                          kVkAstc4x4Sfloat = 1000066000;
+                          kVkAstc4x4Sfloat = 1000066000, kVkAstc6x6Sfloat = 1000066004;
 
 /// Every format, one row each. The lightmap rows' c_enum values are LightmapFormat's (runtime.h) and
 /// gusuku_lightmap_format's (gusuku.h); LightmapFormat::kAuto (4) is no format and has no row.
@@ -105,6 +105,8 @@ inline constexpr FormatRow kFormatRows[] = {
      TexelCodec::kFloat32, DeviceFeature::kCore, kSampledFiltered, 2, nullptr, 0},
     {FormatFamily::kLightmap, "astc 4x4 hdr", kVkAstc4x4Sfloat, "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK", 4, 16, 1,
      TexelCodec::kAstcHdr, DeviceFeature::kAstcHdr, kSampledFiltered, 3, "_astc", 1},
+    {FormatFamily::kLightmap, "astc 6x6 hdr", kVkAstc6x6Sfloat, "VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK", 6, 16, 1,
+     TexelCodec::kAstcHdr, DeviceFeature::kAstcHdr, kSampledFiltered, 5, "_astc6x6", 0},
 
     {FormatFamily::kTexture, "rgba8", kVkR8g8b8a8Srgb, "VK_FORMAT_R8G8B8A8_SRGB", 1, 4, 1, TexelCodec::kRgba8Srgb,
      DeviceFeature::kCore, kSampledFiltered, kNoCEnum, nullptr, 0},

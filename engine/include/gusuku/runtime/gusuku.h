@@ -265,8 +265,9 @@ typedef enum gusuku_lightmap_format {
     GUSUKU_LIGHTMAP_RGBA16F = 1,       /* 8 bytes a texel */
     GUSUKU_LIGHTMAP_RGBA32F = 2,       /* 16 bytes a texel, the reference (needs linear filtering of it) */
     GUSUKU_LIGHTMAP_ASTC_4X4_HDR = 3,  /* 1 byte a texel, the bake's blocks; needs texture_compression_astc_hdr */
-    GUSUKU_LIGHTMAP_AUTO = 4           /* the default: ASTC_4X4_HDR where the app enabled it and the device and the
+    GUSUKU_LIGHTMAP_AUTO = 4,          /* the default: ASTC_4X4_HDR where the app enabled it and the device and the
                                           bake set have it, else E5B9G9R9 (gusuku_runtime_lightmap_format says) */
+    GUSUKU_LIGHTMAP_ASTC_6X6_HDR = 5   /* 0.44 bytes a texel, the bake's 6x6 blocks; needs texture_compression_astc_hdr */
 } gusuku_lightmap_format;
 
 typedef struct gusuku_runtime_options {

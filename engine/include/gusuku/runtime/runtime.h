@@ -169,6 +169,9 @@ enum class LightmapFormat {
     /// samples and filters the format, and the bake set carries the blocks at the runtime's irradiance scale;
     /// else kE5b9g9r9 (the default). Runtime::lightmapFormat() says which.
     kAuto = 4,
+    /// ASTC 6x6 HDR (VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK), 0.44 bytes a texel: as kAstc4x4Hdr, from the pack's
+    /// _astc6x6.ktx2 blocks; never chosen by kAuto (more error than 4x4 for its 2.25x less memory).
+    kAstc6x6Hdr = 5,
 };
 
 /// Options fixed when the runtime opens.
