@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 
 namespace gusuku {
 namespace {
@@ -106,6 +107,45 @@ TEST(CommandLine, EverythingAfterADoubleDashIsPositional) {
     EXPECT_TRUE(line.flag("--quiet"));
     EXPECT_EQ(line.positionals(), (std::vector<std::string>{"--not-an-option", "-x"}));
     EXPECT_NO_THROW(line.finish());
+}
+
+// With its option table bound, a command reads only the options its --help lists, and reads every one of them:
+// a parser and a help that name different options fail on the first run of the command.
+TEST(OptionTable, AnOptionTheHelpDoesNotListIsAProgrammingError) {
+    const std::vector<OptionHelp> table = {{"--samples", "", "N", "samples", "256"}};
+    CommandLine line("t", {"--samples", "8"});
+    line.useOptionTable(table);
+    EXPECT_EQ(line.integer("--samples", 1, 9), 8);
+    EXPECT_THROW(line.flag("--quiet"), std::logic_error);
+    EXPECT_NO_THROW(line.flag("--help"));  // every command's, in no table
+}
+
+TEST(OptionTable, AnOptionTheParserNeverReadsIsAProgrammingError) {
+    const std::vector<OptionHelp> table = {{"--samples", "", "N", "samples", "256"}, {"--quiet", "", "", "quiet", ""}};
+    CommandLine line("t", {});
+    line.useOptionTable(table);
+    line.integer("--samples", 1, 9);
+    EXPECT_THROW(line.finish(), std::logic_error);
+    line.flag("--quiet");
+    EXPECT_NO_THROW(line.finish());
+}
+
+// The layout tests/check_docs_option_tables.py reads back: option blocks at two spaces, the meaning beside them and
+// the default on a last line of its own.
+TEST(OptionTable, HelpPrintsEachOptionWithItsDefaultOnItsOwnLine) {
+    CommandHelp help;
+    help.usage = "usage: t SITE";
+    help.options = {{"--output", "-o", "DIR", "the folder", ""}, {"--samples", "", "N", "samples a texel", "256"}};
+    help.notes = "Exit status: 0 ok.";
+    EXPECT_EQ(formatHelp(help),
+              "usage: t SITE\n"
+              "\n"
+              "options:\n"
+              "  -o, --output DIR  the folder\n"
+              "  --samples N       samples a texel\n"
+              "                    default: 256\n"
+              "\n"
+              "Exit status: 0 ok.\n");
 }
 
 }  // namespace

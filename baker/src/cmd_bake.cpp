@@ -9,8 +9,10 @@
 #include "bake_stop_signals.h"
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/gpu/vulkan_context.h"
+#include "gusuku_bake/adaptive_sampling.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/runtime_pack.h"
@@ -18,6 +20,10 @@
 namespace gusuku::bake_cli {
 
 namespace {
+
+// The ranges --samples and --texture-size accept.
+constexpr int64_t kMaxBakeSamples = 1000000;
+constexpr int64_t kMinTextureSide = 16, kMaxTextureSide = 8192;
 
 // The runtime pack beside the EXRs (gusuku_bake/runtime_pack.h), for a whole bake set; partial sets have none.
 void writePackOf(const std::string& folder) {
@@ -29,29 +35,44 @@ void writePackOf(const std::string& folder) {
                 double(pack.astc_texture_bytes) / 1048576.0, pack.astc_encode_seconds);
 }
 
-constexpr const char* kBakeUsage =
-    "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]\n"
-    "\n"
-    "Path-traces the building's indirect irradiance and the ground's sky-and-bounce irradiance (with and\n"
-    "without the building) for every slot of SITE.json, and writes a bake set (docs/bakeset.md).\n"
-    "\n"
-    "options:\n"
-    "  -o, --output DIR   bake set folder (created)\n"
-    "  --samples N        samples per texel and ground cell (default: bake.samples_per_texel)\n"
-    "  --slot NAME        bake only this slot of SITE.json into a partial set, to be joined with the other\n"
-    "                     slots' partial sets by `gusuku-bake merge` (one slot per machine)\n"
-    "  --texture-size N   the building's textures in the bake set are held to N x N (16-8192, default 2048:\n"
-    "                     the detail the runtime draws; tracing reads them at 512 whatever this is)\n"
-    "  --no-denoise       skip the edge-keeping lightmap filter\n"
-    "  --uniform-sampling every texel the same samples (default, from 32 samples on: a quarter of them, at\n"
-    "                     least 16, alike as a pilot, the rest where each texel's noise is)\n"
-    "  --force            bake even if DIR/manifest.json already matches these inputs\n"
-    "  --quiet            no progress bar\n"
-    "\n"
-    "Ctrl-C or SIGTERM stops within about a second; everything traced so far is kept in DIR/.checkpoint,\n"
-    "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
-    "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
-    "Exit status: 0 done or up to date, 1 bad input or a bad option value, 2 bad usage, 130 interrupted.\n";
+// The command's option table: its --help, and what docs/baker.md's table of `gusuku-bake bake` must say.
+CommandHelp bakeHelp() {
+    const bake::BakeOptions defaults;
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake bake SITE.json -o BAKESET_DIR [options]";
+    help.description =
+        "Path-traces the building's indirect irradiance and the ground's sky-and-bounce irradiance (with and\n"
+        "without the building) for every slot of SITE.json, and writes a bake set (docs/bakeset.md).";
+    help.options = {
+        {"--output", "-o", "DIR", "bake set folder (created)", ""},
+        {"--samples", "", "N", "samples per texel and ground cell, in [1, " + std::to_string(kMaxBakeSamples) + "]",
+         "SITE.json's bake.samples_per_texel, itself " + std::to_string(BakeSettings{}.samples_per_texel) +
+             " when absent"},
+        {"--slot", "", "NAME",
+         "bake only this slot of SITE.json into a partial set, to be joined with the other slots' partial sets by "
+         "`gusuku-bake merge` (one slot per machine)",
+         "every slot"},
+        {"--texture-size", "", "N",
+         "the building's textures in the bake set are held to N x N, in [" + std::to_string(kMinTextureSide) + ", " +
+             std::to_string(kMaxTextureSide) + "]: the detail the runtime draws; tracing reads them at " +
+             std::to_string(defaults.max_texture_size) + " whatever this is",
+         std::to_string(defaults.building_texture_size)},
+        {"--no-denoise", "", "", "skip the edge-keeping lightmap filter", ""},
+        {"--uniform-sampling", "", "",
+         "every texel the same samples (without it, from " + std::to_string(bake::kMinAdaptiveSamples) +
+             " samples on: a quarter of them, at least " + std::to_string(bake::kMinAdaptivePilotSamples) +
+             ", alike as a pilot, the rest where each texel's noise is)",
+         ""},
+        {"--force", "", "", "bake even if DIR/manifest.json already matches these inputs", ""},
+        {"--quiet", "", "", "no progress bar", ""},
+    };
+    help.notes =
+        "Ctrl-C or SIGTERM stops within about a second; everything traced so far is kept in DIR/.checkpoint,\n"
+        "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
+        "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
+        "Exit status: 0 done or up to date, 1 bad input or a bad option value, 2 bad usage, 130 interrupted.";
+    return help;
+}
 
 struct BakeRequest {
     std::string site_path;
@@ -62,9 +83,9 @@ BakeRequest parseArguments(CommandLine& line) {
     BakeRequest request;
     bake::BakeOptions& options = request.options;
     options.output_dir = line.text("--output", "-o").value_or("");
-    if (const std::optional<int64_t> samples = line.integer("--samples", 1, 1000000))
+    if (const std::optional<int64_t> samples = line.integer("--samples", 1, kMaxBakeSamples))
         options.samples_override = int(*samples);
-    if (const std::optional<int64_t> side = line.integer("--texture-size", 16, 8192))
+    if (const std::optional<int64_t> side = line.integer("--texture-size", kMinTextureSide, kMaxTextureSide))
         options.building_texture_size = int(*side);
     options.denoise = !line.flag("--no-denoise");
     options.adaptive_sampling = !line.flag("--uniform-sampling");
@@ -84,7 +105,7 @@ BakeRequest parseArguments(CommandLine& line) {
 int runBakeCommand(const std::vector<std::string>& args) {
     BakeRequest request;
     if (const std::optional<int> exit_code = readCommandLine(
-            "gusuku-bake bake", args, kBakeUsage, false, [&](CommandLine& line) { request = parseArguments(line); }))
+            "gusuku-bake bake", args, bakeHelp(), false, [&](CommandLine& line) { request = parseArguments(line); }))
         return *exit_code;
     bake::BakeOptions& options = request.options;
 

@@ -10,6 +10,7 @@
 #include "bake_preflight.h"
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/sky_photo.h"
@@ -25,12 +26,15 @@ namespace gusuku::bake_cli {
 
 namespace {
 
-constexpr const char* kCheckUsage =
-    "usage: gusuku-bake check SITE_JSON\n"
-    "\n"
-    "Validates SITE_JSON (format: docs/site-json.md), loads the building and SfM meshes and the sky maps it\n"
-    "names, and prints a summary: the site, the slots with their site-clock and UTC times, triangle counts,\n"
-    "ENU bounds, sky sizes and warnings. Exit 0 when everything loads, 1 on bad input, 2 on bad usage.\n";
+CommandHelp checkHelp() {
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake check SITE_JSON";
+    help.description =
+        "Validates SITE_JSON (format: docs/site-json.md), loads the building and SfM meshes and the sky maps it\n"
+        "names, and prints a summary: the site, the slots with their site-clock and UTC times, triangle counts,\n"
+        "ENU bounds, sky sizes and warnings. Exit 0 when everything loads, 1 on bad input, 2 on bad usage.";
+    return help;
+}
 
 std::string formatUtcOffset(int minutes) {
     char text[16];
@@ -195,7 +199,7 @@ int runCheckCommand(const std::vector<std::string>& args) {
         if (sites.empty()) line.fail("missing SITE_JSON (see --help)");
         site_path = sites.front();
     };
-    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake check", args, kCheckUsage, false, parse))
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake check", args, checkHelp(), false, parse))
         return *exit_code;
     try {
         return checkSite(site_path);

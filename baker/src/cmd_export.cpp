@@ -7,31 +7,36 @@
 
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku_bake/lightmap_export.h"
 
 namespace gusuku::bake_cli {
 
 namespace {
 
-constexpr const char* kExportUsage =
-    "usage: gusuku-bake export BAKESET_DIR --slot NAME -o OUT.glb\n"
-    "\n"
-    "Writes the bake set's building as one glTF binary for other engines (docs/export.md): building.glb as\n"
-    "baked, with the slot's lightmap (indirect irradiance, no direct sun) embedded as a linear 8-bit PNG on\n"
-    "TEXCOORD_1 through the MOZ_lightmap extension (Mozilla Hubs, three.js's GLTFLightMapLoaderExtension:\n"
-    "irradiance = byte / 255 * intensity, intensity the lightmap's brightest value, so every texel decodes\n"
-    "within intensity / 510), and the slot's sun, when up, as a KHR_lights_punctual directional light in the\n"
-    "same units. Needs no GPU and no input files: only the bake set.\n"
-    "\n"
-    "Refuses, before writing anything: a missing or bad bake set, a slot it does not hold, an output that is\n"
-    "not a .glb, is an input of the set's bake (its building model, site.json, a sky), lies inside any bake\n"
-    "set or pack, or cannot be written. The file is written to a temporary name and renamed, so it is never\n"
-    "half-written.\n"
-    "\n"
-    "options:\n"
-    "  --slot NAME        the slot whose lightmap to bind (see the manifest's slots)\n"
-    "  -o, --output FILE  the .glb to write\n"
-    "Exit status: 0 written, 1 bad input, 2 bad usage.\n";
+// The command's option table: its --help, and what docs/baker.md's table of `gusuku-bake export` must say.
+CommandHelp exportHelp() {
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake export BAKESET_DIR --slot NAME -o OUT.glb";
+    help.description =
+        "Writes the bake set's building as one glTF binary for other engines (docs/export.md): building.glb as\n"
+        "baked, with the slot's lightmap (indirect irradiance, no direct sun) embedded as a linear 8-bit PNG on\n"
+        "TEXCOORD_1 through the MOZ_lightmap extension (Mozilla Hubs, three.js's GLTFLightMapLoaderExtension:\n"
+        "irradiance = byte / 255 * intensity, intensity the lightmap's brightest value, so every texel decodes\n"
+        "within intensity / 510), and the slot's sun, when up, as a KHR_lights_punctual directional light in the\n"
+        "same units. Needs no GPU and no input files: only the bake set.\n"
+        "\n"
+        "Refuses, before writing anything: a missing or bad bake set, a slot it does not hold, an output that is\n"
+        "not a .glb, is an input of the set's bake (its building model, site.json, a sky), lies inside any bake\n"
+        "set or pack, or cannot be written. The file is written to a temporary name and renamed, so it is never\n"
+        "half-written.";
+    help.options = {
+        {"--slot", "", "NAME", "the slot whose lightmap to bind (see the manifest's slots)", ""},
+        {"--output", "-o", "FILE", "the .glb to write", ""},
+    };
+    help.notes = "Exit status: 0 written, 1 bad input, 2 bad usage.";
+    return help;
+}
 
 struct ExportRequest {
     std::string bakeset_folder;
@@ -57,7 +62,7 @@ ExportRequest parseArguments(CommandLine& line) {
 int runExportCommand(const std::vector<std::string>& args) {
     ExportRequest request;
     if (const std::optional<int> exit_code = readCommandLine(
-            "gusuku-bake export", args, kExportUsage, false, [&](CommandLine& line) { request = parseArguments(line); }))
+            "gusuku-bake export", args, exportHelp(), false, [&](CommandLine& line) { request = parseArguments(line); }))
         return *exit_code;
     const bake::LightmapExportReport report =
         bake::exportLightmappedGlb(request.bakeset_folder, request.slot, request.output_path);

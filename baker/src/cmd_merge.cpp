@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku_bake/bake_merge.h"
 #include "gusuku_bake/bake_progress.h"
 #include "gusuku_bake/runtime_pack.h"
@@ -15,23 +16,25 @@ namespace gusuku::bake_cli {
 
 namespace {
 
-constexpr const char* kMergeUsage =
-    "usage: gusuku-bake merge PARTIAL_DIR... -o BAKESET_DIR\n"
-    "\n"
-    "Joins partial bake sets, each one slot of a site baked with `gusuku-bake bake SITE.json -o PARTIAL_DIR\n"
-    "--slot NAME` (on one machine each), into the bake set a single `gusuku-bake bake` would have written: the\n"
-    "same bytes in every file but the manifest's statistics (summed over the partial sets). Needs no GPU and\n"
-    "no input files: only the partial sets.\n"
-    "\n"
-    "Refuses, before writing anything: a missing or repeated slot, partial sets of different inputs or\n"
-    "settings, shared files (building.glb, ground_geometry.exr, occluder.glb) that differ between the sets or\n"
-    "from what their manifest recorded, an output folder that is a partial set, is or holds an input, is,\n"
-    "holds or lies inside another site's bake set or a pack, and a folder another bake or merge is using\n"
-    "(BAKESET_DIR/.lock).\n"
-    "\n"
-    "options:\n"
-    "  -o, --output DIR   bake set folder (created)\n"
-    "Exit status: 0 merged, 1 bad input, 2 bad usage.\n";
+// The command's option table: its --help, and what docs/baker.md's table of `gusuku-bake merge` must say.
+CommandHelp mergeHelp() {
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake merge PARTIAL_DIR... -o BAKESET_DIR";
+    help.description =
+        "Joins partial bake sets, each one slot of a site baked with `gusuku-bake bake SITE.json -o PARTIAL_DIR\n"
+        "--slot NAME` (on one machine each), into the bake set a single `gusuku-bake bake` would have written: the\n"
+        "same bytes in every file but the manifest's statistics (summed over the partial sets). Needs no GPU and\n"
+        "no input files: only the partial sets.\n"
+        "\n"
+        "Refuses, before writing anything: a missing or repeated slot, partial sets of different inputs or\n"
+        "settings, shared files (building.glb, ground_geometry.exr, occluder.glb) that differ between the sets or\n"
+        "from what their manifest recorded, an output folder that is a partial set, is or holds an input, is,\n"
+        "holds or lies inside another site's bake set or a pack, and a folder another bake or merge is using\n"
+        "(BAKESET_DIR/.lock).";
+    help.options = {{"--output", "-o", "DIR", "bake set folder (created)", ""}};
+    help.notes = "Exit status: 0 merged, 1 bad input, 2 bad usage.";
+    return help;
+}
 
 struct MergeRequest {
     std::vector<std::string> partial_folders;
@@ -53,7 +56,7 @@ MergeRequest parseArguments(CommandLine& line) {
 int runMergeCommand(const std::vector<std::string>& args) {
     MergeRequest request;
     if (const std::optional<int> exit_code = readCommandLine(
-            "gusuku-bake merge", args, kMergeUsage, false, [&](CommandLine& line) { request = parseArguments(line); }))
+            "gusuku-bake merge", args, mergeHelp(), false, [&](CommandLine& line) { request = parseArguments(line); }))
         return *exit_code;
     const bake::MergeReport report = bake::mergePartialBakeSets(request.partial_folders, request.output_dir);
     std::printf("bake set:        %s\n", report.manifest_path.c_str());

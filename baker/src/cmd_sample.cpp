@@ -9,23 +9,27 @@
 
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku_bake/sample_site.h"
 
 namespace gusuku::bake_cli {
 
 namespace {
 
-constexpr const char* kSampleUsage =
-    "usage: gusuku-bake sample DIR [--force]\n"
-    "\n"
-    "Writes a sample site generated in code into DIR: site.glb (terrain, terrace, steps and a low\n"
-    "wall, stored Y-up with its transform in site.json), building.glb (a thatched house with an open\n"
-    "doorway), sky_sunny.hdr (CIE clear sky type 12 with the sun disc) and sky_overcast.hdr (CIE\n"
-    "overcast sky), and site.json. Then `gusuku-bake bake DIR/site.json -o BAKESET_DIR` bakes it.\n"
-    "\n"
-    "options:\n"
-    "  --force   write into DIR even if it is not empty (files of the same names are replaced)\n"
-    "  --help    show this help\n";
+// The command's option table: its --help, and what docs/baker.md's table of `gusuku-bake sample` must say.
+CommandHelp sampleHelp() {
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake sample DIR [--force]";
+    help.description =
+        "Writes a sample site generated in code into DIR: site.glb (terrain, terrace, steps and a low\n"
+        "wall, stored Y-up with its transform in site.json), building.glb (a thatched house with an open\n"
+        "doorway), sky_sunny.hdr (CIE clear sky type 12 with the sun disc) and sky_overcast.hdr (CIE\n"
+        "overcast sky), and site.json. Then `gusuku-bake bake DIR/site.json -o BAKESET_DIR` bakes it.";
+    help.options = {
+        {"--force", "", "", "write into DIR even if it is not empty (files of the same names are replaced)", ""},
+    };
+    return help;
+}
 
 }  // namespace
 
@@ -41,7 +45,7 @@ int runSampleCommand(const std::vector<std::string>& args) {
         if (directories.empty()) line.fail("DIR is missing");
         directory = directories.front();
     };
-    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sample", args, kSampleUsage, true, parse))
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sample", args, sampleHelp(), true, parse))
         return *exit_code;
 
     std::error_code error;

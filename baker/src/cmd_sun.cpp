@@ -13,6 +13,7 @@
 
 #include "commands.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/sun.h"
 #include "gusuku/maths/time_utc.h"
@@ -21,28 +22,44 @@ namespace gusuku::bake_cli {
 
 namespace {
 
-constexpr const char* kSunUsage =
-    "usage: gusuku-bake sun --lat DEG --lon DEG --time ISO8601 [options]\n"
-    "\n"
-    "Prints the sun's position seen from a place at an instant (NREL SPA, Reda and Andreas 2004).\n"
-    "\n"
-    "required:\n"
-    "  --lat DEG            geodetic latitude, north positive, [-90, 90]\n"
-    "  --lon DEG            longitude, east positive, [-180, 180]\n"
-    "  --time ISO8601       instant with an explicit offset, e.g. 2026-06-21T09:00:00+09:00 or ...Z\n"
-    "options:\n"
-    "  --height M           height above the WGS84 ellipsoid, metres, [-1000, 10000] (default 0)\n"
-    "  --pressure MBAR      annual mean pressure for refraction, [100, 1100] mbar\n"
-    "                       (default: the standard atmosphere at --height, 1013.25 mbar at 0 m)\n"
-    "  --temperature C      annual mean temperature for refraction, Celsius, [-90, 60] (default 15)\n"
-    "  --delta-t S          Delta T = TT - UT1, seconds (default 69.2, the IERS value for the mid-2020s)\n"
-    "  --delta-ut1 S        UT1 - UTC, seconds, |S| < 1 (default 0)\n"
-    "  --json               print one JSON object instead of text\n"
-    "  -h, --help           print this help\n"
-    "\n"
-    "Azimuth is east of north; elevation and zenith are apparent (refracted) unless said otherwise.\n"
-    "The ENU vector points towards the sun: (cos e sin A, cos e cos A, sin e).\n"
-    "The ranges are site.json's. Exit status: 0 ok, 1 bad value, 2 bad usage.\n";
+// |UT1 - UTC| stays under a second by the definition of UTC (leap seconds); --delta-ut1 accepts up to this.
+constexpr double kMaxDeltaUt1S = 0.9;
+
+// The command's option table: its --help, and what docs/baker.md's table of `gusuku-bake sun` must say. The
+// defaults are SunObserver's (gusuku/maths/sun.h), which the parser keeps when an option is absent.
+CommandHelp sunHelp() {
+    const SunObserver defaults;
+    const auto range = [](const SiteValueRange& values) {
+        return "[" + defaultNumber(values.minimum) + ", " + defaultNumber(values.maximum) + "]";
+    };
+    CommandHelp help;
+    help.usage = "usage: gusuku-bake sun --lat DEG --lon DEG --time ISO8601 [options]";
+    help.description = "Prints the sun's position seen from a place at an instant (NREL SPA, Reda and Andreas 2004).";
+    help.options = {
+        {"--lat", "", "DEG", "geodetic latitude, north positive, " + range(kSiteLatitudeRangeDeg) + " (required)", ""},
+        {"--lon", "", "DEG", "longitude, east positive, " + range(kSiteLongitudeRangeDeg) + " (required)", ""},
+        {"--time", "", "ISO8601",
+         "instant with an explicit offset, e.g. 2026-06-21T09:00:00+09:00 or ...Z (required)", ""},
+        {"--height", "", "M", "height above the WGS84 ellipsoid, metres, " + range(kSiteHeightRangeM),
+         defaultNumber(defaults.height_m)},
+        {"--pressure", "", "MBAR", "annual mean pressure for refraction, mbar, " + range(kSitePressureRangeMbar),
+         "the standard atmosphere at --height, " + defaultNumber(standardAtmospherePressureMbar(0.0)) +
+             " mbar at 0 m"},
+        {"--temperature", "", "C",
+         "annual mean temperature for refraction, Celsius, " + range(kSiteTemperatureRangeC),
+         defaultNumber(defaults.temperature_c)},
+        {"--delta-t", "", "S", "Delta T = TT - UT1, seconds (the default is the IERS value for the mid-2020s)",
+         defaultNumber(defaults.delta_t_s)},
+        {"--delta-ut1", "", "S", "UT1 - UTC, seconds, [-" + defaultNumber(kMaxDeltaUt1S) + ", " + defaultNumber(kMaxDeltaUt1S) + "]",
+         defaultNumber(defaults.delta_ut1_s)},
+        {"--json", "", "", "print one JSON object instead of text", ""},
+    };
+    help.notes =
+        "Azimuth is east of north; elevation and zenith are apparent (refracted) unless said otherwise.\n"
+        "The ENU vector points towards the sun: (cos e sin A, cos e cos A, sin e).\n"
+        "The ranges are site.json's. Exit status: 0 ok, 1 bad value, 2 bad usage.";
+    return help;
+}
 
 // The zone the user wrote the time in (minutes east of UTC), so the local time is echoed back in it. The text
 // has already been accepted by parseIso8601Utc, so it ends in 'Z' or '+hh:mm'/'-hh:mm'.
@@ -81,13 +98,15 @@ SunRequest parseArguments(CommandLine& line) {
     };
     const std::optional<double> latitude = inRange("--lat", kSiteLatitudeRangeDeg);
     const std::optional<double> longitude = inRange("--lon", kSiteLongitudeRangeDeg);
-    request.observer.height_m = inRange("--height", kSiteHeightRangeM).value_or(0.0);
+    request.observer.height_m = inRange("--height", kSiteHeightRangeM).value_or(request.observer.height_m);
     // Absent, the pressure stays negative: SunObserver then takes the standard atmosphere at the height.
     if (const std::optional<double> pressure = inRange("--pressure", kSitePressureRangeMbar))
         request.observer.pressure_mbar = *pressure;
-    request.observer.temperature_c = inRange("--temperature", kSiteTemperatureRangeC).value_or(15.0);
+    request.observer.temperature_c =
+        inRange("--temperature", kSiteTemperatureRangeC).value_or(request.observer.temperature_c);
     request.observer.delta_t_s = line.number("--delta-t", -1e6, 1e6).value_or(request.observer.delta_t_s);
-    request.observer.delta_ut1_s = line.number("--delta-ut1", -0.9, 0.9).value_or(0.0);
+    request.observer.delta_ut1_s =
+        line.number("--delta-ut1", -kMaxDeltaUt1S, kMaxDeltaUt1S).value_or(request.observer.delta_ut1_s);
     const std::optional<std::string> time_text = line.text("--time");
     line.finish();  // anything else, positionals included, is bad usage
 
@@ -158,7 +177,7 @@ void printText(const SunRequest& request, const SunPosition& sun) {
 
 int runSunCommand(const std::vector<std::string>& args) {
     SunRequest request;
-    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sun", args, kSunUsage, true,
+    if (const std::optional<int> exit_code = readCommandLine("gusuku-bake sun", args, sunHelp(), true,
                                                              [&](CommandLine& line) { request = parseArguments(line); }))
         return *exit_code;
     SunPosition sun;

@@ -9,6 +9,7 @@
 
 namespace gusuku {
 class CommandLine;
+struct CommandHelp;  // gusuku/tools/option_table.h
 }
 
 namespace gusuku::bake_cli {
@@ -24,12 +25,13 @@ int runExportCommand(const std::vector<std::string>& args);    // cmd_export.cpp
 
 /// How every subcommand reads its command line (gusuku/tools/command_line.h), so that all behave alike. `parse` takes
 /// the command's options and positionals from `line` and calls line.finish(); it throws UsageError for bad usage
-/// and OptionValueError for a bad value. Returns nullopt when the command is to run, else its exit code: 0 after
-/// --help / -h printed `usage` on stdout; 1 after a bad value and 2 after bad usage, each reported as the error's
-/// one line on stderr ("gusuku-bake bake: --samples: 0 is outside [1, 1000000]"), followed by `usage` after bad
-/// usage when usage_after_bad_usage.
+/// and OptionValueError for a bad value; `line` reads only the options of `help`'s table (CommandLine::
+/// useOptionTable). Returns nullopt when the command is to run, else its exit code: 0 after --help / -h printed
+/// `help` (formatHelp) on stdout; 1 after a bad value and 2 after bad usage, each reported as the error's one line
+/// on stderr ("gusuku-bake bake: --samples: 0 is outside [1, 1000000]"), followed by the help after bad usage when
+/// usage_after_bad_usage.
 std::optional<int> readCommandLine(const std::string& program, const std::vector<std::string>& args,
-                                   const char* usage, bool usage_after_bad_usage,
+                                   const CommandHelp& help, bool usage_after_bad_usage,
                                    const std::function<void(CommandLine&)>& parse);  // read_command_line.cpp
 
 }  // namespace gusuku::bake_cli

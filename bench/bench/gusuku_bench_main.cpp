@@ -40,6 +40,7 @@
 #include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun.h"
@@ -55,45 +56,76 @@
 namespace gusuku::bench {
 namespace {
 
-const char* const kUsage =
-    "usage: gusuku-bench BAKESET -o DIR [--quick] [options]\n"
-    "\n"
-    "Frame time of gusuku's runtime on this machine's Vulkan against its accuracy to a path-traced truth, for\n"
-    "direct-only, the proposed method with each part on and off, and the path tracer itself; the day, the weather,\n"
-    "camera responses and the cost against triangles and coverage. Writes DIR/results.json, DIR/chart.svg,\n"
-    "DIR/chart.json, DIR/day.svg, DIR/summary.md and the frames it compares; prints the summary.\n"
-    "\n"
-    "  --quick           the short run (small frames, few samples, fewer steps): a minute or two\n"
-    "  --cache DIR       path-traced frames are kept here by key (default DIR/../bench-cache)\n"
-    "  --site SITE.json  the site (default: the one the bake set was baked from)\n"
-    "  --only LIST       comma-separated sections to run: truth,timing,day,weather,cost,clouds (truth, the\n"
-    "                    accuracy of every mode and the chart always run)\n"
-    "  --photographed-skies BAKESET2\n"
-    "                    the same site baked under photographed skies (scripts/bench.sh bakes one under\n"
-    "                    ../shared/data/env when it is there): the weather and clouds sections run under\n"
-    "                    them too, with their own path-traced truths\n"
-    "  --truth-samples N samples a pixel of every path-traced truth (default 512, quick 128)\n"
-    "  --accuracy-size WxH\n"
-    "                    the accuracy frames' size (default 320x180, quick 160x90)\n"
-    "  --msaa N          the runtime's samples a pixel (RuntimeOptions::msaa_samples, default 4)\n"
-    "  --anisotropy N    the runtime's texture anisotropy (RuntimeOptions::max_anisotropy, default 16,\n"
-    "                    clamped to what the bench's own device has)\n"
-    "  --views LIST      the site section's visitor poses, NAME:E,N,U:E,N,U (eye, look-at) separated by ';'\n"
-    "  --sample-bakeset DIR\n"
-    "                    the sample's bake set: the site section times its frame from each pose in the same\n"
-    "                    run, interleaved with the site's (preferred over --sample-results)\n"
-    "  --sample-results FILE\n"
-    "                    the sample's results.json: the site section reads the frame against the sample's\n"
-    "  --cycles-truth DIR\n"
-    "                    Cycles' renders of the --views poses at the site section's size, lit by the slot of\n"
-    "                    its baked instant (bench/cycles/compare_views_with_cycles.sh writes them): each pose\n"
-    "                    reports the path tracer's difference from Cycles beside its own seed-to-seed noise\n"
-    "\n"
-    "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
+// Where path-traced frames are kept when --cache is not given: this folder beside the output folder.
+constexpr const char* kCacheFolderName = "bench-cache";
+
+// --quick: the short run (small frames, few samples, fewer steps), a minute or two.
+void applyQuickRun(Settings& settings) {
+    settings.accuracy_width = 160, settings.accuracy_height = 90, settings.truth_samples = 128;
+    settings.sweep_width = 96, settings.sweep_height = 54, settings.sweep_samples = 64;
+    settings.day_step_minutes = 120;
+    settings.timed_frames = 15, settings.warm_up_frames = 3;
+    settings.tracer_timed_max_samples = 4;
+}
+
+// The command's option table: its --help, and what docs/measurements.md's table of gusuku-bench must say.
+CommandHelp benchHelp() {
+    const Settings defaults;
+    Settings quick;
+    applyQuickRun(quick);
+    CommandHelp help;
+    help.usage = "usage: gusuku-bench BAKESET -o DIR [--quick] [options]";
+    help.description =
+        "Frame time of gusuku's runtime on this machine's Vulkan against its accuracy to a path-traced truth, for\n"
+        "direct-only, the proposed method with each part on and off, and the path tracer itself; the day, the weather,\n"
+        "camera responses and the cost against triangles and coverage. Writes DIR/results.json, DIR/chart.svg,\n"
+        "DIR/chart.json, DIR/day.svg, DIR/summary.md and the frames it compares; prints the summary.";
+    help.options = {
+        {"--output", "-o", "DIR", "the results' folder", ""},
+        {"--quick", "", "", "the short run (small frames, few samples, fewer steps): a minute or two", ""},
+        {"--cache", "", "DIR", "path-traced frames are kept here by key", std::string("DIR/../") + kCacheFolderName},
+        {"--site", "", "SITE.json", "the site", "the one the bake set was baked from"},
+        {"--only", "", "LIST",
+         "comma-separated sections to run: truth,timing,day,weather,cost,clouds,site (truth, the accuracy of every "
+         "mode and the chart always run, unless LIST is site alone)",
+         "every section"},
+        {"--photographed-skies", "", "BAKESET2",
+         "the same site baked under photographed skies (scripts/bench.sh bakes one under ../shared/data/env when it "
+         "is there): the weather and clouds sections run under them too, with their own path-traced truths",
+         ""},
+        {"--truth-samples", "", "N", "samples a pixel of every path-traced truth",
+         std::to_string(defaults.truth_samples) + ", --quick " + std::to_string(quick.truth_samples)},
+        {"--accuracy-size", "", "WxH", "the accuracy frames' size",
+         std::to_string(defaults.accuracy_width) + "x" + std::to_string(defaults.accuracy_height) + ", --quick " +
+             std::to_string(quick.accuracy_width) + "x" + std::to_string(quick.accuracy_height)},
+        {"--msaa", "", "N", "the runtime's samples a pixel (RuntimeOptions::msaa_samples)",
+         std::to_string(defaults.msaa_samples)},
+        {"--anisotropy", "", "N",
+         "the runtime's texture anisotropy (RuntimeOptions::max_anisotropy), clamped to what the bench's own device "
+         "has",
+         defaultNumber(defaults.max_anisotropy)},
+        {"--views", "", "LIST", "the site section's visitor poses, NAME:E,N,U:E,N,U (eye, look-at) separated by ';'",
+         ""},
+        {"--sample-bakeset", "", "DIR",
+         "the sample's bake set: the site section times its frame from each pose in the same run, interleaved with "
+         "the site's (preferred over --sample-results)",
+         ""},
+        {"--sample-results", "", "FILE",
+         "the sample's results.json: the site section reads the frame against the sample's", ""},
+        {"--cycles-truth", "", "DIR",
+         "Cycles' renders of the --views poses at the site section's size, lit by the slot of its baked instant "
+         "(bench/cycles/compare_views_with_cycles.sh writes them): each pose reports the path tracer's difference "
+         "from Cycles beside its own seed-to-seed noise",
+         ""},
+    };
+    help.notes = "Exit status: 0 ok, 1 bad input, 2 bad usage.";
+    return help;
+}
 
 Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     Settings settings;
     CommandLine line("gusuku-bench", args);
+    line.useOptionTable(benchHelp().options);
     help = line.helpRequested();
     if (help) return settings;
     const std::optional<std::string> output = line.text("--output", "-o");
@@ -130,15 +162,9 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     if (!output) line.fail("needs -o DIR (see --help)");
     settings.bake_set = positionals[0];
     settings.output = *output;
-    settings.cache = cache.value_or((std::filesystem::path(*output).parent_path() / "bench-cache").string());
-    if (settings.cache.empty() || settings.cache == "bench-cache") settings.cache = "bench-cache";
-    if (settings.quick) {
-        settings.accuracy_width = 160, settings.accuracy_height = 90, settings.truth_samples = 128;
-        settings.sweep_width = 96, settings.sweep_height = 54, settings.sweep_samples = 64;
-        settings.day_step_minutes = 120;
-        settings.timed_frames = 15, settings.warm_up_frames = 3;
-        settings.tracer_timed_max_samples = 4;
-    }
+    settings.cache = cache.value_or((std::filesystem::path(*output).parent_path() / kCacheFolderName).string());
+    if (settings.cache.empty()) settings.cache = kCacheFolderName;
+    if (settings.quick) applyQuickRun(settings);
     if (truth_samples) settings.truth_samples = uint32_t(*truth_samples);
     if (accuracy_size) {
         unsigned width = 0, height = 0;
@@ -492,7 +518,7 @@ int main(int argc, char** argv) {
         bool help = false;
         const Settings settings = parseSettings(std::vector<std::string>(argv + 1, argv + argc), help);
         if (help) {
-            std::printf("%s", kUsage);
+            std::printf("%s", formatHelp(benchHelp()).c_str());
             return 0;
         }
         return run(settings);

@@ -66,7 +66,7 @@ int run(const RenderRequest& request) {
     // The camera frame.
     uint32_t width = request.width, height = request.height;
     std::vector<uint8_t> camera;
-    float exposure = request.exposure.value_or(1.0f);
+    float exposure = request.exposure.value_or(kImageCameraExposure);
     const CameraPose pose = lookAtPose(request.position_enu, request.look_at_enu);
     if (request.camera == "sample") {
         const Clock::time_point start = Clock::now();
@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
     return gusuku::runToolMain("gusuku-render", [&] {
         const RenderRequest request = parseRenderRequest(std::vector<std::string>(argv + 1, argv + argc));
         if (request.help) {
-            std::printf("%s", kRenderUsage);
+            std::printf("%s", formatHelp(renderHelp()).c_str());
             return 0;
         }
         return run(request);

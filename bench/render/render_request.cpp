@@ -3,47 +3,92 @@
 #include "render_request.h"
 
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "gusuku/tools/command_line.h"
+#include "gusuku/tools/option_table.h"
 
 namespace gusuku::render_cli {
 
-const char* const kRenderUsage =
-    "usage: gusuku-render BAKESET -o COMPOSITE.png [options]\n"
-    "\n"
-    "Draws the baked building into a camera frame with gusuku's runtime (baked light, real-time sun and shadow,\n"
-    "the ground ratio, the colour match), writes the composite as an sRGB PNG, and prints the frame time of each\n"
-    "pass (profiling mode: each pass submitted alone) and of the whole frame (one submission, fence-timed).\n"
-    "\n"
-    "  --camera sample|IMAGE  the camera frame: `sample` path-traces the bake's site without the building from the\n"
-    "                         pose (default), or an image, converted to the runtime's 8-bit sRGB frame: 8- and\n"
-    "                         16-bit files as sRGB-encoded, float files (.exr, .hdr) as linear, grey as RGB;\n"
-    "                         8 to 8192 pixels a side\n"
-    "  --site SITE.json       the site for --camera sample (default: the site.json the bake set was baked from)\n"
-    "  --size WxH             frame size, pixels (default 1280x720; an IMAGE gives its own)\n"
-    "  --position E,N,U       camera centre, site ENU metres (default 0,-25,6)\n"
-    "  --look-at E,N,U        the point at the image centre (default 0,0,2)\n"
-    "  --fov DEG              horizontal field of view, (1, 170) degrees (default 60)\n"
-    "  --time ISO8601         the instant, with its offset (default: the bake date, 12:00 site clock)\n"
-    "  --weather W            sunny, overcast, or a cloud cover in [0, 1] (default sunny)\n"
-    "  --colour-match M       off, reinhard, preserve or ground (default off: the camera's exposure is known;\n"
-    "                         ground needs a bake set with ground albedo; paper: reinhard's old spelling)\n"
-    "  --exposure X           display value per unit radiance (default: the sample frame's middle grey, or 1)\n"
-    "  --samples N            path-traced samples per pixel of the sample camera frame (default 64)\n"
-    "  --frames N             frames timed after 3 warm-up frames (default 20)\n"
-    "  --ground-change R      relative change of the baked ground light below which the building is taken to\n"
-    "                         change nothing there (default 1/255; see RuntimeOptions::ground_change_threshold)\n"
-    "  --msaa N               samples a pixel (RuntimeOptions::msaa_samples; default 4, 1 turns it off)\n"
-    "  --anisotropy N         texture anisotropy, [1, 16] (RuntimeOptions::max_anisotropy; default 16, clamped\n"
-    "                         to the device's)\n"
-    "  --direct-only PNG      also write the direct-only frame (what AR apps draw today)\n"
-    "  --camera-out PNG       also write the camera frame the composite was drawn into\n"
-    "\n"
-    "Exit status: 0 ok, 1 bad input, 2 bad usage.\n";
+namespace {
+
+// --colour-match's choices, in the order of their names; "paper" (ColourMatch's old name) stays accepted so that
+// existing scripts keep working.
+constexpr ColourMatch kColourMatches[] = {ColourMatch::kOff, ColourMatch::kReinhard, ColourMatch::kPreserve,
+                                          ColourMatch::kGround, ColourMatch::kReinhard};
+constexpr const char* kColourMatchNames[] = {"off", "reinhard", "preserve", "ground", "paper"};
+
+std::string colourMatchName(ColourMatch match) {
+    for (size_t index = 0; index < std::size(kColourMatches); ++index)
+        if (kColourMatches[index] == match) return kColourMatchNames[index];
+    return "?";
+}
+
+std::string weatherName(float cloud_cover) {
+    if (cloud_cover == 0.0f) return "sunny";
+    if (cloud_cover == 1.0f) return "overcast";
+    return defaultNumber(cloud_cover);
+}
+
+std::string tripleText(const glm::dvec3& value) {
+    return defaultNumber(value.x) + "," + defaultNumber(value.y) + "," + defaultNumber(value.z);
+}
+
+}  // namespace
+
+CommandHelp renderHelp() {
+    const RenderRequest defaults;
+    CommandHelp help;
+    help.usage = "usage: gusuku-render BAKESET -o COMPOSITE.png [options]";
+    help.description =
+        "Draws the baked building into a camera frame with gusuku's runtime (baked light, real-time sun and shadow,\n"
+        "the ground ratio, the colour match), writes the composite as an sRGB PNG, and prints the frame time of each\n"
+        "pass (profiling mode: each pass submitted alone) and of the whole frame (one submission, fence-timed).";
+    help.options = {
+        {"--output", "-o", "PNG", "the composite", ""},
+        {"--camera", "", "sample|IMAGE",
+         "the camera frame: `sample` path-traces the bake's site without the building from the pose, or an image, "
+         "converted to the runtime's 8-bit sRGB frame: 8- and 16-bit files as sRGB-encoded, float files (.exr, "
+         ".hdr) as linear, grey as RGB; 8 to 8192 pixels a side",
+         defaults.camera},
+        {"--site", "", "SITE.json", "the site for --camera sample", "the site.json the bake set was baked from"},
+        {"--size", "", "WxH", "frame size, pixels, each side in [" + std::to_string(kMinFrameSide) + ", " +
+                                  std::to_string(kMaxFrameSide) + "] (an IMAGE gives its own)",
+         std::to_string(defaults.width) + "x" + std::to_string(defaults.height)},
+        {"--position", "", "E,N,U", "camera centre, site ENU metres", tripleText(defaults.position_enu)},
+        {"--look-at", "", "E,N,U", "the point at the image centre", tripleText(defaults.look_at_enu)},
+        {"--fov", "", "DEG", "horizontal field of view, (1, 170) degrees", defaultNumber(defaults.horizontal_fov_deg)},
+        {"--time", "", "ISO8601", "the instant, with its offset", "the bake date, 12:00 site clock"},
+        {"--weather", "", "W", "sunny, overcast, or a cloud cover in [0, 1]", weatherName(defaults.cloud_cover)},
+        {"--colour-match", "", "M",
+         "off, reinhard, preserve or ground (off: the camera's exposure is known; ground needs a bake set with ground "
+         "albedo; paper: reinhard's old spelling)",
+         colourMatchName(defaults.colour_match)},
+        {"--exposure", "", "X", "display value per unit radiance",
+         "the sample frame's middle grey, or " + defaultNumber(kImageCameraExposure) + " for an IMAGE"},
+        {"--samples", "", "N", "path-traced samples per pixel of the sample camera frame",
+         std::to_string(defaults.camera_samples)},
+        {"--frames", "", "N", "frames timed after " + std::to_string(defaults.warm_up_frames) + " warm-up frames",
+         std::to_string(defaults.timed_frames)},
+        {"--ground-change", "", "R",
+         "relative change of the baked ground light below which the building is taken to change nothing there "
+         "(RuntimeOptions::ground_change_threshold)",
+         "1/" + defaultNumber(1.0 / double(RuntimeOptions{}.ground_change_threshold))},
+        {"--msaa", "", "N", "samples a pixel (RuntimeOptions::msaa_samples; 1 turns it off)",
+         std::to_string(defaults.msaa_samples)},
+        {"--anisotropy", "", "N",
+         "texture anisotropy, [1, 16] (RuntimeOptions::max_anisotropy, clamped to the device's)",
+         defaultNumber(defaults.max_anisotropy)},
+        {"--direct-only", "", "PNG", "also write the direct-only frame (what AR apps draw today)", ""},
+        {"--camera-out", "", "PNG", "also write the camera frame the composite was drawn into", ""},
+    };
+    help.notes = "Exit status: 0 ok, 1 bad input, 2 bad usage.";
+    return help;
+}
 
 namespace {
 
@@ -63,6 +108,7 @@ glm::dvec3 parseTriple(const CommandLine& line, const std::string& option, const
 RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
     RenderRequest request;
     CommandLine line("gusuku-render", args);
+    line.useOptionTable(renderHelp().options);
     if (line.helpRequested()) {
         request.help = true;
         return request;
@@ -75,9 +121,10 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
         char separator = 0;
         std::istringstream stream(*size);
         stream >> width >> separator >> height;
-        if (!stream || separator != 'x' || !stream.eof() || width < 16 || height < 16 || width > 4096 ||
-            height > 4096)
-            line.failValue("--size", "'" + *size + "' is not WxH with each side in [16, 4096]");
+        if (!stream || separator != 'x' || !stream.eof() || width < kMinFrameSide || height < kMinFrameSide ||
+            width > kMaxFrameSide || height > kMaxFrameSide)
+            line.failValue("--size", "'" + *size + "' is not WxH with each side in [" + std::to_string(kMinFrameSide) +
+                                         ", " + std::to_string(kMaxFrameSide) + "]");
         request.width = width;
         request.height = height;
     }
@@ -98,12 +145,10 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
             request.cloud_cover = float(*cover);
         }
     }
-    // "paper" (ColourMatch's old name) stays accepted so that existing scripts keep working.
-    if (const auto mode = line.choice("--colour-match", {"off", "reinhard", "preserve", "ground", "paper"})) {
-        const ColourMatch modes[5] = {ColourMatch::kOff, ColourMatch::kReinhard, ColourMatch::kPreserve,
-                                      ColourMatch::kGround, ColourMatch::kReinhard};
-        request.colour_match = modes[*mode];
-    }
+    if (const auto mode = line.choice("--colour-match", {kColourMatchNames[0], kColourMatchNames[1],
+                                                         kColourMatchNames[2], kColourMatchNames[3],
+                                                         kColourMatchNames[4]}))
+        request.colour_match = kColourMatches[*mode];
     if (const auto exposure = line.number("--exposure", 1e-9, 1e9)) request.exposure = float(*exposure);
     request.camera_samples = uint32_t(line.integer("--samples", 1, 65536).value_or(request.camera_samples));
     if (const auto threshold = line.number("--ground-change", 0.0, 1.0)) request.ground_change_threshold = float(*threshold);

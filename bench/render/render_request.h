@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "gusuku/runtime/runtime.h"
+#include "gusuku/tools/option_table.h"
 
 namespace gusuku::render_cli {
 
@@ -38,7 +39,13 @@ struct RenderRequest {
     bool help = false;
 };
 
-extern const char* const kRenderUsage;
+/// The exposure of an IMAGE camera frame when --exposure is not given (a sample frame is exposed to middle grey).
+inline constexpr float kImageCameraExposure = 1.0f;
+/// The sides --size accepts, pixels.
+inline constexpr unsigned kMinFrameSide = 16, kMaxFrameSide = 4096;
+
+/// The command's option table: its --help (formatHelp), and what docs/runtime.md's table of gusuku-render must say.
+CommandHelp renderHelp();
 
 /// Parses the command line; UsageError / OptionValueError (gusuku/tools/command_line.h) on a bad one.
 RenderRequest parseRenderRequest(const std::vector<std::string>& args);

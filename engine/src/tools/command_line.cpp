@@ -7,7 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <exception>
+
+#include "gusuku/tools/option_table.h"
 
 namespace gusuku {
 
@@ -62,9 +65,23 @@ std::optional<std::pair<size_t, std::optional<std::string>>> CommandLine::find(c
     return last;
 }
 
+void CommandLine::useOptionTable(const std::vector<OptionHelp>& options) {
+    has_option_table_ = true;
+    table_names_.clear();
+    for (const OptionHelp& option : options) table_names_.push_back(option.name);
+}
+
+void CommandLine::noteRead(const std::string& name) {
+    if (!has_option_table_ || name == "--help") return;  // --help is every command's, in no table
+    if (std::find(table_names_.begin(), table_names_.end(), name) == table_names_.end())
+        throw std::logic_error(program_ + ": " + name + " is read but not in the command's option table (--help)");
+    read_names_.push_back(name);
+}
+
 bool CommandLine::helpRequested() { return flag("--help", "-h"); }
 
 bool CommandLine::flag(const std::string& name, const std::string& alias) {
+    noteRead(name);
     bool present = false;
     while (const auto found = find(name, alias)) {
         if (found->second) fail(name + ": takes no value, got " + quotedForMessage(*found->second));
@@ -76,6 +93,7 @@ bool CommandLine::flag(const std::string& name, const std::string& alias) {
 }
 
 std::optional<std::string> CommandLine::text(const std::string& name, const std::string& alias) {
+    noteRead(name);
     std::optional<std::string> value;
     // Take every occurrence, then refuse more than one: a repeated option is a mistake the user should see.
     std::vector<std::string> values;
@@ -181,6 +199,9 @@ std::vector<std::string> CommandLine::positionals() {
 }
 
 void CommandLine::finish() const {
+    for (const std::string& name : table_names_)
+        if (std::find(read_names_.begin(), read_names_.end(), name) == read_names_.end())
+            throw std::logic_error(program_ + ": " + name + " is in the command's option table (--help) but never read");
     for (const std::string& argument : arguments_) {
         if (!argument.empty() && argument[0] == '-') fail("unknown option " + quotedForMessage(argument) + " (see --help)");
         fail("unexpected argument " + quotedForMessage(argument) + " (see --help)");

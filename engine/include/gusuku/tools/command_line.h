@@ -22,6 +22,8 @@
 
 namespace gusuku {
 
+struct OptionHelp;  // gusuku/tools/option_table.h
+
 /// A number in plain decimal notation: an optional sign, digits with an optional fraction, an optional exponent
 /// ("-70.5", "1e-3", ".5"). Nothing else: not hexadecimal ("0x1", which strtod reads as 1), "inf", "nan", nor
 /// leading or trailing spaces. nullopt when the text is not one, or is beyond double's range.
@@ -46,6 +48,11 @@ class CommandLine {
 public:
     /// program: what messages start with ("gusuku-bake bake"); arguments: those after the program/subcommand.
     CommandLine(std::string program, std::vector<std::string> arguments);
+
+    /// Binds the command's option table (gusuku/tools/option_table.h), the one its --help prints: from then on
+    /// reading an option the table lacks, or finish() with a table option never read, throws std::logic_error
+    /// (a programming error, caught by any test that runs the command), so help and parser name the same options.
+    void useOptionTable(const std::vector<OptionHelp>& options);
 
     /// True when --help or -h was given (removed from the arguments).
     bool helpRequested();
@@ -88,8 +95,13 @@ private:
     // Finds `--name`, `--name=...` or `-alias`; returns (index, inline value if `=` was used).
     std::optional<std::pair<size_t, std::optional<std::string>>> find(const std::string& name,
                                                                       const std::string& alias) const;
+    // With an option table: refuses a name outside it, and records the name as read.
+    void noteRead(const std::string& name);
     std::string program_;
     std::vector<std::string> arguments_;
+    bool has_option_table_ = false;
+    std::vector<std::string> table_names_;  ///< the table's long names
+    std::vector<std::string> read_names_;   ///< the options read so far
 };
 
 /// A tool's main(): runs `body` and turns what escapes it into one line on stderr and an exit code:
