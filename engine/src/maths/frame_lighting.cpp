@@ -28,9 +28,16 @@ double angleBetweenDeg(const glm::dvec3& a, const glm::dvec3& b) {
 
 FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObserver& observer,
                                    double utc_seconds, float cloud_cover, bool blend_slots) {
+    const float cover = std::isnan(cloud_cover) ? 0.0f : std::clamp(cloud_cover, 0.0f, 1.0f);
+    return computeFrameLighting(manifest, observer, utc_seconds, SkyAndSun{cover, 1.0f - cover}, blend_slots);
+}
+
+FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObserver& observer,
+                                   double utc_seconds, const SkyAndSun& sky_and_sun, bool blend_slots) {
     FrameLighting lighting;
     lighting.sun = computeSunPosition(observer, utc_seconds);
-    const float cover = std::isnan(cloud_cover) ? 0.0f : std::clamp(cloud_cover, 0.0f, 1.0f);
+    const float cover = std::isnan(sky_and_sun.sky_overcast) ? 0.0f : std::clamp(sky_and_sun.sky_overcast, 0.0f, 1.0f);
+    const double sun_scale = std::isfinite(sky_and_sun.sun_scale) ? std::max(double(sky_and_sun.sun_scale), 0.0) : 0.0;
 
     // The two sunny slots nearest the current sun, ordered by (angle, slot index): kept as two running bests, not
     // a sorted list, because a frame allocates nothing (runtime.h) and a bake set has a handful of slots.
@@ -81,7 +88,7 @@ FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObs
             };
             const double t = lighting.slot_b_weight;
             lighting.sun_irradiance_rgb =
-                ((1.0 - t) * carried(lighting.slot_a) + t * carried(lighting.slot_b)) * (1.0 - double(cover));
+                ((1.0 - t) * carried(lighting.slot_a) + t * carried(lighting.slot_b)) * sun_scale;
         }
     } else if (lighting.overcast_slot >= 0) {
         lighting.overcast_weight = 1.0f;

@@ -45,6 +45,17 @@ struct FrameLighting {
 FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObserver& observer,
                                    double utc_seconds, float cloud_cover, bool blend_slots);
 
+/// The sky's state and the sun's kept apart (gusuku/maths/sun_visibility.h): sky_overcast in [0, 1] blends the
+/// slots as the cover above does; sun_scale (>= 0) multiplies E_sun in place of (1 - cover): the sun's visibility
+/// times its strength. The cloud_cover overload is {c, 1 - c}. A NaN overcast counts as 0, a NaN or negative scale
+/// as 0 (no sun).
+struct SkyAndSun {
+    float sky_overcast = 0.0f;
+    float sun_scale = 1.0f;
+};
+FrameLighting computeFrameLighting(const BakeSetManifest& manifest, const SunObserver& observer,
+                                   double utc_seconds, const SkyAndSun& sky_and_sun, bool blend_slots);
+
 /// Angle in degrees between two directions (any length > 0), robust near 0 and 180.
 double angleBetweenDeg(const glm::dvec3& a, const glm::dvec3& b);
 
