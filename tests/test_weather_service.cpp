@@ -169,6 +169,27 @@ TEST(WeatherService, MetarSkyGroupsGiveTheLargestLayersOktas) {
     EXPECT_FLOAT_EQ(gusuku::weatherFromMetar("egll 021150z ovc020", reference).weather.cloud_cover, 1.0f);
 }
 
+// The cloud base of the group that gave the cover, and the regime it gives the sun (issue 41 item 3): a high
+// overcast (cirrostratus, OVC200) keeps the sun where a low one hides it.
+TEST(WeatherService, MetarCloudBaseGivesTheSunsRegime) {
+    const double reference = gusuku::parseIso8601Utc("2026-12-02T12:30:00Z");
+    const auto reading = [&](const char* metar) { return gusuku::weatherFromMetar(metar, reference); };
+    EXPECT_FLOAT_EQ(reading("EGLL 021150Z FEW020 BKN035 OVC200").cover_base_feet, 20000.0f);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z OVC200")), gusuku::SkyRegime::kHighThinOvercast);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z FEW020 OVC200")), gusuku::SkyRegime::kHighThinOvercast);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z OVC008")), gusuku::SkyRegime::kOvercast);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z VV002")), gusuku::SkyRegime::kOvercast);  // fog
+    // The first of equal layers counts: OVC012 under OVC250 is a low overcast.
+    EXPECT_FLOAT_EQ(reading("EGLL 021150Z OVC012 OVC250").cover_base_feet, 1200.0f);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z BKN035")), gusuku::SkyRegime::kBroken);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z SCT040")), gusuku::SkyRegime::kBroken);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z FEW040")), gusuku::SkyRegime::kClear);
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z CAVOK")), gusuku::SkyRegime::kClear);
+    EXPECT_FLOAT_EQ(reading("EGLL 021150Z CAVOK").cover_base_feet, -1.0f);
+    EXPECT_FLOAT_EQ(reading("EGLL 021150Z OVC///").cover_base_feet, -1.0f);  // not measured: taken as low
+    EXPECT_EQ(gusuku::skyRegimeOf(reading("EGLL 021150Z OVC///")), gusuku::SkyRegime::kOvercast);
+}
+
 TEST(WeatherService, MetarTimeIsTheNearestMonthsDay) {
     // Fetched just after midnight on 1 April: day 31, 23:50 is 31 March.
     const double april_first = gusuku::parseIso8601Utc("2026-04-01T00:10:00Z");

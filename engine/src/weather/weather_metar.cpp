@@ -94,6 +94,15 @@ std::optional<float> skyGroupOktas(const std::string& token, const std::string& 
     return std::nullopt;
 }
 
+// The base of a sky-cover or vertical-visibility group that skyGroupOktas accepted, in feet above the station
+// (METAR's heights are hundreds of feet); -1 where it has none (SKC, CAVOK, ...) or it was not measured (///).
+float skyGroupBaseFeet(const std::string& token) {
+    const size_t digits_at = token.rfind("VV", 0) == 0 ? 2 : 3;
+    if (token.size() < digits_at + 3) return -1.0f;
+    const std::string height = token.substr(digits_at, 3);
+    return allDigits(height) ? float(std::stoi(height)) * 100.0f : -1.0f;
+}
+
 int twoDigits(const std::string& text, size_t at) { return (text[at] - '0') * 10 + (text[at + 1] - '0'); }
 
 // The latest instant with DDhhmmZ's day and time that is not after the reference by more than the clock skew
@@ -151,6 +160,7 @@ WeatherReading weatherFromMetar(const std::string& metar, double reference_utc_u
         if (!oktas || (largest_oktas && *oktas <= *largest_oktas)) continue;
         largest_oktas = oktas;
         reading.read_from = tokens[at];
+        reading.cover_base_feet = skyGroupBaseFeet(tokens[at]);
     }
     if (!largest_oktas)
         throw InputError(name, "sky cover",

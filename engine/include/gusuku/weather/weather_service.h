@@ -33,6 +33,7 @@
 #include <optional>
 #include <string>
 
+#include "gusuku/maths/sun_visibility.h"
 #include "gusuku/runtime/runtime.h"
 
 namespace gusuku {
@@ -62,8 +63,15 @@ struct WeatherReading {
     /// ("BKN035", "CAVOK").
     std::string read_from;
     std::optional<bool> is_day;  ///< Open-Meteo's is_day, when the answer has it (METAR: nothing)
+    /// METAR: the base of the group that gave the cover, feet above the station; -1 not known (no base in the
+    /// group, ///, or Open-Meteo). skyRegimeOf reads a high overcast (cirrostratus) from it.
+    float cover_base_feet = -1.0f;
     std::string station;         ///< METAR: the ICAO station ("EGLL"); Open-Meteo: empty
 };
+
+/// What the report says of the sun, as the prior of SunVisibilityFilter (gusuku/maths/sun_visibility.h): clear,
+/// broken, overcast, or a high overcast that keeps the sun (a METAR's OVC or BKN-to-OVC at 16,500 ft or more).
+SkyRegime skyRegimeOf(const WeatherReading& reading);
 
 /// The "current" block of an Open-Meteo answer. name: how messages call the text (a URL, a file name).
 WeatherReading weatherFromOpenMeteoCurrent(const std::string& json_text,
