@@ -23,6 +23,35 @@ if [ "${1:-}" = "--cross" ]; then
   packages+=(gcc-aarch64-linux-gnu g++-aarch64-linux-gnu libvulkan-dev:arm64 file)
 fi
 
+# The web recipes' tests (tests/web_recipes: docs/export.md's three.js and Babylon.js recipes in headless Chromium)
+# want Debian's chromium, node and npm, and the pinned npm packages in build/web-recipes. Best effort: a machine
+# without them still builds, and those tests skip saying what is missing.
+install_web_recipes() {
+  # By command: a node from elsewhere brings its own npm, which Debian's npm package would conflict with.
+  local web_missing=()
+  command -v chromium > /dev/null || web_missing+=(chromium)
+  command -v node > /dev/null || web_missing+=(nodejs)
+  command -v npm > /dev/null || web_missing+=(npm)
+  if [ "${#web_missing[@]}" -gt 0 ]; then
+    if [ "$(id -u)" -ne 0 ]; then
+      echo "install-deps: web recipes: missing ${web_missing[*]} (not root; their tests will skip)" >&2
+    elif ! (export DEBIAN_FRONTEND=noninteractive; apt-get update -qq &&
+            apt-get install -y -qq --no-install-recommends "${web_missing[@]}"); then
+      echo "install-deps: web recipes: could not install ${web_missing[*]}; their tests will skip" >&2
+    fi
+  fi
+  local folder=build/web-recipes
+  if command -v npm > /dev/null && ! cmp -s tests/web_recipes/package-lock.json "$folder/package-lock.json"; then
+    mkdir -p "$folder"
+    cp tests/web_recipes/package.json tests/web_recipes/package-lock.json "$folder/"
+    if ! (cd "$folder" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error > /dev/null); then
+      rm -f "$folder/package-lock.json"  # so that the next run tries again
+      echo "install-deps: web recipes: npm ci failed in $folder; their tests will skip" >&2
+    fi
+  fi
+}
+(cd "$(dirname "$0")/.." && install_web_recipes) || true
+
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
