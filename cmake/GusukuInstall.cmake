@@ -59,6 +59,8 @@ install(TARGETS gusuku_formats gusuku_maths gusuku_gpu gusuku_runtime gusuku_pac
 #   gusuku/formats/bakeset_data.h, bakeset_manifest.h, ground_grid.h    runtime.h's BakeSetData, what open() takes
 #   gusuku/maths/colour_match.h, colour.h, const_span.h                 runtime.h's colour match settings
 #   gusuku/gpu/gpu_device.h                                             runtime.h's app-owned device
+#   gusuku/maths/sun_visibility.h                                       weather_service.h's SkyRegime, the sun's
+#                                                                       state filter an app runs per frame
 # Each header sits in engine/include/gusuku/<library>/, the folder of the library that provides it.
 # install_and_consume checks that every installed header is reached from an entry header, and compiles each alone.
 include(${CMAKE_CURRENT_LIST_DIR}/GusukuHeaderClosure.cmake)
