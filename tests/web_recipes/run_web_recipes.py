@@ -7,7 +7,7 @@ usage: run_web_recipes.py export --bake GUSUKU_BAKE --work DIR
 
 `export` writes the sample site, bakes it at 4 samples and exports sunny_1200 (WORK/model.glb), with the
 lightmap's bytes decoded here from the glb's PNG (WORK/lightmap.json). A recipe run serves a folder of its page
-(tests/web_recipes/RECIPE.html), measure.js, the recipe's code block cut from export.md (recipe.js), the glb, the
+(three.html or babylon.html beside this script), measure.js, the recipe's code block cut from export.md (recipe.js), the glb, the
 lightmap and the npm packages on 127.0.0.1 only, loads the page in `chromium --headless` on SwiftShader, and reads
 the page's result from the dumped DOM: per channel of every covered pixel, the irradiance the engine applied
 (pi * lit / albedo) over the lightmap's value there. As export.md documents it, that ratio is 1 less the share
