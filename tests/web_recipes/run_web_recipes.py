@@ -204,7 +204,7 @@ def main():
     parser.add_argument("--docs")
     parser.add_argument("--node-modules")
     parser.add_argument("--chromium")
-    parser.add_argument("--timeout", type=float, default=50)
+    parser.add_argument("--timeout", type=float, default=100)  # seconds for chromium, under ctest's 120
     arguments = parser.parse_args()
     if arguments.recipe == "export":
         return make_export(arguments.bake, pathlib.Path(arguments.work))
