@@ -155,9 +155,11 @@ static_assert(offsetof(gusuku_runtime_options, texture_compression_astc_ldr) == 
               sizeof(gusuku_runtime_options) == 88);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
-static_assert(offsetof(gusuku_frame_input, camera_luma) == 232 && sizeof(gusuku_frame_input) == 312);
+static_assert(offsetof(gusuku_frame_input, camera_luma) == 232);
 static_assert(offsetof(gusuku_frame_input, camera_image_format) == 260 &&
               offsetof(gusuku_frame_input, signal_values) == 304);
+// API version 4 (the sun apart from the sky).
+static_assert(offsetof(gusuku_frame_input, sun_scale) == 312 && sizeof(gusuku_frame_input) == 320);
 static_assert(sizeof(FrameInfo01) == 104 && sizeof(gusuku_frame_info) == 112);
 static_assert(offsetof(gusuku_frame_info, ground_quads_drawn) == 100);
 static_assert(offsetof(gusuku_frame_info, ground_quads_total) == 104);
@@ -480,6 +482,50 @@ TEST_F(CApiVersionsTest, AnOldFrameInfoIsWrittenOnlyAsFarAsItsSize) {
 // API version 3's option texture_compression_astc_ldr: 0 by default; a version-2 layout (its bytes past it
 // kBeyond, which read as nonzero) opens as the default; gusuku_runtime_astc_texture_count says how many textures
 // are drawn from ASTC blocks (none here: the wall has no texture, and lavapipe samples no ASTC).
+// API version 4's field: sun_scale is read from a frame of today's size (NaN and above 2 refused, naming it), and
+// a frame of version 1's size, with 0x7F bytes where sun_scale would be (3.4e38, which would be refused), takes
+// the default (-1: the sun follows the cover) and renders as today's default frame does.
+TEST_F(CApiVersionsTest, SunScaleIsReadFromVersion4AndDefaultsBeforeIt) {
+    const WallScene scene;
+    std::vector<uint8_t> camera(size_t(kSize) * kSize * 4, 30);
+    const OldInBuffer<BakeSetDesc01, gusuku_bakeset_desc> old_desc(scene.desc());
+    gusuku_bakeset* set = nullptr;
+    ASSERT_EQ(gusuku_bakeset_create(old_desc.today(), &set), GUSUKU_OK) << gusuku_last_error_message();
+    const gusuku_vulkan_device vulkan = device();
+    gusuku_runtime_options options;
+    ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    options.frame_width = options.frame_height = kSize;
+    options.shadow_map_size = 64;
+    gusuku_frame_input frame;
+    ASSERT_EQ(gusuku_frame_input_default(&frame), GUSUKU_OK);
+    EXPECT_EQ(frame.sun_scale, -1.0f);
+    const FrameInput01 frame_fields = frame01(camera.data());
+    std::memcpy(&frame, &frame_fields, sizeof frame_fields);
+    frame.struct_size = sizeof frame;
+    std::vector<uint8_t> version1(sizeof frame + 64, kBeyond);
+    std::memcpy(version1.data(), &frame, offsetof(gusuku_frame_input, sun_scale));
+    reinterpret_cast<gusuku_frame_input*>(version1.data())->struct_size =
+        uint32_t(offsetof(gusuku_frame_input, sun_scale));
+    const Rendered today = render(&vulkan, set, &options, &frame);
+    const Rendered old = render(&vulkan, set, &options, reinterpret_cast<const gusuku_frame_input*>(version1.data()));
+    EXPECT_TRUE(old.composite == today.composite) << "version 1's frame differs from today's default frame";
+
+    gusuku_runtime* runtime = nullptr;
+    ASSERT_EQ(gusuku_runtime_open(&vulkan, set, &options, &runtime), GUSUKU_OK) << gusuku_last_error_message();
+    std::vector<uint8_t> output(camera.size());
+    for (float bad : {std::nanf(""), 2.5f}) {
+        frame.sun_scale = bad;
+        EXPECT_EQ(gusuku_runtime_render(runtime, &frame, output.data(), nullptr), GUSUKU_ERROR_INVALID_FRAME);
+        EXPECT_NE(std::string(gusuku_runtime_last_error(runtime)).find("weather.sun_scale"), std::string::npos)
+            << gusuku_runtime_last_error(runtime);
+    }
+    frame.sun_scale = 1.0f;
+    EXPECT_EQ(gusuku_runtime_render(runtime, &frame, output.data(), nullptr), GUSUKU_OK)
+        << gusuku_runtime_last_error(runtime);
+    EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
+    EXPECT_EQ(gusuku_bakeset_free(set), GUSUKU_OK);
+}
+
 TEST_F(CApiVersionsTest, AstcTextureOptionIsReadFromVersion3AndDefaultsBeforeIt) {
     const WallScene scene;
     const OldInBuffer<BakeSetDesc01, gusuku_bakeset_desc> old_desc(scene.desc());

@@ -162,6 +162,45 @@ TEST_F(RuntimeTest, BuildingPixelIsAlbedoOverPiTimesBakedPlusShadowedSun) {
     EXPECT_EQ(output[at + 3], 255);
 }
 
+// The sun apart from the sky (issue 41 item 3): under broken cloud (cover 0.75) with the sun out (sun_scale 1),
+// E_sun is the clear sky's, not the quarter that (1 - cover) gives, and the lit face brightens by exactly
+// albedo / pi x E_sun x cos over the same sky with the sun behind a cloud (sun_scale 0): the baked part, whatever
+// the slots blend to, cancels in the difference.
+TEST_F(RuntimeTest, BrokenCloudWithTheSunOutDrawsTheWholeSun) {
+    testing::SyntheticBakeSetOptions set;
+    std::unique_ptr<Runtime> runtime = open(set);
+    const std::vector<uint8_t> camera(size_t(kWidth) * kHeight * 4, 0);
+    const CameraPose pose = CameraPose::lookingAt({12, 0, 1.5}, {0, 0, 1.5});  // the east face at 09:00
+    std::vector<uint8_t> sun_out(camera.size()), sun_hidden(camera.size()), clear_output(camera.size());
+    FrameInput frame = frameAt(camera, pose, syntheticLocalTime(9, 0));
+    frame.ground_ratio = false;
+    const FrameInfo clear = runtime->renderFrame(frame, clear_output.data());
+    frame.weather.cloud_cover = 0.75f;
+    const FrameInfo single_cover = runtime->renderFrame(frame, sun_out.data());
+    EXPECT_NEAR(single_cover.sun_irradiance_rgb.x, 0.25 * clear.sun_irradiance_rgb.x, 1e-9);  // today's default
+    frame.weather.sun_scale = 1.0f;
+    const FrameInfo out = runtime->renderFrame(frame, sun_out.data());
+    EXPECT_EQ(out.sun_irradiance_rgb, clear.sun_irradiance_rgb);
+    EXPECT_FLOAT_EQ(out.overcast_weight, 0.75f);
+    frame.weather.sun_scale = 0.0f;
+    const FrameInfo hidden = runtime->renderFrame(frame, sun_hidden.data());
+    EXPECT_EQ(hidden.sun_irradiance_rgb, glm::dvec3(0.0));
+    EXPECT_FLOAT_EQ(hidden.overcast_weight, 0.75f);
+
+    const double cosine = std::max(0.0, out.sun_direction_enu.x);
+    ASSERT_GT(cosine, 0.3);
+    const glm::dvec2 centre = *Runtime::projectToPixel(frame.intrinsics, pose, {1, 0, 1.5});
+    const size_t at = (size_t(centre.y) * kWidth + size_t(centre.x)) * 4;
+    for (int channel = 0; channel < 3; ++channel) {
+        const double lit = srgbDecode(sun_out[at + channel] / 255.0);
+        const double unlit = srgbDecode(sun_hidden[at + channel] / 255.0);
+        const double expected = double(set.albedo) / std::numbers::pi * out.sun_irradiance_rgb[channel] * cosine *
+                                double(frame.exposure);
+        ASSERT_LT(lit, 0.98) << "channel " << channel << " clipped";
+        EXPECT_NEAR(lit - unlit, expected, 0.02 * expected + 0.004) << "channel " << channel;
+    }
+}
+
 // The shadow on the ground: which ground points the CPU says are shaded by the box (their ray towards the sun
 // hits it) must be darkened by the closed-form ratio, and points clearly outside must not change; so the shadow
 // lies away from the sun and is as long as geometry predicts, on flat ground and down a step like the sample's
@@ -386,6 +425,12 @@ TEST_F(RuntimeTest, BadFrameInputIsRefusedWithAReason) {
     frame = good;
     frame.weather.cloud_cover = 1.5f;
     expectRefused(frame, "weather.cloud_cover");
+    frame = good;
+    frame.weather.sun_scale = std::nanf("");
+    expectRefused(frame, "weather.sun_scale");
+    frame = good;
+    frame.weather.sun_scale = 3.0f;
+    expectRefused(frame, "weather.sun_scale");
     frame = good;
     frame.position = GeoPosition{200.0, 0.0, 0.0};
     expectRefused(frame, "position.latitude_deg");

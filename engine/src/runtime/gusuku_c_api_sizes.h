@@ -77,6 +77,7 @@ struct StructLayouts<gusuku_frame_input> {
     static constexpr StructLayout layouts[] = {
         GUSUKU_STRUCT_LAYOUT(gusuku_frame_input, camera_rgba8, flags),
         GUSUKU_STRUCT_LAYOUT(gusuku_frame_input, camera_luma, signal_values),
+        GUSUKU_STRUCT_LAYOUT(gusuku_frame_input, sun_scale, sun_scale),  // new in API version 4
     };
 };
 

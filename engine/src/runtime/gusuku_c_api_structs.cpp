@@ -87,6 +87,7 @@ gusuku_frame_input defaultFrame() {
     frame.pose = convertPose(defaults.pose);
     frame.utc_unix_seconds = defaults.utc_unix_seconds;
     frame.weather.cloud_cover = defaults.weather.cloud_cover;
+    frame.sun_scale = defaults.weather.sun_scale;
     frame.exposure = defaults.exposure;
     frame.mode = GUSUKU_MODE_BAKED_LIGHT;
     frame.colour_match = GUSUKU_COLOUR_MATCH_AUTO;  // FrameInput's ColourMatch::kAuto
@@ -168,6 +169,7 @@ std::string convertFrame(const gusuku_frame_input& frame, FrameInput& converted)
         converted.position = GeoPosition{frame.position.latitude_deg, frame.position.longitude_deg,
                                          frame.position.height_m};
     converted.weather.cloud_cover = frame.weather.cloud_cover;
+    converted.weather.sun_scale = frame.sun_scale;
     converted.exposure = frame.exposure;
     switch (frame.mode) {
     case GUSUKU_MODE_BAKED_LIGHT: converted.mode = RenderMode::kBakedLight; break;

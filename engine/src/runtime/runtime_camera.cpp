@@ -141,6 +141,9 @@ std::optional<std::string> findFrameProblem(const FrameInput& frame, uint32_t wi
     if (!std::isfinite(frame.weather.cloud_cover) || frame.weather.cloud_cover < 0.0f ||
         frame.weather.cloud_cover > 1.0f)
         return "weather.cloud_cover: must be in [0, 1], got " + std::to_string(frame.weather.cloud_cover);
+    if (!std::isfinite(frame.weather.sun_scale) || frame.weather.sun_scale > Weather::kMaxSunScale)
+        return "weather.sun_scale: must be finite and at most " + std::to_string(Weather::kMaxSunScale) +
+               " (negative: 1 - cloud_cover), got " + std::to_string(frame.weather.sun_scale);
     if (!std::isfinite(frame.exposure) || !(frame.exposure > 0.0f))
         return "exposure: must be finite and positive, got " + std::to_string(frame.exposure);
     if (frame.colour_match != ColourMatch::kOff && frame.colour_match != ColourMatch::kReinhard &&

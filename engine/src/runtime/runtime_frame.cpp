@@ -22,8 +22,10 @@ void RuntimeImpl::checkFrame(const FrameInput& frame) const {
 FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     FrameLighting lighting;
     try {
+        const float cover = frame.weather.cloud_cover;
+        const SkyAndSun sky_and_sun{cover, frame.weather.sun_scale < 0.0f ? 1.0f - cover : frame.weather.sun_scale};
         lighting = computeFrameLighting(manifest_, frameObserverFor(frame, manifest_.site), frame.utc_unix_seconds,
-                                        frame.weather.cloud_cover, frame.blend_slots);
+                                        sky_and_sun, frame.blend_slots);
     } catch (const std::exception& error) {
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("frame: ") + error.what());
     }

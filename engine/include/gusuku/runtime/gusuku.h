@@ -10,7 +10,7 @@
  *     gusuku_runtime_close(rt);
  *
  * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
- * 3 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * 4 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
  * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
  * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
  * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
@@ -111,7 +111,7 @@ const char* gusuku_version(void);
 
 /* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
  * fields or functions. */
-#define GUSUKU_API_VERSION 3u
+#define GUSUKU_API_VERSION 4u
 
 /* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
  * gusuku_api_version() is N or more. O(1). */
@@ -397,6 +397,11 @@ typedef struct gusuku_frame_input {
     const VkPipelineStageFlags* wait_stages;  /* NULL: ALL_COMMANDS each */
     const VkSemaphore* signal_semaphores;
     const uint64_t* signal_values;      /* timeline values (NULL: binary semaphores) */
+
+    /* API version 4: */
+    float sun_scale;                    /* the sun apart from the sky (runtime.h's Weather::sun_scale): E_sun and
+                                           its shadow scaled by this, in [0, 2], while weather.cloud_cover blends
+                                           the slots; negative (default -1): 1 - weather.cloud_cover */
 } gusuku_frame_input;
 
 /* What the frame computed (runtime.h's FrameInfo). Zero it and set struct_size; the library writes the fields of

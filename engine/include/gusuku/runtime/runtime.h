@@ -106,9 +106,17 @@ struct GeoPosition {
 };
 
 /// The weather: cloud cover from 0 (clear: the sunny slots and the real-time sun) to 1 (overcast: the overcast
-/// slot, no sun). Between, the baked light blends linearly and the direct sun fades with (1 - cover).
+/// slot, no sun). Between, the baked light blends linearly and, unless sun_scale says otherwise, the direct sun
+/// fades with (1 - cover).
 struct Weather {
     float cloud_cover = 0.0f;
+    /// The sun apart from the sky (gusuku/maths/sun_visibility.h): E_sun and the sun's shadow scaled by this, the
+    /// sun's visibility times its strength, in [0, kMaxSunScale], while cloud_cover still blends the slots. Under
+    /// broken cloud the real sun is either out (1: a full, hard shadow) or behind a cloud (0), never the quarter sun
+    /// that (1 - cover) draws for 6 oktas; a SunVisibilityFilter's sun_visibility * sun_strength is what to pass.
+    /// Negative (the default): 1 - cloud_cover, the single-cover model.
+    float sun_scale = -1.0f;
+    static constexpr float kMaxSunScale = 2.0f;
     static Weather sunny() { return {0.0f}; }
     static Weather overcast() { return {1.0f}; }
     /// The weather read off the camera frame alone (RGBA8 as FrameInput's), for when no weather service
