@@ -23,6 +23,7 @@ void printUsage() {
                  "  pack      write a bake set's runtime pack (KTX2 lightmaps, pack.bin; bake writes it too)\n"
                  "  converge  print RMS error against a converged bake as samples grow, and rays per second\n"
                  "  export    write the building with one slot's lightmap as a glTF other engines show\n"
+                 "  georef    fit site.json's sfm_mesh transform from ground control points\n"
                  "\n"
                  "`gusuku-bake <command> --help` describes each.\n");
 }
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
         if (command == "merge") return runMergeCommand(args);
         if (command == "pack") return runPackCommand(args);
         if (command == "export") return runExportCommand(args);
+        if (command == "georef") return runGeorefCommand(args);
         std::fprintf(stderr, "gusuku-bake: unknown command '%s'\n\n", command.c_str());
         printUsage();
         return 2;
