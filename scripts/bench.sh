@@ -72,6 +72,8 @@ if [[ -z "$bakeset" ]]; then
   if grep -q '^wall time:' "$work/sample/bake.tmp"; then
     printf 'baked by: %s\n' "$code" >> "$work/sample/bake.tmp"
     mv "$work/sample/bake.tmp" "$work/sample/bake.txt"
+  else
+    rm -f "$work/sample/bake.tmp"
   fi
   bakeset="$work/sample/bakeset"
   bake_log="$work/sample/bake.txt"
