@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake_command.h"
+#include "gusuku/assets/site.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku_bake/ground_control.h"
 #include "gusuku_bake/similarity_fit.h"
@@ -84,6 +85,16 @@ TEST(Georef, ExactPointsFitWithNoResidual) {
     EXPECT_LT(rotationDifferenceDeg(fit.transform, truth), 1e-6);
     EXPECT_LT(glm::length(fit.transform.translation - truth.translation), 1e-9);
     for (const double residual : fit.residuals_m) EXPECT_LT(residual, 1e-6);
+
+    // The fields mean to site.json's reader what they mean to the fit: its sfm_mesh transform maps the mesh points
+    // onto the survey.
+    gusuku::SfmMeshConfig config;
+    config.scale = fit.transform.scale;
+    config.rotation_wxyz = fit.transform.rotation_wxyz;
+    config.translation_enu_m = fit.transform.translation;
+    const std::vector<glm::dvec3> surveyed = mapped(truth, meshPoints());
+    for (size_t k = 0; k < surveyed.size(); ++k)
+        EXPECT_LT(glm::length(glm::dvec3(config.enuFromModel() * glm::dvec4(meshPoints()[k], 1.0)) - surveyed[k]), 1e-6);
 }
 
 TEST(Georef, NoisyPointsRecoverTheTransform) {

@@ -100,17 +100,22 @@ void parseArguments(CommandLine& line, GeorefRequest& request) {
 }
 
 std::string fieldsJson(const bake::SimilarityTransform& transform) {
-    // Rounded to what matters (1e-9 of the quaternion, 0.1 mm): site.json normalises the quaternion on load.
-    const auto rounded = [](double value, double step) { return std::round(value / step) * step; };
-    nlohmann::ordered_json fields;
+    // Rounded to what matters (1e-9 of the quaternion, 0.1 mm; site.json normalises the quaternion on load) through
+    // decimal text, so the JSON shows "0.707106781" rather than the binary neighbour of a scaled integer; + 0.0
+    // turns -0 into 0.
+    const auto rounded = [](double value, int decimals) {
+        char text[48];
+        std::snprintf(text, sizeof text, "%.*f", decimals, value);
+        return std::stod(text) + 0.0;
+    };
     char scale_text[32];  // ten significant digits: 1e-10 relative, far below any survey's accuracy
     std::snprintf(scale_text, sizeof scale_text, "%.10g", transform.scale);
-    fields["scale"] = std::stod(scale_text);
-    fields["rotation_wxyz"] = nlohmann::json::array();
-    for (const double component : transform.rotation_wxyz) fields["rotation_wxyz"].push_back(rounded(component, 1e-9));
-    fields["translation_enu_m"] = {rounded(transform.translation.x, 1e-4), rounded(transform.translation.y, 1e-4),
-                                   rounded(transform.translation.z, 1e-4)};
-    return fields.dump(2);
+    nlohmann::json rotation = nlohmann::json::array(), translation = nlohmann::json::array();
+    for (const double component : transform.rotation_wxyz) rotation.push_back(rounded(component, 9));
+    for (int axis = 0; axis < 3; ++axis) translation.push_back(rounded(transform.translation[axis], 4));
+    // One field a line, as site.json's examples write them (nlohmann's indented dump puts each number on a line).
+    return "{\n  \"scale\": " + nlohmann::json(std::stod(scale_text)).dump() + ",\n  \"rotation_wxyz\": " +
+           rotation.dump() + ",\n  \"translation_enu_m\": " + translation.dump() + "\n}";
 }
 
 void printResiduals(const std::vector<bake::GroundControlPoint>& points, const bake::SimilarityFit& fit) {
