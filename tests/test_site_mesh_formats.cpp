@@ -11,9 +11,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "bake_command.h"
 #include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/site.h"
 #include "gusuku/assets/survey_mesh.h"
 #include "gusuku/formats/input_error.h"
+#include "mini_site.h"
 
 namespace {
 
@@ -259,6 +264,34 @@ TEST_F(SiteMeshFormatsTest, BadObjIsOneLineNamingTheLine) {
         EXPECT_EQ(error.field(), bad.field) << error.what();
         EXPECT_NE(error.problem().find(bad.problem), std::string::npos) << error.what();
     }
+}
+
+TEST_F(SiteMeshFormatsTest, SiteJsonTakesAPlySfmMeshThroughCheck) {
+    // The mini site, with the quad-and-triangle PLY as its sfm_mesh, scaled 2 and 5 m up.
+    const std::string site_path = gusuku::testing::writeMiniSite(dir_);
+    nlohmann::json site = nlohmann::json::parse(std::ifstream(site_path));
+    write("survey.ply", plyText(Encoding::BigEndian, true));
+    site["sfm_mesh"] = {{"path", "survey.ply"}, {"scale", 2}, {"rotation_wxyz", {1, 0, 0, 0}},
+                        {"translation_enu_m", {0, 0, 5}}};
+    std::ofstream(site_path) << site.dump(2);
+    const gusuku::SiteConfig config = gusuku::loadSiteConfig(site_path);
+    ASSERT_TRUE(config.sfm_mesh.has_value());
+    gusuku::GltfLoadOptions options;
+    options.enu_from_model = config.sfm_mesh->enuFromModel();
+    expectQuadAndTriangle(gusuku::loadSiteMesh(config.sfm_mesh->path, options), options.enu_from_model);
+
+    const gusuku::testing::CommandResult result = gusuku::testing::runBakeCommand({"check", site_path}, dir_);
+    EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+    // 3 triangles, one vertex per corner; z from 5 to 5 + 2 * 0.5.
+    EXPECT_NE(result.stdout_text.find("sfm mesh: " + config.sfm_mesh->path + "\n  3 triangles, 9 vertices"),
+              std::string::npos) << result.stdout_text;
+
+    site["sfm_mesh"]["path"] = "survey.stl";
+    write("survey.stl", "solid\n");
+    std::ofstream(site_path) << site.dump(2);
+    const InputError error = expectInputError([&] { gusuku::loadSiteConfig(site_path); });
+    EXPECT_EQ(error.field(), "/sfm_mesh/path");
+    EXPECT_EQ(error.problem(), "\"survey.stl\" does not end in .gltf or .glb or .ply or .obj") << error.what();
 }
 
 }  // namespace

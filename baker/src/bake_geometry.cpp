@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/survey_mesh.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku_bake/irradiance_tracer.h"
 
@@ -134,7 +135,7 @@ TriangleMesh loadSiteMeshOrStandIn(const SiteConfig& site, const Bounds3& buildi
         GltfLoadOptions site_options;
         site_options.enu_from_model = site.sfm_mesh->enuFromModel();
         site_options.max_texture_size = max_texture_size;
-        return loadGltf(site.sfm_mesh->path, site_options, &warnings);
+        return loadSiteMesh(site.sfm_mesh->path, site_options, &warnings);
     }
     const glm::vec3 extent = building_bounds.max - building_bounds.min;
     const double half_size = 4.0 * std::max({double(extent.x), double(extent.y), double(extent.z), 10.0});

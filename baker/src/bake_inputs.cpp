@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gusuku/assets/atomic_file.h"
+#include "gusuku/assets/survey_mesh.h"
 #include "gusuku/formats/input_error.h"
 
 namespace gusuku::bake {
@@ -76,7 +77,9 @@ std::vector<std::string> bakeInputFiles(const SiteConfig& site) {
     for (const std::string& file : gltfExternalFiles(site.building.path)) files.push_back(file);
     if (site.sfm_mesh) {
         files.push_back(site.sfm_mesh->path);
-        for (const std::string& file : gltfExternalFiles(site.sfm_mesh->path)) files.push_back(file);
+        // A PLY or OBJ survey mesh is one file (an OBJ's .mtl and textures are not read).
+        if (!isSurveyMeshPath(site.sfm_mesh->path))
+            for (const std::string& file : gltfExternalFiles(site.sfm_mesh->path)) files.push_back(file);
     }
     // Every photo of a bracket is an input (the first is the sky's path).
     for (const SkyConfig* sky : {&site.sunny_sky, site.overcast_sky ? &*site.overcast_sky : nullptr}) {

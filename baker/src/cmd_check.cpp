@@ -12,6 +12,7 @@
 #include "gusuku/tools/command_line.h"
 #include "gusuku/tools/option_table.h"
 #include "gusuku/assets/gltf_loader.h"
+#include "gusuku/assets/survey_mesh.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/assets/sky_photo.h"
 #include "gusuku/formats/input_error.h"
@@ -137,7 +138,7 @@ int checkSite(const std::string& site_path) {
     if (config.sfm_mesh) {
         GltfLoadOptions sfm_options;
         sfm_options.enu_from_model = config.sfm_mesh->enuFromModel();
-        const TriangleMesh sfm_mesh = loadGltf(config.sfm_mesh->path, sfm_options, &warnings);
+        const TriangleMesh sfm_mesh = loadSiteMesh(config.sfm_mesh->path, sfm_options, &warnings);
         printMesh("sfm mesh", config.sfm_mesh->path, sfm_mesh);
         if (sfm_mesh.triangleCount() == 0) warnings.push_back("the SfM mesh has no triangles");
         else if (!overlapHorizontally(meshBounds(sfm_mesh), meshBounds(building_mesh)))

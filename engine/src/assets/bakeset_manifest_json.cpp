@@ -125,8 +125,8 @@ const NumberRange kNonNegative{0.0, kInfinity};
 NumberRange rangeOf(const BakeSetRange& range) { return {range.minimum, range.maximum}; }
 
 /// Each input role names a file of its kind (a tool that follows the manifest to site.json must not be led to
-/// read /etc/passwd as one): site .json, building and sfm_mesh .glb or .gltf, skies .hdr or .exr maps or .jpg,
-/// .jpeg or .png photos (gusuku/assets/sky_photo.h; each photo of a bracket under its sky's role). Roles this
+/// read /etc/passwd as one): site .json, building .glb or .gltf, sfm_mesh .glb, .gltf, .ply or .obj, skies .hdr or
+/// .exr maps or .jpg, .jpeg or .png photos (gusuku/assets/sky_photo.h; each photo of a bracket under its sky's role). Roles this
 /// reader does not know are kept as they are.
 void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
     const auto ends_with = [&](const char* extension) {
@@ -140,9 +140,12 @@ void requireInputKind(const ObjectReader& reader, const BakeSetInput& input) {
     if (input.role == "site") {
         expected = "a .json file";
         matches = ends_with(".json");
-    } else if (input.role == "building" || input.role == "sfm_mesh") {
+    } else if (input.role == "building") {
         expected = "a .glb or .gltf file";
         matches = ends_with(".glb") || ends_with(".gltf");
+    } else if (input.role == "sfm_mesh") {
+        expected = "a .glb, .gltf, .ply or .obj file";
+        matches = ends_with(".glb") || ends_with(".gltf") || ends_with(".ply") || ends_with(".obj");
     } else if (input.role == "sunny_sky" || input.role == "overcast_sky") {
         expected = "a .hdr or .exr map or a .jpg, .jpeg or .png photo";
         matches = ends_with(".hdr") || ends_with(".exr") || ends_with(".jpg") || ends_with(".jpeg") ||

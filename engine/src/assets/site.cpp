@@ -157,7 +157,7 @@ std::optional<SfmMeshConfig> readSfmMesh(const ObjectReader& root, const fs::pat
     const auto reader = root.optionalObject("sfm_mesh", {"path", "scale", "rotation_wxyz", "translation_enu_m"});
     if (!reader) return std::nullopt;
     SfmMeshConfig mesh;
-    mesh.path = readFilePath(*reader, "path", base_directory, {".gltf", ".glb"});
+    mesh.path = readFilePath(*reader, "path", base_directory, {".gltf", ".glb", ".ply", ".obj"});
     mesh.scale = reader->number("scale", kScale);
     const std::vector<double> quaternion = reader->numberArray("rotation_wxyz", 4, kQuaternionComponent);
     const double norm = std::sqrt(quaternion[0] * quaternion[0] + quaternion[1] * quaternion[1] +
