@@ -63,6 +63,8 @@ gusuku_result readInto(const char* function, gusuku_weather_reading* out_reading
         converted.is_day = reading.is_day.has_value() ? int32_t(*reading.is_day) : -1;
         copyText(converted.read_from, reading.read_from);
         copyText(converted.station, reading.station);
+        converted.cover_base_feet = reading.cover_base_feet;
+        converted.regime = gusuku_sky_regime(gusuku::skyRegimeOf(reading));
         *out_reading = converted;  // written whole, only on success
         return GUSUKU_OK;
     } catch (const gusuku::InputError& error) {

@@ -29,6 +29,15 @@ typedef enum gusuku_weather_source {
     GUSUKU_WEATHER_SOURCE_METAR = 2                /* a METAR's sky-cover groups */
 } gusuku_weather_source;
 
+/* What a report says of the sun (gusuku/maths/sun_visibility.h's SkyRegime): the prior of the sun filter below. */
+typedef enum gusuku_sky_regime {
+    GUSUKU_SKY_REGIME_UNKNOWN = 0,             /* no report: the frame alone decides */
+    GUSUKU_SKY_REGIME_CLEAR = 1,               /* up to 2 oktas: the sun is out */
+    GUSUKU_SKY_REGIME_BROKEN = 2,              /* 3-6 oktas: out or hidden */
+    GUSUKU_SKY_REGIME_OVERCAST = 3,            /* 7-8 oktas of low or middle cloud: hidden */
+    GUSUKU_SKY_REGIME_HIGH_THIN_OVERCAST = 4   /* 7-8 oktas based at 16,500 ft or more: a veiled sun, still shadows */
+} gusuku_sky_regime;
+
 /* Bytes of gusuku_weather_reading's text fields, with their terminating zero (longer texts are cut). */
 #define GUSUKU_WEATHER_READ_FROM_CAPACITY 64
 #define GUSUKU_WEATHER_STATION_CAPACITY 8
@@ -46,6 +55,9 @@ typedef struct gusuku_weather_reading {
     char read_from[GUSUKU_WEATHER_READ_FROM_CAPACITY];  /* what gave the cover: "/current/cloud_cover",
                                                          "/hourly/cloud_cover/13", "BKN035", "CAVOK" */
     char station[GUSUKU_WEATHER_STATION_CAPACITY];    /* METAR: the ICAO station ("EGLL"); Open-Meteo: "" */
+    float cover_base_feet;                            /* METAR: the base of the group that gave the cover, feet
+                                                         above the station; -1 not known (and Open-Meteo) */
+    gusuku_sky_regime regime;                         /* the sun's prior from the cover and its base */
 } gusuku_weather_reading;
 
 /* A METAR or SPECI report (zero-terminated), its DDhhmmZ time taken as the latest such instant at most an hour
@@ -57,6 +69,35 @@ gusuku_result gusuku_weather_from_metar(const char* metar, double reference_utc_
  * its "hourly" arrays nearest utc_unix_seconds (which must lie within an hour of their span): weatherFromOpenMeteo. */
 gusuku_result gusuku_weather_from_open_meteo(const char* json_text, double utc_unix_seconds,
                                              gusuku_weather_reading* out_reading);
+
+/* The sun's state apart from the sky's (gusuku/maths/sun_visibility.h's SunVisibilityFilter, docs/platform-light.md):
+ * the regime's prior and the frame's evidence decide whether the sun is out, with hysteresis (thresholds 0.3 and
+ * 0.7, held 0.5 s) and a 1.5 s ramp. Pass state.sun_visibility * state.sun_strength as the frame's sun_scale
+ * (gusuku_frame_input.sun_scale) and the reading's cloud cover as its weather.cloud_cover. */
+typedef struct gusuku_sun_evidence {
+    float sun_out_probability;  /* [0, 1] */
+    float confidence;           /* [0, 1]: 0 no cue in view */
+    float sun_strength;         /* measured E_sun over the clear sky's; <= 0 or NaN: not measured */
+} gusuku_sun_evidence;
+
+typedef struct gusuku_sun_state {
+    int32_t sun_out;            /* the decided state: 1 out, 0 hidden */
+    float sun_visibility;       /* [0, 1]: 0 or 1 but during a transition */
+    float sun_strength;         /* E_sun's scale while out */
+    float posterior;            /* this update's probability of the sun being out */
+    int32_t decided_by_frame;   /* 1: the frame's evidence decided; 0: the regime's prior */
+    uint32_t changes;           /* state changes since the filter was made */
+} gusuku_sun_state;
+
+typedef struct gusuku_sun_filter gusuku_sun_filter;
+
+/* Makes a filter with the default settings (the one allocation; update allocates nothing). */
+gusuku_result gusuku_sun_filter_create(gusuku_sun_filter** out_filter);
+/* One frame at time_seconds (any monotonic clock); evidence may be NULL. Writes the state after this frame. */
+gusuku_result gusuku_sun_filter_update(gusuku_sun_filter* filter, double time_seconds, gusuku_sky_regime regime,
+                                       const gusuku_sun_evidence* evidence, gusuku_sun_state* out_state);
+/* NULL is a no-op. */
+void gusuku_sun_filter_free(gusuku_sun_filter* filter);
 
 #ifdef __cplusplus
 }
