@@ -23,8 +23,10 @@ cmake -S tests/fuzz -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMA
   "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"${GUSUKU_FUZZ_JOBS:-2}"
 
-names=(site_json gltf glb bakeset_manifest bakeset_exr weather_service runtime_pack c_helpers exif)
-dictionaries=(site_json gltf gltf bakeset_manifest "" weather_service bakeset_manifest "" exif)
+names=(site_json gltf glb bakeset_manifest bakeset_exr weather_service runtime_pack c_helpers exif ground_control
+       ply_mesh obj_mesh)
+dictionaries=(site_json gltf gltf bakeset_manifest "" weather_service bakeset_manifest "" exif ground_control
+              ply_mesh obj_mesh)
 share=$((total_seconds / ${#names[@]}))
 mkdir -p "$build/findings"
 for i in "${!names[@]}"; do
