@@ -6,35 +6,14 @@ settings and driver (DIR/run.json).
 Usage: bench-goals.py DIR   (prints markdown; scripts/bench.sh writes it to DIR/goals.md)
 Exit status 1, with one line naming the file and the field, when a file or a field is missing.
 """
-import json
 import os
 import sys
 
-SITES = ("sample", "shrine", "house")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_results  # noqa: E402  (beside this script)
+from bench_results import SITES, fail, field, load  # noqa: E402
 
-
-def fail(message):
-    print("bench-goals: " + message, file=sys.stderr)
-    sys.exit(1)
-
-
-def load(path):
-    try:
-        with open(path) as stream:
-            return json.load(stream)
-    except FileNotFoundError:
-        fail(path + ": not found (did scripts/bench.sh run?)")
-    except json.JSONDecodeError as error:
-        fail(path + ": invalid JSON: " + str(error))
-
-
-def field(document, path, keys):
-    value = document
-    for key in keys:
-        if not isinstance(value, dict) or key not in value:
-            fail(path + ": /" + "/".join(keys) + ": missing")
-        value = value[key]
-    return value
+bench_results.TOOL = "bench-goals"
 
 
 def held(value):

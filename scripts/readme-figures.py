@@ -11,7 +11,6 @@ Usage: readme-figures.py [--check] [--readme README.md] [--results bench/results
 Exit status 1, with one line naming the file and the field, when a results file or a marker is missing.
 """
 import argparse
-import json
 import os
 import re
 import sys
@@ -19,31 +18,11 @@ import textwrap
 
 BEGIN = "<!-- figures:begin: scripts/readme-figures.py writes this from bench/results; do not edit -->"
 END = "<!-- figures:end -->"
-SITES = ("sample", "shrine", "house")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_results  # noqa: E402  (beside this script)
+from bench_results import SITES, fail, field, load  # noqa: E402
 
-
-def fail(message):
-    print("readme-figures: " + message, file=sys.stderr)
-    sys.exit(1)
-
-
-def load(path):
-    try:
-        with open(path) as stream:
-            return json.load(stream)
-    except FileNotFoundError:
-        fail(path + ": not found (scripts/bench.sh writes it)")
-    except json.JSONDecodeError as error:
-        fail(path + ": invalid JSON: " + str(error))
-
-
-def field(document, path, keys):
-    value = document
-    for key in keys:
-        if not isinstance(value, dict) or key not in value:
-            fail(path + ": /" + "/".join(keys) + ": missing")
-        value = value[key]
-    return value
+bench_results.TOOL = "readme-figures"
 
 
 def bake_figures(results_dir):
