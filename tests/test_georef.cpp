@@ -222,6 +222,15 @@ TEST(Georef, CommandWritesTheFieldsAndRefusesALargeResidual) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(fields["translation_enu_m"][k].get<double>(), truth.translation[k], 2e-4);
     for (int k = 0; k < 4; ++k) EXPECT_NEAR(fields["rotation_wxyz"][k].get<double>(), truth.rotation_wxyz[k], 1e-7);
 
+    // --site takes the same origin from a site.json: the sample site's reference point is kOrigin.
+    const std::string sample = (scratch / "sample").string();
+    ASSERT_EQ(gusuku::testing::runBakeCommand({"sample", sample}, scratch.string()).exit_code, 0);
+    const std::string from_site = (scratch / "from_site.json").string();
+    const gusuku::testing::CommandResult site_run = gusuku::testing::runBakeCommand(
+        {"georef", writeCsv("good.csv"), "--site", sample + "/site.json", "-o", from_site}, scratch.string());
+    ASSERT_EQ(site_run.exit_code, 0) << site_run.stderr_text;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(from_site)), fields);
+
     enu[3].z += 0.30;
     std::filesystem::remove(output);
     const gusuku::testing::CommandResult bad =
