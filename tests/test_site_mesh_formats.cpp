@@ -153,6 +153,22 @@ TEST_F(SiteMeshFormatsTest, PlyInEveryEncodingWithAndWithoutColours) {
     }
 }
 
+TEST_F(SiteMeshFormatsTest, WindowsLineEndingsAreRead) {
+    std::string ply = plyText(Encoding::Ascii, true), obj = "v 0 0 0\nv 2 0 0\nv 2 3 0\nv 0 3 0\nv 4 1 0.5\nf 1 2 3 4\nf 2 5 3\n";
+    for (std::string* text : {&ply, &obj}) {
+        std::string crlf;
+        for (char c : *text) {
+            if (c == '\n') crlf.push_back('\r');
+            crlf.push_back(c);
+        }
+        *text = crlf;
+    }
+    const SurveyMesh from_ply = gusuku::loadPlyMesh(write("crlf.ply", ply), glm::dmat4(1.0));
+    expectQuadAndTriangle(from_ply.mesh);
+    expectColours(from_ply);
+    expectQuadAndTriangle(gusuku::loadObjMesh(write("crlf.obj", obj), glm::dmat4(1.0)).mesh);
+}
+
 TEST_F(SiteMeshFormatsTest, SiteTransformAppliesToPlyAndObj) {
     // sfm_mesh's similarity: scale 2, a quarter turn about up, then 10 m east.
     const glm::dmat4 enu_from_model = glm::translate(glm::dmat4(1.0), glm::dvec3(10, 0, 0)) *
