@@ -22,6 +22,7 @@ int runCheckCommand(const std::vector<std::string>& args);     // cmd_check.cpp:
 int runMergeCommand(const std::vector<std::string>& args);     // cmd_merge.cpp: join partial bake sets
 int runPackCommand(const std::vector<std::string>& args);      // cmd_pack.cpp: a bake set's runtime pack
 int runExportCommand(const std::vector<std::string>& args);    // cmd_export.cpp: a glTF with a slot's lightmap
+int runInitCommand(const std::vector<std::string>& args);      // cmd_init.cpp: a starter site.json and checklist
 int runGeorefCommand(const std::vector<std::string>& args);    // cmd_georef.cpp: sfm_mesh from ground control points
 
 /// How every subcommand reads its command line (gusuku/tools/command_line.h), so that all behave alike. `parse` takes

@@ -16,6 +16,7 @@ void printUsage() {
                  "\n"
                  "commands:\n"
                  "  sun       print the sun's position for a place and time (NREL SPA)\n"
+                 "  init      write a starter site.json (with comments) and a checklist of what to measure on site\n"
                  "  sample    write the bundled sample site (terrain, house, skies, site.json) into a folder\n"
                  "  check     validate a site.json and load everything it names\n"
                  "  bake      bake a site's lightmaps and ground terms into a bake set\n"
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     try {
         using namespace gusuku::bake_cli;
         if (command == "sun") return runSunCommand(args);
+        if (command == "init") return runInitCommand(args);
         if (command == "sample") return runSampleCommand(args);
         if (command == "check") return runCheckCommand(args);
         if (command == "bake") return runBakeCommand(args);

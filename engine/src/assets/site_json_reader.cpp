@@ -111,7 +111,8 @@ nlohmann::json parseDocument(const std::string& file, const std::string& text) {
         return true;
     };
     try {
-        return nlohmann::json::parse(text, track);
+        // Comments (// and /* */) are allowed: `gusuku-bake init` writes a starter whose comments explain it.
+        return nlohmann::json::parse(text, track, /*allow_exceptions=*/true, /*ignore_comments=*/true);
     } catch (const nlohmann::json::parse_error& error) {
         throw InputError(file, "byte " + std::to_string(error.byte),
                          "invalid JSON: " + withoutExceptionPrefix(error.what()));
