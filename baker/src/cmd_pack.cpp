@@ -29,7 +29,8 @@ CommandHelp packHelp() {
     help.usage = "usage: gusuku-bake pack BAKESET_DIR [-o PACK_DIR] [--textures both|astc|rgba8]";
     help.description =
         "Writes the bake set's runtime pack (docs/bakeset.md, \"The runtime pack\"): the lightmaps as E5B9G9R9\n"
-        "KTX2, their validity, the ground terms as float KTX2, the building and occluder as pack.bin, its\n"
+        "KTX2 and as ASTC 4x4 and 6x6 HDR blocks (for GPUs that sample them), their validity, the ground terms\n"
+        "as float KTX2, the building and occluder as pack.bin, its\n"
         "textures as RGBA8 sRGB KTX2 and as ASTC 6x6 sRGB mip chains, and the manifest (statistics zeroed),\n"
         "written last. `gusuku-bake bake` and `merge` write it into BAKESET_DIR/pack themselves; this command is\n"
         "for older bake sets and for a phone's or a desktop's copy (--textures). Needs no GPU.\n"
