@@ -381,6 +381,15 @@ TEST(SkyPhoto, SlotTakesTheLuxReadingForAClippedSun) {
     EXPECT_EQ(without.sun_irradiance_source, "clear-sky model (map's sun disc is clipped)");
     ASSERT_EQ(without.warnings.size(), 1u);
     EXPECT_NE(without.warnings[0].find("/skies/sunny/global_horizontal_lux"), std::string::npos) << without.warnings[0];
+    // The same clipped sun in an HDR map (site.json names no photos): a lux reading cannot scale the map's own
+    // units, so the advice is to merge the map from a bracket that holds the disc.
+    gusuku::SiteConfig map_site = site;
+    map_site.sunny_sky.photos.clear();
+    const gusuku::bake::SlotLighting from_map = gusuku::bake::lightSlot(map_site, slot, analytic.photo, nullptr);
+    ASSERT_EQ(from_map.warnings.size(), 1u);
+    EXPECT_NE(from_map.warnings[0].find("merge the map from a bracket whose darkest exposure shows the sun"),
+              std::string::npos)
+        << from_map.warnings[0];
 
     site.sunny_sky.global_horizontal_lux = analytic.global_horizontal_lux;
     const gusuku::bake::SlotLighting with = gusuku::bake::lightSlot(site, slot, analytic.photo, nullptr);

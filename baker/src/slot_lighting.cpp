@@ -41,7 +41,14 @@ std::string luxText(double lux) {
 
 /// What the clear-sky fallback's warning adds: how the user can do better than the model.
 std::string clearSkyFallbackAdvice(const SkyConfig& sky, const SunDiscEstimate& disc) {
-    if (sky.photos.empty()) return "";  // an HDR map: its units are its own, a lux reading cannot scale it
+    // An HDR map: its units are its own, so a lux reading cannot scale it; only a map that holds the disc can.
+    if (sky.photos.empty())
+        return disc.found ? ": the map's brightest pixels are cut off, so it cannot say how strong the sun was; "
+                            "merge the map from a bracket whose darkest exposure shows the sun as a small disc (an "
+                            "ND filter, or 1/8000 s at f/16), or give the photos themselves as skies/sunny/bracket "
+                            "with the lux meter's reading as global_horizontal_lux"
+                          : "; if the sun was out when the sky was captured, the map lost it: merge the map from "
+                            "a bracket whose darkest exposure shows the sun as a small disc";
     if (!disc.found)
         return sky.global_horizontal_lux ? "; /skies/sunny/global_horizontal_lux not used: the photos show no sun "
                                            "disc to place the capture's sun"
