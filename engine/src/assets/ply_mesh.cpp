@@ -381,11 +381,8 @@ private:
                          std::to_string(vertex_count_) + " vertices)");
                 polygon_.push_back(uint32_t(index));
             }
-            if (data.triangle_indices.size() / 3 + (count - 2) > kMaxSurveyTriangles)
+            if (!appendPolygonFan(data.triangle_indices, polygon_))
                 fail("more than " + std::to_string(kMaxSurveyTriangles) + " triangles, the most a site mesh may have");
-            // Fan triangulation: a b c d -> a b c, a c d (exact for the convex polygons meshing tools write).
-            for (size_t k = 1; k + 1 < polygon_.size(); ++k)
-                data.triangle_indices.insert(data.triangle_indices.end(), {polygon_[0], polygon_[k], polygon_[k + 1]});
         }
     }
 

@@ -38,6 +38,13 @@ bool isSurveyMeshPath(const std::string& path) {
     return extension == ".ply" || extension == ".obj";
 }
 
+bool appendPolygonFan(std::vector<uint32_t>& triangle_indices, const std::vector<uint32_t>& polygon) {
+    if (polygon.size() < 3 || triangle_indices.size() / 3 + (polygon.size() - 2) > kMaxSurveyTriangles) return false;
+    for (size_t k = 1; k + 1 < polygon.size(); ++k)
+        triangle_indices.insert(triangle_indices.end(), {polygon[0], polygon[k], polygon[k + 1]});
+    return true;
+}
+
 std::string readSurveyFile(const std::string& path) {
     if (const std::string problem = regularFileProblem(path); !problem.empty()) throw InputError(path, "", problem);
     std::ifstream stream(path, std::ios::binary);

@@ -56,4 +56,9 @@ SurveyMesh finishSurveyMesh(const std::string& path, SurveyMeshData data, const 
 /// The whole file as bytes; InputError when it is no regular file or cannot be read.
 std::string readSurveyFile(const std::string& path);
 
+/// Appends a polygon (3 or more corners) to the triangles as a fan: a b c d -> a b c, a c d, exact for the convex
+/// polygons meshing tools write. False, appending nothing, when the mesh would pass kMaxSurveyTriangles (the
+/// reader names where in its file).
+bool appendPolygonFan(std::vector<uint32_t>& triangle_indices, const std::vector<uint32_t>& polygon);
+
 }  // namespace gusuku
