@@ -66,18 +66,15 @@ const SunVisibilityState& SunVisibilityFilter::update(double time_seconds, SkyRe
 
     // The posterior: the regime's log-odds plus the frame's, weighted by its confidence. Evidence that is not a
     // probability (NaN, out of range) counts as none.
-    float posterior_log_odds = logOdds(sunOutPrior(regime));
+    const float prior_log_odds = logOdds(sunOutPrior(regime));
     const bool usable = evidence && finiteIn01(evidence->sun_out_probability) && finiteIn01(evidence->confidence);
     const float confidence = usable ? evidence->confidence : 0.0f;
-    if (confidence > 0.0f)
-        posterior_log_odds += options_.evidence_weight * confidence * logOdds(evidence->sun_out_probability);
-    state_.posterior = probabilityOf(posterior_log_odds);
+    const float evidence_log_odds =
+        confidence > 0.0f ? options_.evidence_weight * confidence * logOdds(evidence->sun_out_probability) : 0.0f;
+    state_.posterior = probabilityOf(prior_log_odds + evidence_log_odds);
     // The frame decided when its term outweighs the prior's.
-    state_.cue = confidence > 0.0f &&
-                         options_.evidence_weight * confidence * std::fabs(logOdds(evidence->sun_out_probability)) >
-                             std::fabs(logOdds(sunOutPrior(regime)))
-                     ? SunStateCue::kFrame
-                     : SunStateCue::kRegimePrior;
+    state_.cue = std::fabs(evidence_log_odds) > std::fabs(prior_log_odds) ? SunStateCue::kFrame
+                                                                           : SunStateCue::kRegimePrior;
 
     if (first) {
         // No history: the state is what this frame says, at full visibility or none, without a ramp.
