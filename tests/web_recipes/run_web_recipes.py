@@ -9,7 +9,7 @@ usage: run_web_recipes.py export --bake GUSUKU_BAKE --work DIR
 lightmap's bytes decoded here from the glb's PNG (WORK/lightmap.json). A recipe run serves a folder of its page
 (three.html or babylon.html beside this script), measure.js, the recipe's code block cut from export.md (recipe.js), the glb, the
 lightmap and the npm packages on 127.0.0.1 only, loads the page in `chromium --headless` on SwiftShader, and reads
-the page's result from the dumped DOM: per channel of every covered pixel, the irradiance the engine applied
+the result the page posts back to the server: per channel of every covered pixel, the irradiance the engine applied
 (pi * lit / albedo) over the lightmap's value there. As export.md documents it, that ratio is 1 less the share
 the engine gives its specular: its median must lie in [0.95, 1.02], its 10th and 90th percentiles in [0.88, 1.10]. Exit 0 pass, 1 fail, 77 skipped (no chromium, or the npm
 packages not installed: scripts/install-deps.sh installs both).
@@ -22,6 +22,7 @@ import os
 import pathlib
 import re
 import shutil
+import signal
 import struct
 import subprocess
 import sys
@@ -136,6 +137,15 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
     def log_message(self, *arguments):
         pass
 
+    def do_POST(self):
+        """The page's result (measure.js report()): kept on the server, and the runner woken."""
+        body = self.rfile.read(int(self.headers.get("Content-Length", 0)))
+        if self.path == "/result":
+            self.server.page_result = body.decode("utf-8", "replace")
+            self.server.result_arrived.set()
+        self.send_response(204)
+        self.end_headers()
+
 
 def run_recipe(arguments):
     chromium = find_chromium(arguments.chromium)
@@ -159,23 +169,39 @@ def run_recipe(arguments):
         os.symlink(modules.resolve(), root / "node_modules")
         server = http.server.ThreadingHTTPServer(("127.0.0.1", 0),
                                                  functools.partial(QuietHandler, directory=str(root)))
+        server.page_result, server.result_arrived = None, threading.Event()
         threading.Thread(target=server.serve_forever, daemon=True).start()
         url = f"http://127.0.0.1:{server.server_address[1]}/index.html"
         profile = root / "profile"
+        # Chromium stays up with the page open until the page posts its result (or the time runs out): real time,
+        # not a virtual-time budget with a DOM dump, whose end raced the page's awaits.
         command = [chromium, "--headless", "--no-sandbox", "--disable-gpu-sandbox", "--use-angle=swiftshader",
                    "--enable-unsafe-swiftshader", "--disable-dev-shm-usage", "--no-first-run",
-                   f"--user-data-dir={profile}", "--virtual-time-budget=60000", "--run-all-compositor-stages-before-draw",
-                   "--dump-dom", url]
-        try:
-            result = subprocess.run(command, capture_output=True, text=True, timeout=arguments.timeout)
-        finally:
-            server.shutdown()
-    match = re.search(r"RESULT (\{.*?\})</pre>", result.stdout)
-    if not match:
-        print(f"no result from the page (exit {result.returncode}); chromium said:\n{result.stderr[-3000:]}")
-        print(result.stdout[-2000:])
+                   f"--user-data-dir={profile}", url]
+        log = root / "chromium.log"
+        with open(log, "w") as log_file:
+            browser = subprocess.Popen(command, stdout=log_file, stderr=subprocess.STDOUT, start_new_session=True)
+            try:
+                waited = 0.0
+                while not server.result_arrived.wait(0.5) and browser.poll() is None and waited < arguments.timeout:
+                    waited += 0.5
+            finally:
+                if browser.poll() is None:
+                    os.killpg(browser.pid, signal.SIGTERM)
+                    try:
+                        browser.wait(10)
+                    except subprocess.TimeoutExpired:
+                        os.killpg(browser.pid, signal.SIGKILL)
+                        browser.wait()
+                server.shutdown()
+        said = log.read_text(errors="replace")
+        page_result = server.page_result
+    if page_result is None:
+        print(f"no result from the page in {arguments.timeout:.0f} s (chromium "
+              f"{'exited ' + str(browser.returncode) if browser.returncode is not None else 'still running'}); "
+              f"chromium said:\n{said[-3000:]}")
         return 1
-    measured = json.loads(match.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    measured = json.loads(page_result)
     print(f"{arguments.recipe}: {json.dumps(measured)}")
     if "error" in measured:
         return 1
