@@ -1,0 +1,125 @@
+#pragma once
+// Whether the sun is out, and how strong, read from the real site's own shadows in the camera frame (issue 41 items
+// 1 and 2; the cue of Madsen & Nielsen 2008 and Bertolini & Madsen 2020: lit against shadowed surfaces in the video).
+// This header is the CPU reference of what the runtime's GPU estimator does (shaders/runtime/sun_evidence.comp and
+// sun_evidence_reduce.comp, recorded by the runtime's private SunEvidencePass); tests/test_sun_evidence.cpp pins it
+// on analytic cases and tests/test_runtime_sun_evidence.cpp holds the GPU to it.
+//
+// The model. The camera samples of the ground colour match (colour_match.h: each sampled pixel's ray followed onto
+// the ground grid's height field) land on cells whose albedo rho and baked irradiance without the sun, E_without
+// (sky and bounce, the site's own occlusion of the sky included), the bake set holds. Per sample
+//     ratio = Y(observed) / Y(exposure rho / pi E_without)            (Rec.709 luminance, linear)
+// is g for a cell the site shadows (or whose face turns from the sun), and g (1 + s q) for a lit one, where g is the
+// camera's unknown gain (exposure error, white balance, tone curve to first order: it cancels), q = Y(rho E_sun
+// cos) / Y(rho E_without) is the bake's clear-sky sun-to-sky share of that cell, and s is the sun's strength now
+// against the bake's: 1 a clear sun, 0 a sun behind a cloud, a third under thin cloud. The site shadow is predicted
+// from the runtime's site-shadow map (the occluder seen from the sun: the geometry the ground ratio uses), so the
+// shadow boundary is known, not detected.
+//
+// So s is measured, not assumed:
+//   1. g: the median log2 ratio of the shadowed samples (a robust level of the shade, which a few lit pixels of a
+//      pedestrian or a wall standing in front cannot pull);
+//   2. s: the median over the lit samples with q >= kSunEvidenceMinSunShare of s_i = (ratio_i / g - 1) / q_i, each
+//      sample normalised by its own cell's albedo and share (so cells of unlike albedo or slope compare like with
+//      like);
+//   3. the sun's state: p = logistic((s - kSunEvidenceOutStrength) / w), w the larger of kSunEvidenceMinWidth and
+//      the median's standard error (1.2533 sigma / sqrt(n), sigma from the interquartile range of the s_i / 1.349);
+//   4. confidence: 0 with fewer than kSunEvidenceMinSamples on either side (no boundary in view: the cue is "none"
+//      and the prior decides), else min(1, n_min / kSunEvidenceFullSamples) x clamp(1 - se / kSunEvidenceOutStrength,
+//      0, 1): more samples on both sides and a tighter estimate give more.
+// What s means: the sun-to-sky ratio now over the bake's (E_sun / E_without). A thin cloud that dims the sun to a
+// third and leaves the sky gives 1/3; one that also brightens the sky by k gives 1/(3k): the ratio is what the frame
+// shows, and what the runtime's sun must take once the colour match's gain has absorbed the sky's brightness.
+//
+// Medians by histogram, as the GPU can afford them: kSunEvidenceBins bins (log2 ratio over
+// [kSunEvidenceLowestLog2Ratio, + kSunEvidenceLog2RatioSpan), s over [kSunEvidenceLowestStrength, +
+// kSunEvidenceStrengthSpan); outside: the end bins), and a quantile interpolated linearly within its bin (the bin's
+// samples taken as spread evenly). Samples: a lit or shadowed one needs its site visibility (the map's bilinear
+// compare) at most kSunEvidenceShadowedVisibility or at least kSunEvidenceLitVisibility: penumbra texels, whose side
+// the map cannot tell, are left out. Clipped camera pixels (isClippedCameraPixel) and cells without light are left
+// out, as in the colour match.
+//
+// Not here yet: walls of the photogrammetry mesh (only the ground grid's cells are sampled), and the fallbacks when
+// no boundary is in view (the sky near the sun): the cue is then kNone with confidence 0.
+//
+// Pure and allocation-free but for the per-sample helpers' vectors (tests and tools).
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gusuku/maths/colour_match.h"
+#include "gusuku/maths/const_span.h"
+#include "gusuku/maths/sun_visibility.h"
+
+namespace gusuku {
+
+inline constexpr uint32_t kSunEvidenceBins = 64;
+inline constexpr double kSunEvidenceLowestLog2Ratio = -6.0;
+inline constexpr double kSunEvidenceLog2RatioSpan = 12.0;  ///< 0.1875 stop a bin
+inline constexpr double kSunEvidenceLowestStrength = -0.5;
+inline constexpr double kSunEvidenceStrengthSpan = 3.2;  ///< 0.05 a bin
+/// A lit sample whose clear sun adds less than this share to its sky light tells little of the sun: left out.
+inline constexpr double kSunEvidenceMinSunShare = 0.25;
+inline constexpr double kSunEvidenceShadowedVisibility = 0.02;
+inline constexpr double kSunEvidenceLitVisibility = 0.98;
+inline constexpr uint32_t kSunEvidenceMinSamples = 32;
+inline constexpr uint32_t kSunEvidenceFullSamples = 256;
+/// The strength at which the sun counts as out with probability 0.5: a hidden sun leaves s near 0 (a bright
+/// circumsolar sky still gives a little), a sun through thin cloud a third or more.
+inline constexpr double kSunEvidenceOutStrength = 0.15;
+inline constexpr double kSunEvidenceMinWidth = 0.03;
+
+/// What decided a frame's evidence.
+enum class SunEvidenceCue : uint8_t {
+    kNone = 0,                ///< no cue in view: confidence 0, the prior (weather report) decides
+    kSiteShadowBoundary = 1,  ///< lit against site-shadowed ground in the camera frame
+};
+
+/// One camera sample as the estimator reads it (what sun_evidence.comp writes per sample).
+enum class SunEvidenceSampleKind : uint8_t { kNone = 0, kShadowed = 1, kLit = 2 };
+struct SunEvidenceSample {
+    SunEvidenceSampleKind kind = SunEvidenceSampleKind::kNone;
+    float log2_ratio = 0.0f;  ///< log2(Y observed / Y predicted without the sun)
+    float sun_share = 0.0f;   ///< q: Y(rho E_sun cos) / Y(rho E_without), the bake's clear sun
+};
+
+/// One frame's reading (the reduce's output).
+struct SunEvidenceEstimate {
+    SunEvidence evidence;  ///< probability, confidence and strength for SunVisibilityFilter::update
+    SunEvidenceCue cue = SunEvidenceCue::kNone;
+    uint32_t shadowed_samples = 0;  ///< in the shadowed median
+    uint32_t lit_samples = 0;       ///< in the strength median (q >= kSunEvidenceMinSunShare)
+    float shade_log2_ratio = 0.0f;  ///< log2 g: the shadowed samples' median (0 when too few)
+    float strength = 0.0f;          ///< s, the median (0 when too few); evidence.sun_strength is s where the sun is
+                                    ///< out (p >= 0.5), else -1
+    float strength_standard_error = 0.0f;
+};
+
+/// The bin of a value in a histogram of kSunEvidenceBins over [lowest, lowest + span), the ends taking what lies
+/// outside (NaN: bin 0).
+uint32_t sunEvidenceBin(double value, double lowest, double span);
+
+/// The q-quantile (0..1) of a histogram's counts, interpolated within its bin; lowest when empty.
+double sunEvidenceQuantile(ConstSpan<uint32_t> counts, double quantile, double lowest, double span);
+
+/// Steps 1-4 above over the samples.
+SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples);
+
+/// A sample's site visibility at a ground point (1 lit, 0 shadowed by the site, between: penumbra), ENU metres.
+using SiteVisibility = std::function<double(const glm::dvec3& point_enu)>;
+
+/// The per-sample records of a frame (reference of sun_evidence.comp): the colour match's sample grid at stride,
+/// each ray onto the ground (groundMatchCellOfPixel), the cell's prediction without the sun (view's slots and
+/// exposure), and the clear-sky E_sun `clear_sun_irradiance_rgb` (bake set units, before any sun_scale) along
+/// view.sun_direction_enu for q. The site's visibility is looked up at the cell's centre (its height). A sun
+/// below the horizon makes every sample kNone. Allocates the result.
+std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
+                                                  uint32_t stride, const GroundMatchScene& scene,
+                                                  const GroundMatchView& view,
+                                                  const glm::dvec3& clear_sun_irradiance_rgb,
+                                                  const SiteVisibility& site_visibility);
+
+}  // namespace gusuku

@@ -1,0 +1,142 @@
+// The sun read from the site's shadows in the camera frame: see gusuku/maths/sun_evidence.h.
+
+#include "gusuku/maths/sun_evidence.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <glm/glm.hpp>
+
+#include "gusuku/maths/colour.h"
+
+namespace gusuku {
+
+namespace {
+
+using Histogram = std::array<uint32_t, kSunEvidenceBins>;
+
+double lowerBinEdge(uint32_t bin, double lowest, double span) {
+    return lowest + span * double(bin) / double(kSunEvidenceBins);
+}
+
+double sumOf(const Histogram& counts) {
+    double total = 0.0;
+    for (uint32_t count : counts) total += count;
+    return total;
+}
+
+}  // namespace
+
+uint32_t sunEvidenceBin(double value, double lowest, double span) {
+    const double index = std::floor((value - lowest) / span * double(kSunEvidenceBins));
+    if (!(index >= 0.0)) return 0;  // below, and NaN
+    return uint32_t(std::min(index, double(kSunEvidenceBins - 1)));
+}
+
+double sunEvidenceQuantile(ConstSpan<uint32_t> counts, double quantile, double lowest, double span) {
+    double total = 0.0;
+    for (uint32_t count : counts) total += count;
+    if (!(total > 0.0)) return lowest;
+    const double target = quantile * total;
+    double before = 0.0;
+    for (uint32_t bin = 0; bin < counts.size(); ++bin) {
+        const double count = counts[bin];
+        if (count > 0.0 && before + count >= target) {
+            const double within = std::clamp((target - before) / count, 0.0, 1.0);
+            return lowerBinEdge(bin, lowest, span) + within * span / double(kSunEvidenceBins);
+        }
+        before += count;
+    }
+    return lowest + span;
+}
+
+SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
+    SunEvidenceEstimate estimate;
+    Histogram shade{};
+    for (const SunEvidenceSample& sample : samples)
+        if (sample.kind == SunEvidenceSampleKind::kShadowed)
+            ++shade[sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan)];
+    const double shadowed = sumOf(shade);
+    const double shade_log2 =
+        sunEvidenceQuantile(shade, 0.5, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan);
+
+    // Each lit sample's strength against the shade's level: ratio / g = 1 + s q.
+    Histogram strength{};
+    for (const SunEvidenceSample& sample : samples)
+        if (sample.kind == SunEvidenceSampleKind::kLit && sample.sun_share >= kSunEvidenceMinSunShare) {
+            const float relative = std::exp2(sample.log2_ratio - float(shade_log2));
+            const float s = (relative - 1.0f) / sample.sun_share;
+            ++strength[sunEvidenceBin(s, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan)];
+        }
+    const double lit = sumOf(strength);
+    estimate.shadowed_samples = uint32_t(shadowed);
+    estimate.lit_samples = uint32_t(lit);
+    const double fewest = std::min(shadowed, lit);
+    if (fewest < double(kSunEvidenceMinSamples)) return estimate;  // no boundary in view: the prior decides
+
+    const double s = sunEvidenceQuantile(strength, 0.5, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan);
+    const double interquartile =
+        sunEvidenceQuantile(strength, 0.75, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan) -
+        sunEvidenceQuantile(strength, 0.25, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan);
+    // The median's standard error for a normal spread (sigma = IQR / 1.349; se = sqrt(pi / 2) sigma / sqrt(n)).
+    const double standard_error = 1.2533 * (interquartile / 1.349) / std::sqrt(lit);
+    const double width = std::max(kSunEvidenceMinWidth, standard_error);
+    const double probability = 1.0 / (1.0 + std::exp(-(s - kSunEvidenceOutStrength) / width));
+    const double confidence = std::min(1.0, fewest / double(kSunEvidenceFullSamples)) *
+                              std::clamp(1.0 - standard_error / kSunEvidenceOutStrength, 0.0, 1.0);
+    estimate.cue = SunEvidenceCue::kSiteShadowBoundary;
+    estimate.shade_log2_ratio = float(shade_log2);
+    estimate.strength = float(s);
+    estimate.strength_standard_error = float(standard_error);
+    estimate.evidence.sun_out_probability = float(probability);
+    estimate.evidence.confidence = float(confidence);
+    estimate.evidence.sun_strength = probability >= 0.5 ? float(s) : -1.0f;
+    return estimate;
+}
+
+std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
+                                                  uint32_t stride, const GroundMatchScene& scene,
+                                                  const GroundMatchView& view,
+                                                  const glm::dvec3& clear_sun_irradiance_rgb,
+                                                  const SiteVisibility& site_visibility) {
+    const ColourStatisticsGrid grid = colourStatisticsGrid(width, height, stride);
+    std::vector<SunEvidenceSample> samples(size_t(grid.sampleCount()));
+    const glm::dvec3 sun = view.sun_direction_enu;
+    if (!(sun.z > 0.0)) return samples;  // no sun to cast a shadow
+    GroundMatchView without_sun = view;
+    without_sun.sun_shines = false;
+    for (uint32_t j = 0; j < grid.samples_y; ++j)
+        for (uint32_t i = 0; i < grid.samples_x; ++i) {
+            const uint32_t x = grid.offset + i * grid.stride, y = grid.offset + j * grid.stride;
+            const std::optional<size_t> cell = groundMatchCellOfPixel(scene, view, x, y);
+            if (!cell) continue;
+            const uint8_t* pixel = &rgba8[(size_t(y) * width + x) * 4];
+            if (isClippedCameraPixel(pixel[0], pixel[1], pixel[2])) continue;
+            const glm::dvec3 predicted = groundMatchPredictedRadiance(scene, without_sun, *cell);
+            const double predicted_luminance = luminanceRec709(predicted);
+            if (!(predicted_luminance >= kGroundMatchMinPredicted)) continue;
+            const glm::dvec3 observed(srgbDecode(pixel[0] / 255.0), srgbDecode(pixel[1] / 255.0),
+                                      srgbDecode(pixel[2] / 255.0));
+            const GroundMatchCell& ground = scene.cells[*cell];
+            const double cosine = glm::dot(glm::dvec3(ground.normal), sun);
+            const glm::dvec3 albedo(ground.albedo);
+            // q from the cell's albedo-weighted irradiances (exposure and 1/pi cancel).
+            const double sun_luminance = luminanceRec709(albedo * clear_sun_irradiance_rgb) * std::max(0.0, cosine);
+            SunEvidenceSample& sample = samples[size_t(j) * grid.samples_x + i];
+            sample.log2_ratio = float(std::log2(luminanceRec709(observed) / predicted_luminance));
+            sample.sun_share = float(sun_luminance * view.exposure / std::numbers::pi / predicted_luminance);
+            if (cosine <= 0.0) {
+                sample.kind = SunEvidenceSampleKind::kShadowed;  // the face turns from the sun
+                continue;
+            }
+            const glm::dvec2 centre = groundCellCentreEnu(scene.grid, groundCellFromIndex(scene.grid, *cell));
+            const double visibility = site_visibility(glm::dvec3(centre, ground.height_m));
+            if (visibility <= kSunEvidenceShadowedVisibility) sample.kind = SunEvidenceSampleKind::kShadowed;
+            else if (visibility >= kSunEvidenceLitVisibility) sample.kind = SunEvidenceSampleKind::kLit;
+        }
+    return samples;
+}
+
+}  // namespace gusuku
