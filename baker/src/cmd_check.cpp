@@ -22,6 +22,7 @@
 #include "gusuku/gpu/vulkan_context.h"
 #include "gusuku_bake/bake_job.h"
 #include "gusuku_bake/slot_lighting.h"
+#include "site_checks.h"
 
 namespace gusuku::bake_cli {
 
@@ -135,10 +136,12 @@ int checkSite(const std::string& site_path) {
     if (std::hypot(building_origin.x, building_origin.y) > 1000.0)
         warnings.push_back("the building stands more than 1 km from the site reference; check its position");
 
+    std::optional<TriangleMesh> loaded_sfm_mesh;
     if (config.sfm_mesh) {
         GltfLoadOptions sfm_options;
         sfm_options.enu_from_model = config.sfm_mesh->enuFromModel();
-        const TriangleMesh sfm_mesh = loadSiteMesh(config.sfm_mesh->path, sfm_options, &warnings);
+        const TriangleMesh& sfm_mesh =
+            loaded_sfm_mesh.emplace(loadSiteMesh(config.sfm_mesh->path, sfm_options, &warnings));
         printMesh("sfm mesh", config.sfm_mesh->path, sfm_mesh);
         if (sfm_mesh.triangleCount() == 0) warnings.push_back("the SfM mesh has no triangles");
         else if (!overlapHorizontally(meshBounds(sfm_mesh), meshBounds(building_mesh)))
@@ -148,8 +151,15 @@ int checkSite(const std::string& site_path) {
         warnings.push_back("no sfm_mesh: nothing around the building to bounce light or to receive its shadow");
     }
 
-    checkSky("sunny", config.sunny_sky, warnings);
+    const ImageRGBA sunny_radiance = checkSky("sunny", config.sunny_sky, warnings);
     if (config.overcast_sky) checkSky("overcast", *config.overcast_sky, warnings);
+    // Placement: the building on the ground, the mesh's up, the sky's sun (site_checks.h); preview draws them.
+    std::vector<std::string> placement_notes;
+    for (std::string& warning : placementWarnings(config, building_mesh, loaded_sfm_mesh ? &*loaded_sfm_mesh : nullptr,
+                                                  sunny_radiance, placement_notes))
+        warnings.push_back(std::move(warning));
+    std::printf("placement:\n");
+    for (const std::string& note : placement_notes) std::printf("  %s\n", note.c_str());
 
     // What the bake itself would refuse or warn about before tracing, by the bake's own preflight code.
     const std::vector<bake::SlotSun> suns = bake::slotSunPositions(config);

@@ -24,6 +24,7 @@ int runPackCommand(const std::vector<std::string>& args);      // cmd_pack.cpp: 
 int runExportCommand(const std::vector<std::string>& args);    // cmd_export.cpp: a glTF with a slot's lightmap
 int runInitCommand(const std::vector<std::string>& args);      // cmd_init.cpp: a starter site.json and checklist
 int runGeorefCommand(const std::vector<std::string>& args);    // cmd_georef.cpp: sfm_mesh from ground control points
+int runPreviewCommand(const std::vector<std::string>& args);   // cmd_preview.cpp: placement pictures and checks
 
 /// How every subcommand reads its command line (gusuku/tools/command_line.h), so that all behave alike. `parse` takes
 /// the command's options and positionals from `line` and calls line.finish(); it throws UsageError for bad usage

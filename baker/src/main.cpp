@@ -19,6 +19,7 @@ void printUsage() {
                  "  init      write a starter site.json (with comments) and a checklist of what to measure on site\n"
                  "  sample    write the bundled sample site (terrain, house, skies, site.json) into a folder\n"
                  "  check     validate a site.json and load everything it names\n"
+                 "  preview   pictures of the placement (top, a visitor's eye) and its checks, before a bake\n"
                  "  bake      bake a site's lightmaps and ground terms into a bake set\n"
                  "  merge     join partial bake sets (one slot each, `bake --slot`) into one bake set\n"
                  "  pack      write a bake set's runtime pack (KTX2 lightmaps, pack.bin; bake writes it too)\n"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
         if (command == "init") return runInitCommand(args);
         if (command == "sample") return runSampleCommand(args);
         if (command == "check") return runCheckCommand(args);
+        if (command == "preview") return runPreviewCommand(args);
         if (command == "bake") return runBakeCommand(args);
         if (command == "converge") return runConvergeCommand(args);
         if (command == "merge") return runMergeCommand(args);

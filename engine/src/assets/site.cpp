@@ -11,6 +11,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "gusuku/assets/sky_photo.h"
+#include "gusuku/assets/sky_sun.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/maths/sun.h"
 #include "gusuku/maths/time_utc.h"
@@ -203,10 +205,55 @@ SkyPhotoConfig readSkyPhoto(const ObjectReader& reader, const fs::path& base_dir
     return photo;
 }
 
+// "auto" north: the photo's sun may stand this far in elevation from the computed sun at taken_at before the time
+// (or the photo's levelling) is called wrong; a 360 camera held by hand tilts a degree or two.
+constexpr double kAutoNorthElevationToleranceDeg = 5.0;
+
+double readTakenAt(const ObjectReader& reader) {
+    const std::string text = reader.string("taken_at");
+    try {
+        return parseIso8601Utc(text);
+    } catch (const std::invalid_argument& error) {
+        reader.fail("taken_at", inQuotes(text) + " is not a time of the form YYYY-MM-DDThh:mm+hh:mm (the photo's "
+                                                 "clock with its UTC offset): " + error.what());
+    }
+    return 0.0;
+}
+
+/// `"north_azimuth_in_image_deg": "auto"`: the column the sun stands in, less the sun's computed azimuth at taken_at.
+double northFromSkySun(const ObjectReader& reader, const SkyConfig& sky, const SiteLocation& site) {
+    if (!reader.has("taken_at"))
+        reader.fail("north_azimuth_in_image_deg", "\"auto\" needs taken_at, the time the sky was photographed "
+                                                  "(e.g. \"2026-06-21T10:30+09:00\"), to compute the sun's azimuth");
+    const double taken_at = readTakenAt(reader);
+    SunPosition sun;
+    try {
+        sun = computeSunPosition(site.sunObserver(), taken_at);
+    } catch (const std::invalid_argument&) {
+        reader.fail("taken_at", "is outside the UTC years -2000 to 6000 that the sun position (NREL SPA) covers");
+    }
+    if (!sun.above_horizon)
+        reader.fail("taken_at", "the sun is below the horizon then (elevation " + json_reader::formatNumber(sun.apparent_elevation_deg) +
+                                    " deg): check the date and the UTC offset");
+    const SkySunSighting seen = findSkySun(readSkyRadiance(sky));
+    if (!seen.found)
+        reader.fail("north_azimuth_in_image_deg", "\"auto\" found no sun in the sky (no bright spot under " +
+                                                      json_reader::formatNumber(kSkySunMaxCoreRadiusDeg) +
+                                                      " deg across): give the north as a number of degrees");
+    if (std::abs(seen.elevation_deg - sun.apparent_elevation_deg) > kAutoNorthElevationToleranceDeg)
+        reader.fail("taken_at", "the sun in the sky stands at elevation " + json_reader::formatNumber(std::round(seen.elevation_deg * 10) / 10) +
+                                    " deg, the computed sun then at " +
+                                    json_reader::formatNumber(std::round(sun.apparent_elevation_deg * 10) / 10) +
+                                    " deg: the time (or its UTC offset) is wrong, or the photo is not level; "
+                                    "\"auto\" north would be wrong");
+    return northAzimuthInImageFromSun(seen.image_azimuth_deg, sun.azimuth_deg);
+}
+
 /// An HDR map or one 8-bit photo in `path`, or an exposure bracket of 8-bit photos in `bracket`.
-SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::path& base_directory) {
-    const ObjectReader reader =
-        skies.object(name, {"path", "ev100", "bracket", "north_azimuth_in_image_deg", "global_horizontal_lux"});
+SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::path& base_directory,
+                  const SiteLocation& site) {
+    const ObjectReader reader = skies.object(
+        name, {"path", "ev100", "bracket", "north_azimuth_in_image_deg", "global_horizontal_lux", "taken_at"});
     SkyConfig sky;
     const bool has_path = reader.has("path");
     if (has_path == reader.has("bracket"))
@@ -239,9 +286,18 @@ SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::
         }
         sky.path = sky.photos.front().path;
     }
-    sky.north_azimuth_in_image_deg =
-        reader.number("north_azimuth_in_image_deg", kNorthAzimuth, sky.north_azimuth_in_image_deg);
     sky.global_horizontal_lux = reader.optionalNumber("global_horizontal_lux", kGlobalHorizontalLux);
+    if (reader.has("north_azimuth_in_image_deg") && reader.required("north_azimuth_in_image_deg").is_string()) {
+        const std::string text = reader.string("north_azimuth_in_image_deg");
+        if (text != "auto")
+            reader.fail("north_azimuth_in_image_deg",
+                        inQuotes(text) + " is not a number of degrees in [0, 360) nor \"auto\" (north from the sun)");
+        sky.north_azimuth_in_image_deg = northFromSkySun(reader, sky, site);
+    } else {
+        sky.north_azimuth_in_image_deg =
+            reader.number("north_azimuth_in_image_deg", kNorthAzimuth, sky.north_azimuth_in_image_deg);
+        if (reader.has("taken_at")) readTakenAt(reader);
+    }
     return sky;
 }
 
@@ -433,10 +489,28 @@ SiteConfig loadSiteConfig(const std::string& path) {
     config.sfm_mesh = readSfmMesh(root, base_directory);
     config.building = readBuilding(root, base_directory);
     const ObjectReader skies = root.object("skies", {"sunny", "overcast"});
-    config.sunny_sky = readSky(skies, "sunny", base_directory);
-    if (skies.has("overcast")) config.overcast_sky = readSky(skies, "overcast", base_directory);
+    config.sunny_sky = readSky(skies, "sunny", base_directory, config.site);
+    if (skies.has("overcast")) config.overcast_sky = readSky(skies, "overcast", base_directory, config.site);
     config.bake = readBake(root, config.site, config.overcast_sky.has_value(), path);
     return config;
+}
+
+SkyCaptureTime readSkyCaptureTime(const std::string& site_json_path, const std::string& sky_name) {
+    SkyCaptureTime capture;
+    const nlohmann::json document = json_reader::parseDocument(site_json_path, readWholeFile(site_json_path));
+    const nlohmann::json::json_pointer pointer("/skies/" + sky_name);
+    if (!document.contains(pointer) || !document.at(pointer).is_object()) return capture;
+    const nlohmann::json& sky = document.at(pointer);
+    if (const auto taken_at = sky.find("taken_at"); taken_at != sky.end() && taken_at->is_string()) {
+        capture.taken_at_text = taken_at->get<std::string>();
+        try {
+            capture.taken_at_utc_seconds = parseIso8601Utc(capture.taken_at_text);
+        } catch (const std::invalid_argument&) {
+        }
+    }
+    if (const auto north = sky.find("north_azimuth_in_image_deg"); north != sky.end())
+        capture.north_auto = north->is_string() && north->get<std::string>() == "auto";
+    return capture;
 }
 
 }  // namespace gusuku
