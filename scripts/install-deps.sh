@@ -52,6 +52,21 @@ install_web_recipes() {
 }
 (cd "$(dirname "$0")/.." && install_web_recipes) || true
 
+# SwiftShader, the runtime's second Vulkan driver in the tests (tests/drivers/Drivers.cmake): Debian's chromium
+# package ships it (/usr/lib/chromium/libvk_swiftshader.so and its ICD manifest), so it is installed for that too,
+# whether or not a chromium command exists. Best effort: without it the swiftshader_* tests skip saying so.
+install_swiftshader() {
+  local icd=/usr/lib/chromium/vk_swiftshader_icd.json
+  [ -f "$icd" ] && return 0
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps: SwiftShader: $icd is missing (not root; the swiftshader_* tests will skip)" >&2
+  elif ! (export DEBIAN_FRONTEND=noninteractive; apt-get update -qq &&
+          apt-get install -y -qq --no-install-recommends chromium) || [ ! -f "$icd" ]; then
+    echo "install-deps: SwiftShader: could not install Debian's chromium for $icd; the swiftshader_* tests will skip" >&2
+  fi
+}
+install_swiftshader || true
+
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")

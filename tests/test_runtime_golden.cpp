@@ -4,8 +4,16 @@
 // bias, blending, the colour match). Tolerance: every channel within 2 of the golden on all but 0.5 % of the
 // pixels, and the mean absolute difference at most 0.25 (lavapipe's rasteriser is deterministic; the slack is
 // for another LLVM's rounding). Regenerate with scripts/update-goldens.sh (GUSUKU_UPDATE_GOLDEN=1).
+// The same goldens serve SwiftShader (swiftshader_test_runtime_golden, tests/drivers/Drivers.cmake), whose
+// rasteriser differs at a few of the building's edge pixels. Measured (each case prints its own): lavapipe max 1
+// code, mean at most 0.0005, no pixel beyond 1 code; SwiftShader max 43-91 codes at corner pixels of the
+// building's silhouette and edges, mean 0.0014-0.0309 codes, 0.005-0.104 % of the pixels (1-20 of 19,200) beyond
+// 1 code. That is within the tolerance above with a margin of 8x on the mean and about 5x on the share, while
+// the changes the goldens are for (shadow filtering, bias, the colour match) move whole regions: one golden each.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -85,15 +93,25 @@ TEST_P(RuntimeGolden, MatchesItsGoldenImage) {
     const ImageRGBA expected = readImage(path, ImageEncoding::Linear);
     ASSERT_EQ(expected.width, int(kWidth));
     ASSERT_EQ(expected.height, int(kHeight));
-    size_t outliers = 0;
-    double total_difference = 0.0;
-    for (size_t index = 0; index < output.size(); ++index) {
-        if (index % 4 == 3) continue;
-        const double difference = std::abs(double(output[index]) - std::round(expected.texels[index] * 255.0));
-        total_difference += difference;
-        outliers += difference > 2.0;
+    size_t outliers = 0, pixels_beyond_one_code = 0, worst_pixel = 0;
+    double total_difference = 0.0, max_difference = 0.0;
+    for (size_t pixel = 0; pixel < output.size() / 4; ++pixel) {
+        double pixel_max_difference = 0.0;
+        for (size_t index = pixel * 4; index < pixel * 4 + 3; ++index) {
+            const double difference = std::abs(double(output[index]) - std::round(expected.texels[index] * 255.0));
+            total_difference += difference;
+            outliers += difference > 2.0;
+            pixel_max_difference = std::max(pixel_max_difference, difference);
+        }
+        if (pixel_max_difference > max_difference) worst_pixel = pixel;
+        max_difference = std::max(max_difference, pixel_max_difference);
+        pixels_beyond_one_code += pixel_max_difference > 1.0;
     }
     const double channels = double(kWidth) * kHeight * 3;
+    // The measured difference from the golden, for the tolerance's record (docs/development.md, Drivers).
+    std::printf("%s: max %.0f codes (pixel %zu, %zu), mean %.4f codes, %.3f %% of pixels beyond 1 code\n",
+                golden.name, max_difference, worst_pixel % kWidth, worst_pixel / kWidth, total_difference / channels,
+                100.0 * double(pixels_beyond_one_code) / (double(kWidth) * kHeight));
     EXPECT_LE(double(outliers), 0.005 * channels) << outliers << " channels off by more than 2";
     EXPECT_LE(total_difference / channels, 0.25);
 }

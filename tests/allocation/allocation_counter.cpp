@@ -33,7 +33,7 @@ thread_local int t_stack_depths[kKeptStacks];
 // A stack frame in one of these shared objects makes the allocation the Vulkan side's.
 bool isVulkanSide(const char* object_path) {
     if (object_path == nullptr) return false;
-    for (const char* marker : {"libvulkan", "VkLayer", "lvp", "LLVM", "gallium", "mesa"})
+    for (const char* marker : {"libvulkan", "VkLayer", "lvp", "LLVM", "gallium", "mesa", "vk_swiftshader"})
         if (std::strstr(object_path, marker) != nullptr) return true;
     return false;
 }

@@ -3,8 +3,9 @@
 // promise (runtime.h). The test executable that links allocation_counter.cpp replaces malloc, calloc, realloc,
 // aligned allocation and every operator new; while a thread has counting on, each allocation it makes is walked
 // back (glibc backtrace) and counted unless a frame of its stack lies in the Vulkan side of the process (the
-// loader, the validation layer, the driver and its LLVM): those allocate per command and per submission by
-// their own design (Mesa records each vkCmd* into a malloc'd list), which no runtime can avoid. Everything else
+// loader, the validation layer, the driver and its LLVM: lavapipe's or SwiftShader's): those allocate per command
+// and per submission by their own design (Mesa records each vkCmd* into a malloc'd list; SwiftShader's come from
+// libvk_swiftshader.so itself, about 70 a frame), which no runtime can avoid. Everything else
 // on the thread (gusuku, the C++ standard library called by it) counts. Other threads are never counted.
 //
 // Link it into exactly one executable (tests/CMakeLists.txt adds it to test_runtime_allocations alone): it

@@ -11,11 +11,34 @@
 
 namespace gusuku::testing {
 
+namespace {
+
+std::unique_ptr<VulkanContext>& sharedContextSlot() {
+    static std::unique_ptr<VulkanContext> context;
+    return context;
+}
+
+// Destroys the shared context when the test run ends, inside main, not in a static destructor after it. The slot
+// above is constructed before the first vkCreateInstance, so its destructor runs after the driver's own static
+// destructors (the exit handlers run in reverse order of registration, and the driver registers its own while
+// the instance and device are created): a SwiftShader thread that vkDestroyDevice joins then runs into the
+// torn-down driver and the binary dies with SIGSEGV after all its tests passed (rc 139).
+// tests/drivers/swiftshader_exit_order.cpp reproduces that without gusuku.
+class SharedContextRelease : public ::testing::Environment {
+public:
+    void TearDown() override { sharedContextSlot().reset(); }
+};
+
+[[maybe_unused]] ::testing::Environment* const shared_context_release =
+    ::testing::AddGlobalTestEnvironment(new SharedContextRelease);
+
+}  // namespace
+
 VulkanContext& sharedGpuContext() {
     // One context per binary: creating an instance with the validation layer takes a noticeable fraction of a
     // second on lavapipe. Built on first use, so pure-CPU tests never touch Vulkan. If creation throws, the
     // next call tries again and throws the same reason, so every GPU test reports it.
-    static std::unique_ptr<VulkanContext> context;
+    std::unique_ptr<VulkanContext>& context = sharedContextSlot();
     if (!context) {
         VulkanContextOptions options = vulkanOptionsFromEnvironment();
         options.enable_validation = true;
