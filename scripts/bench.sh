@@ -5,7 +5,7 @@
 # README.md's figures (scripts/readme-figures.py) from what it wrote. No figure there or in bench/results/README.md
 # is typed by hand.
 #
-# Usage: scripts/bench.sh [--quick | --budget] [-o DIR] [BAKESET]
+# Usage: scripts/bench.sh [--quick | --budget] [--driver D] [-o DIR] [BAKESET]
 #   (no option)  the full settings: the sample's accuracy at 320x180 with 512-sample truths, the day every 15
 #                minutes, 40 timed frames; the sites' accuracy at 1280x720 with 512-sample truths. About an hour
 #                for the sample and 85 minutes a real site on 2 shared cores with new truths.
@@ -20,6 +20,10 @@
 #                bench/results.
 #   BAKESET      the sample's bake set (default: WORK/sample/bakeset, which this script bakes when it is not up
 #                to date with this build's sample; its bake's summary is one of README.md's figures).
+#   --driver D   the Vulkan driver every tool runs on: lavapipe (the default: whatever the loader picks, lavapipe
+#                on the CI kind of machine) or swiftshader (Debian's chromium's SwiftShader through
+#                VK_ICD_FILENAMES; GUSUKU_SWIFTSHADER_ICD names another ICD manifest). run.json records the device.
+#                Not lavapipe: needs -o DIR (bench/results and README.md's figures are lavapipe's).
 # GUSUKU_BENCH, GUSUKU_BAKE: another build's tools (GUSUKU_BENCH_CODE: the commit they were built from).
 # WORK (GUSUKU_BENCH_WORK, default out/sites): the bakes, the truth cache (WORK/bench-cache) and the sites' full
 # results, outside git's view. Path-traced frames are cached by key, so a rerun traces only what changed.
@@ -32,16 +36,30 @@ cd "$(dirname "$0")/.."
 setting=full
 out=bench/results
 bakeset=""
+driver=lavapipe
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --quick) setting=quick ;;
     --budget) setting=budget ;;
+    --driver) driver="$2"; shift ;;
     -o) out="$2"; shift ;;
     -*) echo "scripts/bench.sh: $1: unknown option (see the comment at the top)" >&2; exit 2 ;;
     *) bakeset="$1" ;;
   esac
   shift
 done
+case "$driver" in
+  lavapipe) ;;
+  swiftshader)
+    icd="${GUSUKU_SWIFTSHADER_ICD:-/usr/lib/chromium/vk_swiftshader_icd.json}"
+    [[ -f "$icd" ]] || { echo "scripts/bench.sh: --driver swiftshader: $icd is missing (Debian's chromium package" \
+                              "provides it; scripts/install-deps.sh installs it)" >&2; exit 2; }
+    [[ "$out" != bench/results ]] || { echo "scripts/bench.sh: --driver swiftshader: give -o DIR" \
+                                            "(bench/results holds lavapipe's figures)" >&2; exit 2; }
+    export VK_ICD_FILENAMES="$icd"
+    unset VK_DRIVER_FILES VK_ADD_DRIVER_FILES ;;
+  *) echo "scripts/bench.sh: --driver $driver: lavapipe or swiftshader" >&2; exit 2 ;;
+esac
 # sites_quick goes before bench-sites.sh's WORK_DIR, sites_options after it (to every gusuku-bench run there).
 case "$setting" in
   full)   sample_options=();                                                    sites_quick=();        sites_options=(--accuracy-size 1280x720 --truth-samples 512) ;;
@@ -61,6 +79,7 @@ code="${GUSUKU_BENCH_CODE:-$(git rev-parse --short HEAD 2>/dev/null || echo 'not
 command_line="scripts/bench.sh"
 [[ "$setting" != full ]] && command_line+=" --$setting"
 [[ "$out" != bench/results ]] && command_line+=" -o $out"
+[[ "$driver" != lavapipe ]] && command_line+=" --driver $driver"
 
 mkdir -p "$work"
 if [[ -z "$bakeset" ]]; then
