@@ -14,7 +14,9 @@
 #include "bake_accumulate_interface.h"
 #include "camera_trace_comp_spv.h"
 #include "camera_trace_interface.h"
+#include "camera_trace_storage_comp_spv.h"
 #include "gusuku_bake/bvh.h"
+#include "gusuku_bake/trace_input_kind.h"
 
 namespace gusuku::bake {
 
@@ -73,9 +75,13 @@ CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int ma
     : gpu_(gpu), submitter_(std::make_unique<GpuSubmitter>(gpu)),
       scene_(uploadTraceScene(gpu, scene, max_texture_size)) {
     ray_counter_ = GpuBuffer(gpu, 16);
-    trace_pipeline_ = std::make_unique<ComputePipeline>(gpu, kCameraTraceCompSpirv, sizeof(kCameraTraceCompSpirv),
-                                                        CAMERA_TRACE_BINDING_COUNT, uint32_t(sizeof(TracePushConstants)),
-                                                        traceInputTexelBindings(), traceKernelSpecialization(scene_));
+    // How the kernel reads the scene and the sky is the device's choice (trace_input_kind.h).
+    const TraceInputKind kind = traceInputKind(gpu);
+    const bool texel = kind == TraceInputKind::TexelBuffers;
+    trace_pipeline_ = std::make_unique<ComputePipeline>(
+        gpu, texel ? kCameraTraceCompSpirv : kCameraTraceStorageCompSpirv,
+        texel ? sizeof(kCameraTraceCompSpirv) : sizeof(kCameraTraceStorageCompSpirv), CAMERA_TRACE_BINDING_COUNT,
+        uint32_t(sizeof(TracePushConstants)), traceInputTexelBindings(kind), traceKernelSpecialization(scene_));
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(gpu, kBakeAccumulateCompSpirv,
                                                              sizeof(kBakeAccumulateCompSpirv),
                                                              BAKE_ACCUMULATE_BINDING_COUNT,

@@ -12,9 +12,11 @@
 #include "bake_accumulate_interface.h"
 #include "bake_irradiance_comp_spv.h"
 #include "bake_irradiance_interface.h"
+#include "bake_irradiance_storage_comp_spv.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/bvh.h"
+#include "gusuku_bake/trace_input_kind.h"
 
 namespace gusuku::bake {
 
@@ -76,9 +78,15 @@ ComputePipeline& IrradianceTracer::pipelineFor(const TraceKernelVariant& variant
         specialization.push_back(variant.sky_next_event ? 1u : 0u);               // BAKE_SKY_NEXT_EVENT_CONSTANT
         specialization.push_back(uint32_t(variant.mode));                         // BAKE_TRACE_MODE_CONSTANT
         specialization.push_back(variant.bounces_before_roulette);  // IRRADIANCE_BOUNCES_BEFORE_ROULETTE_CONSTANT
+        // The device decides how the kernel reads the scene and the sky (trace_input_kind.h); the results are
+        // the same bits either way, so the bake's input_hash keeps the texel kernel's code (tracerCodeHash).
+        const TraceInputKind kind = traceInputKind(context_);
+        const bool texel = kind == TraceInputKind::TexelBuffers;
         pipeline = std::make_unique<ComputePipeline>(
-            context_, kBakeIrradianceCompSpirv, sizeof(kBakeIrradianceCompSpirv), BAKE_IRRADIANCE_BINDING_COUNT,
-            uint32_t(sizeof(BakePushConstants)), traceInputTexelBindings(), specialization);
+            context_, texel ? kBakeIrradianceCompSpirv : kBakeIrradianceStorageCompSpirv,
+            texel ? sizeof(kBakeIrradianceCompSpirv) : sizeof(kBakeIrradianceStorageCompSpirv),
+            BAKE_IRRADIANCE_BINDING_COUNT, uint32_t(sizeof(BakePushConstants)), traceInputTexelBindings(kind),
+            specialization);
     }
     return *pipeline;
 }

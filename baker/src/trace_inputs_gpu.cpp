@@ -8,6 +8,7 @@
 #include "camera_trace_interface.h"
 #include "gusuku_bake/alpha_mask_footprint.h"
 #include "gusuku_bake/bvh.h"
+#include "gusuku_bake/trace_input_kind.h"
 
 namespace gusuku::bake {
 
@@ -19,6 +20,27 @@ static_assert(BAKE_MATERIAL_BINDING == 3 && CAMERA_MATERIAL_BINDING == 3);
 static_assert(BAKE_TEXTURE_BINDING == 4 && CAMERA_TEXTURE_BINDING == 4);
 static_assert(BAKE_SKY_RADIANCE_BINDING == 5 && CAMERA_SKY_RADIANCE_BINDING == 5);
 static_assert(BAKE_SKY_TABLE_BINDING == 6 && CAMERA_SKY_TABLE_BINDING == 6);
+
+namespace {
+// Either kind of kernel can bind the inputs (trace_input_kind.h).
+constexpr VkBufferUsageFlags kTraceInputUsage =
+    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+}  // namespace
+
+TraceInputKind traceInputKind(const GpuDevice& gpu) {
+    const uint64_t largest_texels = uint64_t(gpu.limits().maxStorageBufferRange) / 4;
+    return gpu.limits().maxTexelBufferElements >= largest_texels ? TraceInputKind::TexelBuffers
+                                                                   : TraceInputKind::StorageBuffers;
+}
+
+const char* traceInputKindName(TraceInputKind kind) {
+    return kind == TraceInputKind::TexelBuffers ? "texel buffers" : "storage buffers";
+}
+
+std::vector<TexelBufferBinding> traceInputTexelBindings(TraceInputKind kind) {
+    if (kind == TraceInputKind::StorageBuffers) return {};
+    return traceInputTexelBindings();
+}
 
 TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size) {
     std::shared_ptr<const Bvh> built = scene.bvh;
@@ -32,7 +54,7 @@ TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, in
     std::vector<BvhTriangleGpu> leaf_triangles = bvh.triangles;
     for (BvhTriangleGpu& leaf : leaf_triangles)
         if (leaf.triangle_index < flags.size()) leaf.flags = flags[leaf.triangle_index];
-    constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    constexpr VkBufferUsageFlags kTexel = kTraceInputUsage;
     TraceSceneGpu uploaded;
     uploaded.bvh_nodes = uploadedBuffer(gpu, bvh.nodes, kTexel);
     uploaded.bvh_triangles = uploadedBuffer(gpu, leaf_triangles, kTexel);
@@ -54,8 +76,7 @@ std::vector<uint32_t> traceKernelSpecialization(const TraceSceneGpu& scene) {
 }
 
 SkyTablesGpu uploadSkyTables(const GpuDevice& gpu, const SkySamplingTables& sky) {
-    return {uploadedBuffer(gpu, sky.radiance_rgba, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT),
-            uploadedBuffer(gpu, sky.table, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT)};
+    return {uploadedBuffer(gpu, sky.radiance_rgba, kTraceInputUsage), uploadedBuffer(gpu, sky.table, kTraceInputUsage)};
 }
 
 std::vector<TexelBufferBinding> traceInputTexelBindings() {

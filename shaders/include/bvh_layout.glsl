@@ -30,6 +30,16 @@ const uint BVH_LEAF_FIRST_MASK = 0x0fffffffu;
 // + 2: edge2.
 const uint BVH_TRIANGLE_TEXELS = 3u;
 
+#ifdef TRACE_INPUTS_STORAGE_BUFFERS
+// The kernels' storage-buffer variant (trace_inputs_gpu.h, TraceInputKind): the same 16-byte words read from
+// storage buffers, for a scene that holds more texels than the device's maxTexelBufferElements (65536 on many
+// phones and SwiftShader). The loads return the same bits, so both variants compute the same results.
+layout(std430, set = 0, binding = BVH_NODE_BINDING) readonly buffer BvhNodeWords { uvec4 bvh_node_words[]; };
+layout(std430, set = 0, binding = BVH_TRIANGLE_BINDING) readonly buffer BvhTriangleWords { uvec4 bvh_triangle_words[]; };
+
+uvec4 bvhNodeTexel(uint node, uint word) { return bvh_node_words[node * BVH_NODE_TEXELS + word]; }
+uvec4 bvhTriangleTexel(uint triangle, uint word) { return bvh_triangle_words[triangle * BVH_TRIANGLE_TEXELS + word]; }
+#else
 layout(set = 0, binding = BVH_NODE_BINDING) uniform usamplerBuffer bvh_node_texels;
 layout(set = 0, binding = BVH_TRIANGLE_BINDING) uniform usamplerBuffer bvh_triangle_texels;
 
@@ -37,6 +47,7 @@ uvec4 bvhNodeTexel(uint node, uint word) { return texelFetch(bvh_node_texels, in
 uvec4 bvhTriangleTexel(uint triangle, uint word) {
     return texelFetch(bvh_triangle_texels, int(triangle * BVH_TRIANGLE_TEXELS + word));
 }
+#endif
 
 // Both children's boxes of a node whose first two loads are given: origin + q * 2^(exponent - 127) per axis.
 // The product is exact (16-bit integer times a power of two), so only the sum rounds, as in decodeBvhChildBox.

@@ -25,9 +25,24 @@ struct MaterialGpu {
                              // w: bit 0 double-sided
 };
 
+#ifdef TRACE_INPUTS_STORAGE_BUFFERS
+// The storage-buffer variant (bvh_layout.glsl): the same words, the same bits.
+layout(std430, set = 0, binding = SHADING_TRIANGLE_BINDING) readonly buffer TriangleShadingWords {
+    uvec4 triangle_shading_words[];
+};
+layout(std430, set = 0, binding = MATERIAL_BINDING) readonly buffer MaterialWords { uvec4 material_words[]; };
+layout(std430, set = 0, binding = TEXTURE_BINDING) readonly buffer TextureWords { uint texture_words[]; };
+uvec4 triangleShadingWord(int index) { return triangle_shading_words[index]; }
+uvec4 materialWord(int index) { return material_words[index]; }
+uint textureWord(int index) { return texture_words[index]; }
+#else
 layout(set = 0, binding = SHADING_TRIANGLE_BINDING) uniform usamplerBuffer triangle_shading_texels;
 layout(set = 0, binding = MATERIAL_BINDING) uniform usamplerBuffer material_texels;
 layout(set = 0, binding = TEXTURE_BINDING) uniform usamplerBuffer texture_word_texels;
+#define triangleShadingWord(index) texelFetch(triangle_shading_texels, index)
+#define materialWord(index) texelFetch(material_texels, index)
+#define textureWord(index) texelFetch(texture_word_texels, index).x
+#endif
 
 const uint kTriangleShadingTexels = 5u;  // vec4s in TriangleShadingGpu
 const uint kMaterialTexels = 3u;         // vec4s in MaterialGpu
@@ -35,25 +50,25 @@ const uint kMaterialTexels = 3u;         // vec4s in MaterialGpu
 TriangleShadingGpu loadTriangleShading(uint triangle_index) {
     int first = int(triangle_index * kTriangleShadingTexels);
     TriangleShadingGpu shading;
-    shading.normal0_u0 = uintBitsToFloat(texelFetch(triangle_shading_texels, first));
-    shading.normal1_v0 = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 1));
-    shading.normal2_material = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 2));
-    shading.uv0_vertex1_vertex2 = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 3));
-    shading.geometric_normal = uintBitsToFloat(texelFetch(triangle_shading_texels, first + 4));
+    shading.normal0_u0 = uintBitsToFloat(triangleShadingWord(first));
+    shading.normal1_v0 = uintBitsToFloat(triangleShadingWord(first + 1));
+    shading.normal2_material = uintBitsToFloat(triangleShadingWord(first + 2));
+    shading.uv0_vertex1_vertex2 = uintBitsToFloat(triangleShadingWord(first + 3));
+    shading.geometric_normal = uintBitsToFloat(triangleShadingWord(first + 4));
     return shading;
 }
 
 MaterialGpu loadMaterial(uint material_index) {
     int first = int(material_index * kMaterialTexels);
     MaterialGpu material;
-    material.base_color_factor = uintBitsToFloat(texelFetch(material_texels, first));
-    material.emission = uintBitsToFloat(texelFetch(material_texels, first + 1));
-    material.texture_info = texelFetch(material_texels, first + 2);
+    material.base_color_factor = uintBitsToFloat(materialWord(first));
+    material.emission = uintBitsToFloat(materialWord(first + 1));
+    material.texture_info = materialWord(first + 2);
     return material;
 }
 
 vec3 fetchTexel(uvec4 info, int x, int y) {
-    uint word = texelFetch(texture_word_texels, int(info.x + uint(y) * info.y + uint(x))).x;
+    uint word = textureWord(int(info.x + uint(y) * info.y + uint(x)));
     vec3 encoded = vec3(float(word & 255u), float((word >> 8u) & 255u), float((word >> 16u) & 255u)) / 255.0;
     return srgbDecode(encoded);
 }
@@ -87,7 +102,7 @@ vec3 sampleBaseColorTexture(uvec4 info, vec2 uv) {
 
 // The texture's alpha (stored linear in the word's top byte), bilinear with repeat wrapping as the colour.
 float fetchTexelAlpha(uvec4 info, int x, int y) {
-    return float(texelFetch(texture_word_texels, int(info.x + uint(y) * info.y + uint(x))).x >> 24u) / 255.0;
+    return float(textureWord(int(info.x + uint(y) * info.y + uint(x))) >> 24u) / 255.0;
 }
 
 float sampleBaseColorAlpha(uvec4 info, vec2 uv) {

@@ -29,11 +29,20 @@
 // in straight-line vector code, where a storage-buffer load at per-lane addresses (a texel per direction, a CDF
 // entry per search) runs as a loop over the SIMD lanes (bvh_layout.glsl). A float view returns the stored
 // floats unchanged, so every result equals the storage-buffer reads' bit for bit.
+#ifdef TRACE_INPUTS_STORAGE_BUFFERS
+// The storage-buffer variant (bvh_layout.glsl): the same floats.
+layout(std430, set = 0, binding = SKY_RADIANCE_BINDING) readonly buffer SkyRadianceValues { vec4 sky_radiance_values[]; };
+layout(std430, set = 0, binding = SKY_TABLE_BINDING) readonly buffer SkyTableValues { float sky_table_values[]; };
+
+vec4 skyRadianceTexel(int index) { return sky_radiance_values[index]; }
+float skyTable(int index) { return sky_table_values[index]; }
+#else
 layout(set = 0, binding = SKY_RADIANCE_BINDING) uniform samplerBuffer sky_radiance_texels;
 layout(set = 0, binding = SKY_TABLE_BINDING) uniform samplerBuffer sky_table_texels;
 
 vec4 skyRadianceTexel(int index) { return texelFetch(sky_radiance_texels, index); }
 float skyTable(int index) { return texelFetch(sky_table_texels, index).x; }
+#endif
 
 const int SKY_TABLE_HEADER_FLOATS = 4;
 // Largest float below 1: xi == 1 would pick the last CDF entry even when it has no mass.

@@ -2,6 +2,8 @@
 
 #include "gusuku/gpu/gpu_device.h"
 
+#include "gusuku/gpu/device_limits.h"
+
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -26,6 +28,8 @@ GpuDevice GpuDevice::describe(VkInstance instance, VkPhysicalDevice physical_dev
     gpu.instance_api_version = instance_api_version;
     if (physical_device != VK_NULL_HANDLE) {
         vkGetPhysicalDeviceProperties(physical_device, &gpu.properties);
+        // The one place gusuku reads limits from: lowered here when GUSUKU_CLAMP_LIMITS asks (device_limits.h).
+        clampDeviceLimitsFromEnvironment(gpu.properties.limits);
         vkGetPhysicalDeviceMemoryProperties(physical_device, &gpu.memory_properties);
     }
     return gpu;

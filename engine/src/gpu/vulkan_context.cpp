@@ -4,6 +4,7 @@
 #include "gusuku/gpu/vulkan_context.h"
 
 #include "gusuku/gpu/debug_message_source.h"
+#include "gusuku/gpu/device_limits.h"
 
 #include <algorithm>
 #include <cctype>
@@ -235,6 +236,9 @@ void VulkanContext::pickPhysicalDevice(const VulkanContextOptions& options) {
         throw std::runtime_error("Vulkan: no Vulkan 1.1 device with a compute queue (devices: " + seen + ")");
     }
     queue_family_ = static_cast<uint32_t>(pickQueueFamily(physical_device_));
+    // The limits as GpuDevice::describe gives them (device_limits.h), so properties() and gpu() agree; a bad
+    // GUSUKU_CLAMP_LIMITS throws here, before the device exists.
+    clampDeviceLimitsFromEnvironment(properties_.limits);
 
     subgroup_properties_ = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceDriverProperties driver_properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};

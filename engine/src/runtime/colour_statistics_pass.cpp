@@ -211,7 +211,10 @@ std::vector<vec4> groundIrradianceFor(const GroundMatchScene& scene) {
 }  // namespace
 
 bool ColourStatisticsPass::deviceSupports(const GpuDevice& gpu) {
-    return hasSubgroupArithmetic(querySubgroupProperties(gpu));
+    // The ground match's kernel reads 5 storage buffers, one more than Vulkan 1.0 promises a stage: a device
+    // with only 4 opens with the matches off, as one without subgroups does.
+    return hasSubgroupArithmetic(querySubgroupProperties(gpu)) &&
+           gpu.limits().maxPerStageDescriptorStorageBuffers >= GROUND_MATCH_BINDING_COUNT;
 }
 
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
