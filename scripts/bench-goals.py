@@ -24,6 +24,14 @@ def fixed(value, digits):
     return "n/a" if value is None else f"{value:.{digits}f}"
 
 
+def runtime_settings(out):
+    """The runtime options the sample's frames were timed at, as its results.json records them (the bench's
+    defaults are RuntimeOptions' own, never restated: tests/test_bench_tool_defaults.cpp)."""
+    path = os.path.join(out, "results.json")
+    runtime = field(load(path), path, ["run", "runtime"])
+    return f"msaa {runtime['msaa_samples']}, anisotropy {runtime['max_anisotropy']:g}"
+
+
 def sample_rows(out):
     path = os.path.join(out, "results.json")
     results = load(path)
@@ -81,7 +89,7 @@ def main():
     print()
     print(f"settings: the sample `gusuku-bench {run['sample_bench_options']}`; the sites "
           + (f"`gusuku-bench {run['sites_bench_options']}`" if run["sites_bench_options"] else "not run")
-          + "; frame times at 1280x720 at the runtime's defaults (msaa 4, anisotropy 16)")
+          + "; frame times at 1280x720 at " + runtime_settings(out))
     print()
     print("| where | goal | reading | limit | held |")
     print("| --- | --- | --- | --- | --- |")

@@ -13,7 +13,7 @@
 #                (15 timed frames, the day every 2 hours, weather sweeps 96x54 at 64 samples, the tracer timed up
 #                to 4 samples) with the sample's accuracy at 320x180 and 256-sample truths, and the sites' at
 #                320x180 with 128-sample truths. The frame-time goals are read at 1280x720 in every setting, at
-#                the runtime's default options (msaa 4, anisotropy 16).
+#                the runtime's default options (RuntimeOptions' own, which gusuku-bench starts from).
 #   --quick      the plumbing check: gusuku-bench --quick everywhere (160x90, 128 samples); a few minutes once
 #                the bakes are there. Its figures are not for README.md: use it with -o.
 #   -o DIR       where the results go (default bench/results); README.md's figures are pasted only for

@@ -48,11 +48,11 @@ struct Settings {
     // frames from the same pose, so that "over the sample's" is a ratio of one run (the machine is shared).
     std::optional<std::string> sample_bake_set;
     // The runtime's anti-aliasing and texture filtering (--msaa, --anisotropy), so that a run can measure what
-    // each costs and buys. The bench's own device enables samplerAnisotropy where the device has it (the runtime
-    // clamps to it), so it asks for the most, as an app that enables the feature would: on the shrine's quick
-    // views 16 took the composite from 2.51-2.55 to 2.21-2.37 mean dE00 (docs/measurements.md).
+    // each costs and buys; by default the runtime's own (RuntimeOptions), so that every frame-time goal is read
+    // as an app gets it (tests/test_bench_tool_defaults.cpp). The bench's device enables samplerAnisotropy where
+    // it exists: --anisotropy 16 took the shrine's quick views from 2.51-2.55 to 2.21-2.37 mean dE00.
     uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;
-    float max_anisotropy = 16.0f;
+    float max_anisotropy = RuntimeOptions{}.max_anisotropy;
     // --cycles-truth: Cycles' renders of the poses (bench/cycles/cycles_view_render.py), checked at the baked instant.
     std::optional<std::string> cycles_truth;
     // Derived from quick.

@@ -27,8 +27,9 @@ using namespace gusuku;
 using Clock = std::chrono::steady_clock;
 
 struct Settings {
-    long width = 1280, height = 720, rounds = 7, frames_per_round = 20;
-    std::vector<uint32_t> msaa_counts{4};
+    // The runtime's own defaults (RuntimeOptions), never restated.
+    long width = RuntimeOptions{}.frame_width, height = RuntimeOptions{}.frame_height, rounds = 7, frames_per_round = 20;
+    std::vector<uint32_t> msaa_counts{RuntimeOptions{}.msaa_samples};
     std::vector<RenderMode> modes{RenderMode::kBakedLight};
     long profiled_frames = 0;  // --profile N: N profiled frames per combination after the rounds
     bool ground_ratio = true;  // --no-ground-ratio: the last pass keeps only what it must (the resolve)
@@ -69,13 +70,14 @@ Settings parseSettings(int argc, char** argv, bool& help) {
     help = line.helpRequested();
     if (help) {
         std::printf("usage: gusuku-frame-paths [--width W] [--height H] [--rounds N] [--frames N]\n"
-                    "                          [--msaa COUNTS (e.g. 1,4; default 4)]\n"
+                    "                          [--msaa COUNTS (e.g. 1,4; default %u, the runtime's)]\n"
                     "                          [--mode baked-light|direct-only|both (default baked-light;\n"
                     "                           proposed: baked-light's old spelling)]\n"
                     "                          [--profile N (N profiled frames each: every pass alone)]\n"
                     "                          [--no-ground-ratio (FrameInput::ground_ratio off)]\n"
                     "                          [--colour-match off|reinhard|preserve|ground (default off;\n"
-                    "                           paper: reinhard's old spelling)]\n");
+                    "                           paper: reinhard's old spelling)]\n",
+                    RuntimeOptions{}.msaa_samples);
         return settings;
     }
     settings.width = long(line.integer("--width", 16, 8192).value_or(settings.width));

@@ -296,10 +296,7 @@ void runCost(Bench& bench) {
     const uint32_t levels = settings.quick ? 2 : 3;
     for (uint32_t level = 0; level <= levels; ++level) {
         if (level > 0) data.building = subdivide(data.building);
-        RuntimeOptions options;
-        options.frame_width = width;
-        options.frame_height = height;
-        std::unique_ptr<Runtime> runtime = Runtime::open(*bench.context, data, options);
+        std::unique_ptr<Runtime> runtime = Runtime::open(*bench.context, data, bench.runtimeOptions(width, height));
         const CameraPose pose = lookAtPose(bench.view.position_enu, bench.view.look_at_enu);
         Json row{{"triangles", data.building.indices.size() / 3}};
         for (const char* name : {"direct_only", "proposed"}) {
@@ -464,10 +461,8 @@ int run(const Settings& settings) {
                                                     photographed->bake_set.manifest, std::nullopt, settings.cache);
         const SiteConfig& photographed_site = photographed_truth.site;
         photographed->renderer = std::move(photographed_truth.renderer);
-        RuntimeOptions options;
-        options.frame_width = settings.sweep_width;
-        options.frame_height = settings.sweep_height;
-        photographed->runtime = Runtime::open(*bench.context, photographed->bake_set, options);
+        photographed->runtime = Runtime::open(*bench.context, photographed->bake_set,
+                                              bench.runtimeOptions(settings.sweep_width, settings.sweep_height));
         const auto fileName = [](const std::string& path) { return std::filesystem::path(path).filename().string(); };
         photographed->label = "photographed skies (sunny " + fileName(photographed_site.sunny_sky.path) +
                               ", overcast " +

@@ -18,7 +18,7 @@ struct RenderRequest {
     std::string output_png;                 ///< the composite
     std::string camera = "sample";          ///< "sample" (path-traced from the site) or an image (any bit depth)
     std::optional<std::string> site_json;   ///< for --camera sample; default: the site the manifest names
-    uint32_t width = 1280, height = 720;
+    uint32_t width = RuntimeOptions{}.frame_width, height = RuntimeOptions{}.frame_height;
     glm::dvec3 position_enu{0.0, -25.0, 6.0};
     glm::dvec3 look_at_enu{0.0, 0.0, 2.0};
     double horizontal_fov_deg = 60.0;
@@ -30,10 +30,10 @@ struct RenderRequest {
     uint32_t camera_samples = 64;
     std::optional<float> exposure;          ///< default: middle grey of the sample camera frame, else 1
     std::optional<float> ground_change_threshold;  ///< RuntimeOptions::ground_change_threshold
-    uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;  ///< RuntimeOptions::msaa_samples
-    /// RuntimeOptions::max_anisotropy. The tool's own device enables samplerAnisotropy where the device has it
-    /// (and the runtime clamps to it), so the tool asks for the most: textures seen at a slant stay sharp.
-    float max_anisotropy = 16.0f;
+    /// The runtime's own defaults (RuntimeOptions), never restated here, so that the frame times the tool prints
+    /// are the runtime's as an app gets them (tests/test_bench_tool_defaults.cpp pins it).
+    uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;
+    float max_anisotropy = RuntimeOptions{}.max_anisotropy;  ///< the tool's device enables samplerAnisotropy
     uint32_t timed_frames = 20;
     uint32_t warm_up_frames = 3;
     bool help = false;
