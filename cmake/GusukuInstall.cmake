@@ -52,6 +52,7 @@ install(TARGETS gusuku_formats gusuku_maths gusuku_gpu gusuku_runtime gusuku_pac
 #   gusuku/runtime/gusuku.h                the C API
 #   gusuku/runtime/runtime.h               the C++ API
 #   gusuku/runtime/runtime_version.h       the C++ version query (runtimeVersion)
+#   gusuku/runtime/runtime_sun_evidence.h  the sun read from the frame (latestSunEvidence)
 #   gusuku/pack_loader/gusuku_pack_loader.h, runtime_pack.h    the runtime pack's reader, C and C++
 #   gusuku/weather/gusuku_weather.h, weather_service.h         the weather services' readers, C and C++
 # and, because those include them (gusuku_header_closure walks the "gusuku/..." include lines, so an include added
@@ -67,6 +68,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/GusukuHeaderClosure.cmake)
 set(GUSUKU_INCLUDE_ROOT ${PROJECT_SOURCE_DIR}/engine/include)
 gusuku_header_closure(GUSUKU_RUNTIME_HEADERS ${GUSUKU_INCLUDE_ROOT}
   gusuku/runtime/gusuku.h gusuku/runtime/runtime.h gusuku/runtime/runtime_version.h
+  gusuku/runtime/runtime_sun_evidence.h
   gusuku/pack_loader/gusuku_pack_loader.h gusuku/pack_loader/runtime_pack.h
   gusuku/weather/gusuku_weather.h gusuku/weather/weather_service.h)
 foreach(header ${GUSUKU_RUNTIME_HEADERS})

@@ -27,6 +27,21 @@ double sumOf(const Histogram& counts) {
     return total;
 }
 
+// The bin holding the median: the first whose cumulative count reaches half the total (sunEvidenceQuantile's).
+uint32_t medianBin(const Histogram& counts) {
+    const double half = 0.5 * sumOf(counts);
+    double before = 0.0;
+    for (uint32_t bin = 0; bin < kSunEvidenceBins; ++bin) {
+        if (counts[bin] > 0 && before + counts[bin] >= half) return bin;
+        before += counts[bin];
+    }
+    return 0;
+}
+
+bool inWindow(uint32_t bin, uint32_t median) {
+    return bin + kSunEvidenceWindowBins >= median && bin <= median + kSunEvidenceWindowBins;
+}
+
 }  // namespace
 
 uint32_t sunEvidenceBin(double value, double lowest, double span) {
@@ -59,24 +74,46 @@ SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
         if (sample.kind == SunEvidenceSampleKind::kShadowed)
             ++shade[sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan)];
     const double shadowed = sumOf(shade);
-    const double shade_log2 =
-        sunEvidenceQuantile(shade, 0.5, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan);
+    // The trimmed mean about the median: the samples within kSunEvidenceWindowBins bins of the median's.
+    const uint32_t shade_median = medianBin(shade);
+    double shade_sum = 0.0, shade_kept = 0.0;
+    for (const SunEvidenceSample& sample : samples)
+        if (sample.kind == SunEvidenceSampleKind::kShadowed &&
+            inWindow(sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan),
+                     shade_median)) {
+            shade_sum += sample.log2_ratio;
+            shade_kept += 1.0;
+        }
+    const double shade_log2 = shade_kept > 0.0 ? shade_sum / shade_kept : 0.0;
 
     // Each lit sample's strength against the shade's level: ratio / g = 1 + s q.
+    auto strengthOf = [&](const SunEvidenceSample& sample) {
+        return (std::exp2(sample.log2_ratio - float(shade_log2)) - 1.0f) / sample.sun_share;
+    };
+    auto counts = [](const SunEvidenceSample& sample) {
+        return sample.kind == SunEvidenceSampleKind::kLit && sample.sun_share >= kSunEvidenceMinSunShare;
+    };
     Histogram strength{};
     for (const SunEvidenceSample& sample : samples)
-        if (sample.kind == SunEvidenceSampleKind::kLit && sample.sun_share >= kSunEvidenceMinSunShare) {
-            const float relative = std::exp2(sample.log2_ratio - float(shade_log2));
-            const float s = (relative - 1.0f) / sample.sun_share;
-            ++strength[sunEvidenceBin(s, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan)];
-        }
+        if (counts(sample))
+            ++strength[sunEvidenceBin(strengthOf(sample), kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan)];
     const double lit = sumOf(strength);
     estimate.shadowed_samples = uint32_t(shadowed);
     estimate.lit_samples = uint32_t(lit);
     const double fewest = std::min(shadowed, lit);
     if (fewest < double(kSunEvidenceMinSamples)) return estimate;  // no boundary in view: the prior decides
 
-    const double s = sunEvidenceQuantile(strength, 0.5, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan);
+    const uint32_t strength_median = medianBin(strength);
+    double strength_sum = 0.0, strength_kept = 0.0;
+    for (const SunEvidenceSample& sample : samples)
+        if (counts(sample)) {
+            const float s_i = strengthOf(sample);
+            if (inWindow(sunEvidenceBin(s_i, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan), strength_median)) {
+                strength_sum += s_i;
+                strength_kept += 1.0;
+            }
+        }
+    const double s = strength_sum / strength_kept;  // the median's bin is in the window: never empty
     const double interquartile =
         sunEvidenceQuantile(strength, 0.75, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan) -
         sunEvidenceQuantile(strength, 0.25, kSunEvidenceLowestStrength, kSunEvidenceStrengthSpan);

@@ -36,6 +36,10 @@ public:
     void reset();
     /// The state the building reads (one ColourMatchState).
     const GpuBuffer& stateBuffer() const { return statistics_ ? statistics_->stateBuffer() : state_without_match_; }
+    /// The statistics pass (null on a device without subgroup arithmetic), and whether this frame measures the ground:
+    /// then the camera pack holds the ground grid's pixels, which the sun-evidence pass reads too.
+    const ColourStatisticsPass* statistics() const { return statistics_.get(); }
+    bool measuresGround() const { return measures_ && mode_ == ColourMatchMode::kGround; }
 
 private:
     const PassContext context_;

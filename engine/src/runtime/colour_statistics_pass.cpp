@@ -278,20 +278,7 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
     ground_reduce_pipeline_->bindBuffers({&ground_partial_buffer_, &state_buffer_});
 }
 
-void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer,
-                                        const GroundMatchView& view) {
-    if (!hasGround())
-        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
-                           "colour match ground: the bake set has no ground_grid.albedo (bake it again)");
-    if (camera_buffer.size() < size_t(frame_width_) * frame_height_ * 4)
-        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
-                           "colour statistics: camera buffer: " + std::to_string(camera_buffer.size()) +
-                               " bytes, the frame needs " + std::to_string(size_t(frame_width_) * frame_height_ * 4));
-    if (camera_buffer.handle() != ground_bound_camera_buffer_) {
-        ground_statistics_pipeline_->bindBuffers({&camera_buffer, &ground_partial_buffer_, &ground_cell_buffer_,
-                                                  &ground_irradiance_buffer_, &ground_frame_buffer_});
-        ground_bound_camera_buffer_ = camera_buffer.handle();
-    }
+GroundMatchFrame ColourStatisticsPass::groundFrameFor(const GroundMatchView& view) const {
     // The ray through pixel point (u, v): R ((u - cx) / fx, (v - cy) / fy, 1) = u ray_x + v ray_y + ray_z.
     GroundMatchFrame frame{};
     const glm::dvec3 axis_x = view.camera_to_enu[0] / view.fx, axis_y = view.camera_to_enu[1] / view.fy;
@@ -317,6 +304,24 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
     frame.columns = uint32_t(ground_grid_.columns);
     frame.rows = uint32_t(ground_grid_.rows);
     frame.slot_count = ground_slot_count_;
+    return frame;
+}
+
+void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer,
+                                        const GroundMatchView& view) {
+    if (!hasGround())
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "colour match ground: the bake set has no ground_grid.albedo (bake it again)");
+    if (camera_buffer.size() < size_t(frame_width_) * frame_height_ * 4)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "colour statistics: camera buffer: " + std::to_string(camera_buffer.size()) +
+                               " bytes, the frame needs " + std::to_string(size_t(frame_width_) * frame_height_ * 4));
+    if (camera_buffer.handle() != ground_bound_camera_buffer_) {
+        ground_statistics_pipeline_->bindBuffers({&camera_buffer, &ground_partial_buffer_, &ground_cell_buffer_,
+                                                  &ground_irradiance_buffer_, &ground_frame_buffer_});
+        ground_bound_camera_buffer_ = camera_buffer.handle();
+    }
+    const GroundMatchFrame frame = groundFrameFor(view);
     // The earlier frames' kernels read the view before this write replaces it (write after read: execution only).
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
     vkCmdUpdateBuffer(cmd, ground_frame_buffer_.handle(), 0, sizeof frame, &frame);

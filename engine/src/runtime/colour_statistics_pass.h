@@ -62,6 +62,12 @@ public:
     bool hasGround() const { return ground_statistics_pipeline_ != nullptr; }
     /// The ground kernel's sample grid (groundMatchStride of the frame and the statistics stride).
     const ColourStatisticsGrid& groundGrid() const { return sample_grid_ground_; }
+    /// Mode kGround's cells and E_without on the GPU (GROUND_MATCH_CELL_BINDING, GROUND_MATCH_IRRADIANCE_BINDING),
+    /// which the sun-evidence pass reads too. Only when hasGround().
+    const GpuBuffer& groundCellBuffer() const { return ground_cell_buffer_; }
+    const GpuBuffer& groundIrradianceBuffer() const { return ground_irradiance_buffer_; }
+    /// The ground kernel's view of a frame (what recordGround writes into its buffer). Only when hasGround().
+    shader_interface::GroundMatchFrame groundFrameFor(const GroundMatchView& view) const;
 
     /// The next record() or recordGround() forgets the smoothed statistics and gain (a cut in the camera feed).
     void reset() { reset_pending_ = true; }

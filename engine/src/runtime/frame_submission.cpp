@@ -50,6 +50,11 @@ void FrameSubmission::waitAll() {
     for (Slot& slot : slots_) waitFor(slot);
 }
 
+bool FrameSubmission::finished(uint32_t slot) const {
+    const Slot& held = slots_[slot];
+    return !held.in_flight || vkGetFenceStatus(context_.gpu.device, held.fence.get()) == VK_SUCCESS;
+}
+
 VkCommandBuffer FrameSubmission::begin() {
     const VkCommandBuffer cmd = slots_[slot_].command_buffer;
     checkVk(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");

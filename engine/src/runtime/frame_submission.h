@@ -32,6 +32,8 @@ public:
     /// Waits for the slot's submission.
     void wait() { waitFor(slots_[slot_]); }
     void waitAll();
+    /// Whether the slot's last submission has finished on the GPU (no wait: its fence's status).
+    bool finished(uint32_t slot) const;
     void recordAfter(PassRecording& recording) override;
     /// Waits for the slot's frame and copies its composite (recorded with read_back) into output_rgba8.
     void readBack(uint8_t* output_rgba8);

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/runtime/runtime_sun_evidence.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/runtime/runtime_version.h"
@@ -307,6 +308,43 @@ gusuku_result gusuku_runtime_device_memory_bytes(const gusuku_runtime* runtime, 
     } catch (...) {
         return failFromCurrentException("gusuku_runtime_device_memory_bytes",
                                         &runtime->last_error);
+    }
+}
+
+gusuku_result gusuku_runtime_sun_evidence(gusuku_runtime* runtime, gusuku_sun_evidence_reading* out_reading) {
+    if (runtime == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_sun_evidence: runtime: is NULL");
+    if (out_reading == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_runtime_sun_evidence: out_reading: is NULL",
+                    &runtime->last_error);
+    if (out_reading->struct_size != sizeof(gusuku_sun_evidence_reading)) {
+        const std::string message = "gusuku_runtime_sun_evidence: out_reading.struct_size: " +
+                                    std::to_string(out_reading->struct_size) + " is not " +
+                                    std::to_string(sizeof(gusuku_sun_evidence_reading));
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, message.c_str(), &runtime->last_error);
+    }
+    try {
+        const std::optional<gusuku::RuntimeSunEvidence> latest = gusuku::latestSunEvidence(*runtime->runtime);
+        gusuku_sun_evidence_reading reading{};
+        reading.struct_size = sizeof reading;
+        if (latest) {
+            const gusuku::SunEvidenceEstimate& estimate = latest->estimate;
+            reading.measured = 1;
+            reading.sun_out_probability = estimate.evidence.sun_out_probability;
+            reading.confidence = estimate.evidence.confidence;
+            reading.sun_strength = estimate.evidence.sun_strength;
+            reading.cue = uint32_t(estimate.cue);
+            reading.shadowed_samples = estimate.shadowed_samples;
+            reading.lit_samples = estimate.lit_samples;
+            reading.shade_log2_ratio = estimate.shade_log2_ratio;
+            reading.strength = estimate.strength;
+            reading.strength_standard_error = estimate.strength_standard_error;
+            reading.frame_index = latest->frame_index;
+            reading.utc_unix_seconds = latest->utc_unix_seconds;
+        }
+        *out_reading = reading;
+        return GUSUKU_OK;
+    } catch (...) {
+        return failFromCurrentException("gusuku_runtime_sun_evidence", &runtime->last_error);
     }
 }
 

@@ -107,7 +107,6 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
     options_.lightmap_format = chooseLightmapFormat(gpu_, bake_set, options_);
     checkDeviceRequirements(gpu_, options_);
-    checkBakeSetLimits(gpu_, bake_set);
     try {
         scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format,
                              options_.texture_compression_astc_ldr && deviceSamplesAstcLdr(gpu_));
@@ -139,6 +138,11 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
     building_ = std::make_unique<BuildingPass>(context, *frame_set_, *materials_, main_pass, targets_->samples());
     ground_ = std::make_unique<GroundPass>(context, manifest_.ground_grid.grid, *frame_set_, options_.frames_in_flight,
                                            main_pass, targets_->samples());
+    // The sun from the site's shadows: the ground match's samples and the site occluder's map.
+    if (const ColourStatisticsPass* statistics = colour_->statistics();
+        statistics && statistics->hasGround() && scene_.occluder_index_count > 0)
+        sun_evidence_ = std::make_unique<SunEvidencePass>(context, *statistics, camera_->packedBuffer(), *shadows_,
+                                                          options_.frames_in_flight);
     using T = PassTimings;
     passes_ = {{
         {frame_set_.get(), &T::upload_ms, nullptr, nullptr},
@@ -148,12 +152,19 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
         {occluder_.get(), nullptr, &T::occluder_ms, nullptr},
         {building_.get(), nullptr, &T::building_ms, nullptr},
         {ground_.get(), nullptr, &T::ground_ms, nullptr},
+        {sun_evidence_ ? static_cast<FramePass*>(sun_evidence_.get()) : &no_sun_evidence_, nullptr, nullptr,
+         sun_evidence_ ? &T::statistics_ms : nullptr},
         {submission_.get(), nullptr, nullptr, &T::readback_ms},
     }};
 }
 
 RuntimeImpl::~RuntimeImpl() {
     if (gpu_.device != VK_NULL_HANDLE) vkDeviceWaitIdle(gpu_.device);  // then the passes release themselves
+}
+
+std::optional<RuntimeSunEvidence> RuntimeImpl::latestSunEvidence() {
+    if (!sun_evidence_) return std::nullopt;
+    return sun_evidence_->latest([&](uint32_t slot) { return submission_->finished(slot); });
 }
 
 }  // namespace runtime_detail
@@ -174,7 +185,7 @@ RuntimeOptions optionsForContext(const VulkanContext& context, RuntimeOptions op
 }
 
 // A runtime that owns the headless device it runs on: the context is made first and destroyed last.
-class HeadlessRuntime final : public Runtime {
+class HeadlessRuntime final : public Runtime, public runtime_detail::SunEvidenceSource {
 public:
     HeadlessRuntime(const BakeSetData& bake_set, const RuntimeOptions& options)
         : context_(vulkanOptionsFromEnvironment()),
@@ -193,6 +204,7 @@ public:
     uint64_t deviceMemoryBytes() const override { return runtime_.deviceMemoryBytes(); }
     LightmapFormat lightmapFormat() const override { return runtime_.lightmapFormat(); }
     uint32_t astcTextureCount() const override { return runtime_.astcTextureCount(); }
+    std::optional<RuntimeSunEvidence> latestSunEvidence() override { return runtime_.latestSunEvidence(); }
 
 private:
     VulkanContext context_;
@@ -200,6 +212,11 @@ private:
 };
 
 }  // namespace
+
+std::optional<RuntimeSunEvidence> latestSunEvidence(Runtime& runtime) {
+    auto* source = dynamic_cast<runtime_detail::SunEvidenceSource*>(&runtime);
+    return source ? source->latestSunEvidence() : std::nullopt;
+}
 
 std::unique_ptr<Runtime> Runtime::openHeadless(const BakeSetData& bake_set, const RuntimeOptions& options) {
     try {

@@ -19,6 +19,23 @@ void RuntimeImpl::checkFrame(const FrameInput& frame) const {
 
 // The frame's checks come first (checkFrame), then the slot (acquireSlot), then this: the passes may write the
 // slot's host-visible buffers, whose previous frame has completed.
+// The sun-evidence pass's view: the frame's camera and slot blend with the clear sky's E_sun (sun_scale 1), against
+// which the frame's lit ground measures the sun's strength now.
+void RuntimeImpl::prepareSunEvidence(const FrameInput& frame, const SlotBlend& blend, bool measure) {
+    GroundMatchView view;
+    if (measure) {
+        try {
+            const SkyAndSun clear_sun{frame.weather.cloud_cover, 1.0f};
+            const FrameLighting clear = computeFrameLighting(manifest_, frameObserverFor(frame, manifest_.site),
+                                                             frame.utc_unix_seconds, clear_sun, frame.blend_slots);
+            view = groundMatchViewFor(frame, clear, true, blend);
+        } catch (const std::exception& error) {
+            throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("frame: ") + error.what());
+        }
+    }
+    sun_evidence_->prepare(submission_->slot(), measure, view, frame_set_->uniforms(), frame.utc_unix_seconds);
+}
+
 FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     FrameLighting lighting;
     try {
@@ -37,13 +54,17 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     ground_->prepare(slot, {groundQuadsWanted(frame, flags), !flags.direct_only, flags.sun_shines, shadow_sun});
     info.ground_quads_drawn = ground_->quadsDrawn();
     info.ground_quads_total = scene_.ground_quad_capacity;
-    shadows_->prepare(shadow_sun, flags.sun_shines, flags.site_shadows);
+    // The sun-evidence pass reads the site's map whenever the sun is up, also when the app hides the sun (sun_scale 0):
+    // that is when it must see the sun come back.
+    const bool evidence_possible = sun_evidence_ && lighting.sun.above_horizon && !flags.direct_only;
+    shadows_->prepare(shadow_sun, flags.sun_shines, flags.site_shadows || evidence_possible);
 
     const SlotBlend blend = slotBlendFor(lighting);
     const FrameScene scene{scene_.scene_radius_m, scene_.irradiance_scale, scene_.slot_mean_indirect,
                            manifest_.ground_grid.grid};
     frame_set_->prepare(frameUniformsFor(frame, lighting, flags, blend, shadows_->fit(), options_, scene));
     colour_->prepare(frame, lighting, blend, flags.sun_shines);
+    if (sun_evidence_) prepareSunEvidence(frame, blend, evidence_possible && colour_->measuresGround());
     occluder_->prepare(frame_set_->uniforms());
     camera_->prepare(slot, frame, colour_->packGrid());
     return info;

@@ -8,7 +8,8 @@
 //   runtime_resources.cpp   what the runtime weighs in device memory
 // The passes, in list order: frame_set (the uniforms), camera_input (the camera sampled in place, its draw first
 // in the main pass), colour_match_pass (the statistics), shadow_pass, occluder_pass, building_pass,
-// ground_pass (the ground ratio), frame_submission (slots, fences, the read-back); what they share: material_sets,
+// ground_pass (the ground ratio), sun_evidence_pass (the sun read from the site's shadows in the camera frame),
+// frame_submission (slots, fences, the read-back); what they share: material_sets,
 // main_targets. A frame allocates nothing. Private to gusuku_runtime.
 
 #include <array>
@@ -27,6 +28,7 @@
 #include "occluder_pass.h"
 #include "runtime_scene.h"
 #include "shadow_pass.h"
+#include "sun_evidence_pass.h"
 
 namespace gusuku::runtime_detail {
 
@@ -42,7 +44,17 @@ struct ListedPass {
     double PassTimings::*after = nullptr;
 };
 
-class RuntimeImpl final : public Runtime {
+/// What latestSunEvidence (gusuku/runtime/runtime_sun_evidence.h) asks of a runtime: RuntimeImpl and the headless
+/// wrapper that holds one.
+class SunEvidenceSource {
+public:
+    virtual std::optional<RuntimeSunEvidence> latestSunEvidence() = 0;
+
+protected:
+    ~SunEvidenceSource() = default;
+};
+
+class RuntimeImpl final : public Runtime, public SunEvidenceSource {
 public:
     RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, const RuntimeOptions& options);
     ~RuntimeImpl() override;
@@ -57,9 +69,10 @@ public:
     uint64_t deviceMemoryBytes() const override;
     LightmapFormat lightmapFormat() const override { return options_.lightmap_format; }
     uint32_t astcTextureCount() const override { return scene_.astc_texture_count; }
+    std::optional<RuntimeSunEvidence> latestSunEvidence() override;
 
 private:
-    static constexpr size_t kPassCount = 8;
+    static constexpr size_t kPassCount = 9;
     static constexpr int kPhaseCount = 3;  // before, in the main pass, after
     PassContext passContext() const { return {gpu_, options_, scene_}; }
     void makePasses(const BakeSetData& bake_set);
@@ -67,6 +80,7 @@ private:
     // runtime_frame.cpp
     void checkFrame(const FrameInput& frame) const;  // RuntimeError kInvalidFrame naming the field
     FrameInfo prepareFrame(const FrameInput& frame);
+    void prepareSunEvidence(const FrameInput& frame, const SlotBlend& blend, bool measure);
 
     // runtime_submission.cpp
     void acquireSlot(const FrameInput& frame);
@@ -100,6 +114,8 @@ private:
     std::unique_ptr<OccluderPass> occluder_;
     std::unique_ptr<BuildingPass> building_;
     std::unique_ptr<GroundPass> ground_;
+    std::unique_ptr<SunEvidencePass> sun_evidence_;  // null without ground albedo, occluder or subgroup arithmetic
+    FramePass no_sun_evidence_;                      // its place in the list then: no hooks
     std::array<ListedPass, kPassCount> passes_{};  // the frame, in order
 };
 

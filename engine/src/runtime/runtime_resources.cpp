@@ -8,7 +8,7 @@ namespace gusuku::runtime_detail {
 uint64_t RuntimeImpl::deviceMemoryBytes() const {
     uint64_t bytes = camera_->memoryBytes() + targets_->memoryBytes() + shadows_->memoryBytes() +
                      frame_set_->memoryBytes() + colour_->stateBuffer().size() + ground_->memoryBytes() +
-                     submission_->memoryBytes();
+                     submission_->memoryBytes() + (sun_evidence_ ? sun_evidence_->memoryBytes() : 0);
     for (const GpuImage* image : {&scene_.lightmaps, &scene_.ground_irradiance, &scene_.ground_geometry,
                                   &scene_.white_texture})
         bytes += image->memoryBytes();

@@ -17,11 +17,12 @@
 // shadow boundary is known, not detected.
 //
 // So s is measured, not assumed:
-//   1. g: the median log2 ratio of the shadowed samples (a robust level of the shade, which a few lit pixels of a
-//      pedestrian or a wall standing in front cannot pull);
-//   2. s: the median over the lit samples with q >= kSunEvidenceMinSunShare of s_i = (ratio_i / g - 1) / q_i, each
-//      sample normalised by its own cell's albedo and share (so cells of unlike albedo or slope compare like with
-//      like);
+//   1. g: the shadowed samples' log2 ratio, its trimmed mean about the median (the samples within
+//      kSunEvidenceWindowBins bins of the median's): a robust level of the shade, which a few lit pixels of a
+//      pedestrian or a wall standing in front cannot pull;
+//   2. s: the same trimmed mean over the lit samples with q >= kSunEvidenceMinSunShare of s_i = (ratio_i / g - 1) /
+//      q_i, each sample normalised by its own cell's albedo and share (so cells of unlike albedo or slope compare
+//      like with like);
 //   3. the sun's state: p = logistic((s - kSunEvidenceOutStrength) / w), w the larger of kSunEvidenceMinWidth and
 //      the median's standard error (1.2533 sigma / sqrt(n), sigma from the interquartile range of the s_i / 1.349);
 //   4. confidence: 0 with fewer than kSunEvidenceMinSamples on either side (no boundary in view: the cue is "none"
@@ -31,7 +32,9 @@
 // third and leaves the sky gives 1/3; one that also brightens the sky by k gives 1/(3k): the ratio is what the frame
 // shows, and what the runtime's sun must take once the colour match's gain has absorbed the sky's brightness.
 //
-// Medians by histogram, as the GPU can afford them: kSunEvidenceBins bins (log2 ratio over
+// Medians by histogram, as the GPU can afford them (the median's bin is the first whose cumulative count reaches
+// half the total; a mean within the window then refines it past the bin's width, which a narrow population of
+// like pixels would otherwise leave as its error): kSunEvidenceBins bins (log2 ratio over
 // [kSunEvidenceLowestLog2Ratio, + kSunEvidenceLog2RatioSpan), s over [kSunEvidenceLowestStrength, +
 // kSunEvidenceStrengthSpan); outside: the end bins), and a quantile interpolated linearly within its bin (the bin's
 // samples taken as spread evenly). Samples: a lit or shadowed one needs its site visibility (the map's bilinear
@@ -61,6 +64,8 @@ inline constexpr double kSunEvidenceLowestLog2Ratio = -6.0;
 inline constexpr double kSunEvidenceLog2RatioSpan = 12.0;  ///< 0.1875 stop a bin
 inline constexpr double kSunEvidenceLowestStrength = -0.5;
 inline constexpr double kSunEvidenceStrengthSpan = 3.2;  ///< 0.05 a bin
+/// The trimmed means keep the samples within this many bins of the median's: +-0.375 stop of shade, +-0.1 of s.
+inline constexpr uint32_t kSunEvidenceWindowBins = 2;
 /// A lit sample whose clear sun adds less than this share to its sky light tells little of the sun: left out.
 inline constexpr double kSunEvidenceMinSunShare = 0.25;
 inline constexpr double kSunEvidenceShadowedVisibility = 0.02;
@@ -92,9 +97,9 @@ struct SunEvidenceEstimate {
     SunEvidenceCue cue = SunEvidenceCue::kNone;
     uint32_t shadowed_samples = 0;  ///< in the shadowed median
     uint32_t lit_samples = 0;       ///< in the strength median (q >= kSunEvidenceMinSunShare)
-    float shade_log2_ratio = 0.0f;  ///< log2 g: the shadowed samples' median (0 when too few)
-    float strength = 0.0f;          ///< s, the median (0 when too few); evidence.sun_strength is s where the sun is
-                                    ///< out (p >= 0.5), else -1
+    float shade_log2_ratio = 0.0f;  ///< log2 g: the shadowed samples' trimmed mean (0 when too few)
+    float strength = 0.0f;          ///< s, the trimmed mean (0 when too few); evidence.sun_strength is s where the
+                                    ///< sun is out (p >= 0.5), else -1
     float strength_standard_error = 0.0f;
 };
 

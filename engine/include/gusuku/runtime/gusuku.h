@@ -10,7 +10,7 @@
  *     gusuku_runtime_close(rt);
  *
  * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
- * 4 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * 5 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
  * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
  * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
  * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
@@ -111,7 +111,7 @@ const char* gusuku_version(void);
 
 /* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
  * fields or functions. */
-#define GUSUKU_API_VERSION 4u
+#define GUSUKU_API_VERSION 5u
 
 /* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
  * gusuku_api_version() is N or more. O(1). */
@@ -516,6 +516,36 @@ const char* gusuku_runtime_last_error(const gusuku_runtime* runtime);
 
 /* Waits for the runtime's GPU work, destroys everything it created (and a headless device). NULL: no-op. */
 gusuku_result gusuku_runtime_close(gusuku_runtime* runtime);
+
+/* The sun read from the real site's own shadows in the camera frame (API version 5; the C++ API's
+ * latestSunEvidence, gusuku/runtime/runtime_sun_evidence.h; docs/platform-light.md, "The sun from the frame"): the
+ * runtime compares, on the GPU within the frames its ground colour match measures, the camera's ground pixels that
+ * the site shadows with those it leaves in sun. Feed sun_out_probability, confidence and sun_strength to
+ * gusuku_sun_filter_update (gusuku_weather.h) as its gusuku_sun_evidence, and the filter's sun_visibility *
+ * sun_strength to the next frame's sun_scale. */
+typedef struct gusuku_sun_evidence_reading {
+    uint32_t struct_size;           /* sizeof(gusuku_sun_evidence_reading), set by the app */
+    int32_t measured;               /* 1: a measurement has finished; 0: none yet (or the runtime cannot measure:
+                                       no ground albedo, no site occluder, colour match off): the rest is zero */
+    float sun_out_probability;      /* [0, 1] */
+    float confidence;               /* [0, 1]: 0 no shadow boundary in view (cue 0), the prior decides */
+    float sun_strength;             /* E_sun / E_sky now over the bake's, where the sun is out; else -1 */
+    uint32_t cue;                   /* 0 none in view, 1 the site's shadow boundary on the ground */
+    uint32_t shadowed_samples;      /* ground samples the site shadows, and lit ones, behind the reading */
+    uint32_t lit_samples;
+    float shade_log2_ratio;         /* log2 of the camera's gain on the shadowed ground against the bake */
+    float strength;                 /* the strength measured (also when the sun is judged in) */
+    float strength_standard_error;
+    uint32_t reserved;              /* 0 */
+    uint64_t frame_index;           /* the frame measured: 1 for the runtime's first render */
+    double utc_unix_seconds;        /* that frame's utc_unix_seconds */
+} gusuku_sun_evidence_reading;
+
+/* The newest finished measurement, never waiting on the GPU (it lags the frame by up to frames_in_flight frames;
+ * none on the host-bytes path): out_reading->measured 0 before the first. Allocates nothing; call it every frame.
+ * out_reading->struct_size must be sizeof(gusuku_sun_evidence_reading) (API version 5's), else
+ * GUSUKU_ERROR_INVALID_ARGUMENT. O(1). */
+gusuku_result gusuku_runtime_sun_evidence(gusuku_runtime* runtime, gusuku_sun_evidence_reading* out_reading);
 
 /* ------------------------------------------------------------------------------------------------------------ */
 /* Cameras and weather (pure CPU, no runtime needed; runtime.h's helpers)                                        */
