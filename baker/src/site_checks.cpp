@@ -29,6 +29,12 @@ std::string format(const char* pattern, double a) {
     return text;
 }
 
+std::string utcOffsetText(int minutes) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%c%02d:%02d", minutes < 0 ? '-' : '+', std::abs(minutes) / 60, std::abs(minutes) % 60);
+    return text;
+}
+
 double angleDeg(const glm::dvec3& a, const glm::dvec3& b) {
     return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * kDegPerRad;
 }
@@ -278,9 +284,12 @@ std::vector<std::string> placementWarnings(const SiteConfig& config, const Trian
                 warnings.push_back(north_field + seen + " stands " + format("%.1f", sun.angle_deg) +
                                    " deg from the nearest point of the sun's path on " + config.bake.date +
                                    ": the north is off (or the photo is from another season); give the sky's "
-                                   "taken_at (when the photo was taken, e.g. \"" + config.bake.date +
-                                   "T10:30" + "+00:00\" with the site's offset) and set north_azimuth_in_image_deg "
-                                   "to \"auto\" to take the north from the sun");
+                                   "taken_at (when the photo was taken, e.g. \"" +
+                                   formatIso8601(sun.nearest_utc_seconds, config.site.utc_offset_minutes)
+                                       .substr(0, 16) +
+                                   utcOffsetText(config.site.utc_offset_minutes) +
+                                   "\") and set north_azimuth_in_image_deg to \"auto\" to take the north from the "
+                                   "sun");
             }
         }
     }
