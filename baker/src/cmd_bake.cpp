@@ -24,9 +24,14 @@ namespace {
 // The ranges --samples and --texture-size accept.
 constexpr int64_t kMaxBakeSamples = 1000000;
 constexpr int64_t kMinTextureSide = 16, kMaxTextureSide = 8192;
+// Below this many samples the summary calls the bake a quick look: the errors docs/measurements.md gives at 64
+// samples are already several per cent, and adaptive sampling only starts at 32.
+constexpr uint32_t kAdviceMinSamples = 64;
 
 // The runtime pack beside the EXRs (gusuku_bake/runtime_pack.h), for a whole bake set; partial sets have none.
-void writePackOf(const std::string& folder) {
+void writePackOf(const std::string& folder, bool show_progress = false) {
+    // The ASTC encoding takes seconds (13 s on a large site) after the progress bar's 100 %: say what it is doing.
+    if (show_progress) std::fprintf(stderr, "gusuku-bake: writing the runtime pack (encoding ASTC for the phone)...\n");
     const bake::RuntimePackReport pack = bake::writeRuntimePack(folder);
     std::printf("runtime pack:    %s (%.2f MiB; lightmaps E5B9G9R9 %.2f MiB, %s; textures RGBA8 "
                 "%.2f MiB, ASTC 6x6 with mips %.2f MiB; ASTC encoded in %.1f s)\n",
@@ -145,7 +150,11 @@ int runBakeCommand(const std::vector<std::string>& args) {
     else
         std::printf("slots:           1 (%s, a partial set of %zu: join them with gusuku-bake merge)\n",
                     options.slot.c_str(), site.bake.slots.size());
-    std::printf("samples:         %u per texel and per ground cell\n", report.samples_per_point);
+    std::printf("samples:         %u per texel and per ground cell%s\n", report.samples_per_point,
+                report.samples_per_point < kAdviceMinSamples
+                    ? " (a quick look: noisy; bake with 256 or more for the phone, --samples or "
+                      "bake.samples_per_texel, and measure the noise with gusuku-bake converge)"
+                    : "");
     const double lightmap_texels = double(report.lightmap_resolution) * double(report.lightmap_resolution);
     std::printf("building:        %zu lightmap texels (%dx%d, charts fill %.1f %%)\n", report.building_texels,
                 report.lightmap_resolution, report.lightmap_resolution,
@@ -160,13 +169,33 @@ int runBakeCommand(const std::vector<std::string>& args) {
                     invalid.slot.c_str(), invalid.total,
                     report.building_texels > 0 ? 100.0 * double(invalid.total) / double(report.building_texels) : 0.0,
                     invalid.one_sided_backs, invalid.under_ground, invalid.closed_double_sided, invalid.unexplained);
+    if (!report.invalid_texels.empty() && report.invalid_texels.front().total > 0) {
+        // What each kind means for the site team, named once for all slots (their counts differ little).
+        const bake::InvalidTexelCounts& first = report.invalid_texels.front();
+        std::printf("                 (invalid texels are filled from their neighbours; ");
+        std::vector<std::string> advice;
+        if (first.one_sided_backs > 0) advice.push_back("one-sided backs lie inside the model (under a wall, behind a floor): never seen, fine");
+        if (first.under_ground > 0)
+            advice.push_back("under the ground: a foot or a part sunk in the site mesh, fine for a footing, else run "
+                             "gusuku-bake preview and raise the building");
+        if (first.closed_double_sided > 0)
+            advice.push_back("inside closed double-sided parts: beams or boxes passing through one another, fine "
+                             "where no one can see in");
+        if (first.unexplained > 0) advice.push_back("unexplained: at the limit of the check's noise, a few are normal");
+        for (size_t i = 0; i < advice.size(); ++i)
+            std::printf("%s%s", i ? "; " : "", advice[i].c_str());
+        std::printf(")\n");
+    }
     std::printf("ground:          %zu cells\n", report.ground_cells);
     if (report.resumed_fraction > 0.0)
         std::printf("resumed:         %.0f %% of the work came from checkpoints\n", report.resumed_fraction * 100.0);
     std::printf("rays:            %.3g traced, %.3f Mrays/s\n", double(report.rays_traced), rays_per_second / 1e6);
+    // On a line of its own: scripts (bench/tracer_speed.sh, readme-figures.py) read the line above as it is.
+    std::printf("                 (million ray segments a second, the device's speed: a bake's time is about samples "
+                "x texels x bounces over it; a CPU device such as llvmpipe is 100x slower than a GPU)\n");
     std::printf("wall time:       %s (tracing %s)\n", bake::formatDuration(report.wall_seconds).c_str(),
                 bake::formatDuration(report.trace_seconds).c_str());
-    if (options.slot.empty()) writePackOf(options.output_dir);
+    if (options.slot.empty()) writePackOf(options.output_dir, options.show_progress);
     return 0;
 }
 

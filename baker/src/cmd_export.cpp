@@ -71,7 +71,8 @@ int runExportCommand(const std::vector<std::string>& args) {
                 report.lightmap_width, report.lightmap_height, report.materials, bake::kLightmapExtension);
     std::printf("encoding:        linear 8-bit PNG, intensity %.6g: every channel within %.3g of the bake\n",
                 report.intensity, bake::linearLightmapMaxError(report.intensity));
-    std::printf("dark texels:     %.1f %% of traced texels under 10 %% of the brightest (over 2 %% error there)\n",
+    std::printf("dark texels:     %.1f %% of traced texels under 10 %% of the brightest (over 2 %% error there: the "
+                "8-bit PNG holds shadows coarsely, fine for a web preview; the phone pack keeps them in HDR)\n",
                 100.0 * report.coarse_valid_texel_fraction);
     std::printf("sun:             %s\n", report.sun_light ? "KHR_lights_punctual directional light, lightmap units"
                                                           : "none (overcast or below the horizon)");
