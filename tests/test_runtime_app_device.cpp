@@ -20,6 +20,7 @@
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/synthetic/synthetic_bakeset.h"
+#include "test_msaa.h"
 
 namespace gusuku {
 namespace {
@@ -36,6 +37,7 @@ RuntimeOptions smallOptions(uint32_t frames_in_flight = 2) {
     options.frame_height = kHeight;
     options.shadow_map_size = 512;
     options.frames_in_flight = frames_in_flight;
+    options.msaa_samples = testing::testMsaaSamples();
     return options;
 }
 

@@ -20,6 +20,7 @@
 #include "gusuku/gpu/gpu_image.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/synthetic/synthetic_bakeset.h"
+#include "test_msaa.h"
 
 namespace gusuku {
 namespace {
@@ -38,6 +39,7 @@ RuntimeOptions optionsFor(CameraFormat format, YcbcrModel model = YcbcrModel::kB
     options.camera_format = format;
     options.camera_ycbcr_model = model;
     options.camera_ycbcr_range = range;
+    options.msaa_samples = testing::testMsaaSamples();
     return options;
 }
 

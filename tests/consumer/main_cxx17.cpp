@@ -1,6 +1,7 @@
 // A C++17 app against the installed gusuku (as Android NDK and Unity native-plugin code is built): the C++ API
 // (gusuku/runtime/runtime.h), a one-wall bake set in memory, a headless runtime, one frame. The same scene as
 // main.c: the wall is lit by its overcast slot alone, so its pixel is sRGB(albedo / pi * E_ind), computed here.
+// An optional argument sets the samples a pixel, as main.c's does.
 #if __cplusplus < 201703L || __cplusplus >= 202002L
 #error "tests/consumer/main_cxx17.cpp is the C++17 consumer: compile it as C++17 exactly"
 #endif
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <vector>
@@ -86,11 +88,12 @@ gusuku::FrameInput frameFacingTheWall(const std::vector<uint8_t>& camera) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
     try {
         gusuku::RuntimeOptions options;
         options.frame_width = options.frame_height = kSize;
         options.shadow_map_size = 64;
+        if (argc > 1) options.msaa_samples = uint32_t(std::strtoul(argv[1], nullptr, 10));  // open() refuses a bad one
         const std::unique_ptr<gusuku::Runtime> runtime = gusuku::Runtime::openHeadless(oneWallBakeSet(), options);
 
         const std::vector<uint8_t> camera(kSize * kSize * 4, 30);
