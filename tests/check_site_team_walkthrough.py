@@ -2,8 +2,8 @@
 """Runs docs/site-team.md's walkthrough as written (ctest docs_site_team_walkthrough).
 
 Every ```sh block of the page is run in order, one command a line, in a fresh folder that stands for the
-repository's root: `gusuku-bake` and `gusuku-render` are the built tools, `scripts/...` the repository's scripts,
-an `export` line is skipped (the tools are given by path). A ```json block after the line
+repository's root: `gusuku-bake` and `gusuku-render` are the built tools, a `python3` line runs the script of
+that name from the repository's scripts folder (--scripts), an `export` line is skipped (the tools are given by path). A ```json block after the line
 `<!-- walkthrough writes FILE -->` is written to FILE when the walk reaches it. To keep the test short the bake
 gets `--samples 2 --quiet` and the render `--size 160x90 --samples 2`; nothing else is changed. Each command must
 exit 0, check and preview must print `warnings: 0`, and georef's fitted fields must be the numbers the page's site.json holds (so the page cannot drift from

@@ -34,7 +34,10 @@ CommandHelp checkHelp() {
     help.description =
         "Validates SITE_JSON (format: docs/site-json.md), loads the building and SfM meshes and the sky maps it\n"
         "names, and prints a summary: the site, the slots with their site-clock and UTC times, triangle counts,\n"
-        "ENU bounds, sky sizes and warnings. Exit 0 when everything loads, 1 on bad input, 2 on bad usage.";
+        "ENU bounds, sky sizes and warnings. The placement checks warn, naming the field and the value to set,\n"
+        "when the building floats or is sunk against the site mesh's ground, when the site mesh's up is not up,\n"
+        "and when the sky's sun is off the computed sun (gusuku-bake preview draws the placement).\n"
+        "Exit 0 when everything loads, 1 on bad input, 2 on bad usage.";
     return help;
 }
 
