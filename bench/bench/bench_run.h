@@ -66,8 +66,13 @@ struct Settings {
         if (section == "site" && views.empty()) return false;  // the site section needs its poses
         return only.empty() || std::find(only.begin(), only.end(), section) != only.end();
     }
-    /// The main section (truth, every mode, the chart) runs unless --only names the site section alone.
-    bool wantsMain() const { return !(only.size() == 1 && only[0] == "site"); }
+    /// The main section (truth, every mode, the chart) runs unless --only names the site or field sections alone
+    /// (each has its own truths).
+    bool wantsMain() const {
+        return only.empty() || std::any_of(only.begin(), only.end(), [](const std::string& section) {
+                   return section != "site" && section != "field";
+               });
+    }
 };
 
 inline double millisecondsSince(Clock::time_point start) {
@@ -199,5 +204,8 @@ void runMain(Bench& bench);
 void runDay(Bench& bench);
 /// The goals from each visitor pose (--views) at a baked instant and 1.5 hours from it (site_section.cpp).
 void runSiteGoals(Bench& bench);
+/// Whether the sun is out and how strong, from frames of field skies, by today's estimate and by the site's
+/// shadows (field_light_section.cpp, issue 41 item 4).
+Json runFieldLightUnder(Bench& bench, const SkySet& skies);
 
 }  // namespace gusuku::bench

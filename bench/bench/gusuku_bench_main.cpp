@@ -86,12 +86,12 @@ CommandHelp benchHelp() {
         {"--cache", "", "DIR", "path-traced frames are kept here by key", std::string("DIR/../") + kCacheFolderName},
         {"--site", "", "SITE.json", "the site", "the one the bake set was baked from"},
         {"--only", "", "LIST",
-         "comma-separated sections to run: truth,timing,day,weather,cost,clouds,site (truth, the accuracy of every "
-         "mode and the chart always run, unless LIST is site alone)",
+         "comma-separated sections to run: truth,timing,day,weather,cost,clouds,field,site (truth, the accuracy of every "
+         "mode and the chart always run, unless LIST names only site or field)",
          "every section"},
         {"--photographed-skies", "", "BAKESET2",
          "the same site baked under photographed skies (scripts/bench.sh bakes one under ../shared/data/env when it "
-         "is there): the weather and clouds sections run under them too, with their own path-traced truths",
+         "is there): the weather, clouds and field sections run under them too, with their own path-traced truths",
          ""},
         {"--truth-samples", "", "N", "samples a pixel of every path-traced truth",
          std::to_string(defaults.truth_samples) + ", --quick " + std::to_string(quick.truth_samples)},
@@ -150,9 +150,10 @@ Settings parseSettings(const std::vector<std::string>& args, bool& help) {
     if (const auto only = line.text("--only")) {
         std::stringstream stream(*only);
         for (std::string section; std::getline(stream, section, ',');) {
-            static const std::vector<std::string> known{"truth", "timing", "day", "weather", "cost", "clouds", "site"};
+            static const std::vector<std::string> known{"truth", "timing", "day", "weather", "cost", "clouds", "field",
+                                                        "site"};
             if (std::find(known.begin(), known.end(), section) == known.end())
-                line.failValue("--only", "'" + section + "' is not one of truth,timing,day,weather,cost,clouds,site");
+                line.failValue("--only", "'" + section + "' is not one of truth,timing,day,weather,cost,clouds,field,site");
             settings.only.push_back(section);
         }
     }
@@ -483,6 +484,7 @@ int run(const Settings& settings) {
     if (settings.wants("weather")) runUnderEachSkySet(bench, "weather", runWeatherUnder);
     if (settings.wants("cost")) runCost(bench);
     if (settings.wants("clouds")) runUnderEachSkySet(bench, "clouds", runCloudsUnder);
+    if (settings.wants("field")) runUnderEachSkySet(bench, "field_light", runFieldLightUnder);
 
     const double seconds = millisecondsSince(start) / 1000.0;
     bench.results["run"]["seconds"] = seconds;

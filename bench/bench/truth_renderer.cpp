@@ -51,7 +51,11 @@ std::string keyOf(const TracedFrameRequest& request, const std::string& context_
         << request.view.position_enu.z << " at " << request.view.look_at_enu.x << ',' << request.view.look_at_enu.y
         << ',' << request.view.look_at_enu.z << " fov " << request.view.horizontal_fov_deg << " size "
         << request.width << 'x' << request.height << " utc " << request.condition.utc_seconds << " cover "
-        << request.condition.cloud_cover << " spp " << request.samples_per_pixel << " seed " << request.seed
+        << request.condition.cloud_cover;
+    // Only a field condition names its scales, so the caches of every earlier condition keep their keys.
+    if (request.condition.sun_scale != 1.0f || request.condition.sky_scale != 1.0f)
+        key << " sun " << request.condition.sun_scale << " sky " << request.condition.sky_scale;
+    key << " spp " << request.samples_per_pixel << " seed " << request.seed
         << " building " << request.include_building << " denoise " << request.denoise << " context "
         << context_hash;
     return key.str();
@@ -118,10 +122,12 @@ TracedFrame TruthRenderer::render(const TracedFrameRequest& request, bool use_ca
     using Clock = std::chrono::steady_clock;
     auto seconds = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
     // Adds weight x (the raw and the filtered estimate under this light) to the frame.
-    auto addLight = [&](const bake::SlotLighting& lighting, float weight) {
+    auto addLight = [&](const bake::SlotLighting& lighting, float weight, double sun_scale) {
         Clock::time_point start = Clock::now();
-        const bake::CameraRender render =
-            state_->tracer->render(bake::cameraLightOf(lighting), intrinsics, pose, options);
+        bake::CameraLight light = bake::cameraLightOf(lighting);
+        light.sun.irradiance_rgb *= sun_scale;
+        if (!(sun_scale > 0.0)) light.sun.present = false;
+        const bake::CameraRender render = state_->tracer->render(light, intrinsics, pose, options);
         frame.trace_seconds += seconds(start);
         auto accumulate = [weight](ImageRGBA& sum, const ImageRGBA& image) {
             if (sum.texels.empty()) {
@@ -142,14 +148,19 @@ TracedFrame TruthRenderer::render(const TracedFrameRequest& request, bool use_ca
         }
     };
     const float cover = request.condition.cloud_cover;
+    const float sky_scale = request.condition.sky_scale, sun_scale = request.condition.sun_scale;
+    if (!(sky_scale > 0.0f) || !(sun_scale >= 0.0f))
+        throw std::invalid_argument("TruthRenderer: a condition's sky_scale must be > 0 and its sun_scale >= 0");
+    // One trace of the sunny light with weight (1 - cover) sky_scale: its sky scaled so, its sun by sun_scale
+    // (E_sun pre-divided by sky_scale, which the weight puts back).
     if (cover < 1.0f)
         addLight(bake::lightCameraCondition(state_->site, state_->camera_site,
                                             bake::sunnyConditionAt(request.condition.utc_seconds)),
-                 1.0f - cover);
+                 (1.0f - cover) * sky_scale, double(sun_scale) / double(sky_scale));
     if (cover > 0.0f) {
         if (!state_->overcast)
             throw std::invalid_argument(state_->site.file + ": /skies/overcast: a cloudy frame needs an overcast sky");
-        addLight(*state_->overcast, cover);
+        addLight(*state_->overcast, cover, 1.0);
     }
     if (!path.empty()) {
         writeCached(path, key, frame.linear);

@@ -35,6 +35,11 @@ struct BenchView {
 struct BenchCondition {
     double utc_seconds = 0.0;
     float cloud_cover = 0.0f;  ///< 0 sunny, 1 overcast
+    /// The field's skies that one cover cannot say (issue 41 item 4), applied to the sunny part only: E_sun times
+    /// sun_scale (0: the sun behind a cloud with blue sky around it; 1/3: thin cloud) and the sunny sky's radiance
+    /// times sky_scale (thin cloud scatters the beam's loss into a brighter sky).
+    float sun_scale = 1.0f;
+    float sky_scale = 1.0f;
 };
 
 struct TracedFrameRequest {
