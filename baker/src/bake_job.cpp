@@ -29,6 +29,7 @@
 #include "gusuku_bake/irradiance_tracer.h"
 #include "gusuku_bake/output_guard.h"
 #include "gusuku_bake/slot_lighting.h"
+#include "gusuku_bake/trace_input_kind.h"
 
 namespace gusuku::bake {
 
@@ -291,6 +292,7 @@ std::vector<SlotLighting> lightEverySlot(const SiteConfig& site, const PreparedS
 BakeGeometry prepareCheckedGeometry(VulkanContext& context, const SiteConfig& site, const std::vector<SlotSun>& suns,
                                     const PreparedSky& sunny, const std::optional<PreparedSky>& overcast,
                                     const BakeOptions& options) {
+    checkTraceDeviceLimits(context);  // before the geometry's minutes, not after
     // The lowest baked sun sizes the ground grid.
     const uint64_t storage_buffer_limit = storageBufferLimitBytes(context.properties().limits.maxStorageBufferRange);
     BakeGeometry geometry = prepareBakeGeometry(site, lowestSunElevationDeg(suns), options.max_texture_size,

@@ -73,7 +73,7 @@ void checkView(const GpuDevice& gpu, const CameraLight& light, const CameraIntri
 
 CameraTracer::CameraTracer(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size)
     : gpu_(gpu), submitter_(std::make_unique<GpuSubmitter>(gpu)),
-      scene_(uploadTraceScene(gpu, scene, max_texture_size)) {
+      scene_((checkTraceDeviceLimits(gpu), uploadTraceScene(gpu, scene, max_texture_size))) {
     ray_counter_ = GpuBuffer(gpu, 16);
     // How the kernel reads the scene and the sky is the device's choice (trace_input_kind.h).
     const TraceInputKind kind = traceInputKind(gpu);

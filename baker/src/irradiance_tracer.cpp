@@ -61,7 +61,7 @@ uint64_t tracerCodeHash() {
 
 IrradianceTracer::IrradianceTracer(VulkanContext& context, const TraceScene& scene, const SkySamplingTables& sky,
                                    int max_texture_size)
-    : context_(context), scene_(uploadTraceScene(context, scene, max_texture_size)) {
+    : context_(context), scene_((checkTraceDeviceLimits(context), uploadTraceScene(context, scene, max_texture_size))) {
     ray_counter_ = GpuBuffer(context, 16);
     setSky(sky);
     accumulate_pipeline_ = std::make_unique<ComputePipeline>(context, kBakeAccumulateCompSpirv,
@@ -107,6 +107,16 @@ void IrradianceTracer::setSky(const SkySamplingTables& sky) {
 }
 
 PointAccumulator IrradianceTracer::createAccumulator(const std::vector<QueryPointGpu>& points) {
+    // Every point of a set is traced in one dispatch, a workgroup per BAKE_WORKGROUP_SIZE points.
+    const uint64_t max_points = uint64_t(context_.gpu().limits().maxComputeWorkGroupCount[0]) * kWorkgroupSize;
+    if (points.size() > max_points)
+        throw std::runtime_error("the bake traces " + std::to_string(points.size()) +
+                                 " points in one set, more than this device's (" +
+                                 context_.gpu().properties.deviceName + ") maxComputeWorkGroupCount[0] of " +
+                                 std::to_string(context_.gpu().limits().maxComputeWorkGroupCount[0]) + " x " +
+                                 std::to_string(kWorkgroupSize) +
+                                 " lets one dispatch reach: bake with a smaller lightmap (site.json "
+                                 "bake.texels_per_metre) or a coarser ground grid");
     PointAccumulator accumulator;
     accumulator.point_count = uint32_t(points.size());
     accumulator.points = uploadedBuffer(context_, points);
@@ -172,7 +182,9 @@ uint64_t IrradianceTracer::addSamples(PointAccumulator& accumulator, uint32_t sa
     const BakePushConstants push = pushConstantsFor(pass);
     const TraceKernelVariant variant = kernelVariantFor(pass);
     const size_t point_bytes = size_t(accumulator.point_count) * sizeof(glm::vec4);
-    const uint32_t max_chunk = uint32_t(std::max<size_t>(1, std::min<size_t>(kMaxScratchBytes / point_bytes, 65535)));
+    // A sample per workgroup row: at most the device's maxComputeWorkGroupCount[1] (65535 or more).
+    const uint32_t max_chunk = uint32_t(std::max<size_t>(
+        1, std::min<size_t>(kMaxScratchBytes / point_bytes, context_.gpu().limits().maxComputeWorkGroupCount[1])));
     uint64_t rays = 0;
     for (uint32_t done = 0; done < sample_count;) {
         const uint32_t chunk = std::min(max_chunk, sample_count - done);

@@ -2,7 +2,10 @@
 
 #include "gusuku_bake/trace_inputs_gpu.h"
 
+#include <algorithm>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "bake_irradiance_interface.h"
 #include "camera_trace_interface.h"
@@ -40,6 +43,42 @@ const char* traceInputKindName(TraceInputKind kind) {
 std::vector<TexelBufferBinding> traceInputTexelBindings(TraceInputKind kind) {
     if (kind == TraceInputKind::StorageBuffers) return {};
     return traceInputTexelBindings();
+}
+
+void checkTraceDeviceLimits(const GpuDevice& gpu) {
+    static_assert(BAKE_IRRADIANCE_BINDING_COUNT == 10 && CAMERA_TRACE_BINDING_COUNT == 10);
+    const VkPhysicalDeviceLimits& limits = gpu.limits();
+    const TraceInputKind kind = traceInputKind(gpu);
+    const std::string why = kind == TraceInputKind::StorageBuffers
+                                ? std::string(" (storage buffers, as maxTexelBufferElements of ") +
+                                      std::to_string(limits.maxTexelBufferElements) +
+                                      " is below what a bake may upload)"
+                                : " (texel buffers)";
+    auto need = [&](const char* limit, uint64_t have, uint64_t needed, const std::string& use) {
+        if (have >= needed) return;
+        throw std::runtime_error(std::string("the trace kernels need ") + limit + " >= " + std::to_string(needed) +
+                                 ", " + use + why + "; this device's (" + gpu.properties.deviceName + ") is " +
+                                 std::to_string(have) + ": bake on a device that has it (lavapipe, SwiftShader or a "
+                                 "desktop GPU)");
+    };
+    constexpr uint32_t kInputs = 7;  // the scene's five buffers and the sky's two
+    const uint32_t storage = kind == TraceInputKind::StorageBuffers ? BAKE_IRRADIANCE_BINDING_COUNT
+                                                                     : BAKE_IRRADIANCE_BINDING_COUNT - kInputs;
+    need("maxPerStageDescriptorStorageBuffers", limits.maxPerStageDescriptorStorageBuffers, storage,
+         "their storage buffers");
+    need("maxDescriptorSetStorageBuffers", limits.maxDescriptorSetStorageBuffers, storage, "their storage buffers");
+    if (kind == TraceInputKind::TexelBuffers) {
+        need("maxPerStageDescriptorSampledImages", limits.maxPerStageDescriptorSampledImages, kInputs,
+             "their texel buffers");
+        need("maxDescriptorSetSampledImages", limits.maxDescriptorSetSampledImages, kInputs, "their texel buffers");
+    }
+    need("maxComputeWorkGroupSize[0]", limits.maxComputeWorkGroupSize[0], BAKE_WORKGROUP_SIZE, "their workgroup");
+    need("maxComputeWorkGroupInvocations", limits.maxComputeWorkGroupInvocations, BAKE_WORKGROUP_SIZE,
+         "their workgroup");
+    need("maxPushConstantsSize", limits.maxPushConstantsSize,
+         std::max(sizeof(shader_interface::BakeIrradiancePushConstants),
+                  sizeof(shader_interface::CameraTracePushConstants)),
+         "their push constants");
 }
 
 TraceSceneGpu uploadTraceScene(const GpuDevice& gpu, const TraceScene& scene, int max_texture_size) {

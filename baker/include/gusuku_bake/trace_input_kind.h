@@ -25,4 +25,11 @@ const char* traceInputKindName(TraceInputKind kind);
 /// The seven inputs' texel formats for ComputePipeline under `kind` (none: all storage buffers).
 std::vector<TexelBufferBinding> traceInputTexelBindings(TraceInputKind kind);
 
+/// Throws std::runtime_error naming the first device limit the trace kernels need and the device lacks: under
+/// storage buffers, all 10 bindings as storage buffers in one stage and set (maxPerStageDescriptorStorageBuffers
+/// and maxDescriptorSetStorageBuffers: Vulkan 1.0 promises only 4 and 24, SwiftShader and the Android Baseline
+/// 2022 profile have 35 or more); under texel buffers 7 sampled images and 3 storage buffers; a 64-lane workgroup;
+/// the largest push constants (72 bytes). The bake calls it before its geometry, each tracer when it is made.
+void checkTraceDeviceLimits(const GpuDevice& gpu);
+
 }  // namespace gusuku::bake
