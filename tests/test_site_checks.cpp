@@ -5,6 +5,7 @@
 // where the computed sun is; "auto" north gives that known north back. Bad values are refused with nothing written.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -159,6 +160,18 @@ TEST_F(SiteChecksTest, TheSunInTheSkyFindsItsKnownNorth) {
     EXPECT_NEAR(northAzimuthInImageFromSun(seen.image_azimuth_deg, sun.azimuth_deg), kTrueNorthDeg, 0.71);
     EXPECT_NEAR(seen.elevation_deg, sun.apparent_elevation_deg, 0.71);
     EXPECT_FALSE(findSkySun(testing::uniformSky(64, 32, glm::vec3(1.0f))).found) << "a sunless sky has no sun";
+    // A clipped sun (an 8-bit photo's flat top: 5 x 5 texels at the clip, the sky at a third of it) is found too.
+    ImageRGBA clipped = paintedSunSky(config, 512);
+    const glm::dvec2 uv = equirectCoordinates(sun.direction_enu, kTrueNorthDeg);
+    for (float& value : clipped.texels) value = std::min(value, 0.3f);
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            float* texel = clipped.texel(int(uv.x * 512) + dx, int(uv.y * 256) + dy);
+            texel[0] = texel[1] = texel[2] = 1.0f;
+        }
+    const SkySunSighting clipped_seen = findSkySun(clipped);
+    ASSERT_TRUE(clipped_seen.found);
+    EXPECT_NEAR(northAzimuthInImageFromSun(clipped_seen.image_azimuth_deg, sun.azimuth_deg), kTrueNorthDeg, 0.71);
 
     // "auto" resolves at load to the painted north.
     usePaintedSky(std::string(R"(, "north_azimuth_in_image_deg": "auto", "taken_at": ")") + kTakenAt + "\"");
