@@ -45,6 +45,7 @@ const glm::vec3 kBuildingTint{1.0f, 0.62f, 0.35f};  // warm, so the building sta
 const glm::vec3 kSiteMeshTint{0.9f, 0.9f, 0.9f};
 const glm::vec3 kSunColour{1.0f, 0.85f, 0.0f};
 const glm::vec3 kGridColour{0.25f, 0.3f, 0.25f};
+const glm::vec3 kHeadingColour{0.2f, 0.9f, 1.0f};
 
 CommandHelp previewHelp() {
     CommandHelp help;
@@ -53,8 +54,9 @@ CommandHelp previewHelp() {
         "A quick look before a long bake: loads what the bake would (building, site mesh, sunny sky, the slots'\n"
         "suns), runs check's placement checks (the building floating or sunk against the site mesh's ground, the\n"
         "site mesh's up, the sky's sun against the computed sun) and writes, in seconds on the CPU:\n"
-        "  DIR/top.png    straight down, north up (the white arrow), the building orange, the sun's direction at\n"
-        "                 each sunny slot in yellow, a 1 m grid at the ground's height\n"
+        "  DIR/top.png    straight down, north up (the white arrow), the building orange with its model's -z\n"
+        "                 (what heading_deg turns) in cyan, the sun's direction at each sunny slot in yellow, a 1 m\n"
+        "                 grid at the ground's height\n"
         "  DIR/view.png   a visitor's eye 1.6 m above the ground with the first sunny slot's sun behind, under the\n"
         "                 sky photo placed with its north_azimuth_in_image_deg\n"
         "  DIR/checks.txt the checks list, also printed: each warning names the file, the field and what to change";
@@ -156,6 +158,12 @@ int preview(const std::string& site_path, const std::string& output_dir, int siz
         top.drawLine(top_camera, {centre.x, centre.y, high.z}, glm::dvec3(centre.x, centre.y, high.z) + length * horizontal,
                      kSunColour, 3);
     }
+    // The model's north (-z), which heading_deg turns: for many models their back, so a glance tells a wrong one.
+    const double heading_rad = scene.config.building.heading_deg * std::numbers::pi / 180.0;
+    top.drawLine(top_camera, {centre.x, centre.y, high.z},
+                 glm::dvec3(centre.x, centre.y, high.z) +
+                     1.5 * radius * glm::dvec3(std::sin(heading_rad), std::cos(heading_rad), 0.0),
+                 kHeadingColour, 3);
     // North arrow with an N, top left.
     const double arrow_x = 0.06 * size, arrow_top = 0.05 * size, arrow_bottom = 0.16 * size, head = 0.025 * size;
     const glm::vec3 white(1.0f);
