@@ -158,6 +158,53 @@ TEST_F(RuntimeDeviceLimits, AFixedNeedBelowItsLimitIsRefusedByName) {
     }
 }
 
+// docs/runtime.md's table of the fixed needs ("Device requirements", Limits), pinned: each figure passes, one
+// less is refused naming the limit, what the device has and the figure.
+TEST_F(RuntimeDeviceLimits, TheDocumentedFixedNeedsAreTheChecksFigures) {
+    const struct {
+        const char* limit;
+        uint32_t needed;
+    } documented[] = {
+        {"maxBoundDescriptorSets", 2},
+        {"maxPerStageDescriptorSamplers", 7},
+        {"maxPerStageDescriptorSampledImages", 7},
+        {"maxDescriptorSetSamplers", 7},
+        {"maxDescriptorSetSampledImages", 7},
+        {"maxPerStageDescriptorUniformBuffers", 1},
+        {"maxDescriptorSetUniformBuffers", 1},
+        {"maxUniformBufferRange", 296},
+        {"maxPerStageDescriptorStorageBuffers", 1},
+        {"maxPerStageResources", 10},
+        {"maxFragmentCombinedOutputResources", 2},
+        {"maxPushConstantsSize", 80},
+        {"maxVertexInputAttributes", 4},
+        {"maxVertexInputBindingStride", 40},
+        {"maxComputeWorkGroupInvocations", 64},
+        {"maxComputeWorkGroupSize[0]", 8},
+        {"maxComputeWorkGroupSize[1]", 8},
+    };
+    RuntimeOptions options;
+    options.frame_width = kWidth;
+    options.frame_height = kHeight;
+    options.lightmap_format = LightmapFormat::kE5b9g9r9;  // as open resolves kAuto before the check
+    for (const auto& need : documented) {
+        const std::string name = need.limit;
+        GpuDevice device = context();
+        clampDeviceLimits(device.properties.limits, name + "=" + std::to_string(need.needed));
+        EXPECT_NO_THROW(runtime_detail::checkDeviceRequirements(device, options)) << name;
+        clampDeviceLimits(device.properties.limits, name + "=" + std::to_string(need.needed - 1));
+        try {
+            runtime_detail::checkDeviceRequirements(device, options);
+            ADD_FAILURE() << name << " below " << need.needed << " passed";
+        } catch (const RuntimeError& error) {
+            EXPECT_NE(std::string(error.what()).find(name + " is " + std::to_string(need.needed - 1) + ", below the " +
+                                                     std::to_string(need.needed) + " that "),
+                      std::string::npos)
+                << error.what();
+        }
+    }
+}
+
 TEST_F(RuntimeDeviceLimits, ABakeSetBeyondALimitIsRefusedWithWhatToBakeDifferently) {
     const BakeSetData bake_set = testing::makeSyntheticBakeSet({});
     GpuDevice device = context();
