@@ -3,6 +3,7 @@
 // 1, and a = b = 0), a byte error of 10 everywhere is PSNR 10 log10(255^2 / 100), percentiles interpolate
 // between ranks as numpy's default does.
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "camera_response.h"
 #include "image_metrics.h"
+#include "gusuku/maths/colour.h"
 
 namespace gusuku::bench {
 namespace {
@@ -84,6 +86,33 @@ TEST(BenchMetrics, ChangedPixelMask) {
     const std::vector<uint8_t> without = frameOf({{90, 90, 90}, {90, 90, 90}, {90, 90, 90}});
     EXPECT_EQ(changedPixelMask(with, without), (std::vector<uint8_t>{0, 0, 1}));
     EXPECT_EQ(changedPixelMask(with, without, 0.1), (std::vector<uint8_t>{0, 1, 1}));
+}
+
+// A checkerboard of black and white low-passes, away from the edges, to the linear mean of its window: 4 or 5 of
+// the 9 pixels white, 4/9 or 5/9 in linear light, encoded to sRGB; at a corner the 4 pixels inside, 2 of them white:
+// 1/2. A uniform frame stays as it is. The noise correction: sqrt(e^2 - n^2 / 2), 0 when the noise is larger.
+TEST(BenchMetrics, LowPassInLinearLightAndTheTruthsNoiseTakenOut) {
+    const uint32_t width = 5, height = 4;
+    std::vector<uint8_t> board(size_t(width) * height * 4, 255);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x)
+            if ((x + y) % 2)
+                for (int channel = 0; channel < 3; ++channel) board[(size_t(y) * width + x) * 4 + channel] = 0;
+    const std::vector<uint8_t> filtered = lowPass3x3Linear(board, width, height);
+    auto byteOf = [](double linear) { return int(std::lround(255.0 * srgbEncode(linear))); };
+    // (1, 1): x + y even, white; its 3 x 3 window has 5 white (the centre and the 4 corners).
+    EXPECT_EQ(filtered[(1 * width + 1) * 4], byteOf(5.0 / 9.0));
+    // (2, 1): black; 4 white (its 4 edge neighbours).
+    EXPECT_EQ(filtered[(1 * width + 2) * 4 + 1], byteOf(4.0 / 9.0));
+    // (0, 0): white corner, window of 4 inside the frame, 2 white.
+    EXPECT_EQ(filtered[2], byteOf(0.5));
+    EXPECT_EQ(filtered[3], 255);
+    const std::vector<uint8_t> grey(size_t(width) * height * 4, 118);
+    EXPECT_EQ(lowPass3x3Linear(grey, width, height), grey);
+    EXPECT_THROW(lowPass3x3Linear(grey, width + 1, height), std::invalid_argument);
+    EXPECT_NEAR(withoutTruthNoise(2.0, 2.0), std::sqrt(2.0), 1e-12);
+    EXPECT_DOUBLE_EQ(withoutTruthNoise(1.0, 0.0), 1.0);
+    EXPECT_DOUBLE_EQ(withoutTruthNoise(0.5, 2.0), 0.0);
 }
 
 TEST(BenchMetrics, SizesMustAgree) {

@@ -95,4 +95,35 @@ std::vector<uint8_t> changedPixelMask(const std::vector<uint8_t>& with_building,
     return mask;
 }
 
+std::vector<uint8_t> lowPass3x3Linear(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height) {
+    if (rgba8.size() != size_t(width) * height * 4)
+        throw std::invalid_argument("lowPass3x3Linear: the frame is not width x height RGBA8");
+    std::vector<double> linear(size_t(width) * height * 3);
+    for (size_t pixel = 0; pixel < size_t(width) * height; ++pixel)
+        for (int channel = 0; channel < 3; ++channel)
+            linear[pixel * 3 + channel] = srgbDecode(double(rgba8[pixel * 4 + channel]) / 255.0);
+    std::vector<uint8_t> filtered(rgba8);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            double sum[3] = {0.0, 0.0, 0.0};
+            int count = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int64_t sx = int64_t(x) + dx, sy = int64_t(y) + dy;
+                    if (sx < 0 || sy < 0 || sx >= int64_t(width) || sy >= int64_t(height)) continue;
+                    const size_t at = (size_t(sy) * width + size_t(sx)) * 3;
+                    for (int channel = 0; channel < 3; ++channel) sum[channel] += linear[at + channel];
+                    ++count;
+                }
+            for (int channel = 0; channel < 3; ++channel)
+                filtered[(size_t(y) * width + x) * 4 + channel] =
+                    uint8_t(std::lround(255.0 * std::clamp(srgbEncode(sum[channel] / count), 0.0, 1.0)));
+        }
+    return filtered;
+}
+
+double withoutTruthNoise(double mean_de00, double noise_between_seeds_de00) {
+    return std::sqrt(std::max(0.0, mean_de00 * mean_de00 - 0.5 * noise_between_seeds_de00 * noise_between_seeds_de00));
+}
+
 }  // namespace gusuku::bench

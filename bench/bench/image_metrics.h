@@ -46,6 +46,19 @@ ErrorSummary summariseError(const std::vector<uint8_t>& frame, const std::vector
 /// The same from per-pixel CIEDE2000 values already computed (psnr_db is left 0: it needs the bytes).
 ErrorSummary summariseDifferences(const std::vector<double>& de00_per_pixel, const std::vector<uint8_t>& mask = {});
 
+/// The frame 3 x 3 box-filtered in linear light (sRGB decoded, averaged over the pixels of the 3 x 3 window that lie
+/// in the frame, encoded, rounded to 8 bits; alpha kept). Both images low-passed so, their difference is the
+/// light's error without the per-pixel part (aliasing, texture detail, a pixel's shift) that the runtime and the
+/// truth share by construction (issue 44 item 6).
+std::vector<uint8_t> lowPass3x3Linear(const std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height);
+
+/// A mean error with the truth's own noise taken out: sqrt(max(0, error^2 - noise^2 / 2)), where
+/// noise_between_seeds is the mean error between two independently seeded truths, which holds the noise of both
+/// (sqrt 2 times one truth's, the two being independent). Subtracting in quadrature treats the noise as
+/// independent of the method's error: a first-order correction, exact for Gaussian per-pixel errors, that keeps the
+/// reading from crediting a method with the truth's own grain.
+double withoutTruthNoise(double mean_de00, double noise_between_seeds_de00);
+
 /// The pixels the building or its shadow (or its bounce light) changes: those where the site with the building
 /// and the site without it differ by more than threshold_de00 (1: about a just-noticeable difference).
 /// Rendered with the same seed, the two differ only where a path met the building, so noise does not leak in.

@@ -24,6 +24,9 @@ struct ModePoint {
     RegionErrors errors;
     double frame_ms_640 = 0.0;  // the chart's x
     std::string time_source;
+    // The runtime modes' error with both images 3 x 3 low-passed in linear light (image_metrics.h): the light's
+    // error without the per-pixel part; the goal is read on it too, with the truth's noise taken out.
+    std::optional<RegionErrors> light;
 };
 
 // What the main section measures against: the truth, the camera frame and the pixels the building changes,
@@ -33,6 +36,8 @@ struct MainTruth {
     TracedFrameRequest seed2_request;  // the truth's request with seed 2: the path tracer's modes start from it
     std::vector<uint8_t> truth, camera, mask;
     RegionErrors noise;
+    std::vector<uint8_t> truth_low_passed;  // the truth 3 x 3 low-passed in linear light
+    RegionErrors noise_low_passed;           // seed 2 against seed 1, both low-passed
 };
 
 // The truth, its camera frame and its second seed, written as frames and as results["truth"].
@@ -52,6 +57,8 @@ MainTruth traceMainTruth(Bench& bench, const BenchCondition& condition, const Ca
     const std::vector<uint8_t> truth2 = applyCameraResponse(truth_seed2, frames.exposure, response);
     main.mask = changedPixelMask(main.truth, main.camera);
     main.noise = regionErrors(truth2, main.truth, main.mask);
+    main.truth_low_passed = lowPass3x3Linear(main.truth, width, height);
+    main.noise_low_passed = regionErrors(lowPass3x3Linear(truth2, width, height), main.truth_low_passed, main.mask);
     const std::vector<uint8_t>& mask = main.mask;
     bench.writePng("truth.png", width, height, main.truth);
     bench.writePng("camera.png", width, height, main.camera);
@@ -70,6 +77,7 @@ MainTruth traceMainTruth(Bench& bench, const BenchCondition& condition, const Ca
         {"exposure", frames.exposure},
         {"changed_pixels", changed},
         {"noise_between_seeds", regionJson(noise)},
+        {"noise_between_seeds_low_passed", regionJson(main.noise_low_passed)},
         {"seconds", millisecondsSince(start) / 1000.0}};
     bench.say("truth: " + std::to_string(width) + "x" + std::to_string(height) + ", " +
               std::to_string(settings.truth_samples) + " spp, sunny " + bench.localTime(condition.utc_seconds) +
@@ -93,7 +101,9 @@ std::vector<ModePoint> runtimeModeAccuracy(Bench& bench, const MainTruth& main, 
                                                condition.cloud_cover, main.frames.exposure * response.exposure_scale);
         const std::vector<uint8_t> composite = steadyComposite(runtime, input);
         bench.writePng(mode.name + ".png", width, height, composite);
-        points.push_back({mode.name, "runtime", regionErrors(composite, main.truth, main.mask), 0.0, "measured"});
+        ModePoint point{mode.name, "runtime", regionErrors(composite, main.truth, main.mask), 0.0, "measured"};
+        point.light = regionErrors(lowPass3x3Linear(composite, width, height), main.truth_low_passed, main.mask);
+        points.push_back(point);
     }
     return points;
 }
@@ -262,6 +272,7 @@ void reportAccuracy(Bench& bench, const std::vector<ModePoint>& points) {
     bench.say("| --- | --- | --- | --- | --- | --- |");
     for (const ModePoint& point : points) {
         accuracy[point.name] = regionJson(point.errors);
+        if (point.light) accuracy[point.name]["low_passed"] = regionJson(*point.light);
         accuracy[point.name]["frame_ms_640x360"] = point.frame_ms_640;
         accuracy[point.name]["frame_time_source"] = point.time_source;
         bench.say("| " + point.name + " | " + fixed(point.frame_ms_640, 1) + " | " + fixed(point.errors.changed.mean_de00) +
@@ -281,7 +292,8 @@ const ModePoint& modePointNamed(const std::vector<ModePoint>& points, const std:
 // The goals: the proposed method's frame time within 1.10x of direct-only's, its error below a third of
 // direct-only's, and the path tracer at least 100x slower to reach that error. Printed, results["goals"], and
 // returned for the chart.
-Json reportGoals(Bench& bench, const std::vector<ModePoint>& points, const Json& timing) {
+Json reportGoals(Bench& bench, const std::vector<ModePoint>& points, const Json& timing,
+                 const RegionErrors& noise_low_passed) {
     const ModePoint& direct = modePointNamed(points, "direct_only");
     const ModePoint& proposed = modePointNamed(points, "proposed");
     const double time_ratio_720 = double(timing["1280x720"]["modes"]["proposed"]["over_direct_only"]);
@@ -305,6 +317,14 @@ Json reportGoals(Bench& bench, const std::vector<ModePoint>& points, const Json&
                                             {"held_640x360", time_ratio_360 <= 1.10}};
     goals["error_over_direct_only"] = {{"ratio", error_ratio}, {"goal_below", 1.0 / 3.0},
                                        {"held", error_ratio < 1.0 / 3.0}};
+    // The same goal read on the light (issue 44 item 6): both images low-passed, the truth's noise taken out.
+    const double noise_light = noise_low_passed.changed.mean_de00;
+    const double proposed_light = withoutTruthNoise(proposed.light->changed.mean_de00, noise_light);
+    const double direct_light = withoutTruthNoise(direct.light->changed.mean_de00, noise_light);
+    const double light_ratio = proposed_light / direct_light;
+    goals["error_over_direct_only_low_passed"] = {
+        {"ratio", light_ratio}, {"proposed_mean_de00", proposed_light}, {"direct_only_mean_de00", direct_light},
+        {"noise_between_seeds_mean_de00", noise_light}, {"goal_below", 1.0 / 3.0}, {"held", light_ratio < 1.0 / 3.0}};
     goals["tracer_time_to_reach_proposed_error"] = {
         {"reached_by", reaching ? Json((*reaching)->name) : Json(nullptr)},
         {"ratio_over_proposed", tracer_ratio},
@@ -318,6 +338,10 @@ Json reportGoals(Bench& bench, const std::vector<ModePoint>& points, const Json&
               (time_ratio_720 <= 1.10 && time_ratio_360 <= 1.10 ? "held" : "NOT held"));
     bench.say("goal: proposed error over direct-only (building+shadow mean dE00) " + fixed(error_ratio, 3) +
               " (below 0.333): " + (error_ratio < 1.0 / 3.0 ? "held" : "NOT held"));
+    bench.say("goal, read on the light (3 x 3 low-passed in linear light, the truth's noise of " + fixed(noise_light) +
+              " dE00 between seeds taken out): proposed " + fixed(proposed_light) + " over direct-only " +
+              fixed(direct_light) + " = " + fixed(light_ratio, 3) + " (below 0.333): " +
+              (light_ratio < 1.0 / 3.0 ? "held" : "NOT held"));
     bench.say("goal: path tracer time to reach the proposed error over the proposed time " +
               (reaching ? fixed(tracer_ratio, 0) + "x (" + (*reaching)->name + ")"
                         : "> " + fixed(tracer_ratio, 0) + "x (no tracer mode reached it)") +
@@ -376,7 +400,7 @@ void runMain(Bench& bench) {
     addTracerAccuracy(bench, main, response, points);
     const Json timing = timeModes(bench, main, condition, response, pose, points);
     reportAccuracy(bench, points);
-    const Json goals = reportGoals(bench, points, timing);
+    const Json goals = reportGoals(bench, points, timing, main.noise_low_passed);
     writeErrorChart(bench, points, goals, main.noise, condition);
 }
 
