@@ -241,8 +241,9 @@ TEST_F(SiteChecksTest, PreviewDrawsTheBuildingFromAboveAndFromAVisitorsEye) {
     EXPECT_EQ(top.height, 96);
     EXPECT_EQ(view.width, 96);
     EXPECT_EQ(view.height, 54);
-    // The building (2 m, at the site's origin) fills the top view's centre in its orange; the grey ground beside it.
-    const float* centre = top.texel(48, 48);
+    // The building (2 m, at the site's origin, 10 pixels across) fills the top view's centre in its orange, beside
+    // the cyan heading line that starts there; the grey ground away from it.
+    const float* centre = top.texel(45, 51);
     EXPECT_GT(centre[0], 1.3f * centre[2]) << "building orange at the centre";
     const float* corner = top.texel(88, 88);
     EXPECT_NEAR(corner[0], corner[2], 0.05f) << "grey ground away from it";
