@@ -61,8 +61,9 @@ std::string siteStarterJson(const SiteStarterPlace& place) {
     "scale": 1.0
   },
   // The sky: a 360-degree HDR (or an exposure bracket of 8-bit photos) taken on site, level, from the building's
-  // place. north_azimuth_in_image_deg: where north is in the picture (0-360 across its width); with a sunny photo
-  // and its time, `check` compares the sun in the picture with the computed sun.
+  // place. north_azimuth_in_image_deg: where north is in the picture (0-360 across its width). With a sunny photo,
+  // add its time, "taken_at": "YYYY-MM-DDThh:mm+hh:mm" (EXIF DateTimeOriginal and the camera's UTC offset), and
+  // north_azimuth_in_image_deg can be "auto": the north from the sun. `check` compares a number with the sun.
   "skies": {
     "sunny": {"path": "sky_sunny.hdr", "north_azimuth_in_image_deg": 0.0},
     "overcast": {"path": "sky_overcast.hdr", "north_azimuth_in_image_deg": 0.0}
