@@ -167,85 +167,89 @@ SkySunComparison compareSkySun(const SiteConfig& config, const SkyConfig& sky, c
     return comparison;
 }
 
-std::vector<std::string> placementWarnings(const SiteConfig& config, const TriangleMesh& building,
-                                           const TriangleMesh* site_mesh, const ImageRGBA& sunny_radiance,
-                                           std::vector<std::string>& notes) {
-    std::vector<std::string> warnings;
-    const std::string& file = config.file;
-    bool up_is_up = true;
-    if (site_mesh && site_mesh->triangleCount() > 0) {
-        const glm::dvec3 mean_normal = meanFaceNormal(*site_mesh);
-        const double agreement = glm::length(mean_normal);
-        if (agreement >= kUpAxisMinMeanNormal) {
-            const double lean_deg = angleDeg(mean_normal, {0, 0, 1});
-            notes.push_back("site mesh's faces: mean normal " + format("%.2f", mean_normal.x) + ", " +
-                            format("%.2f", mean_normal.y) + ", " + format("%.2f", mean_normal.z) + " (ENU), " +
-                            format("%.0f", lean_deg) + " deg from up");
-            if (lean_deg > kUpAxisToleranceDeg) {
-                up_is_up = false;
-                // The fix: the rotation taking the faces' mean normal, snapped to the nearest ENU axis, onto up,
-                // before the given rotation. Snapping keeps the fix to a quarter or half turn, as an axis mix-up is.
-                glm::dvec3 axis(0.0);
-                int largest = 0;
-                for (int i = 1; i < 3; ++i)
-                    if (std::abs(mean_normal[i]) > std::abs(mean_normal[largest])) largest = i;
-                axis[largest] = mean_normal[largest] > 0 ? 1.0 : -1.0;
-                // Quaternion of the rotation from `axis` to +z: about axis x z by the angle between them; a half
-                // turn (axis -z) about east.
-                double fix[4] = {1, 0, 0, 0};
-                if (axis.z < -0.5) fix[0] = 0, fix[1] = 1;
-                else if (axis.z < 0.5) {
-                    const glm::dvec3 about = glm::normalize(glm::cross(axis, glm::dvec3(0, 0, 1)));
-                    const double half = std::sqrt(0.5);
-                    fix[0] = half, fix[1] = half * about.x, fix[2] = half * about.y, fix[3] = half * about.z;
-                }
-                const std::array<double, 4>& q = config.sfm_mesh->rotation_wxyz;
-                const double product[4] = {fix[0] * q[0] - fix[1] * q[1] - fix[2] * q[2] - fix[3] * q[3],
-                                           fix[0] * q[1] + fix[1] * q[0] + fix[2] * q[3] - fix[3] * q[2],
-                                           fix[0] * q[2] - fix[1] * q[3] + fix[2] * q[0] + fix[3] * q[1],
-                                           fix[0] * q[3] + fix[1] * q[2] - fix[2] * q[1] + fix[3] * q[0]};
-                const char* names[3] = {"east", "north", "up"};
-                const std::string towards = std::string(axis[largest] > 0 ? "" : "-") + names[largest];
-                std::string wxyz;
-                for (int i = 0; i < 4; ++i)
-                    wxyz += (i ? ", " : "") + format("%.4f", std::abs(product[i]) < 5e-5 ? 0.0 : product[i]);
-                warnings.push_back(
-                    file + ": /sfm_mesh/rotation_wxyz: the site mesh's ground faces face " + towards + " (mean normal " +
-                    format("%.0f", lean_deg) + " deg from up, more than " + format("%.0f", kUpAxisToleranceDeg) +
-                    "): the mesh's up axis is not mapped to up (a Y-up or Z-down export)" +
-                    (axis.z < -0.5 ? ", or its faces are wound inwards" : "") + "; set rotation_wxyz to [" + wxyz +
-                    "] and check translation_enu_m again (or fit all three with gusuku-bake georef)");
-            }
-        }
-    }
-    if (site_mesh && site_mesh->triangleCount() > 0 && up_is_up) {
-        if (const std::optional<BaseGap> gap = measureBaseGap(building, *site_mesh)) {
-            const double gap_m = gap->gapM();
-            const std::string where = format("%.2f m ", std::abs(gap_m)) + (gap_m > 0 ? "above" : "below") +
-                                      " the site mesh's ground around it (the median of " +
-                                      std::to_string(gap->ground_points) + " points " +
-                                      format("%g m", kGroundRingOffsetM) + " outside its footprint)";
-            if (std::abs(gap_m) > kBaseGapToleranceM) {
-                std::string field;
-                const std::string advice = buildingHeightAdvice(config, gap_m, field);
-                std::string why = gap_m > 0 ? "floats" : "is sunk";
-                std::string geoid;
-                if (std::abs(gap_m) > 5.0)
-                    geoid = "; a height above sea level given where the ellipsoid height was meant is off by the "
-                            "geoid, tens of metres";
-                warnings.push_back(file + ": " + field + ": the building " + why + ": its base stands " + where +
-                                   ", more than " + format("%g m", kBaseGapToleranceM) + "; " + advice +
-                                   ", or move the site mesh (sfm_mesh's translation_enu_m up) by " +
-                                   format("%+.2f m", gap_m) + " if the building's height is the surveyed one" + geoid);
-            } else {
-                notes.push_back("building's base: " + where);
-            }
-        } else {
-            notes.push_back("building's base: no site mesh within " + format("%g m", kGroundRingOffsetM) +
-                            " of its footprint to compare with");
-        }
-    }
+namespace {
 
+// The site mesh's faces against up; false (with a warning) when they lean beyond kUpAxisToleranceDeg.
+bool checkUpAxis(const SiteConfig& config, const TriangleMesh& site_mesh, std::vector<std::string>& warnings,
+                 std::vector<std::string>& notes) {
+    const std::string& file = config.file;
+    const glm::dvec3 mean_normal = meanFaceNormal(site_mesh);
+    if (glm::length(mean_normal) < kUpAxisMinMeanNormal) return true;  // the faces disagree: nothing to tell
+    const double lean_deg = angleDeg(mean_normal, {0, 0, 1});
+    notes.push_back("site mesh's faces: mean normal " + format("%.2f", mean_normal.x) + ", " +
+                    format("%.2f", mean_normal.y) + ", " + format("%.2f", mean_normal.z) + " (ENU), " +
+                    format("%.0f", lean_deg) + " deg from up");
+    if (lean_deg <= kUpAxisToleranceDeg) return true;
+    // The fix: the rotation taking the faces' mean normal, snapped to the nearest ENU axis, onto up,
+    // before the given rotation. Snapping keeps the fix to a quarter or half turn, as an axis mix-up is.
+    glm::dvec3 axis(0.0);
+    int largest = 0;
+    for (int i = 1; i < 3; ++i)
+        if (std::abs(mean_normal[i]) > std::abs(mean_normal[largest])) largest = i;
+    axis[largest] = mean_normal[largest] > 0 ? 1.0 : -1.0;
+    // Quaternion of the rotation from `axis` to +z: about axis x z by the angle between them; a half
+    // turn (axis -z) about east.
+    double fix[4] = {1, 0, 0, 0};
+    if (axis.z < -0.5) fix[0] = 0, fix[1] = 1;
+    else if (axis.z < 0.5) {
+        const glm::dvec3 about = glm::normalize(glm::cross(axis, glm::dvec3(0, 0, 1)));
+        const double half = std::sqrt(0.5);
+        fix[0] = half, fix[1] = half * about.x, fix[2] = half * about.y, fix[3] = half * about.z;
+    }
+    const std::array<double, 4>& q = config.sfm_mesh->rotation_wxyz;
+    const double product[4] = {fix[0] * q[0] - fix[1] * q[1] - fix[2] * q[2] - fix[3] * q[3],
+                               fix[0] * q[1] + fix[1] * q[0] + fix[2] * q[3] - fix[3] * q[2],
+                               fix[0] * q[2] - fix[1] * q[3] + fix[2] * q[0] + fix[3] * q[1],
+                               fix[0] * q[3] + fix[1] * q[2] - fix[2] * q[1] + fix[3] * q[0]};
+    const char* names[3] = {"east", "north", "up"};
+    const std::string towards = std::string(axis[largest] > 0 ? "" : "-") + names[largest];
+    std::string wxyz;
+    for (int i = 0; i < 4; ++i)
+        wxyz += (i ? ", " : "") + format("%.4f", std::abs(product[i]) < 5e-5 ? 0.0 : product[i]);
+    warnings.push_back(
+        file + ": /sfm_mesh/rotation_wxyz: the site mesh's ground faces face " + towards + " (mean normal " +
+        format("%.0f", lean_deg) + " deg from up, more than " + format("%.0f", kUpAxisToleranceDeg) +
+        "): the mesh's up axis is not mapped to up (a Y-up or Z-down export)" +
+        (axis.z < -0.5 ? ", or its faces are wound inwards" : "") + "; set rotation_wxyz to [" + wxyz +
+        "] and check translation_enu_m again (or fit all three with gusuku-bake georef)");
+    return false;
+}
+
+// The building's base against the site mesh's ground around it.
+void checkBaseGap(const SiteConfig& config, const TriangleMesh& building, const TriangleMesh& site_mesh,
+                  std::vector<std::string>& warnings, std::vector<std::string>& notes) {
+    const std::string& file = config.file;
+    if (const std::optional<BaseGap> gap = measureBaseGap(building, site_mesh)) {
+        const double gap_m = gap->gapM();
+        const std::string where = format("%.2f m ", std::abs(gap_m)) + (gap_m > 0 ? "above" : "below") +
+                                  " the site mesh's ground around it (the median of " +
+                                  std::to_string(gap->ground_points) + " points " +
+                                  format("%g m", kGroundRingOffsetM) + " outside its footprint)";
+        if (std::abs(gap_m) > kBaseGapToleranceM) {
+            std::string field;
+            const std::string advice = buildingHeightAdvice(config, gap_m, field);
+            std::string why = gap_m > 0 ? "floats" : "is sunk";
+            std::string geoid;
+            if (std::abs(gap_m) > 5.0)
+                geoid = "; a height above sea level given where the ellipsoid height was meant is off by the "
+                        "geoid, tens of metres";
+            warnings.push_back(file + ": " + field + ": the building " + why + ": its base stands " + where +
+                               ", more than " + format("%g m", kBaseGapToleranceM) + "; " + advice +
+                               ", or move the site mesh (sfm_mesh's translation_enu_m up) by " +
+                               format("%+.2f m", gap_m) + " if the building's height is the surveyed one" + geoid);
+        } else {
+            notes.push_back("building's base: " + where);
+        }
+    } else {
+        notes.push_back("building's base: no site mesh within " + format("%g m", kGroundRingOffsetM) +
+                        " of its footprint to compare with");
+    }
+}
+
+// The sunny sky's sun against the computed sun: at taken_at, else on bake.date.
+void checkSkySun(const SiteConfig& config, const ImageRGBA& sunny_radiance, std::vector<std::string>& warnings,
+                 std::vector<std::string>& notes) {
+    const std::string& file = config.file;
     const SkyCaptureTime capture = readSkyCaptureTime(file, "sunny");
     if (capture.north_auto) {
         notes.push_back("sunny sky: north from the sun at taken_at " + capture.taken_at_text + ": " +
@@ -293,6 +297,18 @@ std::vector<std::string> placementWarnings(const SiteConfig& config, const Trian
             }
         }
     }
+}
+
+}  // namespace
+
+std::vector<std::string> placementWarnings(const SiteConfig& config, const TriangleMesh& building,
+                                           const TriangleMesh* site_mesh, const ImageRGBA& sunny_radiance,
+                                           std::vector<std::string>& notes) {
+    std::vector<std::string> warnings;
+    // A mesh on its side has no ground under the building: the base check would measure nonsense.
+    if (site_mesh && site_mesh->triangleCount() > 0 && checkUpAxis(config, *site_mesh, warnings, notes))
+        checkBaseGap(config, building, *site_mesh, warnings, notes);
+    checkSkySun(config, sunny_radiance, warnings, notes);
     return warnings;
 }
 

@@ -220,20 +220,27 @@ double readTakenAt(const ObjectReader& reader) {
     return 0.0;
 }
 
+/// taken_at, also within the years the sun position covers (check compares the sky's sun with it).
+double readSunTakenAt(const ObjectReader& reader) {
+    const double taken_at = readTakenAt(reader);
+    try {
+        computeSunPosition(SunObserver{}, taken_at);  // the range depends on the instant alone
+    } catch (const std::invalid_argument&) {
+        reader.fail("taken_at", "is outside the UTC years -2000 to 6000 that the sun position (NREL SPA) covers");
+    }
+    return taken_at;
+}
+
 /// `"north_azimuth_in_image_deg": "auto"`: the column the sun stands in, less the sun's computed azimuth at taken_at.
 double northFromSkySun(const ObjectReader& reader, const SkyConfig& sky, const SiteLocation& site) {
     if (!reader.has("taken_at"))
         reader.fail("north_azimuth_in_image_deg", "\"auto\" needs taken_at, the time the sky was photographed "
                                                   "(e.g. \"2026-06-21T10:30+09:00\"), to compute the sun's azimuth");
-    const double taken_at = readTakenAt(reader);
-    SunPosition sun;
-    try {
-        sun = computeSunPosition(site.sunObserver(), taken_at);
-    } catch (const std::invalid_argument&) {
-        reader.fail("taken_at", "is outside the UTC years -2000 to 6000 that the sun position (NREL SPA) covers");
-    }
+    const double taken_at = readSunTakenAt(reader);
+    const SunPosition sun = computeSunPosition(site.sunObserver(), taken_at);  // in range: readSunTakenAt
     if (!sun.above_horizon)
-        reader.fail("taken_at", "the sun is below the horizon then (elevation " + json_reader::formatNumber(sun.apparent_elevation_deg) +
+        reader.fail("taken_at", "the sun is below the horizon then (elevation " +
+                                    json_reader::formatNumber(std::round(sun.apparent_elevation_deg * 10) / 10) +
                                     " deg): check the date and the UTC offset");
     const SkySunSighting seen = findSkySun(readSkyRadiance(sky));
     if (!seen.found)
@@ -241,7 +248,8 @@ double northFromSkySun(const ObjectReader& reader, const SkyConfig& sky, const S
                                                       json_reader::formatNumber(kSkySunMaxCoreRadiusDeg) +
                                                       " deg across): give the north as a number of degrees");
     if (std::abs(seen.elevation_deg - sun.apparent_elevation_deg) > kAutoNorthElevationToleranceDeg)
-        reader.fail("taken_at", "the sun in the sky stands at elevation " + json_reader::formatNumber(std::round(seen.elevation_deg * 10) / 10) +
+        reader.fail("taken_at", "the sun in the sky stands at elevation " +
+                                    json_reader::formatNumber(std::round(seen.elevation_deg * 10) / 10) +
                                     " deg, the computed sun then at " +
                                     json_reader::formatNumber(std::round(sun.apparent_elevation_deg * 10) / 10) +
                                     " deg: the time (or its UTC offset) is wrong, or the photo is not level; "
@@ -296,7 +304,7 @@ SkyConfig readSky(const ObjectReader& skies, const std::string& name, const fs::
     } else {
         sky.north_azimuth_in_image_deg =
             reader.number("north_azimuth_in_image_deg", kNorthAzimuth, sky.north_azimuth_in_image_deg);
-        if (reader.has("taken_at")) readTakenAt(reader);
+        if (reader.has("taken_at")) readSunTakenAt(reader);
     }
     return sky;
 }
