@@ -72,6 +72,10 @@ CommandHelp bakeHelp() {
         {"--quiet", "", "", "no progress bar", ""},
     };
     help.notes =
+        "The progress bar shows the slot, the samples each texel has of its total (spp: samples per texel; more\n"
+        "is less noise), Mrays/s (million ray segments a second: the device's speed) and the time left. The\n"
+        "summary at the end explains the rays figure and the invalid texels, and says when the samples are too\n"
+        "few for the phone.\n"
         "Ctrl-C or SIGTERM stops within about a second; everything traced so far is kept in DIR/.checkpoint,\n"
         "and running the same command again continues from there. The environment variable GUSUKU_DEVICE picks a\n"
         "Vulkan device by name (e.g. llvmpipe); GUSUKU_VALIDATION=1 turns on the Khronos validation layer.\n"
