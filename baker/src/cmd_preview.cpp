@@ -58,7 +58,8 @@ CommandHelp previewHelp() {
         "                 (what heading_deg turns) in cyan, the sun's direction at each sunny slot in yellow, a 1 m\n"
         "                 grid at the ground's height\n"
         "  DIR/view.png   a visitor's eye 1.6 m above the ground with the first sunny slot's sun behind, under the\n"
-        "                 sky photo placed with its north_azimuth_in_image_deg\n"
+        "                 sky photo placed with its north_azimuth_in_image_deg, each slot's sun a yellow cross\n"
+        "                 where it is in view\n"
         "  DIR/checks.txt the checks list, also printed: each warning names the file, the field and what to change";
     help.options = {
         {"--output", "-o", "DIR", "the folder to write the pictures and checks.txt into (created if missing)", ""},
@@ -190,6 +191,16 @@ int preview(const std::string& site_path, const std::string& output_dir, int siz
     if (scene.site_mesh) view.drawMesh(view_camera, *scene.site_mesh, kSiteMeshTint, sun);
     view.drawMesh(view_camera, scene.building, kBuildingTint, sun);
     view.drawSky(view_camera, scene.sky, scene.config.sunny_sky.north_azimuth_in_image_deg);
+    // Each sunny slot's sun where it stands in this view (a cross; off the picture when behind the visitor).
+    for (const auto& [name, slot_sun] : scene.suns) {
+        if (!slot_sun.above_horizon) continue;
+        constexpr double kMarkerDistanceM = 100.0, kMarkerArmM = 1.5;
+        const glm::dvec3 at = eye + kMarkerDistanceM * slot_sun.direction_enu;
+        view.drawLine(view_camera, at - kMarkerArmM * view_camera.right, at + kMarkerArmM * view_camera.right,
+                      kSunColour, 3);
+        view.drawLine(view_camera, at - kMarkerArmM * view_camera.up, at + kMarkerArmM * view_camera.up, kSunColour,
+                      3);
+    }
 
     std::string checks = "placement:\n";
     for (const std::string& note : scene.notes) checks += "  " + note + "\n";
