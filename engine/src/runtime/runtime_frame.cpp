@@ -64,7 +64,8 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
                            manifest_.ground_grid.grid};
     frame_set_->prepare(frameUniformsFor(frame, lighting, flags, blend, shadows_->fit(), options_, scene));
     colour_->prepare(frame, lighting, blend, flags.sun_shines);
-    if (sun_evidence_) prepareSunEvidence(frame, blend, evidence_possible && colour_->measuresGround());
+    if (sun_evidence_)
+        prepareSunEvidence(frame, blend, sun_evidence_enabled_ && evidence_possible && colour_->measuresGround());
     occluder_->prepare(frame_set_->uniforms());
     camera_->prepare(slot, frame, colour_->packGrid());
     return info;

@@ -70,6 +70,8 @@ public:
     LightmapFormat lightmapFormat() const override { return options_.lightmap_format; }
     uint32_t astcTextureCount() const override { return scene_.astc_texture_count; }
     std::optional<RuntimeSunEvidence> latestSunEvidence() override;
+    /// Measuring frames skip the sun evidence while off (the cost test times the frame with and without it).
+    void setSunEvidenceEnabled(bool enabled) { sun_evidence_enabled_ = enabled; }
 
 private:
     static constexpr size_t kPassCount = 9;
@@ -116,6 +118,7 @@ private:
     std::unique_ptr<GroundPass> ground_;
     std::unique_ptr<SunEvidencePass> sun_evidence_;  // null without ground albedo, occluder or subgroup arithmetic
     FramePass no_sun_evidence_;                      // its place in the list then: no hooks
+    bool sun_evidence_enabled_ = true;
     std::array<ListedPass, kPassCount> passes_{};  // the frame, in order
 };
 

@@ -198,9 +198,12 @@ void SunEvidencePass::recordAfter(PassRecording& recording) {
     reduce.result_index = slot_;
     reduce.frame_serial = uint32_t(slots_[slot_].frame_index);
     reduce_.recordDispatch(cmd, &reduce, 1);
-    // The result to the host after the fence; the samples to later readers (tests' downloads are transfers).
+    // The result to the host after the fence; the samples to later readers (tests' downloads are transfers); and the
+    // site map's read before a later frame's shadow pass writes it again (write after read: the shadow render pass's
+    // own dependency waits only for fragment shaders).
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
