@@ -134,6 +134,7 @@ struct SkySet {
     TruthRenderer* renderer = nullptr;
     Runtime* runtime = nullptr;
     bool has_ground_albedo = false;  ///< its bake set can run the ground match
+    const BakeSetData* bake_set = nullptr;  ///< for a section that opens a runtime at another size
 };
 
 // The same site baked under the photographed skies of ../shared/data/env (--photographed-skies).
@@ -162,11 +163,11 @@ struct Bench {
 
     SkySet analyticSkies() {
         return {"the sample's analytic skies", renderer.get(), &runtimeFor(settings.sweep_width, settings.sweep_height),
-                ground_match_available};
+                ground_match_available, &bake_set};
     }
     SkySet photographedSkies() {
         return {photographed->label, photographed->renderer.get(), photographed->runtime.get(),
-                !photographed->bake_set.manifest.ground_grid.albedo.empty()};
+                !photographed->bake_set.manifest.ground_grid.albedo.empty(), &photographed->bake_set};
     }
 
     void say(const std::string& line) {
