@@ -107,6 +107,7 @@ RuntimeImpl::RuntimeImpl(const GpuDevice& gpu, const BakeSetData& bake_set, cons
         throw RuntimeError(RuntimeErrorCode::kInvalidBakeSet, "bake set: " + *problem);
     options_.lightmap_format = chooseLightmapFormat(gpu_, bake_set, options_);
     checkDeviceRequirements(gpu_, options_);
+    checkBakeSetLimits(gpu_, bake_set);
     try {
         scene_ = uploadScene(gpu_, bake_set, options.ground_change_threshold, options_.lightmap_format,
                              options_.texture_compression_astc_ldr && deviceSamplesAstcLdr(gpu_));
