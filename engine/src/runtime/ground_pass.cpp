@@ -3,14 +3,21 @@
 #include "ground_pass.h"
 
 #include <algorithm>
+#include <numbers>
+
+#include <glm/vector_relational.hpp>
 
 #include "frame_set.h"
+#include "gusuku/maths/shadow_fit.h"
 #include "ground_frag_spv.h"
 #include "ground_vert_spv.h"
 #include "runtime_pipelines.h"
 #include "runtime_scene.h"
 
 namespace gusuku::runtime_detail {
+namespace {
+constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
+}  // namespace
 
 GroundPass::GroundPass(const PassContext& context, const GroundGrid& grid, const FrameSet& frame_set,
                        uint32_t slot_count, VkRenderPass main_pass, VkSampleCountFlagBits samples)
@@ -18,6 +25,7 @@ GroundPass::GroundPass(const PassContext& context, const GroundGrid& grid, const
     const GpuScene& scene = context.scene;
     cell_marked_.assign(scene.ground_cell_state.size(), 0);
     shadow_candidate_.assign(scene.ground_cell_state.size(), 0.0f);
+    pass_through_.assign(scene.ground_cell_state.size(), 0);
     quad_indices_.assign(size_t(scene.ground_quad_capacity) * 6, 0);
     const size_t index_bytes = std::max<size_t>(quad_indices_.size() * sizeof(uint32_t), kMinBufferBytes);
     const size_t candidate_bytes = std::max<size_t>(shadow_candidate_.size() * sizeof(float), kMinBufferBytes);
@@ -58,23 +66,50 @@ GroundPass::GroundPass(const PassContext& context, const GroundGrid& grid, const
     sunless_pipeline_ = Pipeline(device, createGraphicsPipeline(device, ground));
 }
 
-void GroundPass::choose(const GroundRequest& request) {
+void GroundPass::choose(const GroundRequest& request, const SlotBlend& blend, const glm::dvec3& sun_irradiance_rgb) {
     chosen_for_ = request;
     index_count_ = shadow_index_count_ = 0;
     if (request.wanted) {
         const GpuScene& scene = context_.scene;
-        const GroundCells cells{grid_, scene.ground_cell_state, scene.ground_cell_height};
+        const GroundCells cells{grid_, scene.ground_cell_state, scene.ground_cell_height, scene.ground_cell_normal};
+        std::fill(pass_through_.begin(), pass_through_.end(), uint8_t(0));
+        if (request.include_baked_changes) {
+            PassThroughLight light;
+            for (int index = 0; index < 3; ++index)
+                light.slots[index] = blend.slots[index], light.weights[index] = blend.weights[index];
+            light.sun_shines = request.sun_shines;
+            light.shadow_sun = request.shadow_sun;
+            sun_floor_ = kGroundSunFloorFraction * sun_irradiance_rgb;
+            light.sun_irradiance_floor = sun_floor_;
+            // The frame's sun lies within the rounding step of the shadow maps' sun (in both angles), which moves a
+            // cosine by less than the step in radians.
+            light.cosine_slack = double(std::max(context_.options.shadow_sun_step_deg, 0.0f)) * kRadiansPerDegree + 0.001;
+            light.pass_through_threshold = kPassThroughThreshold;
+            // The site's map as the shadow pass fits it for this sun (shadow_pass.cpp).
+            const double texel_m = fitShadowMap(scene.receivers_min, scene.receivers_max, scene.casters_min,
+                                                scene.casters_max, request.shadow_sun,
+                                                context_.options.shadow_map_size)
+                                       .texel_size_m;
+            light.site_shadow = {texel_m, double(context_.options.shadow_bias_texels)};
+            markPassThroughCells(cells, scene.ground_slot_light, scene.site_heights, light, pass_through_);
+        }
         const GroundQuadSelection selection =
             selectGroundQuads(cells, scene.building_min, scene.building_max, request.include_baked_changes,
-                              request.sun_shines, request.shadow_sun, cell_marked_, shadow_candidate_, quad_indices_);
+                              request.sun_shines, request.shadow_sun, cell_marked_, shadow_candidate_, quad_indices_,
+                              pass_through_);
         index_count_ = selection.index_count;
         shadow_index_count_ = selection.shadow_index_count;
     }
     ++generation_;
 }
 
-void GroundPass::prepare(uint32_t slot_index, const GroundRequest& request) {
-    if (chosen_for_ != request) choose(request);
+void GroundPass::prepare(uint32_t slot_index, GroundRequest request, const SlotBlend& blend,
+                         const glm::dvec3& sun_irradiance_rgb) {
+    for (int index = 0; index < 3; ++index)
+        request.slots_in_use[size_t(index)] = blend.weights[index] > 0.0f ? blend.slots[index] : -1;
+    const bool sun_below_floor = request.sun_shines && request.include_baked_changes &&
+                                 glm::any(glm::lessThan(sun_irradiance_rgb, sun_floor_));
+    if (chosen_for_ != request || sun_below_floor) choose(request, blend, sun_irradiance_rgb);
     SlotBuffers& slot = slots_[slot_index];
     if (slot.generation == generation_) return;
     slot.generation = generation_;

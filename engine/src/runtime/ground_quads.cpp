@@ -17,13 +17,14 @@ constexpr double kUnboundedRayT = 1e30;
 // Marks the cells (see selectGroundQuads) and returns nothing: marked and shadow_candidate are filled.
 void markCells(const GroundCells& cells, const glm::dvec3& low, const glm::dvec3& high, bool include_baked_changes,
                bool sun_shines, const glm::dvec3& sun_direction, std::span<uint8_t> marked,
-               std::span<float> shadow_candidate) {
+               std::span<float> shadow_candidate, std::span<const uint8_t> pass_through) {
     const size_t columns = size_t(std::max(cells.grid.columns, 0)), rows = size_t(std::max(cells.grid.rows, 0));
     for (size_t row = 0; row < rows; ++row)
         for (size_t column = 0; column < columns; ++column) {
             const size_t cell = row * columns + column;
             const uint8_t state = cells.state[cell];
-            const bool baked_change = include_baked_changes && state == kCellGroundChangedByBuilding;
+            const bool baked_change = include_baked_changes && state == kCellGroundChangedByBuilding &&
+                                      !(pass_through.size() == cells.state.size() && pass_through[cell] != 0);
             bool candidate = false;
             if (state != kCellNoGround && sun_shines) {
                 const glm::dvec3 origin = groundCellCentre(cells.grid, column, row, double(cells.height[cell]));
@@ -64,13 +65,14 @@ bool rayMeetsBox(const glm::dvec3& origin, const glm::dvec3& direction, const gl
 GroundQuadSelection selectGroundQuads(const GroundCells& cells, const glm::dvec3& building_min,
                                       const glm::dvec3& building_max, bool include_baked_changes, bool sun_shines,
                                       const glm::dvec3& sun_direction, std::span<uint8_t> marked,
-                                      std::span<float> shadow_candidate, std::span<uint32_t> quad_indices) {
+                                      std::span<float> shadow_candidate, std::span<uint32_t> quad_indices,
+                                      std::span<const uint8_t> pass_through) {
     const GroundGrid& grid = cells.grid;
     const size_t columns = size_t(std::max(grid.columns, 0)), rows = size_t(std::max(grid.rows, 0));
     if (quad_indices.empty() || cells.state.size() != columns * rows) return {};
     const double margin = groundShadowMarginM(grid.cell_m);
     markCells(cells, building_min - margin, building_max + margin, include_baked_changes, sun_shines, sun_direction,
-              marked, shadow_candidate);
+              marked, shadow_candidate, pass_through);
     // Quads the shadow may reach first (drawn with the shadow-reading shader), then the rest.
     GroundQuadSelection selection;
     uint32_t quads = 0;

@@ -43,6 +43,7 @@ struct GroundCells {
     GroundGrid grid;
     std::span<const uint8_t> state;  ///< kCell* per cell
     std::span<const float> height;   ///< ENU z per cell
+    std::span<const glm::vec3> normal = {};  ///< ENU unit normal per cell (empty: not known)
 };
 
 /// What the frame draws of the quads written: the first shadow_index_count indices are the quads the building's
@@ -56,10 +57,13 @@ struct GroundQuadSelection {
 /// every quad ((columns - 1)(rows - 1), 6 indices each: two triangles between four neighbouring cell centres).
 /// Writes marked (1: the cell makes its quads drawn), shadow_candidate (1.0: the building's shadow may fall on
 /// the cell, the ground pass's per-vertex stream) and the chosen quads' indices. Nothing is drawn, and nothing
-/// written, when quad_indices is empty or the cells do not match the grid.
+/// written, when quad_indices is empty or the cells do not match the grid. pass_through (empty, or one entry per
+/// cell): 1 where the baked change leaves the ratio at exactly 1 in this frame's light (ground_sunlit.h), so the
+/// baked change does not mark the cell.
 GroundQuadSelection selectGroundQuads(const GroundCells& cells, const glm::dvec3& building_min,
                                       const glm::dvec3& building_max, bool include_baked_changes, bool sun_shines,
                                       const glm::dvec3& sun_direction, std::span<uint8_t> marked,
-                                      std::span<float> shadow_candidate, std::span<uint32_t> quad_indices);
+                                      std::span<float> shadow_candidate, std::span<uint32_t> quad_indices,
+                                      std::span<const uint8_t> pass_through = {});
 
 }  // namespace gusuku::runtime_detail

@@ -51,7 +51,8 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
 
     const FrameFlags flags = frameFlagsFor(frame.mode, lighting, scene_.occluder_index_count > 0);
     const glm::dvec3 shadow_sun = shadowSunDirectionFor(lighting.sun, options_.shadow_sun_step_deg);
-    ground_->prepare(slot, {groundQuadsWanted(frame, flags), !flags.direct_only, flags.sun_shines, shadow_sun});
+    ground_->prepare(slot, {groundQuadsWanted(frame, flags), !flags.direct_only, flags.sun_shines, shadow_sun},
+                     slotBlendFor(lighting), lighting.sun_irradiance_rgb);
     info.ground_quads_drawn = ground_->quadsDrawn();
     info.ground_quads_total = scene_.ground_quad_capacity;
     // The sun-evidence pass reads the site's map whenever the sun is up, also when the app hides the sun (sun_scale 0):

@@ -242,8 +242,12 @@ std::vector<uint16_t> classifyGroundCells(const BakeSetData& bake_set, size_t ce
     std::vector<uint16_t> flagged = toHalf(bake_set.slots[0].ground_with, inverse_scale);
     scene.ground_cell_state.assign(cells, kCellNoGround);
     scene.ground_cell_height.assign(cells, 0.0f);
+    scene.ground_cell_normal.assign(cells, glm::vec3(0.0f));
     for (size_t cell = 0; cell < cells; ++cell) {
         scene.ground_cell_height[cell] = bake_set.ground_geometry.rgba[cell * 4 + 3];
+        scene.ground_cell_normal[cell] = glm::vec3(bake_set.ground_geometry.rgba[cell * 4],
+                                                   bake_set.ground_geometry.rgba[cell * 4 + 1],
+                                                   bake_set.ground_geometry.rgba[cell * 4 + 2]);
         if (bake_set.slots[0].ground_with.rgba[cell * 4 + 3] > 0.0f) scene.ground_cell_state[cell] = kCellGround;
         bool changed = false;
         for (const BakeSetSlotImages& slot : bake_set.slots)
@@ -281,6 +285,12 @@ void uploadGroundIrradiance(const GpuDevice& gpu, const BakeSetData& bake_set, u
     }
     const std::vector<uint16_t> flagged =
         classifyGroundCells(bake_set, size_t(columns) * rows, change_threshold, inverse_scale, scene);
+    std::vector<std::span<const float>> with_rgba, without_rgba;
+    for (const BakeSetSlotImages& slot : bake_set.slots)
+        with_rgba.emplace_back(slot.ground_with.rgba), without_rgba.emplace_back(slot.ground_without.rgba);
+    scene.ground_slot_light = groundSlotLight(with_rgba, without_rgba, inverse_scale);
+    scene.site_heights = siteHeightTiles(bake_set.manifest.ground_grid.grid, bake_set.occluder.positions,
+                                         bake_set.occluder.indices);
     for (uint32_t slot = 0; slot < slot_count; ++slot) {
         const std::vector<uint16_t> with =
             slot == 0 ? flagged : toHalf(bake_set.slots[slot].ground_with, inverse_scale);

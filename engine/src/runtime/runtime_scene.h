@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "ground_sunlit.h"
 #include "gusuku/formats/bakeset_data.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_image.h"
@@ -60,6 +61,11 @@ struct GpuScene {
     /// the ground's height (ENU z). The CPU's copy, for choosing the quads to draw.
     std::vector<uint8_t> ground_cell_state;
     std::vector<float> ground_cell_height;
+    std::vector<glm::vec3> ground_cell_normal;  ///< ENU, as ground_geometry holds it
+    /// Per slot and cell, E_with and E_without as the GPU reads them (groundSlotLight), and the site's heights:
+    /// which marked cells the frame's light leaves at a ratio of 1 (ground_sunlit.h).
+    std::vector<float> ground_slot_light;
+    SiteHeightTiles site_heights;
     GpuImage lightmaps;          ///< lightmapVkFormat array, one layer per slot, RGB / irradiance_scale
     /// RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), RGB / irradiance_scale. Alpha: 0 no ground,
     /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, above
