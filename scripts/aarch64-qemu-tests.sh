@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the AArch64 cross build (scripts/cross-build-aarch64.sh, which calls this last) under qemu-user on Debian's
 # arm64 lavapipe, with the arm64 Khronos validation layer on (docs/platforms.md, "AArch64 under qemu-user"):
-#   1. tests/aarch64/msaa4_depth_reproducer, plain Vulkan, at 1 sample (the control: the emulator and driver work)
+#   1. tests/aarch64/msaa4_depth_reproducer.c, plain Vulkan, at 1 sample (the control: the emulator and driver work)
 #      and at 4: while it dies with a signal (the emulated driver's msaa 4 crash), what follows runs at msaa 1;
 #      once it draws, at msaa 4, and a notice says the msaa 1 fallback can go;
 #   2. the installed package's consumers (tests/consumer), their wall pixel within one code of the x86_64
@@ -42,11 +42,11 @@ if [ "${#missing[@]}" -gt 0 ]; then
 fi
 qemu=$(command -v qemu-aarch64-static || command -v qemu-aarch64)
 
-tests="$build/runtime-tests"
-cmake -S tests/aarch64 -B "$tests" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+test_build="$build/runtime-tests"
+cmake -S tests/aarch64 -B "$test_build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_TOOLCHAIN_FILE="$PWD/cmake/toolchains/aarch64-linux-gnu.cmake" -DCMAKE_PREFIX_PATH="$prefix" \
-  >"$tests.configure.log" 2>&1 || { cat "$tests.configure.log"; exit 1; }
-cmake --build "$tests" -j"${GUSUKU_CROSS_JOBS:-2}"
+  >"$test_build.configure.log" 2>&1 || { cat "$test_build.configure.log"; exit 1; }
+cmake --build "$test_build" -j"${GUSUKU_CROSS_JOBS:-2}"
 
 # The arm64 programs find the arm64 C library, libvulkan and the layer through the multiarch folders (/ is their
 # sysroot), and the loader the arm64 lavapipe alone (the x86_64 driver would not load into them).
@@ -62,10 +62,10 @@ fail() {
 }
 
 # 1. The reproducer: the control at 1 sample must draw; at 4 samples a signal is the known crash.
-"$qemu" "$tests/msaa4_depth_reproducer" 1 >"$log/reproducer_1.txt" 2>&1 ||
+"$qemu" "$test_build/msaa4_depth_reproducer" 1 >"$log/reproducer_1.txt" 2>&1 ||
   { cat "$log/reproducer_1.txt"; echo "aarch64-qemu-tests: the 1-sample control failed: qemu or arm64 lavapipe does not work here" >&2; exit 1; }
 status=0
-"$qemu" "$tests/msaa4_depth_reproducer" 4 >"$log/reproducer_4.txt" 2>&1 || status=$?
+"$qemu" "$test_build/msaa4_depth_reproducer" 4 >"$log/reproducer_4.txt" 2>&1 || status=$?
 if [ "$status" -eq 0 ]; then
   msaa=4
   echo "aarch64-qemu-tests: NOTICE: msaa4_depth_reproducer draws at 4 samples under $($qemu --version | head -1):" \
@@ -89,7 +89,7 @@ default_filter+=":Layouts/RuntimeCameraImage.GivesTheHostPathsComposite/bgra_srg
 default_filter+=":FramesInFlight/RuntimeInFlight.ResidentFramesWithSemaphoresGiveTheHostPathsComposites/1"
 default_filter+=":RuntimeAppDevicePromises.TimelineSemaphoresOrderTheFrame"
 filter="${GUSUKU_ARM_TEST_FILTER:-$default_filter}"
-GUSUKU_TEST_MSAA_SAMPLES=$msaa "$qemu" "$tests/aarch64_runtime_tests" --gtest_filter="$filter" \
+GUSUKU_TEST_MSAA_SAMPLES=$msaa "$qemu" "$test_build/aarch64_runtime_tests" --gtest_filter="$filter" \
   >"$log/runtime_tests.txt" 2>&1 &
 tests_pid=$!
 
@@ -132,9 +132,15 @@ goldens=$(grep -cE '^\[ +OK \] Conditions/RuntimeGolden' "$log/runtime_tests.txt
 measured=$(grep -E '^[a-z_]+: max [0-9]+ codes' "$log/runtime_tests.txt" || true)
 if [ -n "$measured" ]; then
   [ "$(grep -c . <<<"$measured")" -ge "$goldens" ] || fail "test_runtime_golden measured only some of its $goldens goldens"
+  far=0
   while read -r name _ codes _; do
-    [ "$codes" -le 1 ] || fail "golden ${name%:}: $codes codes from the x86_64 frame (one allowed)"
+    [ "$codes" -le 1 ] || { fail "golden ${name%:}: $codes codes from the x86_64 frame (one allowed)"; far=1; }
   done <<<"$measured"
+  # The goldens are x86_64's frames when scripts/update-goldens.sh last ran: show how far x86_64 is from them now.
+  if [ "$far" -eq 1 ] && [ -x build/tests/test_runtime_golden ]; then
+    echo "x86_64 (build/tests/test_runtime_golden) against the same goldens; if it drifted too, regenerate them:" >&2
+    host build/tests/test_runtime_golden 2>&1 | grep -E '^[a-z_]+: max [0-9]+ codes' | sed 's/^/  /' >&2 || true
+  fi
   echo "goldens on aarch64 against the x86_64 frames (tests/golden):"
   sed 's/^/  /' <<<"$measured"
 else
