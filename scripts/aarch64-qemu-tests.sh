@@ -128,6 +128,11 @@ done
 # 3. The GoogleTests' verdict, and the goldens' measured difference: within one code of the x86_64 frame.
 wait "$tests_pid" || { cat "$log/runtime_tests.txt"; fail "the runtime's tests failed under qemu at msaa $msaa"; }
 grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$log/runtime_tests.txt" || true
+# A test renamed away from the default filter would leave it quietly: all 13 must have run and passed.
+passed=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) tests\?\..*/\1/p' "$log/runtime_tests.txt")
+if [ -z "${GUSUKU_ARM_TEST_FILTER:-}" ] && [ "${passed:-0}" -ne 13 ]; then
+  fail "${passed:-no} of the default filter's 13 tests passed (a test renamed? update default_filter)"
+fi
 goldens=$(grep -cE '^\[ +OK \] Conditions/RuntimeGolden' "$log/runtime_tests.txt" || true)
 measured=$(grep -E '^[a-z_]+: max [0-9]+ codes' "$log/runtime_tests.txt" || true)
 if [ -n "$measured" ]; then
