@@ -108,9 +108,10 @@ if(runtime_only_entries)
                       "headers of libraries the component does not install")
 endif()
 # Only what an app includes: each header of the runtime component is an entry header (what an app includes:
-# the C and C++ APIs, the pack reader's, the weather readers') or named by an include line of another installed
-# header; cmake/GusukuInstall.cmake says why each is there.
+# the C and C++ APIs, the pack reader's, the weather readers', the sun evidence reading) or named by an include
+# line of another installed header; cmake/GusukuInstall.cmake says why each is there.
 set(runtime_entry_headers gusuku/runtime/gusuku.h gusuku/runtime/runtime.h gusuku/runtime/runtime_version.h
+    gusuku/runtime/runtime_sun_evidence.h
     gusuku/pack_loader/gusuku_pack_loader.h gusuku/pack_loader/runtime_pack.h gusuku/weather/gusuku_weather.h
     gusuku/weather/weather_service.h)
 file(GLOB_RECURSE runtime_only_headers RELATIVE ${WORK_DIR}/runtime_only/include
