@@ -140,5 +140,59 @@ TEST(SunEvidence, LitSamplesWithLittleSunAreLeftOut) {
     EXPECT_EQ(estimate.cue, SunEvidenceCue::kNone);
 }
 
+// A wall across the view: ground at 0 m north of y = 6 m and south of y = 4 m, a 1.5 m block between (cells of
+// 0.5 m, the grid's south-west corner at the origin). The camera stands north of it at (5, 15, 3), looking south.
+GroundMatchScene steppedScene() {
+    GroundMatchScene scene;
+    scene.grid.origin_enu_m = {0.0, 0.0};
+    scene.grid.cell_m = 0.5;
+    scene.grid.columns = 20;
+    scene.grid.rows = 24;
+    scene.cells.resize(scene.grid.cellCount());
+    for (int row = 0; row < scene.grid.rows; ++row)
+        for (int column = 0; column < scene.grid.columns; ++column) {
+            GroundMatchCell& cell = scene.cells[size_t(row * scene.grid.columns + column)];
+            const double north_m = (double(scene.grid.rows - 1 - row) + 0.5) * scene.grid.cell_m;
+            cell.ground = true;
+            cell.height_m = north_m > 4.0 && north_m < 6.0 ? 1.5f : 0.0f;
+        }
+    return scene;
+}
+
+size_t cellAtEnu(const GroundMatchScene& scene, double east_m, double north_m) {
+    const int column = int(std::floor(east_m / scene.grid.cell_m));
+    const int row_from_south = int(std::floor(north_m / scene.grid.cell_m));
+    return size_t((scene.grid.rows - 1 - row_from_south) * scene.grid.columns + column);
+}
+
+// The ray to the ground beyond the wall passes through the block (at y = 6 m it is 0.75 m high, the block 1.5 m):
+// that pixel shows the wall's face, not the ground cell the height-field march may settle on (issue 41: such wall
+// pixels, read as shaded ground, set the shade's level and hid a clear sun).
+TEST(SunEvidence, ARayThroughAStepDoesNotReachTheCellBeyond) {
+    const GroundMatchScene scene = steppedScene();
+    const glm::dvec3 camera(5.0, 15.0, 3.0);
+    const glm::dvec3 beyond = glm::dvec3(5.2, 3.1, 0.0) - camera;  // ground south of the block
+    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, beyond, cellAtEnu(scene, 5.2, 3.1)));
+    // Diagonal rays too (edges crossed on both axes).
+    const glm::dvec3 diagonal = glm::dvec3(8.3, 2.2, 0.0) - camera;
+    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, diagonal, cellAtEnu(scene, 8.3, 2.2)));
+}
+
+TEST(SunEvidence, RaysOntoOpenGroundAndOntoTheStepsTopReachTheirCells) {
+    const GroundMatchScene scene = steppedScene();
+    const glm::dvec3 camera(5.0, 15.0, 3.0);
+    // Ground in front of the block.
+    EXPECT_TRUE(sunEvidenceRayReachesCell(scene, camera, glm::dvec3(5.2, 8.1, 0.0) - camera,
+                                          cellAtEnu(scene, 5.2, 8.1)));
+    // The block's top, 0.3 m behind its north edge: the ray crosses y = 6 m at 1.54 m, above the 1.5 m top.
+    EXPECT_TRUE(sunEvidenceRayReachesCell(scene, camera, glm::dvec3(5.2, 5.7, 1.5) - camera,
+                                          cellAtEnu(scene, 5.2, 5.7)));
+    // Beyond the block, seen over it from high enough: from 20 m up, the ray to (5.2, 2.1) clears its south edge
+    // (y = 4 m) at 2.9 m.
+    const glm::dvec3 high(5.0, 15.0, 20.0);
+    EXPECT_TRUE(
+        sunEvidenceRayReachesCell(scene, high, glm::dvec3(5.2, 2.1, 0.0) - high, cellAtEnu(scene, 5.2, 2.1)));
+}
+
 }  // namespace
 }  // namespace gusuku

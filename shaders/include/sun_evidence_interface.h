@@ -20,6 +20,8 @@
 #define SUN_EVIDENCE_FULL_SAMPLES 256u
 #define SUN_EVIDENCE_OUT_STRENGTH 0.15
 #define SUN_EVIDENCE_MIN_WIDTH 0.03
+#define SUN_EVIDENCE_STEP_TOLERANCE_M 0.1
+#define SUN_EVIDENCE_MAX_CROSSINGS 128u
 
 // SunEvidenceSampleGpu::kind (gusuku::SunEvidenceSampleKind)
 #define SUN_EVIDENCE_KIND_NONE 0.0

@@ -4,8 +4,9 @@
 // match's grid: its ray is followed onto the ground grid's height field (as colour_statistics_ground.comp does), and
 // the sample is written with log2(Y observed / Y predicted without the sun), the cell's clear-sun share q and its
 // kind: shadowed (the site's map shadows the cell's centre, or its face turns from the sun), lit, or none (no
-// ground, clipped, penumbra, no light). No shared memory, no barrier (llvmpipe runs a barrier as a switch between
-// invocations); sun_evidence_reduce.comp takes the medians.
+// ground, clipped, penumbra, no light, or a ray that meets the side of a step, a wall, before its cell). No shared
+// memory, no barrier (llvmpipe runs a barrier as a switch between invocations); sun_evidence_reduce.comp takes the
+// medians.
 #extension GL_GOOGLE_include_directive : require
 
 #define SUN_EVIDENCE_KERNEL
@@ -60,6 +61,50 @@ int groundCellOfPixel(uvec2 pixel) {
     return -1;
 }
 
+// A cell's height by column and row from the south, or a depth that never blocks where there is no ground.
+float columnHeight(int column, int row_from_south) {
+    if (column < 0 || column >= int(view.columns) || row_from_south < 0 || row_from_south >= int(view.rows))
+        return -1e30;
+    int cell = (int(view.rows) - 1 - row_from_south) * int(view.columns) + column;
+    return cells[cell].ground < 0.5 ? -1e30 : cells[cell].height_m;
+}
+
+// Whether the ray comes down onto `cell` from above rather than through the side of a step (a wall) before it
+// (sunEvidenceRayReachesCell): walking back towards the camera over the cell edges, the ray at each edge is no more
+// than SUN_EVIDENCE_STEP_TOLERANCE_M below either neighbouring cell's height.
+bool rayReachesCell(vec3 origin, vec3 direction, int cell) {
+    float t_hit = (cells[cell].height_m - origin.z) / direction.z;
+    vec2 hit = (origin.xy + t_hit * direction.xy - vec2(view.ground_origin_east_m, view.ground_origin_north_m)) /
+               view.ground_cell_m;
+    vec2 back = -direction.xy / view.ground_cell_m;
+    int row = cell / int(view.columns);
+    int column = cell - row * int(view.columns);
+    int row_from_south = int(view.rows) - 1 - row;
+    int step_column = back.x > 0.0 ? 1 : -1;
+    int step_row = back.y > 0.0 ? 1 : -1;
+    const float kInfinity = 1e30;
+    float next_x = back.x != 0.0 ? (float(column + (back.x > 0.0 ? 1 : 0)) - hit.x) / back.x : kInfinity;
+    float next_y = back.y != 0.0 ? (float(row_from_south + (back.y > 0.0 ? 1 : 0)) - hit.y) / back.y : kInfinity;
+    float delta_x = back.x != 0.0 ? 1.0 / abs(back.x) : kInfinity;
+    float delta_y = back.y != 0.0 ? 1.0 / abs(back.y) : kInfinity;
+    for (uint crossing = 0u; crossing < SUN_EVIDENCE_MAX_CROSSINGS; ++crossing) {
+        float s = min(next_x, next_y);
+        if (!(s < t_hit)) return true;
+        float ray_height = origin.z + (t_hit - s) * direction.z;
+        float left = columnHeight(column, row_from_south);
+        if (next_x < next_y) {
+            column += step_column;
+            next_x += delta_x;
+        } else {
+            row_from_south += step_row;
+            next_y += delta_y;
+        }
+        float entered = columnHeight(column, row_from_south);
+        if (max(left, entered) > ray_height + SUN_EVIDENCE_STEP_TOLERANCE_M) return false;
+    }
+    return true;
+}
+
 vec3 slotWithout(uint slot, float weight, int cell) {
     if (!(weight > 0.0) || slot >= view.slot_count) return vec3(0.0);
     return weight * without[slot * view.cell_count + uint(cell)].rgb;
@@ -88,6 +133,12 @@ void main() {
     float share = 0.0;
     uvec2 pixel = uvec2(pc.first_sample_offset) + sample_index * pc.stride;
     int cell = pc.sun_up != 0u ? groundCellOfPixel(pixel) : -1;
+    // A ray that meets the side of a step before its cell shows a wall, not the cell's ground: left out.
+    if (cell >= 0) {
+        vec2 point = vec2(pixel) + 0.5;
+        vec3 direction = point.x * view.ray_x + point.y * view.ray_y + view.ray_z;
+        if (!rayReachesCell(view.camera_position, direction, cell)) cell = -1;
+    }
     if (cell >= 0) {
         uint word = camera_rgba8[pixel.y * pc.frame_width + pixel.x];
         uvec3 bytes = uvec3(word & 0xFFu, (word >> 8u) & 0xFFu, (word >> 16u) & 0xFFu);

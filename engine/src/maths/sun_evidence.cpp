@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <glm/glm.hpp>
@@ -42,7 +43,50 @@ bool inWindow(uint32_t bin, uint32_t median) {
     return bin + kSunEvidenceWindowBins >= median && bin <= median + kSunEvidenceWindowBins;
 }
 
+// A cell's height by column and row from the south, or -infinity where there is no ground (it never blocks).
+double columnHeight(const GroundMatchScene& scene, long column, long row_from_south) {
+    const GroundGrid& grid = scene.grid;
+    if (column < 0 || column >= grid.columns || row_from_south < 0 || row_from_south >= grid.rows)
+        return -std::numeric_limits<double>::infinity();
+    const GroundMatchCell& cell = scene.cells[size_t((grid.rows - 1 - row_from_south) * long(grid.columns) + column)];
+    return cell.ground ? double(cell.height_m) : -std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
+
+bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& origin, const glm::dvec3& direction,
+                               size_t cell) {
+    const GroundGrid& grid = scene.grid;
+    const double t_hit = (double(scene.cells[cell].height_m) - origin.z) / direction.z;
+    // Grid units (columns, rows from the south) of the hit, and the walk back towards the origin: s = t_hit - t.
+    const glm::dvec2 hit = (glm::dvec2(origin) + t_hit * glm::dvec2(direction) - grid.origin_enu_m) / grid.cell_m;
+    const glm::dvec2 back = -glm::dvec2(direction) / grid.cell_m;
+    long column = long(cell % size_t(grid.columns));
+    long row_from_south = long(grid.rows) - 1 - long(cell / size_t(grid.columns));
+    const long step_column = back.x > 0.0 ? 1 : -1, step_row = back.y > 0.0 ? 1 : -1;
+    const double infinity = std::numeric_limits<double>::infinity();
+    // The walk's parameter at the next edge across each axis, and between edges.
+    double next_x = back.x != 0.0 ? (double(column + (back.x > 0.0 ? 1 : 0)) - hit.x) / back.x : infinity;
+    double next_y = back.y != 0.0 ? (double(row_from_south + (back.y > 0.0 ? 1 : 0)) - hit.y) / back.y : infinity;
+    const double delta_x = back.x != 0.0 ? 1.0 / std::abs(back.x) : infinity;
+    const double delta_y = back.y != 0.0 ? 1.0 / std::abs(back.y) : infinity;
+    for (uint32_t crossing = 0; crossing < kSunEvidenceMaxCrossings; ++crossing) {
+        const double s = std::min(next_x, next_y);
+        if (!(s < t_hit)) return true;  // back at the origin: nothing in the way
+        const double ray_height = origin.z + (t_hit - s) * direction.z;
+        const double left = columnHeight(scene, column, row_from_south);
+        if (next_x < next_y) {
+            column += step_column;
+            next_x += delta_x;
+        } else {
+            row_from_south += step_row;
+            next_y += delta_y;
+        }
+        const double entered = columnHeight(scene, column, row_from_south);
+        if (std::max(left, entered) > ray_height + kSunEvidenceStepToleranceM) return false;
+    }
+    return true;
+}
 
 uint32_t sunEvidenceBin(double value, double lowest, double span) {
     const double index = std::floor((value - lowest) / span * double(kSunEvidenceBins));
@@ -149,6 +193,10 @@ std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint
             const uint32_t x = grid.offset + i * grid.stride, y = grid.offset + j * grid.stride;
             const std::optional<size_t> cell = groundMatchCellOfPixel(scene, view, x, y);
             if (!cell) continue;
+            // The march's ray (groundMatchCellOfPixel's): does it show this cell, or the side of a step before it?
+            const glm::dvec3 ray = view.camera_to_enu * glm::dvec3((double(x) + 0.5 - view.cx) / view.fx,
+                                                                   (double(y) + 0.5 - view.cy) / view.fy, 1.0);
+            if (!sunEvidenceRayReachesCell(scene, view.camera_position_enu, ray, *cell)) continue;
             const uint8_t* pixel = &rgba8[(size_t(y) * width + x) * 4];
             if (isClippedCameraPixel(pixel[0], pixel[1], pixel[2])) continue;
             const glm::dvec3 predicted = groundMatchPredictedRadiance(scene, without_sun, *cell);

@@ -33,6 +33,8 @@ static_assert(SUN_EVIDENCE_MIN_SAMPLES == kSunEvidenceMinSamples);
 static_assert(SUN_EVIDENCE_FULL_SAMPLES == kSunEvidenceFullSamples);
 static_assert(SUN_EVIDENCE_OUT_STRENGTH == kSunEvidenceOutStrength);
 static_assert(SUN_EVIDENCE_MIN_WIDTH == kSunEvidenceMinWidth);
+static_assert(SUN_EVIDENCE_STEP_TOLERANCE_M == kSunEvidenceStepToleranceM);
+static_assert(SUN_EVIDENCE_MAX_CROSSINGS == kSunEvidenceMaxCrossings);
 static_assert(SUN_EVIDENCE_KIND_SHADOWED == double(SunEvidenceSampleKind::kShadowed));
 static_assert(SUN_EVIDENCE_KIND_LIT == double(SunEvidenceSampleKind::kLit));
 

@@ -42,6 +42,9 @@
 // the map cannot tell, are left out. Clipped camera pixels (isClippedCameraPixel) and cells without light are left
 // out, as in the colour match.
 //
+// A sample whose ray meets the side of a step before it comes down onto its cell (sunEvidenceRayReachesCell) is left
+// out: the pixel shows a wall, not that cell's ground.
+//
 // Not here yet: walls of the photogrammetry mesh (only the ground grid's cells are sampled), and the fallbacks when
 // no boundary is in view (the sky near the sun): the cue is then kNone with confidence 0.
 //
@@ -76,6 +79,16 @@ inline constexpr uint32_t kSunEvidenceFullSamples = 256;
 /// circumsolar sky still gives a little), a sun through thin cloud a third or more.
 inline constexpr double kSunEvidenceOutStrength = 0.15;
 inline constexpr double kSunEvidenceMinWidth = 0.03;
+/// A sample's ray must come down onto its cell's top without passing below the height field on the way: a ray that
+/// enters a cell's column (its own or one before it) more than this far below the column's top shows the side of a
+/// step (a wall, a terrace's edge), whose albedo and light are not the cell's. The height field marks such a step
+/// only by its cells' heights, so the colour match's march can settle on a cell beside a wall that the pixel shows;
+/// read as ground, a shaded wall face under a clear sun read as the shade's level and hid the sun (issue 41). 0.1 m
+/// keeps ground sloping up to 0.4 (22 degrees) towards the camera, whose columns step by slope x cell / 2 at most.
+inline constexpr double kSunEvidenceStepToleranceM = 0.1;
+/// The cell edges the check walks back from the hit towards the camera (64 cells on a diagonal): a step further
+/// away than that is taken as none.
+inline constexpr uint32_t kSunEvidenceMaxCrossings = 128;
 
 /// What decided a frame's evidence.
 enum class SunEvidenceCue : uint8_t {
@@ -115,6 +128,13 @@ SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples);
 
 /// A sample's site visibility at a ground point (1 lit, 0 shadowed by the site, between: penumbra), ENU metres.
 using SiteVisibility = std::function<double(const glm::dvec3& point_enu)>;
+
+/// Whether the ray origin + t direction (direction.z < 0), which comes down to `cell`'s height inside that cell,
+/// reaches it from above: walking back towards the origin over the cell edges it crosses (at most
+/// kSunEvidenceMaxCrossings), at each the ray is no more than kSunEvidenceStepToleranceM below either neighbouring
+/// cell's height (cells without ground never block). False: the pixel shows the side of a step, not the cell.
+bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& origin, const glm::dvec3& direction,
+                               size_t cell);
 
 /// The per-sample records of a frame (reference of sun_evidence.comp): the colour match's sample grid at stride,
 /// each ray onto the ground (groundMatchCellOfPixel), the cell's prediction without the sun (view's slots and
