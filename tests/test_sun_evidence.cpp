@@ -159,6 +159,8 @@ GroundMatchScene steppedScene() {
     return scene;
 }
 
+constexpr double kTop = 1.5;  // the block's height: the highest ground
+
 size_t cellAtEnu(const GroundMatchScene& scene, double east_m, double north_m) {
     const int column = int(std::floor(east_m / scene.grid.cell_m));
     const int row_from_south = int(std::floor(north_m / scene.grid.cell_m));
@@ -170,12 +172,13 @@ size_t cellAtEnu(const GroundMatchScene& scene, double east_m, double north_m) {
 // pixels, read as shaded ground, set the shade's level and hid a clear sun).
 TEST(SunEvidence, ARayThroughAStepDoesNotReachTheCellBeyond) {
     const GroundMatchScene scene = steppedScene();
+    EXPECT_EQ(sunEvidenceGroundTop(scene), kTop);
     const glm::dvec3 camera(5.0, 15.0, 3.0);
     const glm::dvec3 beyond = glm::dvec3(5.2, 3.1, 0.0) - camera;  // ground south of the block
-    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, beyond, cellAtEnu(scene, 5.2, 3.1)));
+    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, beyond, cellAtEnu(scene, 5.2, 3.1), kTop));
     // Diagonal rays too (edges crossed on both axes).
     const glm::dvec3 diagonal = glm::dvec3(8.3, 2.2, 0.0) - camera;
-    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, diagonal, cellAtEnu(scene, 8.3, 2.2)));
+    EXPECT_FALSE(sunEvidenceRayReachesCell(scene, camera, diagonal, cellAtEnu(scene, 8.3, 2.2), kTop));
 }
 
 TEST(SunEvidence, RaysOntoOpenGroundAndOntoTheStepsTopReachTheirCells) {
@@ -183,15 +186,15 @@ TEST(SunEvidence, RaysOntoOpenGroundAndOntoTheStepsTopReachTheirCells) {
     const glm::dvec3 camera(5.0, 15.0, 3.0);
     // Ground in front of the block.
     EXPECT_TRUE(sunEvidenceRayReachesCell(scene, camera, glm::dvec3(5.2, 8.1, 0.0) - camera,
-                                          cellAtEnu(scene, 5.2, 8.1)));
+                                          cellAtEnu(scene, 5.2, 8.1), kTop));
     // The block's top, 0.3 m behind its north edge: the ray crosses y = 6 m at 1.54 m, above the 1.5 m top.
     EXPECT_TRUE(sunEvidenceRayReachesCell(scene, camera, glm::dvec3(5.2, 5.7, 1.5) - camera,
-                                          cellAtEnu(scene, 5.2, 5.7)));
+                                          cellAtEnu(scene, 5.2, 5.7), kTop));
     // Beyond the block, seen over it from high enough: from 20 m up, the ray to (5.2, 2.1) clears its south edge
     // (y = 4 m) at 2.9 m.
     const glm::dvec3 high(5.0, 15.0, 20.0);
     EXPECT_TRUE(
-        sunEvidenceRayReachesCell(scene, high, glm::dvec3(5.2, 2.1, 0.0) - high, cellAtEnu(scene, 5.2, 2.1)));
+        sunEvidenceRayReachesCell(scene, high, glm::dvec3(5.2, 2.1, 0.0) - high, cellAtEnu(scene, 5.2, 2.1), kTop));
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(SunEvidencePushConstants)
     uint samples_y;
     float shadow_depth_bias;   // the site lookup's bias (FrameUniforms's), slope-scaled as the ground pass does
     uint sun_up;               // 1: the sun is above the horizon (else every sample is none)
-    uint push_reserved0;
+    float ground_top_m;        // the highest ground cell's height: a ray above it meets no step
 GUSUKU_PUSH_CONSTANTS_END(SunEvidencePushConstants, pc)
 #endif
 

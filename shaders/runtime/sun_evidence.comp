@@ -71,7 +71,8 @@ float columnHeight(int column, int row_from_south) {
 
 // Whether the ray comes down onto `cell` from above rather than through the side of a step (a wall) before it
 // (sunEvidenceRayReachesCell): walking back towards the camera over the cell edges, the ray at each edge is no more
-// than SUN_EVIDENCE_STEP_TOLERANCE_M below either neighbouring cell's height.
+// than SUN_EVIDENCE_STEP_TOLERANCE_M below either neighbouring cell's height; it ends once the ray is above the
+// highest ground cell.
 bool rayReachesCell(vec3 origin, vec3 direction, int cell) {
     float t_hit = (cells[cell].height_m - origin.z) / direction.z;
     vec2 hit = (origin.xy + t_hit * direction.xy - vec2(view.ground_origin_east_m, view.ground_origin_north_m)) /
@@ -91,6 +92,7 @@ bool rayReachesCell(vec3 origin, vec3 direction, int cell) {
         float s = min(next_x, next_y);
         if (!(s < t_hit)) return true;
         float ray_height = origin.z + (t_hit - s) * direction.z;
+        if (pc.ground_top_m <= ray_height + SUN_EVIDENCE_STEP_TOLERANCE_M) return true;  // above every step from here
         float left = columnHeight(column, row_from_south);
         if (next_x < next_y) {
             column += step_column;

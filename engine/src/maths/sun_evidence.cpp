@@ -55,7 +55,7 @@ double columnHeight(const GroundMatchScene& scene, long column, long row_from_so
 }  // namespace
 
 bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& origin, const glm::dvec3& direction,
-                               size_t cell) {
+                               size_t cell, double ground_top_m) {
     const GroundGrid& grid = scene.grid;
     const double t_hit = (double(scene.cells[cell].height_m) - origin.z) / direction.z;
     // Grid units (columns, rows from the south) of the hit, and the walk back towards the origin: s = t_hit - t.
@@ -74,6 +74,7 @@ bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& 
         const double s = std::min(next_x, next_y);
         if (!(s < t_hit)) return true;  // back at the origin: nothing in the way
         const double ray_height = origin.z + (t_hit - s) * direction.z;
+        if (ground_top_m <= ray_height + kSunEvidenceStepToleranceM) return true;  // above every step from here
         const double left = columnHeight(scene, column, row_from_south);
         if (next_x < next_y) {
             column += step_column;
@@ -86,6 +87,13 @@ bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& 
         if (std::max(left, entered) > ray_height + kSunEvidenceStepToleranceM) return false;
     }
     return true;
+}
+
+double sunEvidenceGroundTop(const GroundMatchScene& scene) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (const GroundMatchCell& cell : scene.cells)
+        if (cell.ground) top = std::max(top, double(cell.height_m));
+    return top;
 }
 
 uint32_t sunEvidenceBin(double value, double lowest, double span) {
@@ -186,6 +194,7 @@ std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint
     std::vector<SunEvidenceSample> samples(size_t(grid.sampleCount()));
     const glm::dvec3 sun = view.sun_direction_enu;
     if (!(sun.z > 0.0)) return samples;  // no sun to cast a shadow
+    const double ground_top_m = sunEvidenceGroundTop(scene);
     GroundMatchView without_sun = view;
     without_sun.sun_shines = false;
     for (uint32_t j = 0; j < grid.samples_y; ++j)
@@ -196,7 +205,7 @@ std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint
             // The march's ray (groundMatchCellOfPixel's): does it show this cell, or the side of a step before it?
             const glm::dvec3 ray = view.camera_to_enu * glm::dvec3((double(x) + 0.5 - view.cx) / view.fx,
                                                                    (double(y) + 0.5 - view.cy) / view.fy, 1.0);
-            if (!sunEvidenceRayReachesCell(scene, view.camera_position_enu, ray, *cell)) continue;
+            if (!sunEvidenceRayReachesCell(scene, view.camera_position_enu, ray, *cell, ground_top_m)) continue;
             const uint8_t* pixel = &rgba8[(size_t(y) * width + x) * 4];
             if (isClippedCameraPixel(pixel[0], pixel[1], pixel[2])) continue;
             const glm::dvec3 predicted = groundMatchPredictedRadiance(scene, without_sun, *cell);

@@ -2,13 +2,17 @@
 
 #include "sun_evidence_pass.h"
 
+#include <algorithm>
 #include <cstddef>
+#include <limits>
+#include <vector>
 
 #include "sun_evidence_comp_spv.h"
 #include "sun_evidence_reduce_comp_spv.h"
 
 namespace gusuku::runtime_detail {
 
+using shader_interface::GroundMatchCellGpu;
 using shader_interface::GroundMatchFrame;
 using shader_interface::SunEvidencePushConstants;
 using shader_interface::SunEvidenceReducePushConstants;
@@ -42,6 +46,16 @@ namespace {
 
 uint32_t divideRoundingUp(uint64_t value, uint32_t divisor) { return uint32_t((value + divisor - 1) / divisor); }
 
+// The highest cell with ground (sunEvidenceGroundTop), read once from the colour match's cells.
+float groundTopOf(const GpuBuffer& cell_buffer) {
+    std::vector<GroundMatchCellGpu> cells(cell_buffer.size() / sizeof(GroundMatchCellGpu));
+    cell_buffer.download(cells.data(), cells.size() * sizeof(GroundMatchCellGpu));
+    float top = -std::numeric_limits<float>::max();
+    for (const GroundMatchCellGpu& cell : cells)
+        if (cell.ground > 0.5f) top = std::max(top, cell.height_m);
+    return top;
+}
+
 void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages, VkAccessFlags source_access,
                          VkPipelineStageFlags destination_stages, VkAccessFlags destination_access) {
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -67,7 +81,8 @@ SunEvidencePass::SunEvidencePass(const PassContext& context, const ColourStatist
                      GpuMemory::kHostVisible),
       reduce_(context.gpu, kSunEvidenceReduceCompSpirv, sizeof kSunEvidenceReduceCompSpirv,
               SUN_EVIDENCE_REDUCE_BINDING_COUNT, sizeof(SunEvidenceReducePushConstants)),
-      slots_(frames_in_flight) {
+      slots_(frames_in_flight),
+      ground_top_m_(groundTopOf(statistics.groundCellBuffer())) {
     const GroundMatchFrame no_view{};
     frame_buffer_.upload(&no_view, sizeof no_view);
     reduce_.bindBuffers({&sample_buffer_, &result_buffer_});
@@ -172,6 +187,7 @@ void SunEvidencePass::prepare(uint32_t slot, bool measure, const GroundMatchView
     push_.samples_y = grid_.samples_y;
     push_.shadow_depth_bias = uniforms.shadow_depth_bias;
     push_.sun_up = view.sun_direction_enu.z > 0.0 ? 1u : 0u;
+    push_.ground_top_m = ground_top_m_;
     slots_[slot] = {true, frames_, utc_unix_seconds};
 }
 

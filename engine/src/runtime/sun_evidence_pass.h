@@ -76,6 +76,7 @@ private:
     Pipeline pipeline_;
     ComputePipeline reduce_;
     std::vector<Slot> slots_;
+    float ground_top_m_ = 0.0f;  // the highest ground cell: the step check's walk ends above it
     // This frame (prepare).
     bool measure_ = false;
     uint32_t slot_ = 0;

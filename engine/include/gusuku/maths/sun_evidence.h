@@ -132,9 +132,14 @@ using SiteVisibility = std::function<double(const glm::dvec3& point_enu)>;
 /// Whether the ray origin + t direction (direction.z < 0), which comes down to `cell`'s height inside that cell,
 /// reaches it from above: walking back towards the origin over the cell edges it crosses (at most
 /// kSunEvidenceMaxCrossings), at each the ray is no more than kSunEvidenceStepToleranceM below either neighbouring
-/// cell's height (cells without ground never block). False: the pixel shows the side of a step, not the cell.
+/// cell's height (cells without ground never block). False: the pixel shows the side of a step, not the cell. The
+/// walk ends once the ray is within the tolerance of ground_top_m, the highest ground cell's height
+/// (sunEvidenceGroundTop): nothing further back can block it.
 bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& origin, const glm::dvec3& direction,
-                               size_t cell);
+                               size_t cell, double ground_top_m);
+
+/// The highest height of a cell with ground (-infinity without any).
+double sunEvidenceGroundTop(const GroundMatchScene& scene);
 
 /// The per-sample records of a frame (reference of sun_evidence.comp): the colour match's sample grid at stride,
 /// each ray onto the ground (groundMatchCellOfPixel), the cell's prediction without the sun (view's slots and
