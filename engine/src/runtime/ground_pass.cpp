@@ -73,7 +73,9 @@ void GroundPass::choose(const GroundRequest& request, const SlotBlend& blend, co
         const GpuScene& scene = context_.scene;
         const GroundCells cells{grid_, scene.ground_cell_state, scene.ground_cell_height, scene.ground_cell_normal};
         std::fill(pass_through_.begin(), pass_through_.end(), uint8_t(0));
-        if (request.include_baked_changes) {
+        // A threshold of 0 asks for every cell the building changes (a debugging view, and the C API's control that
+        // an appended option is read): no cell is left to the pass-through proof then.
+        if (request.include_baked_changes && context_.options.ground_change_threshold > 0.0f) {
             PassThroughLight light;
             for (int index = 0; index < 3; ++index)
                 light.slots[index] = blend.slots[index], light.weights[index] = blend.weights[index];
