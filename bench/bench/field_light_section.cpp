@@ -205,7 +205,7 @@ Json runFieldLightUnder(Bench& bench, const SkySet& skies) {
         return "not run: no ground albedo";
     }
     const RuntimeMode mode = runtimeModeNamed("proposed_ground_match");
-    const std::vector<double> hours = settings.quick ? std::vector<double>{10.5} : std::vector<double>{9.0, 12.0, 15.5};
+    const std::vector<double> hours = settings.quick ? std::vector<double>{8.0} : std::vector<double>{8.0, 12.0, 16.5};
     const std::vector<float> exposure_steps_ev{-2.0f, 0.0f, 2.0f};
     bench.say("");
     bench.say("**Light from the field, " + skies.label + " (" + std::to_string(width) + "x" + std::to_string(height) +
