@@ -24,7 +24,7 @@ if [[ -z "${GUSUKU_BUILD:-}" && ! -x "$build/tests/test_runtime" ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 1
   cmake --build "$build" || exit 1
 fi
-[[ -x "$build/tests/test_runtime" ]] || { echo "gpu-check: $build: has no tests/test_runtime (build it first)" >&2; exit 1; }
+[[ -x "$build/tests/test_runtime" ]] || { echo "gpu-check: $build: has no runtime test executables (build it first)" >&2; exit 1; }
 
 # The runtime's test set: the executables (and GoogleTest filters) Drivers.cmake runs on a second driver.
 mapfile -t entries < <(sed -n '/^set(GUSUKU_SWIFTSHADER_TESTS/,/")$/p' tests/drivers/Drivers.cmake |

@@ -158,7 +158,8 @@ struct SkyReadings {
 };
 
 // A cloud over the sun for ten seconds within thirty, at 30 frames a second, each frame's reading one of that
-// sky's frames in turn (responses and exposures varying as a phone's auto exposure would).
+// sky's frames with a site shadow boundary in view, in turn (responses and exposures varying as a phone's auto
+// exposure would).
 Json passingCloud(Bench& bench, const SkyReadings& clear, const SkyReadings& hidden) {
     SunVisibilityFilter filter;
     size_t statistics_changes = 0;
@@ -255,7 +256,9 @@ Json runFieldLightUnder(Bench& bench, const SkySet& skies) {
                     SkyReadings* sequence = sky_name == "clear"              ? &clear_readings
                                             : sky_name == "sun_behind_cloud" ? &hidden_readings
                                                                              : nullptr;
-                    if (sequence) {
+                    // The passing cloud is seen by a camera that keeps a site shadow boundary in view (a visitor
+                    // standing still): frames without one would leave the filter to its prior on every other frame.
+                    if (sequence && boundary) {
                         sequence->evidence.push_back(by_shadows.evidence);
                         sequence->statistics_sun_out.push_back(by_statistics.sun_out);
                     }

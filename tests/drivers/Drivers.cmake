@@ -10,12 +10,10 @@ set(GUSUKU_RUN_ON_DRIVER ${CMAKE_CURRENT_SOURCE_DIR}/drivers/run_on_driver.sh)
 
 # Executable, then its arguments (a GoogleTest filter where part of it is left to lavapipe, with the reason).
 set(GUSUKU_SWIFTSHADER_TESTS
-    "test_runtime"
     "test_runtime_golden"
     "test_runtime_camera_formats"
     "test_runtime_app_device"  # the app's own device and frames in flight
     "test_runtime_msaa"
-    "test_runtime_shadows"
     "test_runtime_mipmaps"
     "test_runtime_alpha_mask"
     "test_runtime_lightmap_formats"
@@ -24,7 +22,6 @@ set(GUSUKU_SWIFTSHADER_TESTS
     "test_runtime_pack_astc"
     "test_runtime_pack_astc_textures"
     "test_colour_match"
-    "test_colour_match_ground"
     "test_vulkan"
     "test_gpu_device"
     # Two of its seven cases: the host-bytes path and the GPU-resident one with kAuto's ground match (seven cost
@@ -35,6 +32,9 @@ set(GUSUKU_SWIFTSHADER_TESTS
     # themselves, and some print messages they provoke on purpose): these two fail on the message.
     "test_c_api"
     "readme_example")
+# Left out of CI for its 30 minutes (each passes on SwiftShader: `bash tests/drivers/run_on_driver.sh ICD EXE`):
+# test_runtime_shadows (39 s there), test_runtime (17 s) and test_colour_match_ground (15 s), whose paths the
+# goldens, the allocations and the camera formats above draw too.
 # Left to lavapipe: test_runtime_alpha_coverage's far masked quad (SwiftShader's alpha to coverage keeps 0.261 of
 # the leaves' 0.324 share at 12 m and msaa 4 where lavapipe keeps 0.332, outside the test's 0.04; open in
 # docs/development.md's Drivers section), and the slow test_runtime_memory (28 s of CPU on SwiftShader).
