@@ -215,15 +215,9 @@ int runCheckCommand(const std::vector<std::string>& args) {
     };
     if (const std::optional<int> exit_code = readCommandLine("gusuku-bake check", args, checkHelp(), false, parse))
         return *exit_code;
-    try {
-        return checkSite(site_path);
-    } catch (const InputError& error) {
-        // Built from the parts so a whole-file problem (no field) reads "FILE: PROBLEM", not "FILE: : PROBLEM".
-        const std::string field = error.field().empty() ? "" : error.field() + ": ";
-        std::fprintf(stderr, "gusuku-bake: error: %s: %s%s\n", error.file().c_str(), field.c_str(),
-                     error.problem().c_str());
-        return 1;
-    }
+    // Bad input throws InputError, which main() prints as "gusuku-bake: error: FILE: FIELD: PROBLEM" (a whole-file
+    // problem without the field; InputError::what()), exit 1.
+    return checkSite(site_path);
 }
 
 }  // namespace gusuku::bake_cli

@@ -244,14 +244,8 @@ int runPreviewCommand(const std::vector<std::string>& args) {
     };
     if (const std::optional<int> exit_code = readCommandLine("gusuku-bake preview", args, previewHelp(), true, parse))
         return *exit_code;
-    try {
-        return preview(site_path, output_dir, size);
-    } catch (const InputError& error) {
-        const std::string field = error.field().empty() ? "" : error.field() + ": ";
-        std::fprintf(stderr, "gusuku-bake: error: %s: %s%s\n", error.file().c_str(), field.c_str(),
-                     error.problem().c_str());
-        return 1;
-    }
+    // Bad input throws InputError, which main() prints as "gusuku-bake: error: FILE: FIELD: PROBLEM" (exit 1).
+    return preview(site_path, output_dir, size);
 }
 
 }  // namespace gusuku::bake_cli

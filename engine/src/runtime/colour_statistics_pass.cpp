@@ -1,5 +1,6 @@
 // The runtime's colour statistics pass: see colour_statistics_pass.h.
 #include "colour_statistics_pass.h"
+#include "memory_barrier.h"
 
 #include <cmath>
 #include <cstddef>
@@ -140,13 +141,7 @@ bool queueFamilyHasGraphics(const GpuDevice& gpu) {
     return gpu.queue_family_index < count && (families[gpu.queue_family_index].queueFlags & VK_QUEUE_GRAPHICS_BIT);
 }
 
-void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages, VkAccessFlags source_access,
-                         VkPipelineStageFlags destination_stages, VkAccessFlags destination_access) {
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = source_access;
-    barrier.dstAccessMask = destination_access;
-    vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
+using runtime_detail::recordMemoryBarrier;
 
 // Before a statistics kernel (the Lab one or the ground one): the camera pixels' writers, and the earlier users
 // of the state and the partials, against the kernel and its reduce.

@@ -1,6 +1,7 @@
 // The sun read from the site's shadows (sun_evidence_pass.h).
 
 #include "sun_evidence_pass.h"
+#include "memory_barrier.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -54,14 +55,6 @@ float groundTopOf(const GpuBuffer& cell_buffer) {
     for (const GroundMatchCellGpu& cell : cells)
         if (cell.ground > 0.5f) top = std::max(top, cell.height_m);
     return top;
-}
-
-void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags source_stages, VkAccessFlags source_access,
-                         VkPipelineStageFlags destination_stages, VkAccessFlags destination_access) {
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = source_access;
-    barrier.dstAccessMask = destination_access;
-    vkCmdPipelineBarrier(cmd, source_stages, destination_stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 }  // namespace
