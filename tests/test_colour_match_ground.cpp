@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "checker_ground_albedo.h"
 #include "colour_match_interface.h"
 #include "colour_match_probe_comp_spv.h"
 #include "colour_statistics_pass.h"
@@ -50,21 +51,7 @@ dvec3 toDvec3(const shader_interface::vec3& v) { return dvec3(v[0], v[1], v[2]);
 // checker of 1 m squares, so cells differ.
 BakeSetData bakeSetWithGroundAlbedo() {
     BakeSetData bake_set = testing::makeSyntheticBakeSet();
-    const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
-    bake_set.manifest.ground_grid.albedo = "ground_albedo.exr";
-    bake_set.ground_albedo.width = grid.columns;
-    bake_set.ground_albedo.height = grid.rows;
-    bake_set.ground_albedo.rgba.assign(grid.cellCount() * 4, 1.0f);
-    for (int row = 0; row < grid.rows; ++row)
-        for (int column = 0; column < grid.columns; ++column) {
-            const glm::dvec2 centre = groundCellCentreEnu(grid, {column, row});
-            const bool dark = (int(std::floor(centre.x)) + int(std::floor(centre.y))) % 2 != 0;
-            const glm::vec3 albedo = dark ? glm::vec3(0.30f, 0.26f, 0.20f) : glm::vec3(0.55f, 0.50f, 0.42f);
-            float* texel = &bake_set.ground_albedo.rgba[groundCellIndex(grid, {column, row}) * 4];
-            texel[0] = albedo.r;
-            texel[1] = albedo.g;
-            texel[2] = albedo.b;
-        }
+    testing::paintCheckerGroundAlbedo(bake_set);
     return bake_set;
 }
 

@@ -21,6 +21,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "checker_ground_albedo.h"
 #include "gpu_test_support.h"
 #include "gusuku_c_api_detail.h"
 #include "runtime_impl.h"
@@ -70,17 +71,7 @@ BakeSetData bakeSetWithBlock() {
     testing::SyntheticBakeSetOptions options;
     options.ground_albedo = 0.4f;
     BakeSetData bake_set = testing::makeSyntheticBakeSet(options);
-    const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
-    for (int row = 0; row < grid.rows; ++row)
-        for (int column = 0; column < grid.columns; ++column) {
-            const glm::dvec2 centre = groundCellCentreEnu(grid, {column, row});
-            const bool dark = (int(std::floor(centre.x)) + int(std::floor(centre.y))) % 2 != 0;
-            const glm::vec3 albedo = dark ? glm::vec3(0.30f, 0.26f, 0.20f) : glm::vec3(0.55f, 0.50f, 0.42f);
-            float* texel = &bake_set.ground_albedo.rgba[groundCellIndex(grid, {column, row}) * 4];
-            texel[0] = albedo.r;
-            texel[1] = albedo.g;
-            texel[2] = albedo.b;
-        }
+    testing::paintCheckerGroundAlbedo(bake_set);
     BakeSetOccluder& occluder = bake_set.occluder;
     const uint32_t first = uint32_t(occluder.positions.size());
     for (int corner = 0; corner < 8; ++corner)
