@@ -53,7 +53,7 @@ struct SunReading {
     bool sun_out = true;
     float sun_strength = 1.0f;  ///< E_sun's scale while out
     float cloud_cover = 0.0f;   ///< what blends the slots
-    SunEvidence evidence;       ///< what SunVisibilityFilter takes
+    SunEvidence evidence;       ///< the shadows' reading as SunVisibilityFilter takes it (default: no cue)
     bool boundary_in_view = false;
     uint32_t lit_samples = 0, shadowed_samples = 0;  ///< the shadows' estimate's sample counts
     std::string cue;
@@ -72,9 +72,6 @@ SunReading readByStatistics(const std::vector<uint8_t>& camera, uint32_t width, 
     reading.cloud_cover = estimate.cloud_cover;
     reading.sun_out = estimate.cloud_cover < 0.5f;
     reading.sun_strength = 1.0f - estimate.cloud_cover;
-    reading.evidence.sun_out_probability = 1.0f - estimate.cloud_cover;
-    reading.evidence.confidence = std::abs(estimate.cloud_cover - 0.5f) * 2.0f;
-    reading.evidence.sun_strength = reading.sun_strength;
     reading.cue = estimate.sky_in_view ? "sky blueness" : "shadow contrast";
     return reading;
 }
@@ -90,7 +87,6 @@ SunReading readByShadows(Runtime& runtime, const FrameInput& input, const SunRea
     reading.cloud_cover = statistics.cloud_cover;
     if (!after || (before && after->frame_index <= before->frame_index)) {
         reading.cue = "no reading";
-        reading.evidence.confidence = 0.0f;
         reading.sun_out = statistics.sun_out;
         reading.sun_strength = statistics.sun_strength;
         return reading;
