@@ -1,0 +1,207 @@
+// gusuku-view's window (see view_app.h).
+
+#include "view_app.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include "bakeset_site.h"
+#include "gusuku/assets/bakeset_loader.h"
+#include "gusuku/assets/image.h"
+#include "gusuku/maths/time_utc.h"
+#include "gusuku/pack_loader/runtime_pack.h"
+#include "runtime_modes.h"
+#include "view_modes.h"
+
+namespace gusuku::view {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// The view has stopped moving this long: trace the background for it.
+constexpr double kSettleSeconds = 0.35;
+constexpr double kDegreesPerPixel = 0.3;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+ViewApp* appOf(GLFWwindow* window) { return static_cast<ViewApp*>(glfwGetWindowUserPointer(window)); }
+
+// A runtime pack folder (pack.bin) or a bake set folder.
+BakeSetData loadBakeSetOrPack(const std::string& folder) {
+    if (std::filesystem::exists(std::filesystem::path(folder) / "pack.bin")) return loadRuntimePack(folder);
+    return loadBakeSet(folder);
+}
+
+}  // namespace
+
+ViewApp::ViewApp(const ViewRequest& request) : request_(request) {
+    if (request.actions) {
+        script_ = parseViewActions(*request.actions);
+        scripted_ = true;
+    }
+    bake_set_ = loadBakeSetOrPack(request.bake_set);
+    state_.position_enu = request.position_enu;
+    state_.look_at_enu = request.look_at_enu;
+    state_.horizontal_fov_deg = request.horizontal_fov_deg;
+    state_.utc_seconds = request.time_iso ? parseIso8601Utc(*request.time_iso) : siteMidnightUtc() + 12 * 3600.0;
+    state_.cloud_cover = request.cloud_cover;
+    state_.mode_index = *viewModeIndex(request.mode);
+    state_.msaa_samples = request.msaa_samples;
+    if (request.camera == "sample")
+        background_ = Background::traced(
+            bench_common::siteJsonOf(request.bake_set, bake_set_.manifest, request.site_json), request.width,
+            request.height, request.camera_samples, request.exposure.value_or(0.0f));
+    else
+        background_ = Background::photo(request.camera, request.exposure.value_or(0.0f));
+
+    window_ = std::make_unique<WindowDevice>(background_->width(), background_->height(), "gusuku-view");
+    GLFWwindow* window = window_->window();
+    glfwSetWindowUserPointer(window, this);
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+        appOf(w)->onKey(key, action, mods);
+    });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { appOf(w)->onCursor(x, y); });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+        appOf(w)->onButton(button, action);
+    });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) { appOf(w)->onScroll(y); });
+    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { appOf(w)->onResize(); });
+    glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { appOf(w)->onRefresh(); });
+
+    swapchain_ = std::make_unique<Swapchain>(window_->gpu().physical_device, window_->device(), window_->surface());
+    swapchain_->recreate({background_->width(), background_->height()});
+    openRuntime();
+    loop_ = std::make_unique<FrameLoop>(*window_, *swapchain_, *runtime_, background_->width(), background_->height());
+    std::fprintf(stderr, "gusuku-view: device %s, frame %ux%u, window %ux%u\n", window_->deviceName().c_str(),
+                 background_->width(), background_->height(), swapchain_->extent().width,
+                 swapchain_->extent().height);
+}
+
+ViewApp::~ViewApp() {
+    if (loop_) loop_->waitIdle();
+    loop_.reset();
+    runtime_.reset();  // before the device it runs on
+    swapchain_.reset();
+    window_.reset();
+}
+
+double ViewApp::siteMidnightUtc() const {
+    return bench_common::bakeDateMidnightUtc(request_.bake_set, bake_set_.manifest, "--time");
+}
+
+void ViewApp::openRuntime() {
+    RuntimeOptions options;
+    options.frame_width = background_->width();
+    options.frame_height = background_->height();
+    options.msaa_samples = state_.msaa_samples;
+    options.frames_in_flight = FrameLoop::kFramesInFlight;
+    if (loop_) loop_->waitIdle();
+    runtime_.reset();
+    runtime_ = Runtime::open(window_->gpu(), bake_set_, options);
+    if (loop_) loop_->setRuntime(*runtime_);
+    have_passes_ = false;
+}
+
+FrameInput ViewApp::frameInput() const {
+    const bench::RuntimeMode mode = bench::runtimeModeNamed(kViewModeNames[state_.mode_index]);
+    FrameInput frame;
+    frame.intrinsics =
+        CameraIntrinsics::fromFieldOfView(background_->width(), background_->height(), state_.horizontal_fov_deg);
+    frame.pose = CameraPose::lookingAt(state_.position_enu, state_.look_at_enu);
+    frame.utc_unix_seconds = state_.utc_seconds;
+    frame.weather.cloud_cover = state_.cloud_cover;
+    frame.exposure = background_->exposure();
+    frame.mode = mode.mode;
+    frame.colour_match = mode.colour_match;
+    frame.blend_slots = mode.blend_slots;
+    frame.ground_ratio = mode.ground_ratio;
+    return frame;
+}
+
+void ViewApp::moved() {
+    changed_ = true;
+    background_stale_ = true;
+    last_change_ = Clock::now();
+}
+
+// The background for the view as it is now: at once when scripted (or asked), else once the view has been
+// still for kSettleSeconds (tracing a frame takes a while on a CPU driver; meanwhile the last one stays).
+void ViewApp::refreshBackgroundIfDue(bool now) {
+    if (!background_stale_) return;
+    if (background_->isTraced() && !now && (dragging_ || secondsSince(last_change_) < kSettleSeconds)) return;
+    bench::BenchView view{state_.position_enu, state_.look_at_enu, state_.horizontal_fov_deg};
+    const float exposure_before = background_->exposure();
+    loop_->setCamera(background_->frameFor(view, {state_.utc_seconds, state_.cloud_cover}, trace_seconds_));
+    if (background_->exposure() != exposure_before) changed_ = true;
+    background_stale_ = false;
+    changed_ = true;
+    profile_due_ = !scripted_;
+}
+
+bool ViewApp::drawOnce(Screenshot* screenshot) {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_->window(), &width, &height);
+    if (width == 0 || height == 0) return false;  // minimised: nothing to draw on
+    const Clock::time_point start = Clock::now();
+    FrameInfo info;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (swapchain_stale_ || attempt > 0) {
+            loop_->waitIdle();  // the old images may still be in use
+            if (!swapchain_->recreate({uint32_t(width), uint32_t(height)})) return false;
+            swapchain_stale_ = false;
+            std::fprintf(stderr, "gusuku-view: swapchain %ux%u (made %u times)\n", swapchain_->extent().width,
+                         swapchain_->extent().height, swapchain_->generation());
+        }
+        if (loop_->drawFrame(frameInput(), info, screenshot) || (screenshot && screenshot->width)) break;
+    }
+    changed_ = false;
+    last_info_ = info;
+    last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    updateTitle(info, last_frame_ms_);
+    return true;
+}
+
+// Each pass submitted and waited for alone (renderFrameProfiled): slow, so only once the view has settled, after
+// a frame has put the camera on the GPU.
+void ViewApp::profilePasses() {
+    FrameInput frame = frameInput();
+    frame.camera_image = loop_->cameraImage();
+    frame.camera_image_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    loop_->waitIdle();
+    runtime_->renderFrameProfiled(frame, nullptr, passes_);
+    have_passes_ = true;
+    profile_due_ = false;
+    updateTitle(last_info_, last_frame_ms_);
+}
+
+void ViewApp::updateTitle(const FrameInfo& info, double frame_ms) {
+    auto slotName = [&](int slot) { return slot >= 0 ? bake_set_.manifest.slots[size_t(slot)].name : std::string("-"); };
+    const double sunny = 1.0 - info.overcast_weight;
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "gusuku-view | %s msaa %u | %s | sun az %.1f el %.1f | %s %.2f %s %.2f %s %.2f | cloud %.2f (%s) | "
+                  "frame %.0f ms",
+                  kViewModeNames[state_.mode_index], state_.msaa_samples,
+                  formatIso8601(state_.utc_seconds, bake_set_.manifest.site.utc_offset_minutes).substr(0, 16).c_str(),
+                  info.sun_azimuth_deg, info.sun_apparent_elevation_deg, slotName(info.slot_a).c_str(),
+                  info.slot_a >= 0 ? sunny * (1.0 - info.slot_b_weight) : 0.0, slotName(info.slot_b).c_str(),
+                  info.slot_b >= 0 ? sunny * info.slot_b_weight : 0.0, slotName(info.overcast_slot).c_str(),
+                  double(info.overcast_weight), double(state_.cloud_cover), state_.weather_source.c_str(), frame_ms);
+    std::string title = text;
+    if (have_passes_) {
+        std::snprintf(text, sizeof text,
+                      " | passes ms: shadow %.1f occluder %.1f building %.1f ground %.1f statistics %.1f",
+                      passes_.shadow_ms, passes_.occluder_ms, passes_.building_ms, passes_.ground_ms,
+                      passes_.statistics_ms);
+        title += text;
+    }
+    if (background_stale_ && background_->isTraced()) title += " | tracing the background when the view stops";
+    glfwSetWindowTitle(window_->window(), title.c_str());
+}
+
+}  // namespace gusuku::view
