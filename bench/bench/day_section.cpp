@@ -70,7 +70,15 @@ DaySteps measureDaySteps(Bench& bench, double sunrise, double sunset, const std:
         };
         RuntimeMode nearest_mode = runtimeModeNamed("proposed");
         nearest_mode.blend_slots = false;
-        const ErrorSummary with_blend = errorOf(runtimeModeNamed("proposed")),
+        // The blend's composite and the truth go to frames/ (day_HHMM_*.png), so a part of the building (a roof,
+        // a wall) can be read against the truth after the run.
+        const std::vector<uint8_t> blend_frame = steadyComposite(
+            runtime, frameInputFor(runtimeModeNamed("proposed"), camera, intrinsics, pose, utc, 0.0f, frames.exposure));
+        std::string clock = bench.localTime(utc);
+        clock.erase(2, 1);
+        bench.writePng("day_" + clock + "_blend.png", width, height, blend_frame);
+        bench.writePng("day_" + clock + "_truth.png", width, height, truth);
+        const ErrorSummary with_blend = summariseError(blend_frame, truth, mask),
                            without_blend = errorOf(nearest_mode),
                            matched = errorOf(runtimeModeNamed(match_mode)),
                            direct_only = errorOf(runtimeModeNamed("direct_only"));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/maths/indirect_carry.h"
 #include "runtime_camera.h"
 #include "runtime_impl.h"
 
@@ -43,6 +44,9 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
         const SkyAndSun sky_and_sun{cover, frame.weather.sun_scale < 0.0f ? 1.0f - cover : frame.weather.sun_scale};
         lighting = computeFrameLighting(manifest_, frameObserverFor(frame, manifest_.site), frame.utc_unix_seconds,
                                         sky_and_sun, frame.blend_slots);
+        // Past the slots the sun's bounce fades with the sun instead of being held (indirect_carry.h).
+        const SunBounceFit bounce = fitSunBounce(manifest_, scene_.slot_mean_indirect);
+        lighting.sunny_weight *= float(indirectCarry(manifest_, bounce, lighting));
     } catch (const std::exception& error) {
         throw RuntimeError(RuntimeErrorCode::kInvalidFrame, std::string("frame: ") + error.what());
     }
