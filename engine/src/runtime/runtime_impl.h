@@ -64,7 +64,10 @@ public:
     VkImage compositeImage() const override { return targets_->composite(submission_->lastSlot()).handle(); }
     void waitIdle() override;
     void forgetCameraImage(VkImage image) override;
-    void resetColourStatistics() override { colour_->reset(); }
+    void resetColourStatistics() override {
+        colour_->reset();
+        if (sun_evidence_) sun_evidence_->reset();
+    }
     void invalidateShadowMaps() override { shadows_->invalidate(); }
     uint64_t deviceMemoryBytes() const override;
     LightmapFormat lightmapFormat() const override { return options_.lightmap_format; }

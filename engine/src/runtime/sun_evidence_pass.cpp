@@ -169,6 +169,16 @@ void SunEvidencePass::prepare(uint32_t slot, bool measure, const GroundMatchView
     ++frames_;
     slot_ = slot;
     harvest(slot);  // the slot's fence has signalled (FrameSubmission::prepare): its last result is final
+    // One of the colour match's measurements in kSunEvidenceMeasurementInterval (the first after a reset): the
+    // filter's hysteresis carries the reading between them.
+    if (measure) {
+        if (measurements_to_skip_ > 0) {
+            --measurements_to_skip_;
+            measure = false;
+        } else {
+            measurements_to_skip_ = kSunEvidenceMeasurementInterval - 1;
+        }
+    }
     measure_ = measure;
     if (!measure) return;
     frame_ = statistics_.groundFrameFor(view);

@@ -2,7 +2,7 @@
 // The sun read from the site's shadows in the camera frame (issue 41 items 1 and 2; gusuku/maths/sun_evidence.h holds
 // the model, the choices and the CPU reference): on each frame that the ground colour match measures (its camera
 // pack then holds the ground grid's pixels), after the main pass (so the site's shadow map is this frame's), two
-// dispatches: sun_evidence.comp classifies each ground sample as lit or site-shadowed and writes its ratio against
+// dispatches (on one such frame in kSunEvidenceMeasurementInterval): sun_evidence.comp classifies each ground sample as lit or site-shadowed and writes its ratio against
 // the bake's prediction without the sun, and sun_evidence_reduce.comp takes the trimmed means about the medians into the frame slot's
 // SunEvidenceResult in a host-visible buffer. The host reads a slot's result once the slot's fence says its frame has
 // finished (latest()): no wait the frame would not make, nothing allocated per frame. A FramePass (frame_pass.h).
@@ -37,6 +37,8 @@ public:
     void prepare(uint32_t slot, bool measure, const GroundMatchView& view,
                  const shader_interface::FrameUniforms& uniforms, double utc_unix_seconds);
     void recordAfter(PassRecording& recording) override;
+    /// The next frame the colour match measures measures the sun too (a cut in the camera feed: resetColourStatistics).
+    void reset() { measurements_to_skip_ = 0; }
 
     /// The newest result among the slots whose frames have finished (finished(slot): the submission's fence status),
     /// or nothing before the first.
@@ -83,6 +85,7 @@ private:
     shader_interface::GroundMatchFrame frame_{};
     shader_interface::SunEvidencePushConstants push_{};
     uint64_t frames_ = 0;  // frames prepared: the serial of the next measurement
+    uint32_t measurements_to_skip_ = 0;  // the colour match's measurements before the next of this pass
     std::optional<RuntimeSunEvidence> latest_;
 };
 

@@ -3,7 +3,8 @@
 // the model and its CPU reference: gusuku/maths/sun_evidence.h; docs/platform-light.md, "The sun from the frame").
 //
 // The runtime measures it on the GPU within the frame, on the frames its ground colour match measures the camera
-// (ColourMatch::kGround, or kAuto on a bake set with ground albedo: one frame in kColourStatisticsInterval), when the
+// (ColourMatch::kGround, or kAuto on a bake set with ground albedo: one frame in kColourStatisticsInterval), on one
+// of those in kSunEvidenceMeasurementInterval, when the
 // sun is above the horizon and the bake set has a site occluder (whose shadow map gives the boundary). It reads the
 // result back once that frame's fence has signalled, never waiting for it: the newest result lags the frame by up
 // to frames_in_flight frames (none on the host-bytes path, which waits for its frame anyway).
@@ -24,6 +25,13 @@
 #include "gusuku/runtime/runtime.h"
 
 namespace gusuku {
+
+/// The runtime measures the sun on one of the colour match's measurements in this many (one frame in
+/// kColourStatisticsInterval x this: 12, a reading every 0.4 s at 30 frames a second), and on the first after
+/// resetColourStatistics: its cost is 3 ms a measurement on lavapipe at 640x360, 0.25 ms a frame so spread
+/// (docs/platform-light.md). SunVisibilityFilter holds its state between the readings (its 0.5 s hold and 1.5 s fade
+/// are longer than the gap).
+inline constexpr uint32_t kSunEvidenceMeasurementInterval = 3;
 
 struct RuntimeSunEvidence {
     /// evidence (for SunVisibilityFilter::update), the cue that decided (kNone: no boundary in view, confidence 0)
