@@ -17,6 +17,11 @@
 #define CAMERA_MATRIX_CONSTANT 1       // Y'CbCr: 0 BT.601, 1 BT.709
 #define CAMERA_FULL_RANGE_CONSTANT 2   // Y'CbCr: 0 narrow (studio, Y' 16-235), 1 full (0-255)
 #define CAMERA_CHROMA_SWAP_CONSTANT 3  // Y'CbCr: 0 Cb first (NV12), 1 Cr first (NV21)
+// The zero-copy camera's variant (compiled with CAMERA_SAMPLER_YCBCR): plane 0's binding is the app's two-plane
+// image through an immutable sampler with a sampler Y'CbCr conversion, and plane 1's binding is absent.
+#define CAMERA_YCBCR_LINEAR_CONSTANT 4  // 1: the conversion filters linearly, 0: nearest
+#define CAMERA_FRAME_HEIGHT_CONSTANT 5  // the frame's height, pixels (normalised coordinates need it)
+#define CAMERA_CONSTANT_COUNT 6
 
 #define CAMERA_KIND_FOUR_BYTE 0u
 #define CAMERA_KIND_TWO_PLANE_YUV 1u

@@ -8,7 +8,9 @@
 #include "colour.glsl"
 
 layout(set = 0, binding = CAMERA_PLANE0_BINDING) uniform sampler2D camera_plane0;
+#ifndef CAMERA_SAMPLER_YCBCR  // the zero-copy camera's variant has plane 0's binding alone
 layout(set = 0, binding = CAMERA_PLANE1_BINDING) uniform sampler2D camera_plane1;
+#endif
 
 #include "camera_sample.glsl"
 

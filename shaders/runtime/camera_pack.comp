@@ -10,7 +10,9 @@
 
 layout(local_size_x = CAMERA_PACK_WORKGROUP, local_size_y = CAMERA_PACK_WORKGROUP) in;
 layout(set = 0, binding = CAMERA_PLANE0_BINDING) uniform sampler2D camera_plane0;
+#ifndef CAMERA_SAMPLER_YCBCR  // the zero-copy camera's variant has plane 0's binding alone
 layout(set = 0, binding = CAMERA_PLANE1_BINDING) uniform sampler2D camera_plane1;
+#endif
 layout(std430, set = 1, binding = CAMERA_PACKED_BINDING) writeonly buffer Packed { uint camera_rgba8[]; };
 
 #include "camera_sample.glsl"

@@ -12,6 +12,8 @@ set(GUSUKU_RUN_ON_DRIVER ${CMAKE_CURRENT_SOURCE_DIR}/drivers/run_on_driver.sh)
 set(GUSUKU_SWIFTSHADER_TESTS
     "test_runtime_golden"
     "test_runtime_camera_formats"
+    # The zero-copy camera: SwiftShader has samplerYcbcrConversion, lavapipe does not (there it tests the refusal).
+    "test_runtime_zero_copy_camera"
     "test_runtime_app_device"  # the app's own device and frames in flight
     "test_runtime_msaa"
     "test_runtime_mipmaps"

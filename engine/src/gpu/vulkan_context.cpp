@@ -262,9 +262,14 @@ void VulkanContext::createDevice() {
     VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    // Where Vulkan 1.2's structs are out of reach, 1.1's own struct for the one 1.1 feature enabled below.
+    VkPhysicalDeviceSamplerYcbcrConversionFeatures supported_ycbcr{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLER_YCBCR_CONVERSION_FEATURES};
     if (has_vulkan12) {
         supported.pNext = &supported11;
         supported11.pNext = &supported12;
+    } else {
+        supported.pNext = &supported_ycbcr;
     }
     vkGetPhysicalDeviceFeatures2(physical_device_, &supported);
 
@@ -295,6 +300,8 @@ void VulkanContext::createDevice() {
         enabled11.storageBuffer16BitAccess = supported11.storageBuffer16BitAccess;
         enabled11.uniformAndStorageBuffer16BitAccess = supported11.uniformAndStorageBuffer16BitAccess;
         enabled11.shaderDrawParameters = supported11.shaderDrawParameters;
+        // The runtime's zero-copy camera (runtime.h, camera_ycbcr_image) where the device has it.
+        enabled11.samplerYcbcrConversion = supported11.samplerYcbcrConversion;
         enabled12.storageBuffer8BitAccess = supported12.storageBuffer8BitAccess;
         enabled12.uniformAndStorageBuffer8BitAccess = supported12.uniformAndStorageBuffer8BitAccess;
         enabled12.shaderFloat16 = supported12.shaderFloat16;
@@ -310,7 +317,10 @@ void VulkanContext::createDevice() {
 
     VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     enabled.features = enabled_features_;
+    VkPhysicalDeviceSamplerYcbcrConversionFeatures enabled_ycbcr = supported_ycbcr;
+    enabled_ycbcr.pNext = nullptr;
     if (has_vulkan12) enabled.pNext = &enabled11;
+    else if (enabled_ycbcr.samplerYcbcrConversion) enabled.pNext = &enabled_ycbcr;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

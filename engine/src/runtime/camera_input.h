@@ -7,15 +7,22 @@
 //     four-byte plane, or Y' and interleaved chroma planes): the one host copy an app that hands bytes asks for.
 //   - The app's VkImage is read through a view the runtime keeps (a small cache, views made the first time an
 //     image is met), in its own layout; TRANSFER_SRC_OPTIMAL is moved to SHADER_READ_ONLY_OPTIMAL and back.
-// Each frame slot has its own descriptor set, updated only when its source changes. The frame's first pass in the
+//   - The zero-copy camera (options.camera_ycbcr_image, camera_ycbcr.h): the app's two-plane Y'CbCr image through
+//     an immutable sampler with a sampler Y'CbCr conversion; no plane images, no staging.
+// Each frame slot has its own descriptor set, updated only when its source changes. On the zero-copy route each
+// cached view has its own set instead, written once when the view is made: an app that cycles a ring of
+// imported images (up to the cache's 8) costs no descriptor write and no Vulkan object once each has been met. The frame's first pass in the
 // list (frame_pass.h): its draw is the main pass's first. Private to gusuku_runtime.
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "camera_interface.h"
+#include "camera_ycbcr.h"
 #include "frame_pass.h"
 #include "gusuku/gpu/gpu_compute.h"
 #include "gusuku/gpu/gpu_device.h"
@@ -82,6 +89,7 @@ private:
     struct CachedView {
         VkImage image = VK_NULL_HANDLE;
         VkFormat format = VK_FORMAT_UNDEFINED;
+        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // sampled in (part of the key on the zero-copy route)
         VkImageView view = VK_NULL_HANDLE;
         uint64_t last_used = 0;
     };
@@ -92,9 +100,12 @@ private:
     };
     static constexpr size_t kViewCacheSize = 8;
 
+    void createPlanes(uint32_t slot_count);
     void createDescriptors(uint32_t slot_count);
+    void createZeroCopyDescriptors();
     void createPackPipeline();
-    const CachedView& viewFor(const FrameInput& frame);
+    bool holds(const CachedView& entry, const FrameInput& frame) const;
+    size_t viewFor(const FrameInput& frame);  // the entry's index
     void stageHostPixels(uint32_t slot, const FrameInput& frame);
     void pointSlotAt(uint32_t slot, VkImageView plane0, VkImageView plane1, VkImageLayout layout);
     void recordUpload(VkCommandBuffer cmd, uint32_t slot) const;
@@ -113,6 +124,10 @@ private:
     std::vector<SlotSource> slot_sources_;  // per slot
     std::vector<VkDescriptorSet> slot_sets_;
     std::array<CachedView, kViewCacheSize> views_{};
+    std::vector<VkDescriptorSet> bound_sets_;  // per slot: the set its draw and pack bind this frame
+    // The zero-copy route (null otherwise): the conversion and sampler, and one set per cached view.
+    std::unique_ptr<YcbcrCameraSampler> ycbcr_;
+    std::array<VkDescriptorSet, kViewCacheSize> view_sets_{};
     uint64_t use_counter_ = 0;
     const ColourStatisticsGrid* pack_grid_ = nullptr;  // this frame's (prepare)
 
@@ -126,9 +141,9 @@ private:
     VkPipelineLayout pack_layout_ = VK_NULL_HANDLE;
     VkPipeline pack_pipeline_ = VK_NULL_HANDLE;
     GpuBuffer packed_buffer_;
-    // The four specialisation constants of camera_interface.h, for both stages.
-    std::array<uint32_t, 4> specialisation_values_{};
-    std::array<VkSpecializationMapEntry, 4> specialisation_entries_{};
+    // The specialisation constants of camera_interface.h, for both stages.
+    std::array<uint32_t, CAMERA_CONSTANT_COUNT> specialisation_values_{};
+    std::array<VkSpecializationMapEntry, CAMERA_CONSTANT_COUNT> specialisation_entries_{};
     VkSpecializationInfo specialisation_{};
 };
 

@@ -198,9 +198,14 @@ void checkDeviceRequirements(const GpuDevice& gpu, const RuntimeOptions& options
          "R16G16B16A16_SFLOAT", "the ground's irradiance"},
         {lightmapVkFormat(options.lightmap_format), sampled | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
          lightmapFormatName(options.lightmap_format), "the lightmaps (options.lightmap_format)"},
-        {camera.plane0, sampled, "the camera's first plane format", "the camera"},
     };
-    if (camera.plane1 != VK_FORMAT_UNDEFINED) needs.push_back({camera.plane1, sampled, "R8G8_UNORM", "the camera's chroma"});
+    if (options.camera_ycbcr_image) {
+        checkYcbcrCameraSupport(gpu, options);  // the app's images, no planes of the runtime's
+    } else {
+        needs.push_back({camera.plane0, sampled, "the camera's first plane format", "the camera"});
+        if (camera.plane1 != VK_FORMAT_UNDEFINED)
+            needs.push_back({camera.plane1, sampled, "R8G8_UNORM", "the camera's chroma"});
+    }
     if (mainDepthStencilFormat(gpu.physical_device) == VK_FORMAT_UNDEFINED)
         fail("lacks DEPTH_STENCIL_ATTACHMENT for both D32_SFLOAT_S8_UINT and D24_UNORM_S8_UINT (the main pass's "
              "depth and the building's stencil marks)");

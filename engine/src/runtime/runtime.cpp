@@ -91,6 +91,17 @@ void checkRuntimeOptions(const RuntimeOptions& options) {
                            "options.frame_width/height: " + std::to_string(options.frame_width) + " x " +
                                std::to_string(options.frame_height) +
                                ": a 4:2:0 camera (nv12, nv21) needs an even width and height");
+    if (options.camera_ycbcr_image && !yuv)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.camera_ycbcr_image: needs options.camera_format nv12 or nv21 (the zero-copy "
+                           "camera is a two-plane Y'CbCr image)");
+    if (options.camera_ycbcr_conversion != VK_NULL_HANDLE && !options.camera_ycbcr_image)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.camera_ycbcr_conversion: set, but options.camera_ycbcr_image is false");
+    if (options.camera_ycbcr_chroma_filter != VK_FILTER_NEAREST && options.camera_ycbcr_chroma_filter != VK_FILTER_LINEAR)
+        throw RuntimeError(RuntimeErrorCode::kInvalidFrame,
+                           "options.camera_ycbcr_chroma_filter: " + std::to_string(int(options.camera_ycbcr_chroma_filter)) +
+                               " is not VK_FILTER_NEAREST or VK_FILTER_LINEAR");
     for (const RealOptionRange& range : kRealOptionRanges) {
         const float value = options.*(range.member);
         if (!(value >= range.minimum && value <= range.maximum))

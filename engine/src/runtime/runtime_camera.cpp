@@ -168,6 +168,9 @@ std::optional<std::string> findCameraProblem(const FrameInput& frame, const Runt
                         int(frame.camera_image != VK_NULL_HANDLE);
     if (sources != 1)
         return "camera: give exactly one of camera_rgba8, camera_luma (with camera_chroma) and camera_image";
+    if (options.camera_ycbcr_image && frame.camera_image == VK_NULL_HANDLE)
+        return "camera_image: null, but options.camera_ycbcr_image takes the camera as the app's "
+               "G8_B8R8_2PLANE_420_UNORM image, not as host pixels";
     if (yuv && frame.camera_rgba8 != nullptr)
         return "camera_rgba8: the runtime was opened for a Y'CbCr camera (options.camera_format): give camera_luma "
                "and camera_chroma";

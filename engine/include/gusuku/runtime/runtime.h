@@ -23,7 +23,9 @@
 // (FrameInput::colour_match kReinhard, kPreserve, kGround) also need a Vulkan 1.1 instance
 // (GpuDevice::instance_api_version) and subgroup arithmetic in compute shaders; without them the runtime opens and
 // refuses only those frames (the default, kAuto, is then off).
-// Nothing else: no extension, no optional feature.
+// The zero-copy camera (RuntimeOptions::camera_ycbcr_image) needs the Vulkan 1.1 feature samplerYcbcrConversion and
+// G8_B8R8_2PLANE_420_UNORM sampled with midpoint or cosited chroma. Nothing else: no extension, no other optional
+// feature.
 //
 // Threads and lifetimes: one Runtime is used from one thread at a time (its calls are not synchronised with
 // each other); several runtimes may run on several threads on one device, and share its queue when the
@@ -223,6 +225,24 @@ struct RuntimeOptions {
     CameraFormat camera_format = CameraFormat::kRgba8;
     YcbcrModel camera_ycbcr_model = YcbcrModel::kBt601;  ///< kNv12 / kNv21 only
     YcbcrRange camera_ycbcr_range = YcbcrRange::kNarrow;  ///< kNv12 / kNv21 only
+    /// The platform's zero-copy camera (docs/runtime.md, "The zero-copy camera"): true takes a kNv12 / kNv21
+    /// camera as the app's two-plane Y'CbCr VkImage (FrameInput::camera_image in VK_FORMAT_G8_B8R8_2PLANE_420_UNORM,
+    /// what an imported AHardwareBuffer or CVPixelBuffer gives), sampled in place through a sampler Y'CbCr
+    /// conversion: no copy, no staging, no plane images of the runtime's; host planes are then refused. Needs the
+    /// samplerYcbcrConversion feature (Vulkan 1.1) enabled on the app's device (openHeadless's own device enables it
+    /// where the device has it) and the format's chroma siting among its features: else open() throws kDevice
+    /// naming what is missing.
+    bool camera_ycbcr_image = false;
+    /// The app's own conversion for camera_ycbcr_image (the platform's: on Android made from
+    /// vkGetAndroidHardwareBufferPropertiesANDROID's suggested model, range and chroma offsets), made for
+    /// G8_B8R8_2PLANE_420_UNORM; it outlives the runtime. The runtime's views of the camera images and its
+    /// immutable sampler use it, and camera_ycbcr_model / range and the kNv12 / kNv21 order are then the
+    /// conversion's. VK_NULL_HANDLE (the default): the runtime makes one from camera_ycbcr_model / range and
+    /// camera_format with nearest chroma, which gives the host planes' composite.
+    VkSamplerYcbcrConversion camera_ycbcr_conversion = VK_NULL_HANDLE;
+    /// The chromaFilter camera_ycbcr_conversion was made with, VK_FILTER_NEAREST or VK_FILTER_LINEAR: the runtime's
+    /// sampler filters with it, as Vulkan asks of a sampler with a conversion. Ignored without that conversion.
+    VkFilter camera_ycbcr_chroma_filter = VK_FILTER_NEAREST;
     /// Anisotropic filtering of the building's base-colour textures (which are mipmapped and sampled
     /// trilinearly): the largest anisotropy, [1, 16], clamped to the device's maxSamplerAnisotropy. 1 is off.
     /// Above 1 only when the app enabled samplerAnisotropy on its device (the runtime cannot know: a device
@@ -292,7 +312,8 @@ struct FrameInput {
     /// SAMPLED, on the runtime's queue family, in camera_image_layout: SHADER_READ_ONLY_OPTIMAL or GENERAL (read
     /// as they are), or TRANSFER_SRC_OPTIMAL (moved to SHADER_READ_ONLY_OPTIMAL for the frame and back after it).
     /// camera_image_format: kRgba8 takes R8G8B8A8_UNORM or _SRGB, kBgra8 B8G8R8A8_UNORM or _SRGB (the bytes
-    /// are sRGB either way); a kNv12 / kNv21 camera comes as host planes (docs/platforms.md says why).
+    /// are sRGB either way); a kNv12 / kNv21 camera comes as host planes, or, with
+    /// RuntimeOptions::camera_ycbcr_image, only as a G8_B8R8_2PLANE_420_UNORM image (docs/platforms.md says why).
     /// The runtime keeps a view of each image it meets (up to 8, the least recently used let go): call
     /// Runtime::forgetCameraImage before destroying an image it has seen. The app's writes must be complete
     /// before the frame reads: a wait semaphore in `sync`, or a submission earlier on the same queue.
