@@ -55,10 +55,15 @@ layout(std430, set = 0, binding = BAKE_RAY_COUNTER_BINDING) buffer RayCounter { 
 
 void main() {
     // x indexes the dispatch's range of points (a long pass is cut into ranges so a stop need not wait for it);
-    // the point's own index picks its random stream, so the ranges change nothing.
-    uint range_index = gl_GlobalInvocationID.x;
+    // the point's own index picks its random stream, so the ranges change nothing. Consecutive invocations (the
+    // SIMD lanes llvmpipe runs in step) take pc.samples_per_lane_group samples of one point, y the group of
+    // samples: a lane group's paths then leave one point along one normal, so they meet the same occluders and
+    // end at more alike depths than the paths of neighbouring texels, and fewer lanes idle. Each (point, sample)
+    // draws its own numbers whichever lane runs it, so the layout changes no result.
+    uint range_index = gl_GlobalInvocationID.x / pc.samples_per_lane_group;
     uint point_index = pc.first_point + range_index;
-    uint sample_in_chunk = gl_GlobalInvocationID.y;
+    uint sample_in_chunk = gl_GlobalInvocationID.y * pc.samples_per_lane_group +
+                           gl_GlobalInvocationID.x % pc.samples_per_lane_group;
     bool in_range = range_index < pc.point_count && sample_in_chunk < pc.sample_count;
     if (in_range) {
         QueryPoint point = query_points[point_index];

@@ -45,6 +45,8 @@ GUSUKU_PUSH_CONSTANTS_BEGIN(BakeIrradiancePushConstants)
     vec4 sun_irradiance_ray_offset;  // xyz E_sun (W/m^2 per channel), w ray offset (metres)
     uint sky_next_event;             // 1: sample the sky map too (MIS), 0: cosine lobe alone
     uint sky_rays_at_point;          // sky next-event rays at the query point itself (irradiance_paths.glsl)
+    uint samples_per_lane_group;     // 1, 2, 4 or 8 dividing sample_count: consecutive invocations trace this many
+                                     // samples of one point (bake_irradiance.comp says why)
 GUSUKU_PUSH_CONSTANTS_END(BakeIrradiancePushConstants, pc)
 
 // local_size_x of bake_irradiance.comp and bake_accumulate.comp
