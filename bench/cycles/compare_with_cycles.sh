@@ -2,7 +2,8 @@
 # gusuku against Blender's Cycles (the tool the paper baked with), on this machine, in one run: relative RMS error
 # of the building lightmap against each tool's own converged bake, and the wall time each took to get there, for
 # every slot (overcast and sunny) of two sites: the sample site, and the shared shrine on the sample's terrace
-# under the shared photographed skies (make_shrine_site.py; skipped with a message when ../shared/data is absent).
+# under the shared photographed skies (make_shrine_site.py; skipped with a message when ../shared/data is absent);
+# SITES may also name house, the benchmark's shared house (scripts/write-bench-site.py).
 #
 # Needs a built gusuku (scripts/build.sh) and Debian's Blender: apt-get install blender python3-numpy.
 # Usage: bench/cycles/compare_with_cycles.sh [OUT_DIR]   (default out/cycles-comparison)
@@ -38,8 +39,12 @@ for site in $sites; do
   elif [[ "$site" == shrine ]]; then
     python3 bench/cycles/make_shrine_site.py "$out/sample/site.json" "$shared" "$site_json" ||
       { echo "compare_with_cycles: skipping the shrine site"; continue; }
+  elif [[ "$site" == house ]]; then
+    # The benchmark's house site (scripts/bench-sites.sh): the shared house diorama at 12 texels a metre.
+    python3 scripts/write-bench-site.py "$out/sample/site.json" "$shared" house "$site_json" ||
+      { echo "compare_with_cycles: skipping the house site"; continue; }
   else
-    echo "compare_with_cycles: unknown site '$site' (sample or shrine)" >&2; exit 1
+    echo "compare_with_cycles: unknown site '$site' (sample, shrine or house)" >&2; exit 1
   fi
   # The bake set supplies the building with gusuku's lightmap charts (TEXCOORD_1), so both tools bake the same
   # texels; its lightmaps are the cross-check of what Cycles converges to. No --force: a second run with the
