@@ -1,0 +1,40 @@
+#pragma once
+// gusuku-view --render: a session composited headless, frame by frame, into a folder of PNG frames (no window,
+// no windowing library: the runtime on a headless device, as gusuku-render draws one frame).
+
+#include <cstdint>
+#include <string>
+
+#include "gusuku/formats/bakeset_data.h"
+#include "gusuku/gpu/gpu_device.h"
+#include "gusuku/runtime/runtime.h"
+#include "view_session.h"
+
+namespace gusuku::view {
+
+struct SessionRenderOptions {
+    std::string mode = "proposed";  ///< a gusuku-bench mode (bench/bench/runtime_modes.h), as gusuku-view's --mode
+    /// Each output frame is the composite with the direct-only frame (what AR apps draw today) to its right.
+    bool beside_direct_only = false;
+    uint32_t msaa_samples = RuntimeOptions{}.msaa_samples;
+    bool show_progress = true;  ///< the progress bar on stderr
+};
+
+/// The name of output frame `index` inside the output folder: "frame_000000.png".
+std::string outputFrameName(size_t index);
+
+/// Throws InputError(out_folder, "--render", ...) when the output folder would overwrite what the render reads
+/// (it is or lies inside the session or the bake set, or holds them) or something else than a previous render
+/// (an existing non-empty folder holding anything but frame_*.png). Touches nothing.
+void refuseUnsafeRenderFolder(const std::string& out_folder, const std::string& session_folder,
+                              const std::string& bake_set_folder);
+
+/// Composites every frame of `session` on `bake_set` in options.mode (camera, pose, instant, cloud cover and
+/// exposure from its row; a row without exposure gets 1, the colour match modes replace it), one runtime for all
+/// frames as a camera feed would (the colour statistics carry over) and writes them as out_folder/frame_NNNNNN.png.
+/// The frames go into a temporary sibling folder renamed into place at the end: a bad frame image (InputError)
+/// or an interruption leaves no output folder half-written. Returns the number of frames written.
+size_t renderSession(const GpuDevice& gpu, const BakeSetData& bake_set, const Session& session,
+                     const std::string& out_folder, const SessionRenderOptions& options);
+
+}  // namespace gusuku::view
