@@ -151,8 +151,11 @@ static_assert(offsetof(gusuku_bakeset_desc, material_alpha_cutoffs) == 240);
 static_assert(offsetof(gusuku_runtime_options, lightmap_format) == 76 &&
               offsetof(gusuku_runtime_options, texture_compression_astc_hdr) == 80);
 // API version 3 (ASTC base-colour textures).
-static_assert(offsetof(gusuku_runtime_options, texture_compression_astc_ldr) == 84 &&
-              sizeof(gusuku_runtime_options) == 88);
+static_assert(offsetof(gusuku_runtime_options, texture_compression_astc_ldr) == 84);
+// API version 6 (the zero-copy camera): the conversion handle makes the struct 8-byte aligned; version 3 ended at 88.
+static_assert(offsetof(gusuku_runtime_options, camera_ycbcr_image) == 88 &&
+              offsetof(gusuku_runtime_options, camera_ycbcr_chroma_filter) == 92 &&
+              offsetof(gusuku_runtime_options, camera_ycbcr_conversion) == 96 && sizeof(gusuku_runtime_options) == 104);
 static_assert(sizeof(FrameInput01) == 232 && offsetof(gusuku_frame_input, flags) == 224);
 static_assert(offsetof(gusuku_frame_input, pose) == 72 && offsetof(gusuku_frame_input, exposure) == 212);
 static_assert(offsetof(gusuku_frame_input, camera_luma) == 232);
@@ -473,7 +476,7 @@ TEST_F(CApiVersionsTest, AnOldFrameInfoIsWrittenOnlyAsFarAsItsSize) {
               GUSUKU_ERROR_INVALID_ARGUMENT);
     const std::string message = gusuku_last_error_message();
     EXPECT_NE(message.find("options.struct_size: 40 is not the size of any gusuku_runtime_options this library "
-                           "knows (44, 76, 84 or 88 bytes)"),
+                           "knows (44, 76, 84, 88 or 104 bytes)"),
               std::string::npos)
         << message;
 }
@@ -535,7 +538,7 @@ TEST_F(CApiVersionsTest, AstcTextureOptionIsReadFromVersion3AndDefaultsBeforeIt)
     gusuku_runtime_options options;
     ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
     EXPECT_EQ(options.texture_compression_astc_ldr, 0u);
-    EXPECT_EQ(options.struct_size, 88u);
+    EXPECT_EQ(options.struct_size, 104u);
     options.frame_width = options.frame_height = kSize;
     options.shadow_map_size = 64;
     std::vector<uint8_t> version2(sizeof options + 64, kBeyond);
@@ -555,6 +558,39 @@ TEST_F(CApiVersionsTest, AstcTextureOptionIsReadFromVersion3AndDefaultsBeforeIt)
         EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
     }
     EXPECT_EQ(gusuku_runtime_astc_texture_count(nullptr, nullptr), GUSUKU_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(gusuku_bakeset_free(set), GUSUKU_OK);
+}
+
+// API version 6's zero-copy camera options: 0, NEAREST and no conversion by default; read from a layout of today's
+// size (camera_ycbcr_image with an RGBA8 camera refused naming it, whatever the device); a version-3 layout, whose
+// bytes past it are kBeyond (a nonzero camera_ycbcr_image, which would be refused so), opens with the defaults.
+TEST_F(CApiVersionsTest, ZeroCopyCameraOptionsAreReadFromVersion6AndDefaultBeforeIt) {
+    const WallScene scene;
+    const OldInBuffer<BakeSetDesc01, gusuku_bakeset_desc> old_desc(scene.desc());
+    gusuku_bakeset* set = nullptr;
+    ASSERT_EQ(gusuku_bakeset_create(old_desc.today(), &set), GUSUKU_OK) << gusuku_last_error_message();
+    const gusuku_vulkan_device vulkan = device();
+    gusuku_runtime_options options;
+    ASSERT_EQ(gusuku_runtime_options_default(&options), GUSUKU_OK);
+    EXPECT_EQ(options.camera_ycbcr_image, 0u);
+    EXPECT_EQ(options.camera_ycbcr_chroma_filter, VK_FILTER_NEAREST);
+    EXPECT_TRUE(options.camera_ycbcr_conversion == VK_NULL_HANDLE);
+    options.frame_width = options.frame_height = kSize;
+    options.shadow_map_size = 64;
+    std::vector<uint8_t> version3(sizeof options + 64, kBeyond);
+    std::memcpy(version3.data(), &options, offsetof(gusuku_runtime_options, camera_ycbcr_image));
+    reinterpret_cast<gusuku_runtime_options*>(version3.data())->struct_size =
+        uint32_t(offsetof(gusuku_runtime_options, camera_ycbcr_image));
+    gusuku_runtime* runtime = nullptr;
+    ASSERT_EQ(gusuku_runtime_open(&vulkan, set, reinterpret_cast<const gusuku_runtime_options*>(version3.data()),
+                                  &runtime),
+              GUSUKU_OK)
+        << gusuku_last_error_message();
+    EXPECT_EQ(gusuku_runtime_close(runtime), GUSUKU_OK);
+    options.camera_ycbcr_image = 1;
+    EXPECT_EQ(gusuku_runtime_open(&vulkan, set, &options, &runtime), GUSUKU_ERROR_INVALID_FRAME);
+    EXPECT_NE(std::string(gusuku_last_error_message()).find("options.camera_ycbcr_image: needs"), std::string::npos)
+        << gusuku_last_error_message();
     EXPECT_EQ(gusuku_bakeset_free(set), GUSUKU_OK);
 }
 

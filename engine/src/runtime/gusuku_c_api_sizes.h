@@ -58,15 +58,24 @@ struct StructLayouts<gusuku_bakeset_desc> {
     };
 };
 
+/// A gusuku_runtime_options layout of before API version 6, whose fields were all 4-byte aligned.
+#define GUSUKU_RUNTIME_OPTIONS_LAYOUT_ALIGN4(FIRST, LAST)                                                                     \
+    ::gusuku::c_api_detail::StructLayout {                                                                      \
+        offsetof(gusuku_runtime_options, FIRST),                                                                \
+            offsetof(gusuku_runtime_options, LAST) + sizeof(gusuku_runtime_options::LAST), 4                    \
+    }
+
 template <>
 struct StructLayouts<gusuku_runtime_options> {
     static constexpr const char* name = "gusuku_runtime_options";
     static constexpr bool library_writes = false;
     static constexpr StructLayout layouts[] = {
-        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, frame_width, direct_only_shadow_darkening),
-        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, shadow_sun_step_deg, max_anisotropy),
-        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, lightmap_format, texture_compression_astc_hdr),
-        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, texture_compression_astc_ldr, texture_compression_astc_ldr),
+        // API version 6's conversion handle raised the struct's alignment to 8: the older layouts had 4.
+        GUSUKU_RUNTIME_OPTIONS_LAYOUT_ALIGN4(frame_width, direct_only_shadow_darkening),
+        GUSUKU_RUNTIME_OPTIONS_LAYOUT_ALIGN4(shadow_sun_step_deg, max_anisotropy),
+        GUSUKU_RUNTIME_OPTIONS_LAYOUT_ALIGN4(lightmap_format, texture_compression_astc_hdr),
+        GUSUKU_RUNTIME_OPTIONS_LAYOUT_ALIGN4(texture_compression_astc_ldr, texture_compression_astc_ldr),
+        GUSUKU_STRUCT_LAYOUT(gusuku_runtime_options, camera_ycbcr_image, camera_ycbcr_conversion),
     };
 };
 

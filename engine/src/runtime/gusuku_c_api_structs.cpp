@@ -73,6 +73,9 @@ gusuku_runtime_options defaultOptions() {
     options.lightmap_format = gusuku_lightmap_format(defaults.lightmap_format);
     options.texture_compression_astc_hdr = defaults.texture_compression_astc_hdr ? 1u : 0u;
     options.texture_compression_astc_ldr = defaults.texture_compression_astc_ldr ? 1u : 0u;
+    options.camera_ycbcr_image = defaults.camera_ycbcr_image ? 1u : 0u;
+    options.camera_ycbcr_chroma_filter = defaults.camera_ycbcr_chroma_filter;
+    options.camera_ycbcr_conversion = defaults.camera_ycbcr_conversion;
     return options;
 }
 
@@ -120,6 +123,9 @@ RuntimeOptions convertOptions(const gusuku_runtime_options& options) {
     converted.lightmap_format = LightmapFormat(options.lightmap_format);
     converted.texture_compression_astc_hdr = options.texture_compression_astc_hdr != 0;
     converted.texture_compression_astc_ldr = options.texture_compression_astc_ldr != 0;
+    converted.camera_ycbcr_image = options.camera_ycbcr_image != 0;
+    converted.camera_ycbcr_chroma_filter = options.camera_ycbcr_chroma_filter;
+    converted.camera_ycbcr_conversion = options.camera_ycbcr_conversion;
     return converted;
 }
 

@@ -10,7 +10,7 @@
  *     gusuku_runtime_close(rt);
  *
  * Versions and struct sizes: GUSUKU_API_VERSION counts the releases that changed this header (0 was gusuku 0.1.0,
- * 5 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
+ * 6 is this one); gusuku_api_version() is the linked library's. Every struct an app passes by pointer, to fill
  * in or to receive (gusuku_vulkan_device, gusuku_bakeset_desc, gusuku_runtime_options, gusuku_frame_input,
  * gusuku_frame_info, gusuku_pass_timings), starts with uint32_t struct_size, which the app sets to sizeof the
  * struct as its own header declares it: gusuku_runtime_options_default and gusuku_frame_input_default set it and
@@ -111,7 +111,7 @@ const char* gusuku_version(void);
 
 /* This header's API version (see "Versions and struct sizes" above): raised by one in each release that appends
  * fields or functions. */
-#define GUSUKU_API_VERSION 5u
+#define GUSUKU_API_VERSION 6u
 
 /* The linked library's API version: an app compiled against GUSUKU_API_VERSION N runs on any library whose
  * gusuku_api_version() is N or more. O(1). */
@@ -313,6 +313,21 @@ typedef struct gusuku_runtime_options {
                                                 (every Vulkan phone GPU has it): the building's base-colour
                                                 textures are drawn from the runtime pack's ASTC 6x6 blocks where
                                                 the device samples them, else RGBA8; default 0 */
+
+    /* API version 6 (runtime.h's RuntimeOptions and docs/runtime.md, "The zero-copy camera", say more): */
+    uint32_t camera_ycbcr_image;             /* nonzero: an NV12 / NV21 camera comes as the app's
+                                                G8_B8R8_2PLANE_420_UNORM VkImage (an imported AHardwareBuffer or
+                                                CVPixelBuffer: frame.camera_image, camera_image_format), sampled
+                                                in place through a sampler Y'CbCr conversion, no copy; host planes
+                                                are then refused. The app enabled samplerYcbcrConversion (Vulkan
+                                                1.1) on its device; a device without it: GUSUKU_ERROR_DEVICE
+                                                naming it; default 0 */
+    VkFilter camera_ycbcr_chroma_filter;     /* the chromaFilter camera_ycbcr_conversion was made with, NEAREST or
+                                                LINEAR; default VK_FILTER_NEAREST */
+    VkSamplerYcbcrConversion camera_ycbcr_conversion;  /* the app's own conversion (the platform's suggested
+                                                model, range and chroma offsets), made for G8_B8R8_2PLANE_420_UNORM,
+                                                outliving the runtime; VK_NULL_HANDLE (default): the runtime makes
+                                                one from camera_format, camera_ycbcr_model and _range */
 } gusuku_runtime_options;
 
 typedef struct gusuku_runtime gusuku_runtime;
@@ -363,14 +378,16 @@ typedef struct gusuku_weather {
     float cloud_cover;      /* 0 clear (sunny slots, real-time sun) to 1 overcast (overcast slot, no sun) */
 } gusuku_weather;
 
-/* One frame's input; start from gusuku_frame_input_default. Exactly one of camera_rgba8 and camera_image.
+/* One frame's input; start from gusuku_frame_input_default. Exactly one of camera_rgba8, camera_luma and
+ * camera_image (only camera_image with options.camera_ycbcr_image).
  * Fields appended here start on an 8-byte boundary (after a uint32_t pad where needed): the 0.1 layout ends in
  * 4 bytes of padding that an older app leaves unset, which the library never reads. */
 typedef struct gusuku_frame_input {
     uint32_t struct_size;               /* sizeof(gusuku_frame_input) as the app's header declares it */
     const uint8_t* camera_rgba8;        /* host RGBA8 or BGRA8 (options.camera_format), frame_width x frame_height */
     VkImage camera_image;               /* or the app's image, sampled in place (runtime.h's FrameInput): usage
-                                           SAMPLED, R8G8B8A8 or B8G8R8A8 (camera_image_format) */
+                                           SAMPLED, R8G8B8A8 or B8G8R8A8 (camera_image_format), or
+                                           G8_B8R8_2PLANE_420_UNORM with options.camera_ycbcr_image */
     VkImageLayout camera_image_layout;  /* SHADER_READ_ONLY_OPTIMAL (default), GENERAL or TRANSFER_SRC_OPTIMAL */
     gusuku_intrinsics intrinsics;
     gusuku_pose pose;
