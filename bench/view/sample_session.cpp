@@ -9,6 +9,7 @@
 
 #include "bakeset_site.h"
 #include "camera_view.h"
+#include "frame_progress.h"
 #include "gusuku/assets/site.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku_bake/camera_frame.h"
@@ -52,6 +53,7 @@ Session makeSampleSession(const GpuDevice& gpu, const std::string& bake_set_fold
     std::vector<ImageRGBA> linear_frames;
     std::vector<float> middle_grey_exposures;
     const uint32_t count = std::max(options.frames, 1u);
+    FrameProgress progress(count, options.show_progress, "traced");
     for (uint32_t index = 0; index < count; ++index) {
         const double along = count > 1 ? double(index) / double(count - 1) : 0.0;
         const double hours = options.first_hour + along * (options.last_hour - options.first_hour);
@@ -80,9 +82,7 @@ Session makeSampleSession(const GpuDevice& gpu, const std::string& bake_set_fold
         frame.pose = bench_common::lookAtPose(request.view.position_enu, request.view.look_at_enu);
         frame.cloud_cover = request.condition.cloud_cover;
         session.frames.push_back(std::move(frame));
-        if (options.show_progress)
-            std::fprintf(stderr, "\rsample session: frame %u/%u traced%s", index + 1, count,
-                         index + 1 == count ? "\n" : "");
+        progress.advance(index + 1);
     }
     std::vector<float> sorted = middle_grey_exposures;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());

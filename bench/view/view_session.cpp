@@ -208,7 +208,8 @@ std::optional<std::string> sessionBakeSet(const Session& session) {
 }
 
 std::string trackRow(const SessionFrame& frame) {
-    const glm::dquat rotation = glm::quat_cast(frame.pose.camera_to_enu);
+    glm::dquat rotation = glm::quat_cast(frame.pose.camera_to_enu);
+    if (rotation.w < 0.0) rotation = -rotation;  // the same rotation; qw >= 0 reads the same every time
     std::string row = frame.image + "," + (frame.time_iso.empty() ? formatIso8601(frame.utc_seconds, 0)
                                                                   : frame.time_iso);
     for (double value : {frame.pose.position_enu.x, frame.pose.position_enu.y, frame.pose.position_enu.z,
