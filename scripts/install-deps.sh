@@ -11,6 +11,7 @@ packages=(
   libastcenc-dev  # the baker encodes the pack's ASTC 4x4 HDR lightmaps with Arm's astcenc
   libgtest-dev
   universal-ctags  # the function-length check lists the sources' functions with it
+  webp  # img2webp: the README's animation (scripts/render-composites.sh assembles gusuku-view's frames)
 )
 
 # --fuzz: also clang-14 and its compiler runtime (libFuzzer, sanitizers), for scripts/fuzz.sh only.
