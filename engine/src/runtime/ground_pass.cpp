@@ -17,6 +17,13 @@
 namespace gusuku::runtime_detail {
 namespace {
 constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
+// A cell the bake marks is left undrawn where the frame's light keeps its ratio within this of 1 (ground_sunlit.h's
+// proof). The shader itself writes exactly 1 only within kPassThroughThreshold; a cell between the two would scale a
+// camera pixel's linear value by less than 2/255 (0.8 %), which moves its 8-bit sRGB code c by about c x 0.008 / 2.4:
+// under one code at any value (measured: one code on 51 of the sample's 921,600 pixels at 10:30). Those cells were 376 of
+// the sample's 1,528 drawn quads at 10:30 (docs/measurements.md, "The ground ratio's cost at the runtime's
+// defaults"): the proposed-only part of the frame, which direct-only does not pay (issue 44 item 5).
+constexpr float kGroundSkipThreshold = 2.0f / 255.0f;
 }  // namespace
 
 GroundPass::GroundPass(const PassContext& context, const GroundGrid& grid, const FrameSet& frame_set,
@@ -86,7 +93,7 @@ void GroundPass::choose(const GroundRequest& request, const SlotBlend& blend, co
             // The frame's sun lies within the rounding step of the shadow maps' sun (in both angles), which moves a
             // cosine by less than the step in radians.
             light.cosine_slack = double(std::max(context_.options.shadow_sun_step_deg, 0.0f)) * kRadiansPerDegree + 0.001;
-            light.pass_through_threshold = kPassThroughThreshold;
+            light.pass_through_threshold = kGroundSkipThreshold;
             // The site's map as the shadow pass fits it for this sun (shadow_pass.cpp).
             const double texel_m = fitShadowMap(scene.receivers_min, scene.receivers_max, scene.casters_min,
                                                 scene.casters_max, request.shadow_sun,
