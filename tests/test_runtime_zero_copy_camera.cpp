@@ -5,7 +5,9 @@
 // full range, NV12 and NV21, and with the app's own conversion; a ring of images is read right as it cycles. The
 // host-plane path is itself held to an independent CPU decode of the ITU formulas (test_runtime_camera_formats).
 // On a device without samplerYcbcrConversion (lavapipe) the runtime refuses by name, and the matching cases skip
-// saying so; ctest runs this file on SwiftShader too (tests/drivers/Drivers.cmake), which has the feature.
+// saying so; ctest runs this file on SwiftShader too (tests/drivers/Drivers.cmake), which has the feature. The
+// chroma differs from block to block, so a siting error shows: camera_sample.glsl sampling pixel centres instead
+// of a quarter pixel in (SwiftShader sites chroma cosited) failed the match by 138-165 codes.
 
 #include <algorithm>
 #include <cstdint>
