@@ -116,7 +116,15 @@ GroundMatchView viewOf(const CameraPose& pose, const FrameInfo& info) {
 }
 
 // The camera frame in closed form (see the file's comment): s the sun's strength against the clear sun.
-std::vector<uint8_t> renderFrame(const GroundMatchScene& scene, const GroundMatchView& view, double strength) {
+// A contrasty phone's tone curve (the bench's cool_contrast: v = 1.15 x^1.25), applied per channel before the
+// sRGB encoding; power 1 is a camera that only exposes.
+struct ToneResponse {
+    double scale = 1.0, power = 1.0;
+};
+constexpr ToneResponse kContrastyResponse{1.15, 1.25};
+
+std::vector<uint8_t> renderFrame(const GroundMatchScene& scene, const GroundMatchView& view, double strength,
+                                 ToneResponse response = {}) {
     std::vector<uint8_t> rgba(size_t(kWidth) * kHeight * 4, 255);
     const dvec3 sun = view.sun_direction_enu;
     for (uint32_t y = 0; y < kHeight; ++y)
@@ -144,7 +152,7 @@ std::vector<uint8_t> renderFrame(const GroundMatchScene& scene, const GroundMatc
                 }
             }
             uint8_t* pixel = &rgba[(size_t(y) * kWidth + x) * 4];
-            for (int c = 0; c < 3; ++c) pixel[c] = encode8(linear[c]);
+            for (int c = 0; c < 3; ++c) pixel[c] = encode8(response.scale * std::pow(linear[c], response.power));
         }
     return rgba;
 }
@@ -153,6 +161,7 @@ std::vector<uint8_t> renderFrame(const GroundMatchScene& scene, const GroundMatc
 struct Readings {
     RuntimeSunEvidence gpu;
     SunEvidenceEstimate cpu;
+    SunEvidenceEstimate cpu_without_response;
 };
 
 class SunEvidenceGpu : public testing::GpuTest {
@@ -180,14 +189,14 @@ protected:
         return frame;
     }
 
-    Readings read(const CameraPose& pose, double strength) {
+    Readings read(const CameraPose& pose, double strength, ToneResponse response = {}) {
         FrameInput frame = frameFor(pose);
         std::vector<uint8_t> grey(size_t(kWidth) * kHeight * 4, 128), output(grey.size());
         frame.camera_rgba8 = grey.data();
         const FrameInfo info = runtime_->renderFrame(frame, output.data());  // the runtime's sun and slots
         EXPECT_TRUE(info.sun_above_horizon);
         const GroundMatchView view = viewOf(pose, info);
-        const std::vector<uint8_t> camera = renderFrame(scene_, view, strength);
+        const std::vector<uint8_t> camera = renderFrame(scene_, view, strength, response);
         frame.camera_rgba8 = camera.data();
         runtime_->resetColourStatistics();  // this frame measures
         runtime_->renderFrame(frame, output.data());
@@ -200,6 +209,10 @@ protected:
             sunEvidenceSamples(camera, kWidth, kHeight, stride, scene_, view, info.sun_irradiance_rgb,
                                [&](const dvec3& point) { return blockVisibility(point, view.sun_direction_enu); });
         readings.cpu = estimateSunEvidence(samples);
+        // The same samples read as a linear camera's (no response fitted), as the estimator did before it fitted one.
+        std::vector<SunEvidenceSample> unfitted = samples;
+        for (SunEvidenceSample& sample : unfitted) sample.log2_predicted = 0.0f;
+        readings.cpu_without_response = estimateSunEvidence(unfitted);
         return readings;
     }
 
@@ -225,21 +238,26 @@ void expectAgreesWithTheReference(const Readings& readings, const char* what) {
     EXPECT_NEAR(gpu.strength, cpu.strength, 0.03) << what;
     EXPECT_NEAR(gpu.evidence.sun_out_probability, cpu.evidence.sun_out_probability, 0.05) << what;
     EXPECT_NEAR(gpu.evidence.confidence, cpu.evidence.confidence, 0.1) << what;
+    EXPECT_NEAR(gpu.response_gamma, cpu.response_gamma, 0.02) << what;
 }
 
 TEST_F(SunEvidenceGpu, AClearSunIsOutAtItsStrength) {
     const Readings readings = read(boundaryPose(), 1.0);
     const SunEvidenceEstimate& estimate = readings.gpu.estimate;
-    std::printf("clear: p %.3f confidence %.3f s %.3f (se %.3f) shadowed %u lit %u, log2 g %.3f (true %.3f)\n",
+    std::printf("clear: p %.3f confidence %.3f s %.3f (se %.3f) shadowed %u lit %u, log2 g %.3f (true %.3f), "
+                "gamma %.3f\n",
                 estimate.evidence.sun_out_probability, estimate.evidence.confidence, estimate.strength,
                 estimate.strength_standard_error, estimate.shadowed_samples, estimate.lit_samples,
-                estimate.shade_log2_ratio, std::log2(kCameraGain));
+                estimate.shade_log2_ratio, std::log2(kCameraGain), estimate.response_gamma);
     EXPECT_EQ(estimate.cue, SunEvidenceCue::kSiteShadowBoundary);
     EXPECT_GT(estimate.shadowed_samples, 200u);  // the view holds the boundary
     EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f);
     EXPECT_GT(estimate.evidence.confidence, 0.8f);
     EXPECT_NEAR(estimate.evidence.sun_strength, 1.0, 0.2);
-    EXPECT_NEAR(estimate.shade_log2_ratio, std::log2(kCameraGain), 0.1);
+    // A camera that only exposes fits a power near 1 (the block's wall, seen in front of shaded cells of both
+    // albedos, pulls it a little); the shade's level is then log2 g to within (1 / gamma - 1) x.
+    EXPECT_NEAR(estimate.response_gamma, 1.0, 0.1);
+    EXPECT_NEAR(estimate.shade_log2_ratio, std::log2(kCameraGain), 0.2);
     EXPECT_EQ(readings.gpu.utc_unix_seconds, testing::syntheticLocalTime(16, 0));
     expectAgreesWithTheReference(readings, "clear");
 }
@@ -264,6 +282,23 @@ TEST_F(SunEvidenceGpu, AThinCloudsThirdIsOutWithinTwentyPercent) {
     EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f);
     EXPECT_NEAR(estimate.evidence.sun_strength, 1.0 / 3.0, 0.2 / 3.0);
     expectAgreesWithTheReference(readings, "third");
+}
+
+// A contrasty tone curve (v = 1.15 x^1.25) makes lit against shadowed ground (1 + q)^1.25 instead of 1 + q: read as
+// a linear camera's, a clear sun measured s 1.4 and more. The power fitted on the shade's two albedos undoes it:
+// the clear sun within 20 %, and a thin cloud's third too.
+TEST_F(SunEvidenceGpu, AContrastyCameraResponseIsUndoneBeforeTheRatio) {
+    for (double strength : {1.0, 1.0 / 3.0}) {
+        const Readings readings = read(boundaryPose(), strength, kContrastyResponse);
+        const SunEvidenceEstimate& estimate = readings.gpu.estimate;
+        std::printf("contrasty camera, s %.3f: gamma %.3f, s %.3f (%.3f with no response fitted)\n", strength,
+                    estimate.response_gamma, estimate.strength, readings.cpu_without_response.strength);
+        EXPECT_NEAR(estimate.response_gamma, kContrastyResponse.power, 0.1) << strength;
+        EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f) << strength;
+        EXPECT_NEAR(estimate.evidence.sun_strength, strength, 0.2 * strength) << strength;
+        EXPECT_GT(readings.cpu_without_response.strength, 1.25 * strength) << strength;  // what it undid
+        expectAgreesWithTheReference(readings, "contrasty");
+    }
 }
 
 TEST_F(SunEvidenceGpu, NoShadowInViewGivesNoCue) {

@@ -23,6 +23,10 @@ struct SampleSet {
     double noise_log2 = 0.15;   // one sigma of texture and albedo error, stops
     double outliers = 0.0;      // fraction of each side replaced by an unrelated brightness
     uint32_t seed = 7;
+    // The camera's response, display = scale x light^power, and the predicted levels' spread: each sample's cell is
+    // one of two albedos (or sky lights) this many stops apart.
+    double response_scale = 1.0, response_power = 1.0;
+    double predicted_spread_log2 = 0.0;
 };
 
 std::vector<SunEvidenceSample> samplesOf(const SampleSet& set) {
@@ -33,8 +37,13 @@ std::vector<SunEvidenceSample> samplesOf(const SampleSet& set) {
     auto add = [&](SunEvidenceSampleKind kind, double ratio, double q) {
         SunEvidenceSample sample;
         sample.kind = kind;
-        sample.log2_ratio = float(unit(random) < set.outliers ? wild(random) : std::log2(ratio) + noise(random));
+        // x: the cell's predicted level; the camera shows scale (x + log2 ratio)^power in log2, r = that - x.
+        const double x =
+            set.predicted_spread_log2 > 0.0 ? (unit(random) < 0.5 ? -0.5 : 0.5) * set.predicted_spread_log2 : 0.0;
+        const double shown = std::log2(set.response_scale) + set.response_power * (x + std::log2(ratio));
+        sample.log2_ratio = float(unit(random) < set.outliers ? wild(random) : shown - x + noise(random));
         sample.sun_share = float(q);
+        sample.log2_predicted = float(x);
         samples.push_back(sample);
     };
     for (int i = 0; i < set.shadowed; ++i) add(SunEvidenceSampleKind::kShadowed, set.gain, share(random));
@@ -88,6 +97,39 @@ TEST(SunEvidence, AThinCloudsThirdIsOutAndMeasuredWithinTwentyPercent) {
     const SunEvidenceEstimate estimate = estimateSunEvidence(samplesOf(set));
     EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f);
     EXPECT_NEAR(estimate.evidence.sun_strength, 1.0 / 3.0, 0.2 / 3.0);
+}
+
+// A contrasty tone curve (1.15 x^1.25, the bench's cool_contrast) over cells of two albedos a stop apart: the shade's
+// ratios run 0.25 stop higher on the lighter cells, which gives the power; the strength is then read through it.
+// Read as a linear camera's (power 1), the clear sun measured s ~1.5.
+TEST(SunEvidence, AContrastyResponseIsFittedOnTheShadeAndUndone) {
+    for (double strength : {1.0, 1.0 / 3.0}) {
+        SampleSet set;
+        set.strength = strength;
+        set.response_scale = 1.15;
+        set.response_power = 1.25;
+        set.predicted_spread_log2 = 1.0;
+        const std::vector<SunEvidenceSample> samples = samplesOf(set);
+        const SunEvidenceEstimate estimate = estimateSunEvidence(samples);
+        EXPECT_NEAR(estimate.response_gamma, 1.25, 0.05) << strength;
+        EXPECT_NEAR(estimate.evidence.sun_strength, strength, 0.1 * strength) << strength;
+        std::vector<SunEvidenceSample> unfitted = samples;
+        for (SunEvidenceSample& sample : unfitted) sample.log2_predicted = 0.0f;
+        EXPECT_GT(estimateSunEvidence(unfitted).strength, 1.3 * strength) << strength;
+    }
+}
+
+// One albedo in the shade cannot tell a tone curve from the light: no power is fitted (1), and a linear camera's
+// spread fits 1 within the noise.
+TEST(SunEvidence, AUniformShadeFitsNoResponseAndALinearCameraFitsOne) {
+    SampleSet uniform;
+    uniform.response_power = 1.25;
+    EXPECT_EQ(estimateSunEvidence(samplesOf(uniform)).response_gamma, 1.0f);
+    SampleSet linear;
+    linear.predicted_spread_log2 = 1.0;
+    const SunEvidenceEstimate estimate = estimateSunEvidence(samplesOf(linear));
+    EXPECT_NEAR(estimate.response_gamma, 1.0, 0.05);
+    EXPECT_NEAR(estimate.evidence.sun_strength, 1.0, 0.1);
 }
 
 TEST(SunEvidence, OutliersOnBothSidesMoveNeitherMedianFar) {

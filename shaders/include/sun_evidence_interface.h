@@ -22,6 +22,9 @@
 #define SUN_EVIDENCE_MIN_WIDTH 0.03
 #define SUN_EVIDENCE_STEP_TOLERANCE_M 0.1
 #define SUN_EVIDENCE_MAX_CROSSINGS 128u
+#define SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2 0.4
+#define SUN_EVIDENCE_MIN_RESPONSE_GAMMA 0.5
+#define SUN_EVIDENCE_MAX_RESPONSE_GAMMA 2.0
 
 // SunEvidenceSampleGpu::kind (gusuku::SunEvidenceSampleKind)
 #define SUN_EVIDENCE_KIND_NONE 0.0
@@ -37,7 +40,7 @@ struct SunEvidenceSampleGpu {
     float log2_ratio;  // log2(Y observed / Y predicted without the sun)
     float sun_share;   // q = Y(rho E_sun cos) / Y(rho E_without) with the clear sun
     float kind;        // SUN_EVIDENCE_KIND_*
-    float padding;
+    float log2_predicted;  // x = log2 Y predicted without the sun: the response's fit
 };
 
 // One frame's reading, written by sun_evidence_reduce.comp into its frame slot's entry (host-visible).
@@ -52,7 +55,7 @@ struct SunEvidenceResult {
     float strength;           // the median s (0 with too few samples)
     float strength_standard_error;
     uint frame_serial;        // the host's number of the frame measured (SunEvidencePushConstants)
-    uint result_reserved0;
+    float response_gamma;     // the camera response's power fitted on the shade (1: none)
     uint result_reserved1;
 };
 

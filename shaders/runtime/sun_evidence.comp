@@ -133,6 +133,7 @@ void main() {
     float kind = SUN_EVIDENCE_KIND_NONE;
     float ratio = 0.0;
     float share = 0.0;
+    float log2_predicted = 0.0;
     uvec2 pixel = uvec2(pc.first_sample_offset) + sample_index * pc.stride;
     int cell = pc.sun_up != 0u ? groundCellOfPixel(pixel) : -1;
     // A ray that meets the side of a step before its cell shows a wall, not the cell's ground: left out.
@@ -154,6 +155,7 @@ void main() {
             vec3 observed = srgbDecode(vec3(bytes) / 255.0);
             float cosine = dot(cells[cell].normal, view.sun_direction);
             ratio = log2(luminance(observed) / predicted);
+            log2_predicted = log2(predicted);
             share = luminance(albedo * view.sun_irradiance) * max(0.0, cosine) * view.exposure / kPi / predicted;
             if (cosine <= 0.0) {
                 kind = SUN_EVIDENCE_KIND_SHADOWED;
@@ -168,5 +170,5 @@ void main() {
     samples[index].log2_ratio = ratio;
     samples[index].sun_share = share;
     samples[index].kind = kind;
-    samples[index].padding = 0.0;
+    samples[index].log2_predicted = log2_predicted;
 }

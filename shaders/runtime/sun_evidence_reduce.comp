@@ -2,7 +2,8 @@
 // The sun-evidence estimator's second pass, one workgroup of SUN_EVIDENCE_BINS invocations over sun_evidence.comp's
 // samples (lane l takes samples l, l + 64, ...), as colour_statistics_ground_reduce.comp: each lane counts its
 // samples per bin in a private array, the counts meet in shared memory (one barrier) and invocation 0 takes the
-// quantile. Two passes: the shadowed samples' median log2 ratio (the shade's level, log2 g), then the lit samples'
+// quantile. First the camera response's power from the shade's two halves (sun_evidence.h: the response), every
+// ratio then linearised through it; then two passes: the shadowed samples' median log2 ratio (the shade's level, log2 g), then the lit samples'
 // strengths s_i = (2^(r_i - log2 g) - 1) / q_i, whose median and quartiles give s, its standard error, the
 // probability that the sun is out and the confidence. CPU reference: estimateSunEvidence
 // (engine/include/gusuku/maths/sun_evidence.h). Writes the frame slot's SunEvidenceResult, read by the host after
@@ -24,6 +25,11 @@ shared float lane_sums[SUN_EVIDENCE_BINS];
 shared float lane_kept[SUN_EVIDENCE_BINS];
 shared uint median_bin;
 shared float shade_log2;
+shared float lane_fit[SUN_EVIDENCE_BINS][6];  // the response's sums per lane (main's step 0)
+shared float split_n;
+shared float split_level;
+shared uint side_median[2];
+shared float response_gamma;
 
 uint binOf(float value, float lowest, float span) {
     float index = floor((value - lowest) / span * float(SUN_EVIDENCE_BINS));
@@ -86,21 +92,103 @@ float windowMean() {
     return kept > 0.0 ? sum / kept : 0.0;
 }
 
+// The ratio linearised through the camera response's power (estimateSunEvidence's ratioOf).
+float ratioOf(uint s, float gamma) {
+    return gamma == 1.0 ? samples[s].log2_ratio
+                        : (samples[s].log2_ratio + samples[s].log2_predicted) / gamma - samples[s].log2_predicted;
+}
+
 bool isLit(uint s) {
     return samples[s].kind == SUN_EVIDENCE_KIND_LIT && samples[s].sun_share >= SUN_EVIDENCE_MIN_SUN_SHARE;
 }
 
-float strengthOf(uint s, float level) { return (exp2(samples[s].log2_ratio - level) - 1.0) / samples[s].sun_share; }
+float strengthOf(uint s, float level, float gamma) {
+    return (exp2(ratioOf(s, gamma) - level) - 1.0) / samples[s].sun_share;
+}
 
-void main() {
-    uint lane = gl_LocalInvocationIndex;
-    // 1. The shade's histogram and the median's bin.
+// The shadowed samples' histogram of ratioOf(s, gamma) into lane_counts (each lane its own row).
+void shadeHistogram(uint lane, float gamma) {
     uint counts[SUN_EVIDENCE_BINS];
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
         if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED)
+            counts[binOf(ratioOf(s, gamma), SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN)] += 1u;
+    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
+}
+
+// The raw ratios' histogram of the shadowed samples in one half (0: predicted level below split, 1: at or above).
+void sideHistogram(uint lane, uint side, float split) {
+    uint counts[SUN_EVIDENCE_BINS];
+    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED && (samples[s].log2_predicted >= split) == (side == 1u))
             counts[binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN)] += 1u;
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
+}
+
+void main() {
+    uint lane = gl_LocalInvocationIndex;
+    // 0. The camera response's power (sun_evidence.h: responseGamma): the shade split at its mean predicted level,
+    //    each half's trimmed mean ratio about its median and the mean level of the samples kept, the slope between.
+    float shaded_n = 0.0;
+    float shaded_x = 0.0;
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED) {
+            shaded_n += 1.0;
+            shaded_x += samples[s].log2_predicted;
+        }
+    lane_sums[lane] = shaded_x;
+    lane_kept[lane] = shaded_n;
+    barrier();
+    if (lane == 0u) {
+        float total_n = 0.0;
+        float total_x = 0.0;
+        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
+            total_n += lane_kept[l];
+            total_x += lane_sums[l];
+        }
+        split_n = total_n;
+        split_level = total_n > 0.0 ? total_x / total_n : 0.0;
+    }
+    barrier();
+    float split = split_level;
+    for (uint side = 0u; side < 2u; ++side) {
+        sideHistogram(lane, side, split);
+        barrier();
+        if (lane == 0u) side_median[side] = medianBinOf(sumCounts());
+        barrier();
+    }
+    float fit[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // kept, ratio, level: darker half, then lighter
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
+        if (samples[s].kind != SUN_EVIDENCE_KIND_SHADOWED) continue;
+        uint side = samples[s].log2_predicted >= split ? 1u : 0u;
+        if (!inWindow(binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
+                      side_median[side]))
+            continue;
+        fit[3u * side] += 1.0;
+        fit[3u * side + 1u] += samples[s].log2_ratio;
+        fit[3u * side + 2u] += samples[s].log2_predicted;
+    }
+    for (uint k = 0u; k < 6u; ++k) lane_fit[lane][k] = fit[k];
+    barrier();
+    if (lane == 0u) {
+        float total[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l)
+            for (uint k = 0u; k < 6u; ++k) total[k] += lane_fit[l][k];
+        float gamma = 1.0;
+        float half_samples = 0.5 * float(SUN_EVIDENCE_MIN_SAMPLES);
+        if (split_n >= float(SUN_EVIDENCE_MIN_SAMPLES) && total[0] >= half_samples && total[3] >= half_samples) {
+            float apart = total[5] / total[3] - total[2] / total[0];
+            if (apart >= SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2)
+                gamma = clamp(1.0 + (total[4] / total[3] - total[1] / total[0]) / apart,
+                              SUN_EVIDENCE_MIN_RESPONSE_GAMMA, SUN_EVIDENCE_MAX_RESPONSE_GAMMA);
+        }
+        response_gamma = gamma;
+    }
+    barrier();
+    float gamma = response_gamma;
+    // 1. The shade's histogram of the linearised ratios and the median's bin.
+    shadeHistogram(lane, gamma);
     barrier();
     float shadowed = 0.0;
     if (lane == 0u) {
@@ -114,9 +202,9 @@ void main() {
     float kept = 0.0;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
         if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED &&
-            inWindow(binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
+            inWindow(binOf(ratioOf(s, gamma), SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
                      median)) {
-            sum += samples[s].log2_ratio;
+            sum += ratioOf(s, gamma);
             kept += 1.0;
         }
     lane_sums[lane] = sum;
@@ -126,9 +214,10 @@ void main() {
     barrier();
     // 3. The lit samples' strengths against it: histogram, median's bin, quartiles.
     float level = shade_log2;
+    uint counts[SUN_EVIDENCE_BINS];
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (isLit(s)) counts[binOf(strengthOf(s, level), SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN)] += 1u;
+        if (isLit(s)) counts[binOf(strengthOf(s, level, gamma), SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN)] += 1u;
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
     barrier();
     float lit = 0.0;
@@ -146,7 +235,7 @@ void main() {
     kept = 0.0;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
         if (isLit(s)) {
-            float strength = strengthOf(s, level);
+            float strength = strengthOf(s, level, gamma);
             if (inWindow(binOf(strength, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN), median)) {
                 sum += strength;
                 kept += 1.0;
@@ -168,7 +257,7 @@ void main() {
     result.strength = 0.0;
     result.strength_standard_error = 0.0;
     result.frame_serial = pc.frame_serial;
-    result.result_reserved0 = 0u;
+    result.response_gamma = gamma;
     result.result_reserved1 = 0u;
     float fewest = min(shadowed, lit);
     if (fewest >= float(SUN_EVIDENCE_MIN_SAMPLES)) {

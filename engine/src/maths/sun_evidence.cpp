@@ -119,28 +119,75 @@ double sunEvidenceQuantile(ConstSpan<uint32_t> counts, double quantile, double l
     return lowest + span;
 }
 
+namespace {
+
+// The camera response's power (sun_evidence.h: the response): the shade's samples split at their mean predicted
+// level x; in each half the trimmed mean of the ratio about its median (kSunEvidenceWindowBins), and the mean x of
+// the samples kept; the slope between the halves is gamma - 1. Medians, not a least-squares line: pixels of a fixed
+// brightness that are not the cell (a wall in front, a person) run at slope -1 and would pull a line.
+double responseGamma(ConstSpan<SunEvidenceSample> samples) {
+    auto shaded = [](const SunEvidenceSample& sample) { return sample.kind == SunEvidenceSampleKind::kShadowed; };
+    auto binOf = [](const SunEvidenceSample& sample) {
+        return sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan);
+    };
+    // Single-precision sums in sample order, as the GPU's lanes keep them (its order differs: a last-digit matter).
+    float n = 0.0f, sum_x = 0.0f;
+    for (const SunEvidenceSample& sample : samples)
+        if (shaded(sample)) n += 1.0f, sum_x += sample.log2_predicted;
+    if (n < float(kSunEvidenceMinSamples)) return 1.0;
+    const float split = sum_x / n;
+    std::array<Histogram, 2> halves{};
+    for (const SunEvidenceSample& sample : samples)
+        if (shaded(sample)) ++halves[sample.log2_predicted >= split][binOf(sample)];
+    float kept[2] = {0.0f, 0.0f}, ratio[2] = {0.0f, 0.0f}, level[2] = {0.0f, 0.0f};
+    const uint32_t median[2] = {medianBin(halves[0]), medianBin(halves[1])};
+    for (const SunEvidenceSample& sample : samples) {
+        if (!shaded(sample)) continue;
+        const int half = sample.log2_predicted >= split;
+        if (!inWindow(binOf(sample), median[half])) continue;
+        kept[half] += 1.0f;
+        ratio[half] += sample.log2_ratio;
+        level[half] += sample.log2_predicted;
+    }
+    const float half_samples = 0.5f * float(kSunEvidenceMinSamples);
+    if (kept[0] < half_samples || kept[1] < half_samples) return 1.0;
+    const double apart = double(level[1] / kept[1]) - double(level[0] / kept[0]);
+    if (!(apart >= kSunEvidenceMinResponseSpreadLog2)) return 1.0;
+    const double slope = (double(ratio[1] / kept[1]) - double(ratio[0] / kept[0])) / apart;
+    return std::clamp(1.0 + slope, kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma);
+}
+
+}  // namespace
+
 SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
     SunEvidenceEstimate estimate;
+    // The ratios linearised through the response: r' = (r + x) / gamma - x (unchanged when gamma is 1).
+    const double gamma = responseGamma(samples);
+    estimate.response_gamma = float(gamma);
+    auto ratioOf = [gamma = float(gamma)](const SunEvidenceSample& sample) {
+        return gamma == 1.0f ? sample.log2_ratio
+                             : (sample.log2_ratio + sample.log2_predicted) / gamma - sample.log2_predicted;
+    };
     Histogram shade{};
     for (const SunEvidenceSample& sample : samples)
         if (sample.kind == SunEvidenceSampleKind::kShadowed)
-            ++shade[sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan)];
+            ++shade[sunEvidenceBin(ratioOf(sample), kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan)];
     const double shadowed = sumOf(shade);
     // The trimmed mean about the median: the samples within kSunEvidenceWindowBins bins of the median's.
     const uint32_t shade_median = medianBin(shade);
     double shade_sum = 0.0, shade_kept = 0.0;
     for (const SunEvidenceSample& sample : samples)
         if (sample.kind == SunEvidenceSampleKind::kShadowed &&
-            inWindow(sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan),
+            inWindow(sunEvidenceBin(ratioOf(sample), kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan),
                      shade_median)) {
-            shade_sum += sample.log2_ratio;
+            shade_sum += ratioOf(sample);
             shade_kept += 1.0;
         }
     const double shade_log2 = shade_kept > 0.0 ? shade_sum / shade_kept : 0.0;
 
     // Each lit sample's strength against the shade's level: ratio / g = 1 + s q.
     auto strengthOf = [&](const SunEvidenceSample& sample) {
-        return (std::exp2(sample.log2_ratio - float(shade_log2)) - 1.0f) / sample.sun_share;
+        return (std::exp2(ratioOf(sample) - float(shade_log2)) - 1.0f) / sample.sun_share;
     };
     auto counts = [](const SunEvidenceSample& sample) {
         return sample.kind == SunEvidenceSampleKind::kLit && sample.sun_share >= kSunEvidenceMinSunShare;
@@ -221,6 +268,7 @@ std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint
             SunEvidenceSample& sample = samples[size_t(j) * grid.samples_x + i];
             sample.log2_ratio = float(std::log2(luminanceRec709(observed) / predicted_luminance));
             sample.sun_share = float(sun_luminance * view.exposure / std::numbers::pi / predicted_luminance);
+            sample.log2_predicted = float(std::log2(predicted_luminance));
             if (cosine <= 0.0) {
                 sample.kind = SunEvidenceSampleKind::kShadowed;  // the face turns from the sun
                 continue;

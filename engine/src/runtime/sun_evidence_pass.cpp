@@ -40,6 +40,10 @@ static_assert(SUN_EVIDENCE_OUT_STRENGTH == kSunEvidenceOutStrength);
 static_assert(SUN_EVIDENCE_MIN_WIDTH == kSunEvidenceMinWidth);
 static_assert(SUN_EVIDENCE_STEP_TOLERANCE_M == kSunEvidenceStepToleranceM);
 static_assert(SUN_EVIDENCE_MAX_CROSSINGS == kSunEvidenceMaxCrossings);
+static_assert(SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2 == kSunEvidenceMinResponseSpreadLog2);
+static_assert(SUN_EVIDENCE_MIN_RESPONSE_GAMMA == kSunEvidenceMinResponseGamma);
+static_assert(SUN_EVIDENCE_MAX_RESPONSE_GAMMA == kSunEvidenceMaxResponseGamma);
+static_assert(offsetof(SunEvidenceResult, response_gamma) == 40);
 static_assert(SUN_EVIDENCE_KIND_SHADOWED == double(SunEvidenceSampleKind::kShadowed));
 static_assert(SUN_EVIDENCE_KIND_LIT == double(SunEvidenceSampleKind::kLit));
 
@@ -249,6 +253,7 @@ void SunEvidencePass::harvest(uint32_t slot) {
     estimate.shade_log2_ratio = result.shade_log2_ratio;
     estimate.strength = result.strength;
     estimate.strength_standard_error = result.strength_standard_error;
+    estimate.response_gamma = result.response_gamma;
     latest_ = reading;
 }
 

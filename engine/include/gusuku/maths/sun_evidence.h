@@ -79,6 +79,19 @@ inline constexpr uint32_t kSunEvidenceFullSamples = 256;
 /// circumsolar sky still gives a little), a sun through thin cloud a third or more.
 inline constexpr double kSunEvidenceOutStrength = 0.15;
 inline constexpr double kSunEvidenceMinWidth = 0.03;
+/// The camera's response (issue 41 item 2: a contrasty phone's tone curve read a clear sun at s 1.58): over the
+/// ground's range the display luminance is taken as a power of the light, Y = k (g Y_true)^gamma, so each side's
+/// log2 ratio r = log2 Y - x (x = log2 of the prediction) runs as c + (gamma - 1) x. On the shadowed side, where no
+/// sun adds, the shade's samples are split at their mean x (darker and lighter albedos, less and more sky light);
+/// each half's r is its trimmed mean about its median (as the shade's level, step 1), with the mean x of the
+/// samples it kept, and the slope between the halves is gamma - 1: medians, so that pixels of a fixed brightness
+/// that are not the cell (a wall in front of it, a person), which run at slope -1, cannot pull it. Used where both
+/// halves keep kSunEvidenceMinSamples / 2 and their x lie kSunEvidenceMinResponseSpreadLog2 apart, clamped to
+/// [kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma]; else 1 (a shade of one albedo and one light cannot
+/// tell a tone curve). Every ratio is then linearised, r' = (r + x) / gamma - x, before steps 1-4 below.
+inline constexpr double kSunEvidenceMinResponseSpreadLog2 = 0.4;
+inline constexpr double kSunEvidenceMinResponseGamma = 0.5;
+inline constexpr double kSunEvidenceMaxResponseGamma = 2.0;
 /// A sample's ray must come down onto its cell's top without passing below the height field on the way: a ray that
 /// enters a cell's column (its own or one before it) more than this far below the column's top shows the side of a
 /// step (a wall, a terrace's edge), whose albedo and light are not the cell's. The height field marks such a step
@@ -102,6 +115,7 @@ struct SunEvidenceSample {
     SunEvidenceSampleKind kind = SunEvidenceSampleKind::kNone;
     float log2_ratio = 0.0f;  ///< log2(Y observed / Y predicted without the sun)
     float sun_share = 0.0f;   ///< q: Y(rho E_sun cos) / Y(rho E_without), the bake's clear sun
+    float log2_predicted = 0.0f;  ///< x: log2 Y predicted without the sun (exposure included), for the response
 };
 
 /// One frame's reading (the reduce's output).
@@ -114,6 +128,7 @@ struct SunEvidenceEstimate {
     float strength = 0.0f;          ///< s, the trimmed mean (0 when too few); evidence.sun_strength is s where the
                                     ///< sun is out (p >= 0.5), else -1
     float strength_standard_error = 0.0f;
+    float response_gamma = 1.0f;  ///< the camera response's power fitted on the shade (1: none fitted)
 };
 
 /// The bin of a value in a histogram of kSunEvidenceBins over [lowest, lowest + span), the ends taking what lies
@@ -123,7 +138,7 @@ uint32_t sunEvidenceBin(double value, double lowest, double span);
 /// The q-quantile (0..1) of a histogram's counts, interpolated within its bin; lowest when empty.
 double sunEvidenceQuantile(ConstSpan<uint32_t> counts, double quantile, double lowest, double span);
 
-/// Steps 1-4 above over the samples.
+/// The response's power, then steps 1-4 above, over the samples.
 SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples);
 
 /// A sample's site visibility at a ground point (1 lit, 0 shadowed by the site, between: penumbra), ENU metres.
