@@ -77,6 +77,10 @@ foreach(header ${GUSUKU_RUNTIME_HEADERS})
           COMPONENT runtime)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/gusuku COMPONENT runtime)
+# The GPU-resident frame loop in a window, the smallest version of gusuku-view's (docs/view.md): source to copy,
+# compiled against the installed package by install_and_consume where GLFW is.
+install(FILES ${PROJECT_SOURCE_DIR}/tests/consumer/present_loop.cpp DESTINATION ${CMAKE_INSTALL_DATADIR}/gusuku/examples
+        COMPONENT runtime)
 install(EXPORT gusukuRuntimeTargets NAMESPACE gusuku:: DESTINATION ${GUSUKU_INSTALL_CMAKEDIR} COMPONENT runtime)
 
 if(NOT GUSUKU_RUNTIME_ONLY)

@@ -11,6 +11,8 @@ packages=(
   libastcenc-dev  # the baker encodes the pack's ASTC 4x4 HDR lightmaps with Arm's astcenc
   libgtest-dev
   universal-ctags  # the function-length check lists the sources' functions with it
+  libglfw3-dev  # gusuku-view's window and Vulkan surface (bench/view)
+  xvfb  # xvfb-run: the viewer's test opens its window on a virtual X server
   webp  # img2webp: the README's animation (scripts/render-composites.sh assembles gusuku-view's frames)
 )
 

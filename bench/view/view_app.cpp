@@ -137,6 +137,7 @@ void ViewApp::refreshBackgroundIfDue(bool now) {
     bench::BenchView view{state_.position_enu, state_.look_at_enu, state_.horizontal_fov_deg};
     const float exposure_before = background_->exposure();
     loop_->setCamera(background_->frameFor(view, {state_.utc_seconds, state_.cloud_cover}, trace_seconds_));
+    if (trace_seconds_ > 0.0) std::fprintf(stderr, "gusuku-view: background traced in %.1f s\n", trace_seconds_);
     if (background_->exposure() != exposure_before) changed_ = true;
     background_stale_ = false;
     changed_ = true;
@@ -146,7 +147,9 @@ void ViewApp::refreshBackgroundIfDue(bool now) {
 bool ViewApp::drawOnce(Screenshot* screenshot) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_->window(), &width, &height);
-    if (width == 0 || height == 0) return false;  // minimised: nothing to draw on
+    // Minimised (iconified on X11 keeps its size; elsewhere the size drops to 0): nothing to draw on.
+    if (width == 0 || height == 0 || glfwGetWindowAttrib(window_->window(), GLFW_ICONIFIED)) return false;
+    refreshBackgroundIfDue(scripted_);
     const Clock::time_point start = Clock::now();
     FrameInfo info;
     for (int attempt = 0; attempt < 3; ++attempt) {

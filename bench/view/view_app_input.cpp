@@ -20,6 +20,12 @@ namespace {
 constexpr double kDegreesPerPixel = 0.3;
 constexpr double kHourStep = 0.25;
 constexpr float kCloudSteps[] = {0.0f, 0.5f, 1.0f};
+
+bool changesState(const ViewAction& action) {
+    for (const char* verb : {"orbit", "pitch", "walk", "hour", "time", "weather", "mode"})
+        if (action.verb == verb) return true;
+    return false;
+}
 }  // namespace
 
 void ViewApp::onKey(int key, int action, int mods) {
@@ -146,10 +152,10 @@ int ViewApp::run() {
         if (scripted_) {
             glfwPollEvents();
             if (next_action_ == script_.size()) break;  // the script ended: close
-            refreshBackgroundIfDue(true);
             runAction(script_[next_action_++]);
-            refreshBackgroundIfDue(true);
-            if (changed_) drawOnce(nullptr);
+            // Consecutive changes of the view, instant or light are drawn once, after the last of them.
+            if (changed_ && (next_action_ == script_.size() || !changesState(script_[next_action_])))
+                drawOnce(nullptr);
             continue;
         }
         // Nothing to do: sleep until an event (or the settle time, for the background), never spin.
@@ -157,12 +163,11 @@ int ViewApp::run() {
         else glfwPollEvents();
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
-        if (width == 0 || height == 0) {  // minimised: wait for the window to come back
+        if (width == 0 || height == 0 || glfwGetWindowAttrib(window, GLFW_ICONIFIED)) {  // minimised: wait for it
             glfwWaitEvents();
             continue;
         }
-        refreshBackgroundIfDue(false);
-        if (changed_) drawOnce(nullptr);
+        if (changed_ || background_stale_) drawOnce(nullptr);  // stale: traced once the view settles
         if (profile_due_ && !changed_) profilePasses();
     }
     loop_->waitIdle();

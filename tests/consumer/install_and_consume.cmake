@@ -36,7 +36,8 @@ set(expected_files include/gusuku/runtime/gusuku.h include/gusuku/runtime/runtim
                    lib/libgusuku_pack_loader.a
                    include/gusuku/weather/gusuku_weather.h include/gusuku/weather/weather_service.h
                    lib/libgusuku_weather.a lib/libgusuku_json.a lib/libgusuku_c_common.a
-                   lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake)
+                   lib/cmake/gusuku/gusukuConfig.cmake lib/cmake/gusuku/gusukuConfigVersion.cmake
+                   share/gusuku/examples/present_loop.cpp)
 if(WITH_LOADER)
   list(APPEND expected_files include/gusuku/loader/gusuku_loader.h)
 else()
