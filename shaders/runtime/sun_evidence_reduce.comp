@@ -2,7 +2,7 @@
 // The sun-evidence estimator's second pass, one workgroup of SUN_EVIDENCE_BINS invocations over sun_evidence.comp's
 // samples (lane l takes samples l, l + 64, ...), as colour_statistics_ground_reduce.comp: each lane counts its
 // samples per bin in a private array, the counts meet in shared memory (one barrier) and invocation 0 takes the
-// quantile. First the camera response's power from the shade's two halves (sun_evidence.h: the response), every
+// quantile. First the camera response's power from each side's two halves (sun_evidence.h: the response), every
 // ratio then linearised through it; then two passes: the shadowed samples' median log2 ratio (the shade's level, log2 g), then the lit samples'
 // strengths s_i = (2^(r_i - log2 g) - 1) / q_i, whose median and quartiles give s, its standard error, the
 // probability that the sun is out and the confidence. CPU reference: estimateSunEvidence
@@ -26,8 +26,11 @@ shared float lane_kept[SUN_EVIDENCE_BINS];
 shared uint median_bin;
 shared float shade_log2;
 shared float lane_fit[SUN_EVIDENCE_BINS][6];  // the response's sums per lane (main's step 0)
-shared float split_n;
 shared float split_level;
+shared float side_samples[2];  // per side (shadowed, lit): responseSide's reading
+shared float side_level_apart[2];
+shared float side_ratio_apart[2];
+shared uint side_valid[2];
 shared uint side_median[2];
 shared float response_gamma;
 
@@ -116,29 +119,27 @@ void shadeHistogram(uint lane, float gamma) {
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
 }
 
-// The raw ratios' histogram of the shadowed samples in one half (0: predicted level below split, 1: at or above).
-void sideHistogram(uint lane, uint side, float split) {
+// The raw ratios' histogram of one side's samples in one half (0: predicted level below split, 1: at or above).
+void sideHistogram(uint lane, float kind, uint side, float split) {
     uint counts[SUN_EVIDENCE_BINS];
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED && (samples[s].log2_predicted >= split) == (side == 1u))
+        if (samples[s].kind == kind && (samples[s].log2_predicted >= split) == (side == 1u))
             counts[binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN)] += 1u;
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
 }
 
-void main() {
-    uint lane = gl_LocalInvocationIndex;
-    // 0. The camera response's power (sun_evidence.h: responseGamma): the shade split at its mean predicted level,
-    //    each half's trimmed mean ratio about its median and the mean level of the samples kept, the slope between.
-    float shaded_n = 0.0;
-    float shaded_x = 0.0;
+// One side's reading of the response (responseSide in sun_evidence.cpp) into side_*[slot]; every lane calls it.
+void responseSide(uint lane, float kind, uint slot) {
+    float count = 0.0;
+    float level = 0.0;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED) {
-            shaded_n += 1.0;
-            shaded_x += samples[s].log2_predicted;
+        if (samples[s].kind == kind) {
+            count += 1.0;
+            level += samples[s].log2_predicted;
         }
-    lane_sums[lane] = shaded_x;
-    lane_kept[lane] = shaded_n;
+    lane_sums[lane] = level;
+    lane_kept[lane] = count;
     barrier();
     if (lane == 0u) {
         float total_n = 0.0;
@@ -147,20 +148,20 @@ void main() {
             total_n += lane_kept[l];
             total_x += lane_sums[l];
         }
-        split_n = total_n;
+        side_samples[slot] = total_n;
         split_level = total_n > 0.0 ? total_x / total_n : 0.0;
     }
     barrier();
     float split = split_level;
     for (uint side = 0u; side < 2u; ++side) {
-        sideHistogram(lane, side, split);
+        sideHistogram(lane, kind, side, split);
         barrier();
         if (lane == 0u) side_median[side] = medianBinOf(sumCounts());
         barrier();
     }
     float fit[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // kept, ratio, level: darker half, then lighter
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
-        if (samples[s].kind != SUN_EVIDENCE_KIND_SHADOWED) continue;
+        if (samples[s].kind != kind) continue;
         uint side = samples[s].log2_predicted >= split ? 1u : 0u;
         if (!inWindow(binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
                       side_median[side]))
@@ -175,15 +176,39 @@ void main() {
         float total[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l)
             for (uint k = 0u; k < 6u; ++k) total[k] += lane_fit[l][k];
-        float gamma = 1.0;
         float half_samples = 0.5 * float(SUN_EVIDENCE_MIN_SAMPLES);
-        if (split_n >= float(SUN_EVIDENCE_MIN_SAMPLES) && total[0] >= half_samples && total[3] >= half_samples) {
-            float apart = total[5] / total[3] - total[2] / total[0];
-            if (apart >= SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2)
-                gamma = clamp(1.0 + (total[4] / total[3] - total[1] / total[0]) / apart,
-                              SUN_EVIDENCE_MIN_RESPONSE_GAMMA, SUN_EVIDENCE_MAX_RESPONSE_GAMMA);
+        uint valid = 0u;
+        side_level_apart[slot] = 0.0;
+        side_ratio_apart[slot] = 0.0;
+        if (side_samples[slot] >= float(SUN_EVIDENCE_MIN_SAMPLES) && total[0] >= half_samples &&
+            total[3] >= half_samples) {
+            side_level_apart[slot] = total[5] / total[3] - total[2] / total[0];
+            side_ratio_apart[slot] = total[4] / total[3] - total[1] / total[0];
+            valid = side_level_apart[slot] >= SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2 ? 1u : 0u;
         }
-        response_gamma = gamma;
+        side_valid[slot] = valid;
+    }
+    barrier();
+}
+
+void main() {
+    uint lane = gl_LocalInvocationIndex;
+    // 0. The camera response's power (sun_evidence.h: responseGamma): on each side its samples split at their mean
+    //    predicted level, each half's trimmed mean ratio about its median and the mean level of the samples kept;
+    //    the sides' slopes pooled by their samples and spread.
+    responseSide(lane, SUN_EVIDENCE_KIND_SHADOWED, 0u);
+    responseSide(lane, SUN_EVIDENCE_KIND_LIT, 1u);
+    if (lane == 0u) {
+        float spread = 0.0;
+        float moved = 0.0;
+        for (uint k = 0u; k < 2u; ++k)
+            if (side_valid[k] != 0u) {
+                spread += side_samples[k] * side_level_apart[k] * side_level_apart[k];
+                moved += side_samples[k] * side_level_apart[k] * side_ratio_apart[k];
+            }
+        response_gamma = spread > 0.0 ? clamp(1.0 + moved / spread, SUN_EVIDENCE_MIN_RESPONSE_GAMMA,
+                                              SUN_EVIDENCE_MAX_RESPONSE_GAMMA)
+                                      : 1.0;
     }
     barrier();
     float gamma = response_gamma;

@@ -121,28 +121,34 @@ double sunEvidenceQuantile(ConstSpan<uint32_t> counts, double quantile, double l
 
 namespace {
 
-// The camera response's power (sun_evidence.h: the response): the shade's samples split at their mean predicted
-// level x; in each half the trimmed mean of the ratio about its median (kSunEvidenceWindowBins), and the mean x of
-// the samples kept; the slope between the halves is gamma - 1. Medians, not a least-squares line: pixels of a fixed
-// brightness that are not the cell (a wall in front, a person) run at slope -1 and would pull a line.
-double responseGamma(ConstSpan<SunEvidenceSample> samples) {
-    auto shaded = [](const SunEvidenceSample& sample) { return sample.kind == SunEvidenceSampleKind::kShadowed; };
+// One side's reading of the response: its samples split at their mean predicted level x; in each half the trimmed
+// mean of the ratio about its median (kSunEvidenceWindowBins) and the mean x of the samples kept. Medians, not a
+// least-squares line: pixels of a fixed brightness that are not the cell (a wall in front, a person) run at slope
+// -1 and would pull a line.
+struct ResponseSide {
+    bool valid = false;
+    double samples = 0.0, level_apart = 0.0, ratio_apart = 0.0;  // n, and the lighter half's x and r less the darker's
+};
+
+ResponseSide responseSide(ConstSpan<SunEvidenceSample> samples, SunEvidenceSampleKind kind) {
     auto binOf = [](const SunEvidenceSample& sample) {
         return sunEvidenceBin(sample.log2_ratio, kSunEvidenceLowestLog2Ratio, kSunEvidenceLog2RatioSpan);
     };
     // Single-precision sums in sample order, as the GPU's lanes keep them (its order differs: a last-digit matter).
     float n = 0.0f, sum_x = 0.0f;
     for (const SunEvidenceSample& sample : samples)
-        if (shaded(sample)) n += 1.0f, sum_x += sample.log2_predicted;
-    if (n < float(kSunEvidenceMinSamples)) return 1.0;
+        if (sample.kind == kind) n += 1.0f, sum_x += sample.log2_predicted;
+    ResponseSide side;
+    side.samples = n;
+    if (n < float(kSunEvidenceMinSamples)) return side;
     const float split = sum_x / n;
     std::array<Histogram, 2> halves{};
     for (const SunEvidenceSample& sample : samples)
-        if (shaded(sample)) ++halves[sample.log2_predicted >= split][binOf(sample)];
+        if (sample.kind == kind) ++halves[sample.log2_predicted >= split][binOf(sample)];
     float kept[2] = {0.0f, 0.0f}, ratio[2] = {0.0f, 0.0f}, level[2] = {0.0f, 0.0f};
     const uint32_t median[2] = {medianBin(halves[0]), medianBin(halves[1])};
     for (const SunEvidenceSample& sample : samples) {
-        if (!shaded(sample)) continue;
+        if (sample.kind != kind) continue;
         const int half = sample.log2_predicted >= split;
         if (!inWindow(binOf(sample), median[half])) continue;
         kept[half] += 1.0f;
@@ -150,11 +156,24 @@ double responseGamma(ConstSpan<SunEvidenceSample> samples) {
         level[half] += sample.log2_predicted;
     }
     const float half_samples = 0.5f * float(kSunEvidenceMinSamples);
-    if (kept[0] < half_samples || kept[1] < half_samples) return 1.0;
-    const double apart = double(level[1] / kept[1]) - double(level[0] / kept[0]);
-    if (!(apart >= kSunEvidenceMinResponseSpreadLog2)) return 1.0;
-    const double slope = (double(ratio[1] / kept[1]) - double(ratio[0] / kept[0])) / apart;
-    return std::clamp(1.0 + slope, kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma);
+    if (kept[0] < half_samples || kept[1] < half_samples) return side;
+    side.level_apart = double(level[1] / kept[1]) - double(level[0] / kept[0]);
+    side.ratio_apart = double(ratio[1] / kept[1]) - double(ratio[0] / kept[0]);
+    side.valid = side.level_apart >= kSunEvidenceMinResponseSpreadLog2;
+    return side;
+}
+
+// The camera response's power (sun_evidence.h: the response): each side's slope, pooled by its samples and spread.
+double responseGamma(ConstSpan<SunEvidenceSample> samples) {
+    double spread = 0.0, moved = 0.0;
+    for (SunEvidenceSampleKind kind : {SunEvidenceSampleKind::kShadowed, SunEvidenceSampleKind::kLit}) {
+        const ResponseSide side = responseSide(samples, kind);
+        if (!side.valid) continue;
+        spread += side.samples * side.level_apart * side.level_apart;
+        moved += side.samples * side.level_apart * side.ratio_apart;
+    }
+    if (!(spread > 0.0)) return 1.0;
+    return std::clamp(1.0 + moved / spread, kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma);
 }
 
 }  // namespace

@@ -80,15 +80,18 @@ inline constexpr uint32_t kSunEvidenceFullSamples = 256;
 inline constexpr double kSunEvidenceOutStrength = 0.15;
 inline constexpr double kSunEvidenceMinWidth = 0.03;
 /// The camera's response (issue 41 item 2: a contrasty phone's tone curve read a clear sun at s 1.58): over the
-/// ground's range the display luminance is taken as a power of the light, Y = k (g Y_true)^gamma, so each side's
-/// log2 ratio r = log2 Y - x (x = log2 of the prediction) runs as c + (gamma - 1) x. On the shadowed side, where no
-/// sun adds, the shade's samples are split at their mean x (darker and lighter albedos, less and more sky light);
-/// each half's r is its trimmed mean about its median (as the shade's level, step 1), with the mean x of the
-/// samples it kept, and the slope between the halves is gamma - 1: medians, so that pixels of a fixed brightness
-/// that are not the cell (a wall in front of it, a person), which run at slope -1, cannot pull it. Used where both
-/// halves keep kSunEvidenceMinSamples / 2 and their x lie kSunEvidenceMinResponseSpreadLog2 apart, clamped to
-/// [kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma]; else 1 (a shade of one albedo and one light cannot
-/// tell a tone curve). Every ratio is then linearised, r' = (r + x) / gamma - x, before steps 1-4 below.
+/// ground's range the display luminance is taken as a power of the light, Y = k (g Y_true)^gamma, so a sample's log2
+/// ratio r = log2 Y - x (x = log2 of the prediction without the sun) runs as c + (gamma - 1) x on the shade, and as
+/// c + (gamma - 1) x + gamma log2(1 + s q) on the lit side. On each side the samples are split at their mean x
+/// (darker and lighter albedos, less and more sky light); each half's r is its trimmed mean about its median (as
+/// the shade's level, step 1), with the mean x of the samples it kept, and the slope between the halves is
+/// gamma - 1 (on the lit side as long as the halves see like sun shares q): medians, so that pixels of a fixed
+/// brightness that are not the cell (a wall in front of it, a person), which run at slope -1, cannot pull it. A
+/// side counts where both halves keep kSunEvidenceMinSamples / 2 and their x lie kSunEvidenceMinResponseSpreadLog2
+/// apart; the sides' slopes are pooled by samples x spread squared; the power is clamped to
+/// [kSunEvidenceMinResponseGamma, kSunEvidenceMaxResponseGamma], and 1 where no side counts (ground of one albedo
+/// under one sky light cannot tell a tone curve). Every ratio is then linearised, r' = (r + x) / gamma - x, before
+/// steps 1-4 below.
 inline constexpr double kSunEvidenceMinResponseSpreadLog2 = 0.4;
 inline constexpr double kSunEvidenceMinResponseGamma = 0.5;
 inline constexpr double kSunEvidenceMaxResponseGamma = 2.0;
