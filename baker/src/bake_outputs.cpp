@@ -1,4 +1,5 @@
 #include "bake_outputs.h"
+#include "ground_covered_cells.h"
 
 #include <cmath>
 #include <filesystem>
@@ -141,7 +142,9 @@ void BakeOutputWriter::writeSlot(const SlotLighting& lighting, const std::vector
     writeExr(output_dir_ + "/" + building_file, imageFromTexels(lightmap.image, resolution, resolution), true);
     const std::string with_file = "ground_" + name + "_with.exr";
     const std::string without_file = "ground_" + name + "_without.exr";
-    writeGroundImage(with_file, ground_with_sums);
+    // The cells the building covers carry their open neighbours' ratio (ground_covered_cells.h).
+    writeGroundImage(with_file, withCoveredCellsFilled(geometry_, coveredGroundCells(geometry_), ground_with_sums,
+                                                       ground_without_sums));
     writeGroundImage(without_file, ground_without_sums);
 
     const LabStatistics statistics = bakedAppearanceStatistics(geometry_, lightmap.per_texel, lighting.sun);

@@ -156,13 +156,52 @@ bool nearClaimsCentre(const UvTriangle& triangle, const glm::dvec2& centre, doub
     return to_triangle < kNearClaimTexels;
 }
 
-SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& weights) {
+// A traced point is kept this far inside its triangle, in metres: a point on an edge where the face meets the ground
+// (a near-claimed centre, a footprint sub-point on the chart's edge) is offset along its normal only, which leaves it
+// on the ground's plane, and its rays below the horizon cross the ground at a distance of 0, which the tracer's
+// t_min lets through: a 2 cm platform's side face read the sky under the ground (pi L of a uniform sky, the truth
+// pi L (1 + a) / 2) on its bottom row of texels. Twice the tracer's 1 mm ray offset.
+constexpr double kTracedPointInsetM = 2e-3;
+
+// The barycentric weights of the point moved square to each edge it lies nearer than kTracedPointInsetM, to that
+// distance (at most to the middle of the triangle's altitude there: a triangle thinner than twice the inset keeps
+// its point half way across): along the surface, never along the edge, so a point stays in its texel's footprint.
+static glm::dvec3 weightsInsideEdges(const glm::dvec3 corners[3], const glm::dvec3& weights) {
+    const double double_area = glm::length(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));
+    if (!(double_area > 0.0)) return weights;
+    glm::dvec3 moved = weights;
+    for (int k = 0; k < 3; ++k) {
+        // The distance to the edge opposite corner k is its weight times that corner's altitude; moving square to
+        // the edge by delta adds delta / altitude to it and takes the same from the other two in proportion to the
+        // altitude's foot on the edge (so the move has no component along the edge).
+        const glm::dvec3& a = corners[(k + 1) % 3];
+        const glm::dvec3& b = corners[(k + 2) % 3];
+        const double edge_length = glm::length(b - a);
+        const double altitude = double_area / edge_length;
+        const double distance = moved[k] * altitude;
+        const double target = std::min(kTracedPointInsetM, 0.5 * altitude);
+        if (distance >= target) continue;
+        const double foot = glm::dot(corners[k] - a, b - a) / (edge_length * edge_length);  // along a -> b
+        const double step = (target - distance) / altitude;
+        moved[k] += step;
+        moved[(k + 1) % 3] -= step * (1.0 - foot);
+        moved[(k + 2) % 3] -= step * foot;
+    }
+    // An obtuse corner's foot lies beyond the edge: keep the weights a point of the triangle.
+    moved = glm::max(moved, glm::dvec3(0.0));
+    const double sum = moved.x + moved.y + moved.z;
+    return sum > 0.0 ? moved / sum : weights;
+}
+
+SurfacePoint surfacePointAt(const TriangleMesh& mesh, size_t triangle, const glm::dvec3& edge_weights) {
     glm::dvec3 position{0.0};
     glm::dvec3 shading_normal{0.0};
     glm::dvec3 corners[3];
+    for (int corner = 0; corner < 3; ++corner)
+        corners[corner] = glm::dvec3(mesh.positions[mesh.indices[triangle * 3 + corner]]);
+    const glm::dvec3 weights = weightsInsideEdges(corners, edge_weights);
     for (int corner = 0; corner < 3; ++corner) {
         const uint32_t vertex = mesh.indices[triangle * 3 + corner];
-        corners[corner] = glm::dvec3(mesh.positions[vertex]);
         position += corners[corner] * weights[corner];
         if (vertex < mesh.normals.size()) shading_normal += glm::dvec3(mesh.normals[vertex]) * weights[corner];
     }

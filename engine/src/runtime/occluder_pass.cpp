@@ -9,8 +9,9 @@
 
 namespace gusuku::runtime_detail {
 
-OccluderPass::OccluderPass(const PassContext& context, VkRenderPass main_pass, VkSampleCountFlagBits samples)
-    : context_(context) {
+OccluderPass::OccluderPass(const PassContext& context, VkRenderPass main_pass, VkSampleCountFlagBits samples,
+                           float drop_m)
+    : context_(context), drop_m_(drop_m) {
     const VkDevice device = context.gpu.device;
     layout_ = createPipelineLayout(device, {}, VK_SHADER_STAGE_VERTEX_BIT,
                                    sizeof(shader_interface::DepthOnlyPushConstants));
@@ -26,7 +27,10 @@ OccluderPass::OccluderPass(const PassContext& context, VkRenderPass main_pass, V
     pipeline_ = Pipeline(device, createGraphicsPipeline(device, occluder));
 }
 
-void OccluderPass::prepare(const shader_interface::FrameUniforms& uniforms) { push_ = occluderPushFor(uniforms); }
+void OccluderPass::prepare(const shader_interface::FrameUniforms& uniforms) {
+    push_ = occluderPushFor(uniforms);
+    push_.drop_m = drop_m_;
+}
 
 void OccluderPass::recordInMainPass(PassRecording& recording) {
     const GpuScene& scene = context_.scene;

@@ -12,8 +12,9 @@ namespace gusuku::runtime_detail {
 
 class OccluderPass final : public FramePass {
 public:
-    /// Its pipeline, for render passes compatible with main_pass at the main pass's sample count.
-    OccluderPass(const PassContext& context, VkRenderPass main_pass, VkSampleCountFlagBits samples);
+    /// Its pipeline, for render passes compatible with main_pass at the main pass's sample count; drop_m: how far
+    /// the occluder is lowered (the bake set's simplification error, metres).
+    OccluderPass(const PassContext& context, VkRenderPass main_pass, VkSampleCountFlagBits samples, float drop_m);
 
     /// Host side: the camera's view of this frame (occluderPushFor).
     void prepare(const shader_interface::FrameUniforms& uniforms);
@@ -24,6 +25,7 @@ private:
     PipelineLayout layout_;  // DepthOnlyPushConstants
     Pipeline pipeline_;
     shader_interface::DepthOnlyPushConstants push_{};
+    float drop_m_ = 0.0f;
 };
 
 }  // namespace gusuku::runtime_detail

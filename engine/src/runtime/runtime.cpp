@@ -146,7 +146,9 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
     frame_set_ = std::make_unique<FrameSet>(context, *shadows_, *materials_, colour_->stateBuffer());
     const VkRenderPass main_pass = targets_->renderPass(MainPassVariant::kWhole);
     camera_->createDrawPipeline(main_pass, targets_->samples());
-    occluder_ = std::make_unique<OccluderPass>(context, main_pass, targets_->samples());
+    occluder_ = std::make_unique<OccluderPass>(
+        context, main_pass, targets_->samples(),
+        manifest_.occluder ? float(std::max(0.0, manifest_.occluder->simplification_error_m)) : 0.0f);
     building_ = std::make_unique<BuildingPass>(context, *frame_set_, *materials_, main_pass, targets_->samples());
     ground_ = std::make_unique<GroundPass>(context, manifest_.ground_grid.grid, *frame_set_, options_.frames_in_flight,
                                            main_pass, targets_->samples());
