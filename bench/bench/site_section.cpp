@@ -15,6 +15,7 @@
 #include "bench_run.h"
 #include "camera_response.h"
 #include "cycles_truth.h"
+#include "edge_pixels.h"
 #include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/maths/time_utc.h"
 #include "runtime_modes.h"
@@ -62,6 +63,10 @@ struct PoseAccuracy {
     RegionErrors proposed_light, direct_light, noise_light;
     std::vector<uint8_t> camera;  // the camera frame at the accuracy size (the timing frames' source)
     std::vector<uint8_t> composite, mask;  // the proposed method's composite; the building-and-shadow pixels
+    // Luminance over the truth's on the edge pixels (within a pixel of the silhouette or of a boundary between two
+    // materials: edge_pixels.h) and on the building's other pixels (issue 44 item 3).
+    size_t edge_pixels = 0;
+    double proposed_edge = 0.0, proposed_flat = 0.0, direct_edge = 0.0;
     float exposure = 1.0f;
 };
 
@@ -106,12 +111,23 @@ PoseAccuracy measurePose(Bench& bench, const NamedView& named, const SiteInstant
     const CameraPose camera_pose = lookAtPose(named.view.position_enu, named.view.look_at_enu);
     Runtime& runtime = bench.runtimeFor(width, height);
     const std::string prefix = "site_" + named.name + "_" + instant.label + "_";
+    const std::vector<int32_t> material =
+        buildingMaterialPerPixel(bench.bake_set, camera_pose, intrinsics, width, height);
+    const std::vector<uint8_t> edges = edgePixelMask(material, width, height);
+    const std::vector<uint8_t> flat = flatBuildingMask(material, edges);
+    for (uint8_t in : edges) pose.edge_pixels += in;
     for (const char* mode_name : {"proposed", "direct_only"}) {
         const FrameInput input = frameInputFor(runtimeModeNamed(mode_name), pose.camera, intrinsics, camera_pose,
                                                instant.utc_seconds, 0.0f, pose.exposure);
         const std::vector<uint8_t> composite = steadyComposite(runtime, input);
         bench.writePng(prefix + mode_name + ".png", width, height, composite);
-        if (std::string(mode_name) == "proposed") pose.composite = composite;
+        if (std::string(mode_name) == "proposed") {
+            pose.composite = composite;
+            pose.proposed_edge = luminanceRatio(composite, truth, edges);
+            pose.proposed_flat = luminanceRatio(composite, truth, flat);
+        } else {
+            pose.direct_edge = luminanceRatio(composite, truth, edges);
+        }
         (std::string(mode_name) == "proposed" ? pose.proposed : pose.direct) = regionErrors(composite, truth, mask);
         (std::string(mode_name) == "proposed" ? pose.proposed_light : pose.direct_light) =
             regionErrors(lowPass3x3Linear(composite, width, height), truth_light, mask);
@@ -235,7 +251,12 @@ Json reportPoseAccuracy(Bench& bench, const NamedView& named, const std::vector<
                                         {"direct_only_mean_de00", direct_light},
                                         {"truth_noise_mean_de00", noise_light},
                                         {"proposed_over_direct_only", ratio_light},
-                                        {"third_of_direct_only_held", ratio_light < 1.0 / 3.0}}}});
+                                        {"third_of_direct_only_held", ratio_light < 1.0 / 3.0}}},
+                        {"edges", {{"edge_pixels", pose.edge_pixels},
+                                   {"proposed_edge_luminance_over_truth", pose.proposed_edge},
+                                   {"proposed_flat_luminance_over_truth", pose.proposed_flat},
+                                   {"direct_only_edge_luminance_over_truth", pose.direct_edge},
+                                   {"within_3_percent", std::abs(pose.proposed_edge - 1.0) <= 0.03}}}});
         bench.say("| " + named.name + " | " + bench.localTime(pose.instant.utc_seconds) + " (" + pose.instant.label +
                   ") | " + std::to_string(pose.changed_pixels) + " | " + fixed(pose.noise.changed.mean_de00) + " | " +
                   fixed(error) + " / " + fixed(pose.proposed.changed.p95_de00) + " | " +
@@ -375,6 +396,17 @@ void runSiteGoals(Bench& bench) {
                          {"horizontal_fov_deg", view.horizontal_fov_deg},
                          {"accuracy", reportPoseAccuracy(bench, named, measured.back(), worst)}});
     }
+    bench.say("");
+    bench.say("edge pixels (within 1 px of the silhouette or a boundary between two materials): luminance over the "
+              "truth's (goal: the proposed within 3 %)");
+    bench.say("| pose | site clock | edge px | proposed: edges / the building's other pixels | direct-only: edges |");
+    bench.say("| --- | --- | --- | --- | --- |");
+    for (size_t index = 0; index < settings.views.size(); ++index)
+        for (const PoseAccuracy& pose : measured[index])
+            bench.say("| " + settings.views[index].name + " | " + bench.localTime(pose.instant.utc_seconds) + " (" +
+                      pose.instant.label + ") | " + std::to_string(pose.edge_pixels) + " | " +
+                      fixed(pose.proposed_edge, 3) + " / " + fixed(pose.proposed_flat, 3) + " | " +
+                      fixed(pose.direct_edge, 3) + " |");
     if (settings.cycles_truth) reportCyclesTruth(bench, measured, views);
     bench.say("");
     bench.say("frame 1280x720, ms (median [p10, p90] of " + std::to_string(settings.timed_frames) +
