@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <thread>
 
 #define GLFW_INCLUDE_VULKAN
@@ -129,19 +130,41 @@ void ViewApp::moved() {
     last_change_ = Clock::now();
 }
 
-// The background for the view as it is now: at once when scripted (or asked), else once the view has been
-// still for kSettleSeconds (tracing a frame takes a while on a CPU driver; meanwhile the last one stays).
+// The background for the view as it is now. Traced on a thread of its own (the tracer has its own device,
+// view_background.h), so the window keeps answering while it runs: started once the view has been still for
+// kSettleSeconds, taken when it is done if the view has not moved since (else a new one starts). `now` (scripted
+// input, R, the first frame) waits for it.
 void ViewApp::refreshBackgroundIfDue(bool now) {
-    if (!background_stale_) return;
-    if (background_->isTraced() && !now && (dragging_ || secondsSince(last_change_) < kSettleSeconds)) return;
-    bench::BenchView view{state_.position_enu, state_.look_at_enu, state_.horizontal_fov_deg};
-    const float exposure_before = background_->exposure();
-    loop_->setCamera(background_->frameFor(view, {state_.utc_seconds, state_.cloud_cover}, trace_seconds_));
-    if (trace_seconds_ > 0.0) std::fprintf(stderr, "gusuku-view: background traced in %.1f s\n", trace_seconds_);
-    if (background_->exposure() != exposure_before) changed_ = true;
-    background_stale_ = false;
+    if (!background_stale_ && !pending_trace_.valid()) return;
+    if (!pending_trace_.valid()) {
+        if (background_->isTraced() && !now && have_background_ &&
+            (dragging_ || secondsSince(last_change_) < kSettleSeconds))
+            return;
+        traced_for_ = {state_.position_enu, state_.look_at_enu, state_.horizontal_fov_deg};
+        traced_condition_ = {state_.utc_seconds, state_.cloud_cover};
+        Background* background = background_.get();
+        const bench::BenchView view = traced_for_;
+        const bench::BenchCondition condition = traced_condition_;
+        pending_trace_ = std::async(std::launch::async, [background, view, condition] {
+            double seconds = 0.0;
+            std::vector<uint8_t> frame = background->frameFor(view, condition, seconds);
+            if (seconds > 0.0) std::fprintf(stderr, "gusuku-view: background traced in %.1f s\n", seconds);
+            return frame;
+        });
+    }
+    if (!now && have_background_ &&
+        pending_trace_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return;
+    loop_->setCamera(pending_trace_.get());  // the first frame's exposure is fixed from here on
+    have_background_ = true;
     changed_ = true;
-    profile_due_ = !scripted_;
+    const bool same = traced_for_.position_enu == state_.position_enu &&
+                      traced_for_.look_at_enu == state_.look_at_enu &&
+                      traced_for_.horizontal_fov_deg == state_.horizontal_fov_deg &&
+                      traced_condition_.utc_seconds == state_.utc_seconds &&
+                      traced_condition_.cloud_cover == state_.cloud_cover;
+    background_stale_ = !same;  // moved while it traced: trace again once the view settles
+    profile_due_ = !scripted_ && same;
 }
 
 bool ViewApp::drawOnce(Screenshot* screenshot) {
@@ -149,7 +172,7 @@ bool ViewApp::drawOnce(Screenshot* screenshot) {
     glfwGetFramebufferSize(window_->window(), &width, &height);
     // Minimised (iconified on X11 keeps its size; elsewhere the size drops to 0): nothing to draw on.
     if (width == 0 || height == 0 || glfwGetWindowAttrib(window_->window(), GLFW_ICONIFIED)) return false;
-    refreshBackgroundIfDue(scripted_);
+    refreshBackgroundIfDue(scripted_ || !have_background_);
     const Clock::time_point start = Clock::now();
     FrameInfo info;
     for (int attempt = 0; attempt < 3; ++attempt) {

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +41,7 @@ private:
     void openRuntime();
     void moved();
     void refreshBackgroundIfDue(bool now);
+    bool tracing() const { return pending_trace_.valid(); }
     bool drawOnce(Screenshot* screenshot);
     void runAction(const ViewAction& action);
     void resizeWindow(unsigned width, unsigned height);
@@ -71,7 +73,12 @@ private:
     bool profile_due_ = false;  ///< time the passes once the next frame is drawn (the view has settled)
     FrameInfo last_info_{};
     double last_frame_ms_ = 0.0;
-    double trace_seconds_ = 0.0;
+    /// The background being traced (view_background.h: its own device, so its own thread), and for what; declared
+    /// after background_ so that it is waited for before the background goes.
+    std::future<std::vector<uint8_t>> pending_trace_;
+    bench::BenchView traced_for_;
+    bench::BenchCondition traced_condition_;
+    bool have_background_ = false;  ///< the camera image holds a background
     uint32_t screenshot_count_ = 0;
 };
 

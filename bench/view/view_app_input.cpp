@@ -159,7 +159,7 @@ int ViewApp::run() {
             continue;
         }
         // Nothing to do: sleep until an event (or the settle time, for the background), never spin.
-        if (!changed_ && !profile_due_) glfwWaitEventsTimeout(background_stale_ ? 0.1 : 1.0);
+        if (!changed_ && !profile_due_) glfwWaitEventsTimeout(background_stale_ || tracing() ? 0.1 : 1.0);
         else glfwPollEvents();
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
@@ -167,7 +167,8 @@ int ViewApp::run() {
             glfwWaitEvents();
             continue;
         }
-        if (changed_ || background_stale_) drawOnce(nullptr);  // stale: traced once the view settles
+        refreshBackgroundIfDue(false);  // starts a trace once the view settles, takes it when done
+        if (changed_) drawOnce(nullptr);
         if (profile_due_ && !changed_) profilePasses();
     }
     loop_->waitIdle();
