@@ -78,8 +78,9 @@ TEST(SunHorizon, TracedHorizonsMatchTheVGroovesClosedForm) {
             EXPECT_NEAR(traced, truth, kTraceToleranceDeg) << "x0 " << x0 << " azimuth " << azimuth;
             worst = std::max(worst, std::abs(traced - truth));
         }
-        if (x0 < 0.051)  // 5 cm or more below its own crest (nearer, the ray's start off the wall shows)
+        if (x0 < 0.051) {  // 5 cm or more below its own crest (nearer, the ray's start off the wall shows)
             EXPECT_NEAR(traceSunHorizonDeg(bvh, point, kWallNormal, 90.0), own_wall_deg, kTraceToleranceDeg);
+        }
         EXPECT_EQ(traceSunHorizonDeg(bvh, point, kWallNormal, 0.0), 0.0);
         EXPECT_EQ(traceSunHorizonDeg(bvh, point, kWallNormal, 180.0), 0.0);
         // Beyond the radius the crest is not seen: the short radius leaves what is larger to the shadow map. (The

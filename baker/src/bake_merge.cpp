@@ -131,6 +131,8 @@ uint64_t slotIndependentFilesHash(const std::string& folder, const BakeSetManife
     if (!manifest.ground_grid.albedo.empty())
         hash.addString(manifest.ground_grid.albedo).addFile(folder + "/" + manifest.ground_grid.albedo);
     if (manifest.occluder) hash.addString(manifest.occluder->mesh).addFile(folder + "/" + manifest.occluder->mesh);
+    if (!manifest.building.sun_horizon.empty())
+        hash.addString(manifest.building.sun_horizon).addFile(folder + "/" + manifest.building.sun_horizon);
     return hash.value();
 }
 
@@ -201,6 +203,9 @@ MergeReport mergePartialBakeSets(const std::vector<std::string>& partial_folders
     if (!shared.ground_grid.albedo.empty())
         copies.push_back(
             {requiredFile(first, "/ground_grid/albedo", shared.ground_grid.albedo), shared.ground_grid.albedo});
+    if (!shared.building.sun_horizon.empty())
+        copies.push_back(
+            {requiredFile(first, "/building/sun_horizon", shared.building.sun_horizon), shared.building.sun_horizon});
     for (const std::string& name : shared.partial->site_slots) {
         const PartialSet& set = sets[set_of_slot.at(name)];
         const BakeSetSlot& slot = set.manifest.slots.front();

@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "bake_statistics.h"
+#include "sun_horizon_output.h"
 #include "ground_albedo.h"
 #include "gusuku_bake/content_hash.h"
 #include "gusuku_bake/lightmap_denoise.h"
@@ -101,6 +102,7 @@ void BakeOutputWriter::writeGeometry() {
     writeExr(output_dir_ + "/" + kGroundAlbedoFile,
              imageFromTexels(sampleGroundAlbedo(geometry_), region.columns, region.rows), true);
     writeOccluder();
+    writeSunHorizonFile(output_dir_, geometry_);
 }
 
 void BakeOutputWriter::writeOccluder() {
@@ -208,6 +210,7 @@ void BakeOutputWriter::writeManifest(const SiteConfig& site, uint64_t input_hash
     manifest.building.lightmap_resolution = geometry_.lightmap_resolution;
     manifest.building.texels_per_metre = geometry_.effective_texels_per_metre;
     manifest.building.texels = geometry_.texels.size();
+    manifest.building.sun_horizon = kSunHorizonFile;  // writeGeometry wrote it
     manifest.ground_grid.grid = geometry_.ground_region;
     manifest.ground_grid.ground_source = geometry_.site_mesh_is_stand_in ? "flat plane at z = 0" : "sfm_mesh";
     manifest.ground_grid.albedo = kGroundAlbedoFile;

@@ -27,6 +27,7 @@
 #include "gusuku_bake/astc_lightmap.h"
 #include "gusuku_bake/astc_texture.h"
 #include "gusuku_bake/output_guard.h"
+#include "gusuku/formats/sun_horizon_ktx2.h"
 
 namespace gusuku::bake {
 namespace {
@@ -244,6 +245,8 @@ RuntimePackReport writeRuntimePack(const std::string& bake_set_folder, const std
     files.writeKtx2(packName(manifest.ground_grid.geometry), floatImage(bake_set.ground_geometry));
     if (!manifest.ground_grid.albedo.empty())
         files.writeKtx2(packName(manifest.ground_grid.albedo), floatImage(bake_set.ground_albedo));
+    if (!manifest.building.sun_horizon.empty())  // the bake set's own KTX2 bytes
+        files.write(packName(manifest.building.sun_horizon), encodeSunHorizonKtx2(bake_set.building_sun_horizon));
     for (size_t slot = 0; slot < bake_set.slots.size(); ++slot) {
         const BakeSetSlot& entry = manifest.slots[slot];
         const BakeSetSlotImages& images = bake_set.slots[slot];

@@ -20,10 +20,11 @@ constexpr int kBisections = 4;  // 6 / 2^4 = 0.375 degrees, about a code step (0
 }  // namespace
 
 double traceSunHorizonDeg(const Bvh& bvh, const glm::vec3& point, const glm::vec3& normal, double azimuth_deg,
-                          double radius_m) {
+                          double radius_m, uint32_t skip_flags) {
     const glm::vec3 origin = point + kRayOffsetM * normal;
     auto blocked = [&](double elevation_deg) {
-        return occludedCpu(bvh, origin, glm::vec3(sunHorizonDirection(azimuth_deg, elevation_deg)), float(radius_m));
+        return occludedCpu(bvh, origin, glm::vec3(sunHorizonDirection(azimuth_deg, elevation_deg)), float(radius_m),
+                           skip_flags);
     };
     // The highest blocked rung: a horizon is not monotonic in general (a tile's crest blocks low rays, the open
     // sky above it does not, an eave above blocks high ones again); the highest blocked one is what a low sun sees
@@ -44,7 +45,7 @@ double traceSunHorizonDeg(const Bvh& bvh, const glm::vec3& point, const glm::vec
 }
 
 BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexel>& texels, int resolution,
-                                  const std::vector<int32_t>& reader_charts, double radius_m) {
+                                  const std::vector<int32_t>& reader_charts, double radius_m, uint32_t skip_flags) {
     const size_t texel_count = size_t(resolution) * size_t(resolution);
     // Three images of (horizon, horizon, horizon, valid), for the dilation, whose alpha marks what it keeps.
     constexpr int kImages = 3;
@@ -56,7 +57,8 @@ BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexe
             const size_t index = size_t(texel.y) * size_t(resolution) + size_t(texel.x);
             for (int azimuth = 0; azimuth < kSunHorizonAzimuths; ++azimuth)
                 images[azimuth / 3][index][azimuth % 3] = float(traceSunHorizonDeg(
-                    bvh, texel.position, texel.geometric_normal, azimuth * kSunHorizonAzimuthStepDeg, radius_m));
+                    bvh, texel.position, texel.geometric_normal, azimuth * kSunHorizonAzimuthStepDeg, radius_m,
+                    skip_flags));
             for (auto& image : images) image[index].a = 1.0f;
         }
     };
@@ -78,6 +80,14 @@ BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexe
                 encodeSunHorizonDeg(images[azimuth / 3][index][azimuth % 3]);
         }
     return horizon;
+}
+
+int sunHorizonResolution(int lightmap_resolution, double texels_per_metre) {
+    int factor = 1;
+    while (factor < 4 && texels_per_metre * factor * kSunHorizonTargetTexelM < 1.0 &&
+           lightmap_resolution * (factor + 1) <= kMaxSunHorizonResolution)
+        ++factor;
+    return std::clamp(lightmap_resolution * factor, kMinSunHorizonResolution, kMaxSunHorizonResolution);
 }
 
 }  // namespace gusuku::bake

@@ -17,7 +17,8 @@
 #define RUNTIME_GROUND_GEOMETRY_BINDING 5      // sampler2D: RGB unit normal, A height (ENU z)
 #define RUNTIME_COLOUR_MATCH_BINDING 6         // storage buffer: the colour match state (colour_match_interface.h)
 #define RUNTIME_BUILDING_SHADOW_DEPTH_BINDING 7  // sampler2D, nearest: the building's map as depths (gathers)
-#define RUNTIME_FRAME_BINDING_COUNT 8
+#define RUNTIME_SUN_HORIZON_BINDING 8     // sampler2DArray, RGBA8 UNORM: the sun horizons (sun_horizon.glsl)
+#define RUNTIME_FRAME_BINDING_COUNT 9
 // Set 1: per material of the building.
 #define RUNTIME_MATERIAL_SET 1
 #define RUNTIME_BASE_COLOUR_BINDING 0          // sampler2D, sRGB: the material's base colour texture (or white)

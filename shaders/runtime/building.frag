@@ -13,6 +13,8 @@ layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_BUILDING_SHADOW_DEPTH_BINDING)
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
 layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_LIGHTMAP_BINDING) uniform sampler2DArray lightmaps;
 layout(set = RUNTIME_MATERIAL_SET, binding = RUNTIME_BASE_COLOUR_BINDING) uniform sampler2D base_colour;
+layout(set = RUNTIME_FRAME_SET, binding = RUNTIME_SUN_HORIZON_BINDING) uniform sampler2DArray sun_horizons;
+#include "sun_horizon.glsl"
 
 #include "colour_match.glsl"
 layout(std430, set = RUNTIME_FRAME_SET, binding = RUNTIME_COLOUR_MATCH_BINDING) readonly buffer ColourMatchBuffer {
@@ -80,11 +82,18 @@ void main() {
         // Both maps share the matrix: the point is projected once. The blocker search settles most fragments
         // (fully lit); only the rest pay for the penumbra's filter. The real site's shadow on the building: one
         // bilinear compare tap (its edges come from far away and are soft in the camera image anyway).
-        float visibility = 1.0;
+        // The baked horizons hold the small features (a tile's shadow in its groove) the shadow map is too coarse
+        // for; the building's map everything farther along the sun's ray than the horizons reach, so that no
+        // blocker counts twice: it tests the point moved that far towards the sun. Direct-only draws what AR apps
+        // draw: the shadow map alone.
+        bool horizons = !direct_only && hasSunHorizons();
+        float visibility = horizons ? sunHorizonVisibility(lightmap_uv, frame.sun_direction) : 1.0;
         vec2 uv;
         float depth;
-        if (shadowLookup(position_enu, normal, uv, depth)) {
-            visibility = buildingSunVisibility(position_enu, normal, uv, depth);
+        if (visibility > 0.0 && shadowLookup(position_enu, normal, uv, depth)) {
+            float reach_m = horizons ? SUN_HORIZON_REACH_M : 0.0;
+            visibility *= buildingSunVisibility(position_enu + frame.sun_direction * reach_m, normal, uv,
+                                                depth - reach_m * frame.shadow_texel_depth / frame.shadow_texel_m);
             if (frame.site_shadows != 0u && visibility > 0.0) visibility *= texture(site_shadow, vec3(uv, depth));
         }
         sun_irradiance = frame.sun_irradiance * (visibility * cosine);

@@ -20,13 +20,21 @@ namespace gusuku::bake {
 /// found on a 6-degree ladder from 0 and refined by bisection to 0.375 degrees. 0: nothing blocks even the
 /// horizontal ray. A surface's own tangent plane counts (an east-facing roof's horizon to the west is its pitch).
 double traceSunHorizonDeg(const Bvh& bvh, const glm::vec3& point, const glm::vec3& normal, double azimuth_deg,
-                          double radius_m = kSunHorizonRadiusM);
+                          double radius_m = kSunHorizonRadiusM, uint32_t skip_flags = 0);
 
 /// Every texel's eight horizons, encoded (sun_horizon.h's layout) into a resolution^2 image pair. Texels no
 /// texel covers take their chart's neighbours' horizons (dilateLightmapWithinCharts, 8 texels, as the
 /// lightmaps), so bilinear reads at a chart's edge see no open horizon; with `reader_charts` empty, none are
-/// filled (they stay open).
+/// filled (they stay open). skip_flags: triangles the rays pass (the bake passes alpha-masked ones, whose holes
+/// the runtime's shadow map draws).
 BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexel>& texels, int resolution,
-                                  const std::vector<int32_t>& reader_charts, double radius_m = kSunHorizonRadiusM);
+                                  const std::vector<int32_t>& reader_charts, double radius_m = kSunHorizonRadiusM,
+                                  uint32_t skip_flags = 0);
+
+/// The horizons' resolution for a lightmap of `lightmap_resolution` at `texels_per_metre`: the lightmap's times
+/// the smallest whole factor (at most 4, the result at most kMaxSunHorizonResolution) that makes a horizon texel
+/// at most kSunHorizonTargetTexelM (3.2 cm: a round tile row of 25 cm spans 8).
+inline constexpr double kSunHorizonTargetTexelM = 1.0 / 32.0;
+int sunHorizonResolution(int lightmap_resolution, double texels_per_metre);
 
 }  // namespace gusuku::bake

@@ -14,9 +14,11 @@
 #include "gusuku/formats/bakeset_ranges.h"
 #include "gusuku/formats/bakeset_validate.h"
 #include "gusuku/maths/colour.h"
+#include "gusuku/assets/atomic_file.h"
 #include "gusuku/assets/gltf_loader.h"
 #include "gusuku/assets/image.h"
 #include "gusuku/formats/input_error.h"
+#include "gusuku/formats/sun_horizon_ktx2.h"
 
 namespace gusuku {
 
@@ -178,6 +180,9 @@ BakeSetData loadNamedFiles(const std::string& folder, const std::string& manifes
     std::string albedo_path;
     if (!manifest.ground_grid.albedo.empty())
         albedo_path = bakeSetFile(folder, manifest_path, {"/ground_grid/albedo", manifest.ground_grid.albedo});
+    std::string horizon_path;
+    if (!manifest.building.sun_horizon.empty())
+        horizon_path = bakeSetFile(folder, manifest_path, {"/building/sun_horizon", manifest.building.sun_horizon});
     std::vector<std::array<std::string, 3>> slot_paths;
     for (size_t s = 0; s < manifest.slots.size(); ++s) {
         const BakeSetSlot& slot = manifest.slots[s];
@@ -200,6 +205,11 @@ BakeSetData loadNamedFiles(const std::string& folder, const std::string& manifes
         loadExr(geometry_path, grid.columns, grid.rows, grid_size, {kBakeSetGroundNormal, kBakeSetGroundHeightM});
     if (!albedo_path.empty())
         data.ground_albedo = loadExr(albedo_path, grid.columns, grid.rows, grid_size, {kBakeSetGroundAlbedo});
+    if (!horizon_path.empty()) {
+        const std::string bytes = readWholeFile(horizon_path);
+        data.building_sun_horizon =
+            decodeSunHorizonKtx2(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), horizon_path);
+    }
     const int resolution = manifest.building.lightmap_resolution;
     for (const auto& paths : slot_paths) {
         BakeSetSlotImages slot;

@@ -20,6 +20,7 @@
 #include "gusuku/formats/bakeset_ranges.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/formats/input_error.h"
+#include "gusuku/formats/sun_horizon.h"
 #include "site_json_reader.h"
 
 namespace gusuku {
@@ -419,7 +420,8 @@ BakeSetManifest readManifest(const ObjectReader& root) {
 
     const ObjectReader building =
         root.object("building", {"mesh", "mesh_frame", "lightmap_uv", "lightmap_uv_source", "lightmap_resolution",
-                                 "texels_per_metre", "texels", "irradiance_units"});
+                                 "texels_per_metre", "texels", "irradiance_units", "sun_horizon",
+                                 "sun_horizon_layout"});
     manifest.building.mesh = readNonEmptyString(building, "mesh");
     readFixedText(building, "mesh_frame", kMeshFrame);
     readFixedText(building, "lightmap_uv", kLightmapUv);
@@ -428,6 +430,10 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     manifest.building.texels_per_metre = readRanged(building, "texels_per_metre", kBakeSetTexelsPerMetre);
     manifest.building.texels = readCount(building, "texels", kBakeSetBuildingTexels);
     readFixedText(building, "irradiance_units", kIrradianceUnits);
+    if (building.has("sun_horizon")) {  // optional: bake sets before them have none
+        manifest.building.sun_horizon = readNonEmptyString(building, "sun_horizon");
+        readFixedText(building, "sun_horizon_layout", kSunHorizonLayout);
+    }
 
     const ObjectReader ground =
         root.object("ground_grid", {"geometry", "geometry_channels", "origin_enu_m", "cell_m", "columns", "rows",
@@ -568,6 +574,10 @@ std::string bakeSetManifestJson(const BakeSetManifest& manifest) {
                                 {"source_triangles", manifest.occluder->source_triangles},
                                 {"target_error_m", manifest.occluder->target_error_m},
                                 {"simplification_error_m", manifest.occluder->simplification_error_m}};
+    if (!building.sun_horizon.empty()) {
+        document["building"]["sun_horizon"] = building.sun_horizon;
+        document["building"]["sun_horizon_layout"] = kSunHorizonLayout;
+    }
     if (!ground.albedo.empty()) {
         document["ground_grid"]["albedo"] = ground.albedo;
         document["ground_grid"]["albedo_channels"] = kGroundAlbedoChannels;

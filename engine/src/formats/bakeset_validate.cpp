@@ -240,6 +240,21 @@ std::optional<std::string> findBakeSetProblem(const BakeSetData& bake_set) {
                std::to_string(manifest.slots.size());
     const int resolution = manifest.building.lightmap_resolution;
     const std::string lightmap_size = "the manifest says lightmap_resolution " + std::to_string(resolution);
+    // The sun horizons are optional (older bake sets have none); present, a square over the lightmap's
+    // coordinates at a resolution of their own (finer than the lightmap's where a tile row needs it).
+    const BakeSetSunHorizon& horizon = bake_set.building_sun_horizon;
+    if (manifest.building.sun_horizon.empty() != horizon.empty())
+        return std::string("building_sun_horizon: ") +
+               (horizon.empty() ? "missing, but the manifest names building.sun_horizon"
+                                : "present, but the manifest names no building.sun_horizon");
+    if (!horizon.empty() &&
+        (horizon.width < kMinSunHorizonResolution || horizon.width > kMaxSunHorizonResolution ||
+         horizon.height != horizon.width ||
+         horizon.rgba8.size() != size_t(kSunHorizonLayers) * size_t(horizon.width) * size_t(horizon.height) * 4))
+        return "building_sun_horizon: " + std::to_string(horizon.width) + " x " + std::to_string(horizon.height) +
+               " texels in " + std::to_string(horizon.rgba8.size()) + " bytes: not a square of " +
+               std::to_string(kMinSunHorizonResolution) + " to " + std::to_string(kMaxSunHorizonResolution) +
+               " texels a side in 2 layers of RGBA8";
     for (size_t s = 0; s < bake_set.slots.size(); ++s) {
         const BakeSetSlotImages& slot = bake_set.slots[s];
         const std::string field = "slots[" + std::to_string(s) + "]";

@@ -52,6 +52,8 @@ bool isKnown(uint32_t vk_format) { return formats::findFormat(vk_format) != null
 std::vector<Sample> samplesOf(Ktx2Format format) {
     switch (rowOf(format).codec) {
         case formats::TexelCodec::kUnorm8: return {{0, 8, 0, 0, 255}};
+        case formats::TexelCodec::kRgba8Unorm:
+            return {{0, 8, 0, 0, 255}, {8, 8, 1, 0, 255}, {16, 8, 2, 0, 255}, {24, 8, kChannelAlpha, 0, 255}};
         case formats::TexelCodec::kRgba8Srgb:
             return {{0, 8, 0, 0, 255}, {8, 8, 1, 0, 255}, {16, 8, 2, 0, 255},
                     {24, 8, kChannelAlpha | kQualifierLinear, 0, 255}};

@@ -39,8 +39,8 @@ auto membersOf(const BakeSetSettings& value) {
 }
 
 auto membersOf(const BakeSetBuilding& value) {
-    const auto& [mesh, lightmap_uv_source, lightmap_resolution, texels_per_metre, texels] = value;
-    return std::tie(mesh, lightmap_uv_source, lightmap_resolution, texels_per_metre, texels);
+    const auto& [mesh, lightmap_uv_source, lightmap_resolution, texels_per_metre, texels, sun_horizon] = value;
+    return std::tie(mesh, lightmap_uv_source, lightmap_resolution, texels_per_metre, texels, sun_horizon);
 }
 
 auto membersOf(const BakeSetGroundGrid& value) {

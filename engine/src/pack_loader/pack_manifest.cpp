@@ -133,6 +133,7 @@ void readPlace(const Fields& root, BakeSetManifest& manifest) {
     manifest.building.lightmap_resolution = int(building.ranged("lightmap_resolution", kBakeSetLightmapResolution));
     manifest.building.texels_per_metre = building.ranged("texels_per_metre", kBakeSetTexelsPerMetre);
     manifest.building.texels = uint64_t(building.ranged("texels", kBakeSetBuildingTexels));
+    if (building.has("sun_horizon")) manifest.building.sun_horizon = building.text("sun_horizon");
     const Fields ground = root.object("ground_grid");
     manifest.ground_grid.geometry = ground.text("geometry");
     manifest.ground_grid.ground_source = ground.text("ground_source");

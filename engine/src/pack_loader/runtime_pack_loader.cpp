@@ -18,6 +18,7 @@
 #include "gusuku/formats/ktx2.h"
 #include "gusuku/formats/pack_geometry.h"
 #include "gusuku/maths/shared_exponent.h"
+#include "gusuku/formats/sun_horizon_ktx2.h"
 #include "pack_manifest.h"
 
 namespace gusuku {
@@ -178,6 +179,12 @@ BakeSetData loadRuntimePack(const std::string& given_folder) {
         data.ground_albedo =
             floatImage(packFileOf(folder, manifest_path, "/ground_grid/albedo", manifest.ground_grid.albedo), columns,
                        rows, {kBakeSetGroundAlbedo});
+    if (!manifest.building.sun_horizon.empty()) {
+        const std::string path =
+            packFileOf(folder, manifest_path, "/building/sun_horizon", manifest.building.sun_horizon);
+        const std::vector<uint8_t> bytes = readPackFile(path);
+        data.building_sun_horizon = decodeSunHorizonKtx2(bytes.data(), bytes.size(), path);
+    }
     const uint32_t resolution = uint32_t(manifest.building.lightmap_resolution);
     for (size_t slot = 0; slot < manifest.slots.size(); ++slot) {
         const BakeSetSlot& entry = manifest.slots[slot];

@@ -36,6 +36,8 @@ FrameSet::FrameSet(const PassContext& context, const ShadowPass& shadows, const 
         {RUNTIME_COLOUR_MATCH_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {RUNTIME_BUILDING_SHADOW_DEPTH_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
          VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {RUNTIME_SUN_HORIZON_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr},
     };
     VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layout_info.bindingCount = RUNTIME_FRAME_BINDING_COUNT;
@@ -82,7 +84,7 @@ void FrameSet::writeSet(const PassContext& context, const ShadowPass& shadows, c
     const GpuScene& scene = context.scene;
     const VkDescriptorPoolSize pool_sizes[3] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 7},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
     };
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -102,18 +104,20 @@ void FrameSet::writeSet(const PassContext& context, const ShadowPass& shadows, c
     const VkDescriptorBufferInfo uniforms{uniform_buffer_.handle(), 0, sizeof(FrameUniforms)};
     const VkDescriptorBufferInfo colour{colour_state.handle(), 0, VK_WHOLE_SIZE};
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    const VkDescriptorImageInfo images[6] = {
+    const VkDescriptorImageInfo images[7] = {
         {shadow_sampler_.get(), shadows.buildingMap().view(), read},
         {shadow_sampler_.get(), shadows.siteMap().view(), read},
         {linear_sampler_.get(), scene.lightmaps.view(), read},
         {linear_sampler_.get(), scene.ground_irradiance.view(), read},
         {linear_sampler_.get(), scene.ground_geometry.view(), read},
         {shadow_depth_sampler_.get(), shadows.buildingMap().view(), read},
+        {linear_sampler_.get(), scene.sun_horizon.view(), read},
     };
-    const uint32_t image_bindings[6] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
+    const uint32_t image_bindings[7] = {RUNTIME_BUILDING_SHADOW_BINDING, RUNTIME_SITE_SHADOW_BINDING,
                                         RUNTIME_LIGHTMAP_BINDING, RUNTIME_GROUND_IRRADIANCE_BINDING,
-                                        RUNTIME_GROUND_GEOMETRY_BINDING, RUNTIME_BUILDING_SHADOW_DEPTH_BINDING};
-    VkWriteDescriptorSet writes[8];
+                                        RUNTIME_GROUND_GEOMETRY_BINDING, RUNTIME_BUILDING_SHADOW_DEPTH_BINDING,
+                                        RUNTIME_SUN_HORIZON_BINDING};
+    VkWriteDescriptorSet writes[9];
     for (VkWriteDescriptorSet& write : writes) {
         write = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstSet = set_;
@@ -123,14 +127,14 @@ void FrameSet::writeSet(const PassContext& context, const ShadowPass& shadows, c
     writes[0].dstBinding = RUNTIME_FRAME_UNIFORMS_BINDING;
     writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     writes[0].pBufferInfo = &uniforms;
-    for (int index = 0; index < 6; ++index) {
+    for (int index = 0; index < 7; ++index) {
         writes[1 + index].dstBinding = image_bindings[index];
         writes[1 + index].pImageInfo = &images[index];
     }
-    writes[7].dstBinding = RUNTIME_COLOUR_MATCH_BINDING;
-    writes[7].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[7].pBufferInfo = &colour;
-    vkUpdateDescriptorSets(device, 8, writes, 0, nullptr);
+    writes[8].dstBinding = RUNTIME_COLOUR_MATCH_BINDING;
+    writes[8].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[8].pBufferInfo = &colour;
+    vkUpdateDescriptorSets(device, 9, writes, 0, nullptr);
 }
 
 // Outside any render pass, before the others: this frame's uniforms into their buffer, after the earlier frames'

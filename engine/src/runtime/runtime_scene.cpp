@@ -234,6 +234,24 @@ void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float in
     }
 }
 
+// The building's sun horizons as a 2-layer RGBA8 UNORM array, sampled bilinearly with the lightmap's coordinates
+// (the horizon between texels, so a groove's shadow edge falls between them); a 1 x 1 array of open horizons for
+// a bake set without them, which the shader takes for none (hasSunHorizons: a bake set's are at least 2 x 2).
+void uploadSunHorizon(const GpuDevice& gpu, const BakeSetSunHorizon& horizon, GpuScene& scene) {
+    GpuImageDescription description;
+    description.format = VK_FORMAT_R8G8B8A8_UNORM;
+    description.width = uint32_t(horizon.empty() ? 1 : horizon.width);
+    description.height = uint32_t(horizon.empty() ? 1 : horizon.height);
+    description.layers = kSunHorizonLayers;
+    description.array_view = true;
+    scene.sun_horizon = GpuImage(gpu, description);
+    const size_t layer_bytes = size_t(description.width) * description.height * 4;
+    const std::vector<uint8_t> open(layer_bytes, 0);
+    for (uint32_t layer = 0; layer < uint32_t(kSunHorizonLayers); ++layer)
+        scene.sun_horizon.upload(horizon.empty() ? open.data() : horizon.rgba8.data() + layer * layer_bytes,
+                                 layer_bytes, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
 // The CPU's copy of the ground cells (GpuScene::ground_cell_state and ground_cell_height), and slot 0's
 // E_with as half floats with layer 0's alpha marking (2) the cells where the building changes the baked light
 // in any slot by more than change_threshold: elsewhere only the building's shadow can change the pixel.
@@ -397,6 +415,7 @@ GpuScene uploadScene(const GpuDevice& gpu, const BakeSetData& bake_set, float ch
     scene.irradiance_scale = irradianceScaleOf(bake_set.slots);
     const float inverse_scale = 1.0f / scene.irradiance_scale;
     uploadLightmaps(gpu, bake_set, inverse_scale, lightmap_format, scene);
+    uploadSunHorizon(gpu, bake_set.building_sun_horizon, scene);
     const GroundGrid& grid = bake_set.manifest.ground_grid.grid;
     const uint32_t columns = uint32_t(std::max(grid.columns, 1)), rows = uint32_t(std::max(grid.rows, 1));
     const bool has_ground = grid.columns > 0 && grid.rows > 0 && !bake_set.ground_geometry.rgba.empty();

@@ -72,6 +72,9 @@ struct GpuScene {
     /// RuntimeOptions::ground_change_threshold).
     GpuImage ground_irradiance;
     GpuImage ground_geometry;    ///< RGBA32F: normal, height
+    /// RGBA8 UNORM array of 2 layers: the building's sun horizons (gusuku/formats/sun_horizon.h), lightmap-sized;
+    /// one texel of open horizons (zeros) when the bake set has none.
+    GpuImage sun_horizon;
     std::vector<glm::vec3> slot_mean_indirect;  ///< per slot: mean E_ind over the building's valid texels
     float irradiance_scale = 1.0f;  ///< stored half-float values times this are the bake set's irradiance
     glm::dvec3 building_min{0.0}, building_max{0.0};  ///< ENU bounds

@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "gusuku/formats/bakeset_manifest.h"
+#include "gusuku/formats/sun_horizon.h"
 
 namespace gusuku {
 
@@ -90,6 +91,10 @@ struct BakeSetData {
     /// names no ground_grid.albedo (an older bake set).
     BakeSetImage ground_albedo;
     std::vector<BakeSetSlotImages> slots;   ///< one per manifest.slots entry, same order
+    /// The building's sun horizons, lightmap-sized (gusuku/formats/sun_horizon.h): the small features' shadows the
+    /// shadow map cannot resolve. Empty when the manifest names no building.sun_horizon (an older bake set): the
+    /// runtime then reads every horizon as open (visibility 1).
+    BakeSetSunHorizon building_sun_horizon;
     /// The slots' building_blocks, decoded, times this are the bake set's irradiance (the pack's lightmap_scale).
     float building_blocks_scale = 1.0f;
 };

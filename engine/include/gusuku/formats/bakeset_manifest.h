@@ -64,6 +64,9 @@ struct BakeSetBuilding {
     int lightmap_resolution = 0;     ///< lightmaps are lightmap_resolution^2 texels
     double texels_per_metre = 0.0;   ///< the density the charts were laid out with
     uint64_t texels = 0;             ///< lightmap texels that lie on the building
+    /// The building's sun horizons (gusuku/formats/sun_horizon.h, docs/bakeset.md "Sun horizons"), a KTX2 file of
+    /// VK_FORMAT_R8G8B8A8_UNORM whose two layers lie one above the other; empty in bake sets made before them.
+    std::string sun_horizon;
     bool operator==(const BakeSetBuilding& other) const;  ///< every member equal
     bool operator!=(const BakeSetBuilding& other) const { return !(*this == other); }
 };

@@ -29,6 +29,7 @@ enum class FormatFamily {
 enum class TexelCodec {
     kUnorm8,          ///< one 8-bit unsigned normalised channel
     kRgba8Srgb,       ///< four 8-bit channels, RGB sRGB, A linear
+    kRgba8Unorm,      ///< four 8-bit unsigned normalised channels, all linear (gusuku/formats/sun_horizon.h's codes)
     kFloat32,         ///< four 32-bit floats
     kHalfFloat,       ///< four 16-bit floats (the runtime converts at upload)
     kSharedExponent,  ///< E5B9G9R9: three 9-bit mantissas and a shared 5-bit exponent
@@ -83,7 +84,7 @@ struct FormatRow {
 };
 
 // VkFormat values (Vulkan's vulkan_core.h).
-inline constexpr uint32_t kVkR8Unorm = 9, kVkR8g8b8a8Srgb = 43, kVkR16g16b16a16Sfloat = 97,
+inline constexpr uint32_t kVkR8Unorm = 9, kVkR8g8b8a8Unorm = 37, kVkR8g8b8a8Srgb = 43, kVkR16g16b16a16Sfloat = 97,
                           kVkR32g32b32a32Sfloat = 109, kVkE5b9g9r9Ufloat = 123, kVkAstc6x6Srgb = 166,
                           kVkAstc4x4Sfloat = 1000066000, kVkAstc6x6Sfloat = 1000066004;
 
@@ -96,6 +97,10 @@ inline constexpr FormatRow kFormatRows[] = {
      DeviceFeature::kCore, 0, kNoCEnum, nullptr, 0},
     {FormatFamily::kData, "rgba32f data", kVkR32g32b32a32Sfloat, "VK_FORMAT_R32G32B32A32_SFLOAT", 1, 16, 4,
      TexelCodec::kFloat32, DeviceFeature::kCore, 0, kNoCEnum, nullptr, 0},
+    // The building's sun horizons (sun_horizon.h): eight horizon codes a texel in two layers, sampled by gathers.
+    {FormatFamily::kData, "rgba8 data", kVkR8g8b8a8Unorm, "VK_FORMAT_R8G8B8A8_UNORM", 1, 4, 1,
+     TexelCodec::kRgba8Unorm, DeviceFeature::kCore, kFeatureSampledImage | kFeatureTransferDst, kNoCEnum, nullptr,
+     0},
 
     {FormatFamily::kLightmap, "e5b9g9r9", kVkE5b9g9r9Ufloat, "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32", 1, 4, 4,
      TexelCodec::kSharedExponent, DeviceFeature::kCore, kSampledFiltered, 0, nullptr, 2},

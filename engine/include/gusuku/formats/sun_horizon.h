@@ -7,10 +7,12 @@
 // is this file's GLSL twin). Header only and glm only, so the formats, the baker, the runtime and the tests share
 // one encoding.
 //
-// Layout: two lightmap-sized layers of RGBA8 UNORM (format_table.h's "rgba8 data" row), layer 0 the azimuths 0-3,
-// layer 1 the azimuths 4-7, channel c of layer l is azimuth 4 l + c, azimuth k at k x 45 degrees east of north
-// (0 north, 2 east). A code c is the elevation c x 90 / 255 degrees (0.35 degrees a step). A code of 0 in every
-// channel is an open horizon: visibility 1 whatever the sun (what a bake set without horizons reads).
+// Layout: two square layers of RGBA8 UNORM (format_table.h's "rgba8 data" row) over the lightmap's coordinates
+// (uv1), at a resolution of their own (the lightmap's or finer: a texel a few centimetres, so that a tile row spans
+// several); layer 0 the azimuths 0-3, layer 1 the azimuths 4-7, channel c of layer l is azimuth 4 l + c, azimuth k
+// at k x 45 degrees east of north (0 north, 2 east). A code c is the elevation c x 90 / 255 degrees (0.35 degrees
+// a step). A code of 0 in every channel is an open horizon: visibility 1 whatever the sun (what a bake set without
+// horizons reads).
 
 #include <algorithm>
 #include <cmath>
@@ -27,15 +29,26 @@ inline constexpr double kSunHorizonAzimuthStepDeg = 360.0 / kSunHorizonAzimuths;
 /// What one code step is in degrees of elevation.
 inline constexpr double kSunHorizonDegPerCode = 90.0 / 255.0;
 /// How far the baker looks for a horizon: the features the runtime's shadow map misses (its texels a few
-/// centimetres over a building, its biases a few texels), and no further, so what the shadow map does resolve is
-/// counted once.
+/// centimetres over a building, its biases a few texels). The runtime's building map then tests each point moved
+/// this far towards the sun, so that a blocker nearer along the sun's ray is the horizons' alone and none counts
+/// twice (building.frag).
 inline constexpr double kSunHorizonRadiusM = 0.5;
 /// The width of the runtime's transition from shaded to lit around the horizon: the sun's disc (0.53 degrees)
 /// and a code step, so that the horizon's bilinear interpolation between texels makes a smooth edge, not a stair.
 inline constexpr double kSunHorizonTransitionDeg = 1.0;
 inline constexpr double kSunHorizonDegPerRadian = 57.29577951308232;
 
-/// A bake set's horizons: width = height = the lightmap's resolution, rgba8 holding layer 0 then layer 1
+/// The manifest's building.sun_horizon_layout, which a reader requires as written (another layout is another file).
+inline constexpr const char* kSunHorizonLayout =
+    "RGBA8 UNORM, layer 1 below layer 0; channel c of layer l: azimuth (4 l + c) x 45 deg east of north; "
+    "code x 90 / 255 deg; within 0.5 m";
+/// The bake set's and the pack's file name.
+inline constexpr const char* kSunHorizonFile = "building_sun_horizon.ktx2";
+
+/// The sides a horizon image may have (the runtime takes a 1 x 1 image for none).
+inline constexpr int kMinSunHorizonResolution = 2, kMaxSunHorizonResolution = 8192;
+
+/// A bake set's horizons: width = height (any resolution over uv1, its own), rgba8 holding layer 0 then layer 1
 /// (kSunHorizonLayers x width x height x 4 bytes, rows from the top as the lightmaps). Empty: none (visibility 1).
 struct BakeSetSunHorizon {
     int width = 0;
@@ -56,20 +69,57 @@ inline glm::dvec3 sunHorizonDirection(double azimuth_deg, double elevation_deg) 
     return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
 }
 
+/// The sun's azimuth (degrees east of north, [0, 360)) and elevation (degrees) from its unit ENU direction.
+inline void sunHorizonAngles(const glm::dvec3& sun_direction, double& azimuth_deg, double& elevation_deg) {
+    azimuth_deg = std::atan2(sun_direction.x, sun_direction.y) * kSunHorizonDegPerRadian;
+    if (azimuth_deg < 0.0) azimuth_deg += 360.0;
+    elevation_deg = std::asin(std::clamp(sun_direction.z, -1.0, 1.0)) * kSunHorizonDegPerRadian;
+}
+
+/// The visibility of a sun `elevation_deg` high over a horizon `horizon_deg` high: 0.5 with the sun's centre on it,
+/// a linear ramp kSunHorizonTransitionDeg wide across it; 1 over an open horizon (0 or below).
+inline double sunVisibilityOverHorizon(double horizon_deg, double elevation_deg) {
+    if (horizon_deg <= 0.0) return 1.0;
+    return std::clamp((elevation_deg - horizon_deg) / kSunHorizonTransitionDeg + 0.5, 0.0, 1.0);
+}
+
 /// The sun's visibility over a point's eight horizons (degrees, azimuth 0 first) for the unit direction towards
 /// the sun: the horizon interpolated linearly between the two stored azimuths either side of the sun's, then
-/// 0.5 with the sun's centre on it and a linear ramp of kSunHorizonTransitionDeg across it. An open horizon
-/// (interpolated to 0) is 1. The GLSL twin computes the same.
+/// sunVisibilityOverHorizon.
 inline double sunHorizonVisibility(const double (&horizon_deg)[kSunHorizonAzimuths], const glm::dvec3& sun_direction) {
-    double azimuth_deg = std::atan2(sun_direction.x, sun_direction.y) * kSunHorizonDegPerRadian;
-    if (azimuth_deg < 0.0) azimuth_deg += 360.0;
-    const double elevation_deg = std::asin(std::clamp(sun_direction.z, -1.0, 1.0)) * kSunHorizonDegPerRadian;
+    double azimuth_deg = 0.0, elevation_deg = 0.0;
+    sunHorizonAngles(sun_direction, azimuth_deg, elevation_deg);
     const double position = azimuth_deg / kSunHorizonAzimuthStepDeg;
     const int below = int(std::floor(position)) % kSunHorizonAzimuths;
     const double t = position - std::floor(position);
     const double horizon = (1.0 - t) * horizon_deg[below] + t * horizon_deg[(below + 1) % kSunHorizonAzimuths];
-    if (horizon <= 0.0) return 1.0;
-    return std::clamp((elevation_deg - horizon) / kSunHorizonTransitionDeg + 0.5, 0.0, 1.0);
+    return sunVisibilityOverHorizon(horizon, elevation_deg);
+}
+
+/// What the runtime draws at lightmap coordinates `uv` (shaders/include/sun_horizon.glsl, its twin): each of the
+/// four texels about uv gives its visibility (sunHorizonVisibility of its decoded horizons), and those are
+/// interpolated bilinearly, clamped to the edge. The visibility is filtered, not the horizon: a crest's
+/// horizon jumps from open to its own slope, and a horizon interpolated across that jump would put the groove's
+/// shadow edge where the sun's elevation crosses it (too far towards the lit side under a low sun, too far
+/// towards the groove under a high one) rather than between the texels. An empty horizon: 1.
+inline double sunHorizonVisibilityAt(const BakeSetSunHorizon& horizon, double u, double v,
+                                     const glm::dvec3& sun_direction) {
+    if (horizon.empty()) return 1.0;
+    const double x = u * horizon.width - 0.5, y = v * horizon.height - 0.5;
+    const double fx = x - std::floor(x), fy = y - std::floor(y);
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const size_t layer_bytes = size_t(horizon.width) * size_t(horizon.height) * 4;
+    auto visibility = [&](int tx, int ty) {
+        tx = std::clamp(tx, 0, horizon.width - 1);
+        ty = std::clamp(ty, 0, horizon.height - 1);
+        const size_t texel = (size_t(ty) * size_t(horizon.width) + size_t(tx)) * 4;
+        double horizons[kSunHorizonAzimuths];
+        for (int k = 0; k < kSunHorizonAzimuths; ++k)
+            horizons[k] = decodeSunHorizonDeg(horizon.rgba8[size_t(k / 4) * layer_bytes + texel + size_t(k % 4)]);
+        return sunHorizonVisibility(horizons, sun_direction);
+    };
+    return (1.0 - fy) * ((1.0 - fx) * visibility(x0, y0) + fx * visibility(x0 + 1, y0)) +
+           fy * ((1.0 - fx) * visibility(x0, y0 + 1) + fx * visibility(x0 + 1, y0 + 1));
 }
 
 }  // namespace gusuku
