@@ -192,6 +192,19 @@ TEST_F(ViewSessionTest, WrittenSessionReadsBackAndItsFrameIsGusukuRendersOfTheSa
         }
     EXPECT_EQ(differing, 0);
     EXPECT_GT(building, 200) << "the house is drawn into the frame";
+
+    // OUT.png: the same frames as one animated PNG, its default image the first frame (what a plain reader shows).
+    EXPECT_EQ(renderSession(context(), bakeSet(), read, dir_ + "/day.png", options), 3u);
+    const std::string apng = readText(dir_ + "/day.png");
+    const size_t actl = apng.find("acTL");
+    ASSERT_NE(actl, std::string::npos);
+    EXPECT_EQ(uint8_t(apng[actl + 7]), 3u) << "acTL's frame count";
+    size_t frame_controls = 0;
+    for (size_t at = apng.find("fcTL"); at != std::string::npos; at = apng.find("fcTL", at + 4)) ++frame_controls;
+    EXPECT_EQ(frame_controls, 3u);
+    const ImageRGBA first = readImage(dir_ + "/day.png", ImageEncoding::Linear);
+    const ImageRGBA frame0 = readImage(dir_ + "/frames/" + outputFrameName(0), ImageEncoding::Linear);
+    EXPECT_EQ(first.texels, frame0.texels);
 }
 
 TEST_F(SessionFolderTest, MissingFrameOrBadPoseRowIsOneLineNamingLineAndColumn) {

@@ -13,6 +13,7 @@
 #include "gusuku/assets/image.h"
 #include "gusuku/formats/input_error.h"
 #include "frame_progress.h"
+#include "view_apng.h"
 #include "runtime_modes.h"
 
 namespace gusuku::view {
@@ -48,6 +49,8 @@ std::vector<uint8_t> besideEachOther(const std::vector<uint8_t>& left, const std
 
 }  // namespace
 
+bool isAnimatedOutput(const std::string& out) { return fs::path(out).extension() == ".png"; }
+
 std::string outputFrameName(size_t index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06zu.png", index);
@@ -66,6 +69,11 @@ void refuseUnsafeRenderFolder(const std::string& out_folder, const std::string& 
     }
     std::error_code error;
     if (!fs::exists(out, error)) return;
+    if (isAnimatedOutput(out_folder)) {
+        if (!fs::is_regular_file(out, error))
+            throw InputError(out_folder, "--render", "exists and is not a file; not overwritten");
+        return;
+    }
     if (!fs::is_directory(out, error))
         throw InputError(out_folder, "--render", "exists and is not a folder; not overwritten");
     for (const fs::directory_entry& entry : fs::directory_iterator(out, error)) {
@@ -88,6 +96,7 @@ size_t renderSession(const GpuDevice& gpu, const BakeSetData& bake_set, const Se
     std::unique_ptr<Runtime> runtime = Runtime::open(gpu, bake_set, runtime_options);
 
     const fs::path final_path = fs::absolute(out_folder).lexically_normal();
+    const bool animated = isAnimatedOutput(out_folder);
     const fs::path temporary =
         final_path.parent_path() / ("." + final_path.filename().string() + ".tmp-" + std::to_string(getpid()));
     std::error_code error;
@@ -120,6 +129,14 @@ size_t renderSession(const GpuDevice& gpu, const BakeSetData& bake_set, const Se
             writePngRgba8((temporary / outputFrameName(index)).string(),
                           int(options.beside_direct_only ? width * 2 : width), int(height), picture);
             progress.advance(index + 1);
+        }
+        if (animated) {
+            std::vector<std::string> frame_files;
+            for (size_t index = 0; index < session.frames.size(); ++index)
+                frame_files.push_back((temporary / outputFrameName(index)).string());
+            writeApng(frame_files, final_path.string());  // atomically: the previous file stays until it is whole
+            fs::remove_all(temporary, error);
+            return session.frames.size();
         }
         // The previous render goes only once this one is whole.
         const fs::path old =

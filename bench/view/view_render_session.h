@@ -20,20 +20,25 @@ struct SessionRenderOptions {
     bool show_progress = true;  ///< the progress bar on stderr
 };
 
+/// True when `out` names an animated PNG (it ends in .png) rather than a folder of frames.
+bool isAnimatedOutput(const std::string& out);
+
 /// The name of output frame `index` inside the output folder: "frame_000000.png".
 std::string outputFrameName(size_t index);
 
 /// Throws InputError(out_folder, "--render", ...) when the output folder would overwrite what the render reads
 /// (it is or lies inside the session or the bake set, or holds them) or something else than a previous render
-/// (an existing non-empty folder holding anything but frame_*.png). Touches nothing.
+/// (an existing non-empty folder holding anything but frame_*.png; for an animated PNG, anything but a file).
+/// Touches nothing.
 void refuseUnsafeRenderFolder(const std::string& out_folder, const std::string& session_folder,
                               const std::string& bake_set_folder);
 
 /// Composites every frame of `session` on `bake_set` in options.mode (camera, pose, instant, cloud cover and
 /// exposure from its row; a row without exposure gets 1, the colour match modes replace it), one runtime for all
-/// frames as a camera feed would (the colour statistics carry over) and writes them as out_folder/frame_NNNNNN.png.
-/// The frames go into a temporary sibling folder renamed into place at the end: a bad frame image (InputError)
-/// or an interruption leaves no output folder half-written. Returns the number of frames written.
+/// frames as a camera feed would (the colour statistics carry over) and writes them as out_folder/frame_NNNNNN.png,
+/// or, when out_folder ends in .png, as that one looping animated PNG (view_apng.h). The frames go into a temporary
+/// sibling folder renamed into place (or assembled) at the end: a bad frame image (InputError) or an interruption
+/// leaves no output half-written. Returns the number of frames written.
 size_t renderSession(const GpuDevice& gpu, const BakeSetData& bake_set, const Session& session,
                      const std::string& out_folder, const SessionRenderOptions& options);
 

@@ -89,8 +89,8 @@ CommandHelp viewHelp() {
          ""},
         {"--render", "", "OUT",
          "headless, no window: composite the session SESSION (a folder with session.json, docs/session.md), or the "
-         "sample walk of a BAKESET, in --mode into OUT, a folder of PNG frames frame_000000.png, ..., with a "
-         "progress bar; then exit",
+         "sample walk of a BAKESET, in --mode into OUT, a folder of PNG frames frame_000000.png, ..., or OUT.png, "
+         "one animated PNG at 4 frames a second; with a progress bar; then exit",
          ""},
         {"--beside-direct-only", "", "", "with --render: each frame is the composite with direct-only to its right",
          ""},
