@@ -445,7 +445,7 @@ BakeReport runBake(VulkanContext& context, const SiteConfig& site, const BakeOpt
     SetTracer set_tracer(tracer, progress, options, trace_hash, checkpoint_dir);
     BakeOutputWriter writer(options.output_dir, geometry, samples, options.denoise);
     writer.writeGeometry();
-    InvalidTexelAccounting invalid_accounting(geometry);
+    InvalidTexelAccounting invalid_accounting(geometry, &footprint);
     for (const SlotLighting& lighting : slots) {
         if (!options.slot.empty() && lighting.slot.name != options.slot) continue;
         tracer.setSky(lighting.sky->tables);

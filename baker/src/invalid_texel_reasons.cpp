@@ -28,22 +28,18 @@ void frameAbout(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitangent) {
 
 }  // namespace
 
-InvalidTexelAccounting::InvalidTexelAccounting(const BakeGeometry& geometry)
-    : geometry_(geometry), closed_(closedOutwardTriangles(geometry.scene.mesh)),
+InvalidTexelAccounting::InvalidTexelAccounting(const BakeGeometry& geometry, const LightmapFootprint* footprint)
+    : geometry_(geometry), footprint_(footprint), closed_(closedOutwardTriangles(geometry.scene.mesh)),
       reason_of_(geometry.texels.size(), int8_t(-1)) {}
 
-InvalidTexelReason InvalidTexelAccounting::reason(size_t texel_index) {
-    if (reason_of_[texel_index] >= 0) return InvalidTexelReason(reason_of_[texel_index]);
-    const LightmapTexel& texel = geometry_.texels[texel_index];
+void InvalidTexelAccounting::scorePoint(const glm::vec3& position, const glm::vec3& normal,
+                                        const glm::vec3& geometric_normal, double score[3]) {
     const TriangleMesh& mesh = geometry_.scene.mesh;
-    const glm::vec3 normal = texel.shading_normal;
     // The face plane on the shading normal's side, as the tracer takes it.
-    const glm::vec3 face = glm::dot(texel.geometric_normal, normal) < 0.0f ? -texel.geometric_normal
-                                                                            : texel.geometric_normal;
+    const glm::vec3 face = glm::dot(geometric_normal, normal) < 0.0f ? -geometric_normal : geometric_normal;
     glm::vec3 tangent, bitangent;
     frameAbout(normal, tangent, bitangent);
-    const glm::vec3 origin = texel.position + normal * kRayOffsetM;
-    std::array<double, 3> score{};  // by InvalidTexelReason: one-sided, under ground, closed double-sided
+    const glm::vec3 origin = position + normal * kRayOffsetM;
     constexpr int side = kInvalidReasonRaysPerSide;
     for (int i = 0; i < side; ++i)
         for (int j = 0; j < side; ++j) {
@@ -66,9 +62,24 @@ InvalidTexelReason InvalidTexelAccounting::reason(size_t texel_index) {
             else if (closed_[hit->triangle_index])
                 score[2] += kClosedDoubleSidedScore;
         }
+}
+
+InvalidTexelReason InvalidTexelAccounting::reason(size_t texel_index) {
+    if (reason_of_[texel_index] >= 0) return InvalidTexelReason(reason_of_[texel_index]);
+    const LightmapTexel& texel = geometry_.texels[texel_index];
+    double score[3] = {};  // by InvalidTexelReason: one-sided, under ground, closed double-sided
+    scorePoint(texel.position, texel.shading_normal, texel.geometric_normal, score);
+    if (score[0] <= 0.0 && score[1] <= 0.0 && score[2] <= 0.0 && footprint_ != nullptr) {
+        // The centre sees no back face: the footprint's sub-points, as the tracer traced them.
+        const size_t per_texel = footprint_->pointsPerTexel();
+        for (size_t slot = texel_index * per_texel; slot < (texel_index + 1) * per_texel; ++slot) {
+            const LightmapFootprintPoint& point = footprint_->points[slot];
+            scorePoint(point.position, point.shading_normal, point.geometric_normal, score);
+        }
+    }
     InvalidTexelReason found = InvalidTexelReason::Unexplained;
     double highest = 0.0;
-    for (size_t k = 0; k < score.size(); ++k)
+    for (size_t k = 0; k < 3; ++k)
         if (score[k] > highest) {
             highest = score[k];
             found = InvalidTexelReason(k);
