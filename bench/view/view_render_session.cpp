@@ -57,16 +57,20 @@ std::string outputFrameName(size_t index) {
     return name;
 }
 
-void refuseUnsafeRenderFolder(const std::string& out_folder, const std::string& session_folder,
-                              const std::string& bake_set_folder) {
-    const fs::path out = resolved(out_folder);
-    for (const std::string& input : {session_folder, bake_set_folder}) {
+void refuseOutputOverInputs(const std::string& out, const std::string& option, const std::vector<std::string>& inputs) {
+    const fs::path written = resolved(out);
+    for (const std::string& input : inputs) {
         if (input.empty()) continue;
         const fs::path read = resolved(input);
-        if (isWithin(out, read) || isWithin(read, out))
-            throw InputError(out_folder, "--render",
-                             "is or holds " + input + ", which this render reads; write the frames elsewhere");
+        if (isWithin(written, read) || isWithin(read, written))
+            throw InputError(out, option, "is or holds " + input + ", which this run reads; write elsewhere");
     }
+}
+
+void refuseUnsafeRenderFolder(const std::string& out_folder, const std::string& session_folder,
+                              const std::string& bake_set_folder) {
+    refuseOutputOverInputs(out_folder, "--render", {session_folder, bake_set_folder});
+    const fs::path out = resolved(out_folder);
     std::error_code error;
     if (!fs::exists(out, error)) return;
     if (isAnimatedOutput(out_folder)) {

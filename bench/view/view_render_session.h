@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "gusuku/formats/bakeset_data.h"
 #include "gusuku/gpu/gpu_device.h"
@@ -25,6 +26,9 @@ bool isAnimatedOutput(const std::string& out);
 
 /// The name of output frame `index` inside the output folder: "frame_000000.png".
 std::string outputFrameName(size_t index);
+
+/// Throws InputError(out, option, ...) when `out` is, lies inside or holds one of `inputs` (empty ones skipped).
+void refuseOutputOverInputs(const std::string& out, const std::string& option, const std::vector<std::string>& inputs);
 
 /// Throws InputError(out_folder, "--render", ...) when the output folder would overwrite what the render reads
 /// (it is or lies inside the session or the bake set, or holds them) or something else than a previous render

@@ -35,7 +35,7 @@ int writeSampleSession(const ViewRequest& request) {
     const std::string& out = *request.sample_session_out;
     const BakeSetData bake_set = loadBakeSet(request.bake_set);
     // The session never goes into (or holds) the bake set it names.
-    refuseUnsafeRenderFolder(out, "", request.bake_set);
+    refuseOutputOverInputs(out, "--sample-session", {request.bake_set});
     if (fs::exists(out) && !isSessionFolder(out) && !(fs::is_directory(out) && fs::is_empty(out)))
         throw InputError(out, "--sample-session", "exists and is not a session folder; not overwritten");
     VulkanContext context(vulkanOptionsFromEnvironment());
