@@ -288,13 +288,13 @@ class RuntimeSunHorizon : public testing::GpuTest {};
 // seen from above lowers its azimuth).
 double turnFacing(double sun_azimuth_deg, double across_deg) { return 90.0 - (sun_azimuth_deg + across_deg); }
 
-// Every case: the roof's flat pixels with and without horizons against the truth. The ctest runs the sun 10 and
-// 20 degrees high straight across the rows (the shadow map alone 15 % and 7 % too bright there); with
+// Every case: the roof's flat pixels with and without horizons against the truth. The ctest runs the sun 10
+// degrees high straight across the rows (the shadow map alone 15 % too bright there); with
 // GUSUKU_SUN_HORIZON_SWEEP=1 it runs 10, 15, 20 and 25 degrees, across the rows from either side and 55 and 35
 // degrees off them (the 10-25 degrees from several azimuths; about a minute on lavapipe).
 TEST_F(RuntimeSunHorizon, RoundTileRoofUnderALowSunMatchesTheTruth) {
     const bool sweep = std::getenv("GUSUKU_SUN_HORIZON_SWEEP") != nullptr;
-    const std::vector<double> elevations = sweep ? std::vector<double>{10, 15, 20, 25} : std::vector<double>{10, 20};
+    const std::vector<double> elevations = sweep ? std::vector<double>{10, 15, 20, 25} : std::vector<double>{10};
     const std::vector<double> acrosses = sweep ? std::vector<double>{90, 55, 35, -90} : std::vector<double>{90};
     // The sun's azimuth at the middle of the elevations (the morning's sun moves 6 degrees over them).
     const double sun_azimuth_deg = 72.0;
