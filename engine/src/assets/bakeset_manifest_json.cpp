@@ -387,6 +387,28 @@ BakeSetPartial readPartial(const ObjectReader& reader, const BakeSetManifest& ma
     return partial;
 }
 
+// /building: the mesh, its lightmap and, in bake sets since the sun horizons, their file.
+BakeSetBuilding readBuilding(const ObjectReader& root) {
+    BakeSetBuilding building_info;
+    const ObjectReader building =
+        root.object("building", {"mesh", "mesh_frame", "lightmap_uv", "lightmap_uv_source", "lightmap_resolution",
+                                 "texels_per_metre", "texels", "irradiance_units", "sun_horizon",
+                                 "sun_horizon_layout"});
+    building_info.mesh = readNonEmptyString(building, "mesh");
+    readFixedText(building, "mesh_frame", kMeshFrame);
+    readFixedText(building, "lightmap_uv", kLightmapUv);
+    building_info.lightmap_uv_source = building.string("lightmap_uv_source");
+    building_info.lightmap_resolution = int(readRanged(building, "lightmap_resolution", kBakeSetLightmapResolution));
+    building_info.texels_per_metre = readRanged(building, "texels_per_metre", kBakeSetTexelsPerMetre);
+    building_info.texels = readCount(building, "texels", kBakeSetBuildingTexels);
+    readFixedText(building, "irradiance_units", kIrradianceUnits);
+    if (building.has("sun_horizon")) {  // optional: bake sets before them have none
+        building_info.sun_horizon = readNonEmptyString(building, "sun_horizon");
+        readFixedText(building, "sun_horizon_layout", kSunHorizonLayout);
+    }
+    return building_info;
+}
+
 BakeSetManifest readManifest(const ObjectReader& root) {
     BakeSetManifest manifest;
     root.string("format");  // its value was checked before anything else
@@ -418,22 +440,7 @@ BakeSetManifest readManifest(const ObjectReader& root) {
     manifest.settings.seed = uint32_t(readUnsigned(settings, "seed", 0, UINT32_MAX));
     manifest.settings.denoised = readBool(settings, "denoised");
 
-    const ObjectReader building =
-        root.object("building", {"mesh", "mesh_frame", "lightmap_uv", "lightmap_uv_source", "lightmap_resolution",
-                                 "texels_per_metre", "texels", "irradiance_units", "sun_horizon",
-                                 "sun_horizon_layout"});
-    manifest.building.mesh = readNonEmptyString(building, "mesh");
-    readFixedText(building, "mesh_frame", kMeshFrame);
-    readFixedText(building, "lightmap_uv", kLightmapUv);
-    manifest.building.lightmap_uv_source = building.string("lightmap_uv_source");
-    manifest.building.lightmap_resolution = int(readRanged(building, "lightmap_resolution", kBakeSetLightmapResolution));
-    manifest.building.texels_per_metre = readRanged(building, "texels_per_metre", kBakeSetTexelsPerMetre);
-    manifest.building.texels = readCount(building, "texels", kBakeSetBuildingTexels);
-    readFixedText(building, "irradiance_units", kIrradianceUnits);
-    if (building.has("sun_horizon")) {  // optional: bake sets before them have none
-        manifest.building.sun_horizon = readNonEmptyString(building, "sun_horizon");
-        readFixedText(building, "sun_horizon_layout", kSunHorizonLayout);
-    }
+    manifest.building = readBuilding(root);
 
     const ObjectReader ground =
         root.object("ground_grid", {"geometry", "geometry_channels", "origin_enu_m", "cell_m", "columns", "rows",
