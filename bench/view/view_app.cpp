@@ -13,7 +13,9 @@
 
 #include "bakeset_site.h"
 #include "gusuku/assets/bakeset_loader.h"
+#include "camera_image.h"
 #include "gusuku/assets/image.h"
+#include "gusuku/formats/input_error.h"
 #include "gusuku/maths/time_utc.h"
 #include "gusuku/pack_loader/runtime_pack.h"
 #include "runtime_modes.h"
@@ -32,6 +34,10 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 
 ViewApp* appOf(GLFWwindow* window) { return static_cast<ViewApp*>(glfwGetWindowUserPointer(window)); }
 
+std::string sessionImagePath(const Session& session, size_t index) {
+    return (std::filesystem::path(session.folder) / session.frames[index].image).string();
+}
+
 // A runtime pack folder (pack.bin) or a bake set folder.
 BakeSetData loadBakeSetOrPack(const std::string& folder) {
     if (std::filesystem::exists(std::filesystem::path(folder) / "pack.bin")) return loadRuntimePack(folder);
@@ -45,7 +51,17 @@ ViewApp::ViewApp(const ViewRequest& request) : request_(request) {
         script_ = parseViewActions(*request.actions);
         scripted_ = true;
     }
-    bake_set_ = loadBakeSetOrPack(request.bake_set);
+    if (isSessionFolder(request.bake_set)) {
+        // Played as --render composites it: the bake set is the one session.json names.
+        session_ = readSession(request.bake_set);
+        const std::optional<std::string> named = sessionBakeSet(*session_);
+        if (!named)
+            throw InputError((std::filesystem::path(request.bake_set) / "session.json").string(), "/bake_set",
+                             "missing: the session names no bake set to composite");
+        request_.bake_set = *named;
+        session_playing_ = !scripted_;  // a script steps it with `frame N`
+    }
+    bake_set_ = loadBakeSetOrPack(request_.bake_set);
     state_.position_enu = request.position_enu;
     state_.look_at_enu = request.look_at_enu;
     state_.horizontal_fov_deg = request.horizontal_fov_deg;
@@ -53,9 +69,12 @@ ViewApp::ViewApp(const ViewRequest& request) : request_(request) {
     state_.cloud_cover = request.cloud_cover;
     state_.mode_index = *viewModeIndex(request.mode);
     state_.msaa_samples = request.msaa_samples;
-    if (request.camera == "sample")
+    if (session_) showSessionFrame(0);
+    if (session_)
+        background_ = Background::photo(sessionImagePath(*session_, 0), 1.0f);  // each row states its exposure
+    else if (request.camera == "sample")
         background_ = Background::traced(
-            bench_common::siteJsonOf(request.bake_set, bake_set_.manifest, request.site_json), request.width,
+            bench_common::siteJsonOf(request_.bake_set, bake_set_.manifest, request.site_json), request.width,
             request.height, request.camera_samples, request.exposure.value_or(0.0f));
     else
         background_ = Background::photo(request.camera, request.exposure.value_or(0.0f));
@@ -110,6 +129,13 @@ void ViewApp::openRuntime() {
 
 FrameInput ViewApp::frameInput() const {
     const bench::RuntimeMode mode = bench::runtimeModeNamed(kViewModeNames[state_.mode_index]);
+    if (session_) {  // the track's row, exactly as --render composites it (view_render_session.cpp)
+        const SessionFrame& row = session_->frames[session_index_];
+        FrameInput frame = bench::frameInputFor(mode, {}, session_->intrinsics, row.pose, row.utc_seconds,
+                                                row.cloud_cover, row.exposure.value_or(1.0f));
+        frame.camera_rgba8 = nullptr;  // the frame loop puts the camera on the GPU itself
+        return frame;
+    }
     FrameInput frame;
     frame.intrinsics =
         CameraIntrinsics::fromFieldOfView(background_->width(), background_->height(), state_.horizontal_fov_deg);
@@ -136,6 +162,16 @@ void ViewApp::moved() {
 // input, R, the first frame) waits for it.
 void ViewApp::refreshBackgroundIfDue(bool now) {
     if (!background_stale_ && !pending_trace_.valid()) return;
+    if (session_) {  // the frame's own camera image, read when it is shown
+        render_cli::CameraImage image = render_cli::readCameraImage(sessionImagePath(*session_, session_index_));
+        if (image.width != background_->width() || image.height != background_->height())
+            throw InputError(session_->frames[session_index_].image, "", "is not the intrinsics' size");
+        loop_->setCamera(image.srgb_rgba8);
+        have_background_ = true;
+        background_stale_ = false;
+        changed_ = true;
+        return;
+    }
     if (!pending_trace_.valid()) {
         if (background_->isTraced() && !now && have_background_ &&
             (dragging_ || secondsSince(last_change_) < kSettleSeconds))

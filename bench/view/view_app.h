@@ -18,6 +18,7 @@
 #include "view_frame_loop.h"
 #include "view_request.h"
 #include "view_script.h"
+#include "view_session.h"
 #include "view_swapchain.h"
 
 namespace gusuku::view {
@@ -50,6 +51,15 @@ private:
     void profilePasses();
     FrameInput frameInput() const;
     double siteMidnightUtc() const;
+    void showSessionFrame(size_t index);
+    void advanceSessionIfDue();
+
+    /// A recorded session played (docs/view.md): each frame's camera image is the background and its track row
+    /// the pose, instant, cover and exposure; orbit, walk, the hour and the cover keys do nothing while one plays.
+    std::optional<Session> session_;
+    size_t session_index_ = 0;
+    bool session_playing_ = true;
+    std::chrono::steady_clock::time_point session_shown_{};
 
     ViewRequest request_;
     BakeSetData bake_set_;

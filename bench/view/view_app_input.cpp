@@ -20,6 +20,8 @@ namespace {
 constexpr double kDegreesPerPixel = 0.3;
 constexpr double kHourStep = 0.25;
 constexpr float kCloudSteps[] = {0.0f, 0.5f, 1.0f};
+// A played session's rate: the animation's (--render OUT.png), as session.json states none.
+constexpr double kSessionFramesPerSecond = 4.0;
 
 bool changesState(const ViewAction& action) {
     for (const char* verb : {"orbit", "pitch", "walk", "hour", "time", "weather", "mode"})
@@ -28,9 +30,40 @@ bool changesState(const ViewAction& action) {
 }
 }  // namespace
 
+// A played session's frame `index` shown (its camera image read at the next draw).
+void ViewApp::showSessionFrame(size_t index) {
+    session_index_ = index % session_->frames.size();
+    session_shown_ = std::chrono::steady_clock::now();
+    const SessionFrame& row = session_->frames[session_index_];
+    state_.utc_seconds = row.utc_seconds;  // for the title
+    state_.cloud_cover = row.cloud_cover;
+    state_.weather_source = "session";
+    background_stale_ = true;
+    changed_ = true;
+}
+
+// Playing: the next frame once 1 / kSessionFramesPerSecond has passed since this one was shown; looping.
+void ViewApp::advanceSessionIfDue() {
+    if (!session_ || !session_playing_) return;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - session_shown_).count() >=
+        1.0 / kSessionFramesPerSecond)
+        showSessionFrame(session_index_ + 1);
+}
+
 void ViewApp::onKey(int key, int action, int mods) {
     if (action == GLFW_RELEASE) return;
     const double step = (mods & GLFW_MOD_SHIFT) ? 5.0 : 1.0;
+    if (session_) {  // the track holds the pose, the instant and the cover: the view keys do nothing
+        const size_t count = session_->frames.size();
+        switch (key) {
+        case GLFW_KEY_SPACE: session_playing_ = !session_playing_; showSessionFrame(session_index_); return;
+        case GLFW_KEY_COMMA: session_playing_ = false; showSessionFrame(session_index_ + count - 1); return;
+        case GLFW_KEY_PERIOD: session_playing_ = false; showSessionFrame(session_index_ + 1); return;
+        case GLFW_KEY_W: case GLFW_KEY_S: case GLFW_KEY_A: case GLFW_KEY_D: case GLFW_KEY_LEFT: case GLFW_KEY_RIGHT:
+        case GLFW_KEY_UP: case GLFW_KEY_DOWN: case GLFW_KEY_C: case GLFW_KEY_R: return;
+        default: break;
+        }
+    }
     switch (key) {
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_->window(), GLFW_TRUE); return;
     case GLFW_KEY_W: state_.walk(step); break;
@@ -80,7 +113,7 @@ void ViewApp::onButton(int button, int action) {
 }
 
 void ViewApp::onCursor(double x, double y) {
-    if (!dragging_) return;
+    if (!dragging_ || session_) return;
     state_.orbit(-(x - drag_x_) * kDegreesPerPixel);
     state_.pitch((y - drag_y_) * kDegreesPerPixel);
     drag_x_ = x;
@@ -89,6 +122,7 @@ void ViewApp::onCursor(double x, double y) {
 }
 
 void ViewApp::onScroll(double ticks) {
+    if (session_) return;
     state_.dolly(0.1 * ticks);
     moved();
 }
@@ -136,6 +170,15 @@ void ViewApp::runAction(const ViewAction& action) {
     } else if (verb == "screenshot") {
         screenshotTo(action.text);
         return;
+    } else if (verb == "frame") {
+        if (!session_ || size_t(action.number) >= session_->frames.size())
+            throw std::runtime_error("--actions: 'frame " + action.text + "': " +
+                                     (session_ ? "the session has " + std::to_string(session_->frames.size()) +
+                                                     " frames"
+                                               : std::string("no session is played")));
+        session_playing_ = false;
+        showSessionFrame(size_t(action.number));
+        return;
     } else if (verb == "frames") {
         for (int frame = 0; frame < int(action.number); ++frame) drawOnce(nullptr);
         return;
@@ -159,7 +202,8 @@ int ViewApp::run() {
             continue;
         }
         // Nothing to do: sleep until an event (or the settle time, for the background), never spin.
-        if (!changed_ && !profile_due_) glfwWaitEventsTimeout(background_stale_ || tracing() ? 0.1 : 1.0);
+        const bool busy = background_stale_ || tracing() || (session_ && session_playing_);
+        if (!changed_ && !profile_due_) glfwWaitEventsTimeout(busy ? 0.02 : 1.0);
         else glfwPollEvents();
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
@@ -167,6 +211,7 @@ int ViewApp::run() {
             glfwWaitEvents();
             continue;
         }
+        advanceSessionIfDue();
         refreshBackgroundIfDue(false);  // starts a trace once the view settles, takes it when done
         if (changed_) drawOnce(nullptr);
         if (profile_due_ && !changed_) profilePasses();

@@ -52,6 +52,7 @@ CommandHelp viewHelp() {
     const ViewRequest defaults;
     CommandHelp help;
     help.usage = "usage: gusuku-view BAKESET_OR_PACK [options]\n"
+                 "       gusuku-view SESSION [options]   (plays a recorded session, docs/session.md)\n"
                  "       gusuku-view --render OUT SESSION_OR_BAKESET [options]   (headless)\n"
                  "       gusuku-view --sample-session DIR BAKESET [options]      (headless)";
     help.description =
@@ -85,7 +86,7 @@ CommandHelp viewHelp() {
          std::to_string(defaults.msaa_samples)},
         {"--actions", "", "LIST",
          "scripted input, ';'-separated, run in order then the window closes: orbit DEG, pitch DEG, walk M, hour H, "
-         "time ISO8601, weather C, mode M, msaa N, frames N, resize WxH, screenshot PNG, quit",
+         "time ISO8601, weather C, mode M, msaa N, frame N, frames N, resize WxH, screenshot PNG, quit",
          ""},
         {"--render", "", "OUT",
          "headless, no window: composite the session SESSION (a folder with session.json, docs/session.md), or the "

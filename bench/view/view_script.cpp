@@ -8,6 +8,7 @@
 #include "gusuku/tools/command_line.h"
 #include "view_modes.h"
 #include "view_request.h"
+#include "view_session.h"
 
 namespace gusuku::view {
 
@@ -52,6 +53,9 @@ std::vector<ViewAction> parseViewActions(const std::string& text) {
             action.number = numberIn(item, action.text, 0.0, 1.0);
         } else if (action.verb == "msaa") {
             action.number = numberIn(item, action.text, 1.0, 64.0);
+        } else if (action.verb == "frame") {
+            action.number = numberIn(item, action.text, 0.0, double(kMaxSessionFrames), true);
+            if (action.number != double(size_t(action.number))) refuse(item, "not a whole frame index");
         } else if (action.verb == "frames") {
             action.number = numberIn(item, action.text, 1.0, 1000.0);
         } else if (action.verb == "time") {
@@ -68,7 +72,7 @@ std::vector<ViewAction> parseViewActions(const std::string& text) {
             action.width = size->first;
             action.height = size->second;
         } else if (action.verb != "screenshot" && action.verb != "quit") {
-            refuse(item, "unknown action (orbit, pitch, walk, hour, time, weather, mode, msaa, frames, resize, "
+            refuse(item, "unknown action (orbit, pitch, walk, hour, time, weather, mode, msaa, frame, frames, resize, "
                          "screenshot, quit)");
         }
         actions.push_back(action);

@@ -7,6 +7,7 @@
 //   weather C                       the cloud cover, [0, 1]
 //   mode M                          a mode of view_modes.h
 //   msaa N                          RuntimeOptions::msaa_samples (the runtime is opened again)
+//   frame N                         a played session's frame N (from 0), paused there
 //   frames N                        N frames drawn as they are, [1, 1000]
 //   resize WxH                      the window resized (the swapchain is made again)
 //   screenshot PNG                  the window's pixels of the next frame presented, as an sRGB PNG
