@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "enu_point_option.h"
 #include "gusuku/tools/command_line.h"
 #include "gusuku/tools/option_table.h"
 
@@ -34,10 +35,6 @@ std::string weatherName(float cloud_cover) {
     return defaultNumber(cloud_cover);
 }
 
-std::string tripleText(const glm::dvec3& value) {
-    return defaultNumber(value.x) + "," + defaultNumber(value.y) + "," + defaultNumber(value.z);
-}
-
 }  // namespace
 
 CommandHelp renderHelp() {
@@ -59,8 +56,8 @@ CommandHelp renderHelp() {
         {"--size", "", "WxH", "frame size, pixels, each side in [" + std::to_string(kMinFrameSide) + ", " +
                                   std::to_string(kMaxFrameSide) + "] (an IMAGE gives its own)",
          std::to_string(defaults.width) + "x" + std::to_string(defaults.height)},
-        {"--position", "", "E,N,U", "camera centre, site ENU metres", tripleText(defaults.position_enu)},
-        {"--look-at", "", "E,N,U", "the point at the image centre", tripleText(defaults.look_at_enu)},
+        {"--position", "", "E,N,U", "camera centre, site ENU metres", enuPointText(defaults.position_enu)},
+        {"--look-at", "", "E,N,U", "the point at the image centre", enuPointText(defaults.look_at_enu)},
         {"--fov", "", "DEG", "horizontal field of view, (1, 170) degrees", defaultNumber(defaults.horizontal_fov_deg)},
         {"--time", "", "ISO8601", "the instant, with its offset", "the bake date, 12:00 site clock"},
         {"--weather", "", "W", "sunny, overcast, or a cloud cover in [0, 1]", weatherName(defaults.cloud_cover)},
@@ -90,21 +87,6 @@ CommandHelp renderHelp() {
     return help;
 }
 
-namespace {
-
-glm::dvec3 parseTriple(const CommandLine& line, const std::string& option, const std::string& text) {
-    std::istringstream stream(text);
-    glm::dvec3 value;
-    char comma1 = 0, comma2 = 0;
-    stream >> value.x >> comma1 >> value.y >> comma2 >> value.z;
-    if (!stream || comma1 != ',' || comma2 != ',' || !stream.eof() || !std::isfinite(value.x) ||
-        !std::isfinite(value.y) || !std::isfinite(value.z) || glm::length(value) > 1e5)
-        line.failValue(option, "'" + text + "' is not E,N,U in metres (three finite numbers within 100 km)");
-    return value;
-}
-
-}  // namespace
-
 RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
     RenderRequest request;
     CommandLine line("gusuku-render", args);
@@ -128,8 +110,9 @@ RenderRequest parseRenderRequest(const std::vector<std::string>& args) {
         request.width = width;
         request.height = height;
     }
-    if (const auto position = line.text("--position")) request.position_enu = parseTriple(line, "--position", *position);
-    if (const auto target = line.text("--look-at")) request.look_at_enu = parseTriple(line, "--look-at", *target);
+    if (const auto position = line.text("--position"))
+        request.position_enu = parseEnuPoint(line, "--position", *position);
+    if (const auto target = line.text("--look-at")) request.look_at_enu = parseEnuPoint(line, "--look-at", *target);
     request.horizontal_fov_deg = line.number("--fov", 1.0, 170.0).value_or(request.horizontal_fov_deg);
     request.time_iso = line.text("--time");
     if (const auto weather = line.text("--weather")) {

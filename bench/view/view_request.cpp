@@ -7,27 +7,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "enu_point_option.h"
 #include "gusuku/tools/command_line.h"
 #include "view_modes.h"
 
 namespace gusuku::view {
 
 namespace {
-
-std::string tripleText(const glm::dvec3& value) {
-    return defaultNumber(value.x) + "," + defaultNumber(value.y) + "," + defaultNumber(value.z);
-}
-
-glm::dvec3 parseTriple(const CommandLine& line, const std::string& option, const std::string& text) {
-    std::istringstream stream(text);
-    glm::dvec3 value;
-    char comma1 = 0, comma2 = 0;
-    stream >> value.x >> comma1 >> value.y >> comma2 >> value.z;
-    if (!stream || comma1 != ',' || comma2 != ',' || !stream.eof() || !std::isfinite(value.x) ||
-        !std::isfinite(value.y) || !std::isfinite(value.z) || glm::length(value) > 1e5)
-        line.failValue(option, "'" + text + "' is not E,N,U in metres (three finite numbers within 100 km)");
-    return value;
-}
 
 std::string modeList() {
     std::string list;
@@ -71,9 +57,9 @@ CommandHelp viewHelp() {
          "the frame the runtime draws and the window's first size, each side in [" + std::to_string(kMinFrameSide) +
              ", " + std::to_string(kMaxFrameSide) + "]; the window scales it to fit",
          std::to_string(defaults.width) + "x" + std::to_string(defaults.height)},
-        {"--position", "", "E,N,U", "camera centre, site ENU metres", tripleText(defaults.position_enu)},
+        {"--position", "", "E,N,U", "camera centre, site ENU metres", render_cli::enuPointText(defaults.position_enu)},
         {"--look-at", "", "E,N,U", "the point at the image centre (the orbit's centre)",
-         tripleText(defaults.look_at_enu)},
+         render_cli::enuPointText(defaults.look_at_enu)},
         {"--fov", "", "DEG", "horizontal field of view, (1, 170) degrees", defaultNumber(defaults.horizontal_fov_deg)},
         {"--time", "", "ISO8601", "the instant, with its offset", "the bake date, 12:00 site clock"},
         {"--weather", "", "C", "the cloud cover in [0, 1] (0 sunny, 1 overcast)", defaultNumber(defaults.cloud_cover)},
@@ -130,8 +116,10 @@ ViewRequest parseViewRequest(const std::vector<std::string>& args) {
         request.width = parsed->first;
         request.height = parsed->second;
     }
-    if (const auto position = line.text("--position")) request.position_enu = parseTriple(line, "--position", *position);
-    if (const auto target = line.text("--look-at")) request.look_at_enu = parseTriple(line, "--look-at", *target);
+    if (const auto position = line.text("--position"))
+        request.position_enu = render_cli::parseEnuPoint(line, "--position", *position);
+    if (const auto target = line.text("--look-at"))
+        request.look_at_enu = render_cli::parseEnuPoint(line, "--look-at", *target);
     if (glm::length(request.look_at_enu - request.position_enu) < 1e-3)
         line.failValue("--look-at", "the same point as --position");
     request.horizontal_fov_deg = line.number("--fov", 1.0, 170.0).value_or(request.horizontal_fov_deg);
