@@ -20,6 +20,7 @@
 #include "gusuku/pack_loader/runtime_pack.h"
 #include "runtime_modes.h"
 #include "view_modes.h"
+#include "view_overlay.h"
 
 namespace gusuku::view {
 
@@ -241,29 +242,39 @@ void ViewApp::profilePasses() {
     updateTitle(last_info_, last_frame_ms_);
 }
 
+// The same figures in the window's title (one line) and in the overlay (a line each).
 void ViewApp::updateTitle(const FrameInfo& info, double frame_ms) {
     auto slotName = [&](int slot) { return slot >= 0 ? bake_set_.manifest.slots[size_t(slot)].name : std::string("-"); };
     const double sunny = 1.0 - info.overcast_weight;
+    std::vector<std::string> lines;
     char text[512];
-    std::snprintf(text, sizeof text,
-                  "gusuku-view | %s msaa %u | %s | sun az %.1f el %.1f | %s %.2f %s %.2f %s %.2f | cloud %.2f (%s) | "
-                  "frame %.0f ms",
-                  kViewModeNames[state_.mode_index], state_.msaa_samples,
-                  formatIso8601(state_.utc_seconds, bake_set_.manifest.site.utc_offset_minutes).substr(0, 16).c_str(),
-                  info.sun_azimuth_deg, info.sun_apparent_elevation_deg, slotName(info.slot_a).c_str(),
+    std::snprintf(text, sizeof text, "%s msaa %u | %s", kViewModeNames[state_.mode_index], state_.msaa_samples,
+                  formatIso8601(state_.utc_seconds, bake_set_.manifest.site.utc_offset_minutes).substr(0, 16).c_str());
+    lines.push_back(text);
+    std::snprintf(text, sizeof text, "sun az %.1f el %.1f", info.sun_azimuth_deg, info.sun_apparent_elevation_deg);
+    lines.push_back(text);
+    std::snprintf(text, sizeof text, "slots %s %.2f %s %.2f %s %.2f", slotName(info.slot_a).c_str(),
                   info.slot_a >= 0 ? sunny * (1.0 - info.slot_b_weight) : 0.0, slotName(info.slot_b).c_str(),
                   info.slot_b >= 0 ? sunny * info.slot_b_weight : 0.0, slotName(info.overcast_slot).c_str(),
-                  double(info.overcast_weight), double(state_.cloud_cover), state_.weather_source.c_str(), frame_ms);
-    std::string title = text;
+                  double(info.overcast_weight));
+    lines.push_back(text);
+    std::snprintf(text, sizeof text, "cloud %.2f (%s) | frame %.0f ms", double(state_.cloud_cover),
+                  state_.weather_source.c_str(), frame_ms);
+    lines.push_back(text);
     if (have_passes_) {
         std::snprintf(text, sizeof text,
-                      " | passes ms: shadow %.1f occluder %.1f building %.1f ground %.1f statistics %.1f",
+                      "passes ms: shadow %.1f occluder %.1f building %.1f ground %.1f statistics %.1f",
                       passes_.shadow_ms, passes_.occluder_ms, passes_.building_ms, passes_.ground_ms,
                       passes_.statistics_ms);
-        title += text;
+        lines.push_back(text);
     }
-    if (background_stale_ && background_->isTraced()) title += " | tracing the background when the view stops";
+    if (background_stale_ && background_->isTraced()) lines.push_back("tracing the background when the view stops");
+    std::string title = "gusuku-view";
+    for (const std::string& line : lines) title += " | " + line;
     glfwSetWindowTitle(window_->window(), title.c_str());
+    // Twice the font's size where the window is wide enough for it, so that it reads on a high-density screen.
+    const uint32_t scale = swapchain_ && swapchain_->extent().width >= 1000 ? 2 : 1;
+    if (loop_) loop_->setOverlay(state_.overlay ? rasteriseOverlay(lines, scale) : OverlayImage{});
 }
 
 }  // namespace gusuku::view

@@ -99,6 +99,11 @@ void ViewApp::onKey(int key, int action, int mods) {
         return;
     case GLFW_KEY_R: background_stale_ = true; refreshBackgroundIfDue(true); return;
     case GLFW_KEY_P: profile_due_ = true; changed_ = true; return;
+    case GLFW_KEY_O:
+        state_.overlay = !state_.overlay;
+        updateTitle(last_info_, last_frame_ms_);
+        changed_ = true;
+        return;
     case GLFW_KEY_F12: screenshotTo("gusuku-view-" + std::to_string(++screenshot_count_) + ".png"); return;
     default: return;
     }

@@ -19,6 +19,7 @@ struct ViewState {
     size_t mode_index = 0;        ///< into kViewModeNames (view_modes.h)
     uint32_t msaa_samples = 4;
     std::string weather_source = "command line";  ///< who set cloud_cover last: command line, keys, script
+    bool overlay = true;  ///< the text box over the image's top-left (O toggles it; view_overlay.h)
 
     /// Turns the camera about the vertical axis through the point looked at, by `degrees` (counter-clockwise
     /// seen from above): position' = look_at + Rz(degrees) (position - look_at).

@@ -103,6 +103,8 @@ void FrameLoop::createSlot(Slot& slot) {
         check(vkCreateSemaphore(device_, &semaphore_info, nullptr, semaphore), "vkCreateSemaphore");
     slot.staging = makeBuffer(VkDeviceSize(camera_width_) * camera_height_ * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               slot.staging_memory, &slot.staging_bytes);
+    slot.overlay = makeBuffer(VkDeviceSize(kOverlayMaxWidth) * kOverlayMaxHeight * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              slot.overlay_memory, &slot.overlay_bytes);
 }
 
 void FrameLoop::destroySlot(Slot& slot) {
@@ -111,6 +113,8 @@ void FrameLoop::destroySlot(Slot& slot) {
     vkDestroyFence(device_, slot.done, nullptr);
     vkDestroyBuffer(device_, slot.staging, nullptr);
     vkFreeMemory(device_, slot.staging_memory, nullptr);
+    vkDestroyBuffer(device_, slot.overlay, nullptr);
+    vkFreeMemory(device_, slot.overlay_memory, nullptr);
 }
 
 void FrameLoop::createCameraImage() {
@@ -215,11 +219,31 @@ void FrameLoop::recordPresent(const Slot& slot, VkImage target, bool read_back) 
         vkCmdPipelineBarrier(slot.present, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr,
                              1, &to_host, 0, nullptr);
     }
+    // The overlay's copy goes after the blit's writes (and the read-back's read): back to a copy target.
     const VkImageLayout now = read_back ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    imageBarrier(slot.present, target, now, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 read_back ? VK_ACCESS_TRANSFER_READ_BIT : VK_ACCESS_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+    imageBarrier(slot.present, target, now, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 read_back ? VK_ACCESS_TRANSFER_READ_BIT : VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT);
+    recordOverlay(slot, target);
+    imageBarrier(slot.present, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
     check(vkEndCommandBuffer(slot.present), "vkEndCommandBuffer");
+}
+
+// The overlay's pixels into this slot's buffer (the slot's fence was waited on: the GPU is done with it), then
+// copied onto the image's top-left; the image is a copy target (TRANSFER_DST_OPTIMAL) here.
+void FrameLoop::recordOverlay(const Slot& slot, VkImage target) {
+    const VkExtent2D extent = swapchain_.extent();
+    const uint32_t width = std::min({overlay_.width, kOverlayMaxWidth, extent.width});
+    const uint32_t height = std::min({overlay_.height, kOverlayMaxHeight, extent.height});
+    if (width == 0 || height == 0) return;
+    for (uint32_t row = 0; row < height; ++row)
+        std::memcpy(static_cast<uint8_t*>(slot.overlay_bytes) + size_t(row) * width * 4,
+                    overlay_.rgba8.data() + size_t(row) * overlay_.width * 4, size_t(width) * 4);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width, height, 1};
+    vkCmdCopyBufferToImage(slot.present, slot.overlay, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
 }
 
 bool FrameLoop::drawFrame(const FrameInput& frame_in, FrameInfo& info, Screenshot* screenshot) {

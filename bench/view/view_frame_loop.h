@@ -13,12 +13,14 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "gusuku/runtime/runtime.h"
 #include "view_device.h"
+#include "view_overlay.h"
 #include "view_swapchain.h"
 
 namespace gusuku::view {
@@ -47,6 +49,12 @@ public:
     /// drawFrame, on the GPU, after the frames that read the old one.
     void setCamera(const std::vector<uint8_t>& rgba8);
 
+    /// The overlay copied onto the top-left of each presented image from the next drawFrame on, clipped to
+    /// kOverlayMaxWidth x kOverlayMaxHeight and to the window; an empty image draws none. It goes on after a
+    /// screenshot's read-back, so screenshots hold the composite alone.
+    void setOverlay(OverlayImage overlay) { overlay_ = std::move(overlay); }
+    static constexpr uint32_t kOverlayMaxWidth = 1024, kOverlayMaxHeight = 160;
+
     /// Draws and presents one frame; `frame` is complete but for the camera and the semaphores, which this adds.
     /// False when the swapchain is out of date (the caller recreates it and calls again). With `screenshot` set,
     /// also reads the presented image back (a fence wait; for tests and F12 only).
@@ -66,12 +74,16 @@ private:
         VkBuffer staging = VK_NULL_HANDLE;  ///< the camera bytes on their way to the camera image
         VkDeviceMemory staging_memory = VK_NULL_HANDLE;
         void* staging_bytes = nullptr;
+        VkBuffer overlay = VK_NULL_HANDLE;  ///< the overlay's pixels for this slot's present
+        VkDeviceMemory overlay_memory = VK_NULL_HANDLE;
+        void* overlay_bytes = nullptr;
     };
     void createSlot(Slot& slot);
     void destroySlot(Slot& slot);
     void createCameraImage();
     void recordCameraUpload(const Slot& slot);
     void recordPresent(const Slot& slot, VkImage swapchain_image, bool read_back);
+    void recordOverlay(const Slot& slot, VkImage swapchain_image);
     void ensureReadback(VkDeviceSize bytes);
     Screenshot readScreenshot() const;
     VkBuffer makeBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage, VkDeviceMemory& memory, void** mapped);
@@ -92,6 +104,7 @@ private:
     VkDeviceMemory readback_memory_ = VK_NULL_HANDLE;
     void* readback_bytes_ = nullptr;
     VkDeviceSize readback_size_ = 0;
+    OverlayImage overlay_;
 };
 
 }  // namespace gusuku::view

@@ -45,8 +45,9 @@ CommandHelp viewHelp() {
         "Opens a window and draws the runtime's composite of the baked building over a camera background, on the\n"
         "GPU-resident path an app runs (bench/view/view_frame_loop.cpp). Mouse: left drag orbits about the point\n"
         "looked at, the wheel walks towards it; W A S D walk; , and . move the hour by 15 minutes; C steps the cloud\n"
-        "cover; M steps the mode; X turns multisampling on or off; R re-traces the background; F12 writes a\n"
-        "screenshot; Esc closes. The title shows the sun, the slot weights, the weather and the frame time per pass.";
+        "cover; M steps the mode; X turns multisampling on or off; R re-traces the background; O hides the overlay;\n"
+        "F12 writes a screenshot; Esc closes. The overlay and the title show the sun, the slot weights, the weather\n"
+        "and the frame time per pass.";
     help.options = {
         {"--camera", "", "sample|PHOTO",
          "the background: `sample` path-traces the bake's site without the building from the view (cached, traced "
