@@ -84,6 +84,8 @@ uint64_t checkedSharedFilesHash(const PartialSet& set) {
         throw InputError(set.manifest_path, "/partial/slot_independent_hash",
                          "the shared files (" + set.manifest.building.mesh + ", " + set.manifest.ground_grid.geometry +
                              (set.manifest.occluder ? ", " + set.manifest.occluder->mesh : std::string()) +
+                             (set.manifest.building.sun_horizon.empty() ? std::string()
+                                                                        : ", " + set.manifest.building.sun_horizon) +
                              ") hash to " + hex(actual) + ", not the recorded " +
                              hex(set.manifest.partial->slot_independent_hash) + ": they changed after the bake");
     return actual;

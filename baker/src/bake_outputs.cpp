@@ -182,6 +182,7 @@ uint64_t BakeOutputWriter::slotIndependentHash() const {
     BakeSetManifest names;
     if (occluder_) names.occluder = occluder_;
     names.ground_grid.albedo = kGroundAlbedoFile;
+    names.building.sun_horizon = kSunHorizonFile;  // writeGeometry wrote it, as writeManifest records
     return slotIndependentFilesHash(output_dir_, names);
 }
 

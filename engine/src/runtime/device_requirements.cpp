@@ -78,7 +78,7 @@ const LimitNeed kFixedNeeds[] = {
     {"maxBoundDescriptorSets", RUNTIME_MATERIAL_SET + 1, "the frame's descriptor set and the material's"},
     {"maxPerStageDescriptorSamplers", kFragmentSamplers,
      "the building's fragment shader: two shadow maps, the shadow depths, the lightmaps, the ground's two "
-     "images and the base colour"},
+     "images, the sun horizons and the base colour"},
     {"maxPerStageDescriptorSampledImages", kFragmentSamplers, "the building's fragment shader (as above)"},
     {"maxDescriptorSetSamplers", kFragmentSamplers, "the building's pipeline layout"},
     {"maxDescriptorSetSampledImages", kFragmentSamplers, "the building's pipeline layout"},
