@@ -84,7 +84,7 @@ BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexe
 
 int sunHorizonResolution(int lightmap_resolution, double texels_per_metre) {
     int factor = 1;
-    while (factor < 4 && texels_per_metre * factor * kSunHorizonTargetTexelM < 1.0 &&
+    while (factor < kMaxSunHorizonFactor && texels_per_metre * factor * kSunHorizonTargetTexelM < 1.0 &&
            lightmap_resolution * (factor + 1) <= kMaxSunHorizonResolution)
         ++factor;
     return std::clamp(lightmap_resolution * factor, kMinSunHorizonResolution, kMaxSunHorizonResolution);

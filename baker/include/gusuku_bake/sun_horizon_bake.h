@@ -32,9 +32,13 @@ BakeSetSunHorizon bakeSunHorizons(const Bvh& bvh, const std::vector<LightmapTexe
                                   uint32_t skip_flags = 0);
 
 /// The horizons' resolution for a lightmap of `lightmap_resolution` at `texels_per_metre`: the lightmap's times
-/// the smallest whole factor (at most 4, the result at most kMaxSunHorizonResolution) that makes a horizon texel
-/// at most kSunHorizonTargetTexelM (3.2 cm: a round tile row of 25 cm spans 8).
+/// the smallest whole factor (at most kMaxSunHorizonFactor, the result at most kMaxSunHorizonResolution) that makes
+/// a horizon texel at most kSunHorizonTargetTexelM (3.2 cm: a round tile row of 25 cm spans 8).
 inline constexpr double kSunHorizonTargetTexelM = 1.0 / 32.0;
+/// 2, not 4: the horizons are traced on the CPU (about 1,200 rays a texel), and a factor of 4 made the sample's
+/// 1-sample bake's horizon image 624^2 (3.1 MB of its 4.2 MiB pack) and the test suite's house bake 4x slower
+/// (10.8 s -> 42 s); at 2 the sample's texels are 6.25 cm, still 4 across a 25 cm tile row.
+inline constexpr int kMaxSunHorizonFactor = 2;
 int sunHorizonResolution(int lightmap_resolution, double texels_per_metre);
 
 }  // namespace gusuku::bake
