@@ -52,6 +52,21 @@ struct TracedFrameRequest {
     bool denoise = false;  ///< also return the filtered frame (gusuku_bake/camera_denoise.h)
 };
 
+/// A camera frame of the site as it stands, without the building and denoised: the background gusuku-render's
+/// --camera sample and gusuku-view draw the building into.
+inline TracedFrameRequest siteCameraRequest(const BenchView& view, uint32_t width, uint32_t height,
+                                            const BenchCondition& condition, uint32_t samples_per_pixel) {
+    TracedFrameRequest request;
+    request.view = view;
+    request.width = width;
+    request.height = height;
+    request.condition = condition;
+    request.samples_per_pixel = samples_per_pixel;
+    request.include_building = false;
+    request.denoise = true;
+    return request;
+}
+
 struct TracedFrame {
     ImageRGBA linear;            ///< the raw estimate: linear Rec.709 radiance, row 0 at the top
     ImageRGBA denoised;          ///< the filtered estimate when asked for, else empty

@@ -12,14 +12,8 @@ SampleCameraFrame renderSampleCameraFrame(const GpuDevice& gpu, const std::strin
                                           const bench::BenchCondition& condition, uint32_t samples_per_pixel,
                                           float exposure) {
     bench::TruthRenderer renderer(gpu, loadSiteConfig(site_json), /*cache_folder=*/"", /*context_hash=*/"");
-    bench::TracedFrameRequest request;
-    request.view = view;
-    request.width = width;
-    request.height = height;
-    request.condition = condition;
-    request.samples_per_pixel = samples_per_pixel;
-    request.include_building = false;  // the site as it stands: the camera the building is drawn into
-    request.denoise = true;
+    const bench::TracedFrameRequest request =
+        bench::siteCameraRequest(view, width, height, condition, samples_per_pixel);
     const bench::TracedFrame traced = renderer.render(request, /*use_cache=*/false);
     SampleCameraFrame frame;
     frame.trace_seconds = traced.trace_seconds + traced.denoise_seconds;

@@ -58,20 +58,16 @@ Session makeSampleSession(const GpuDevice& gpu, const std::string& bake_set_fold
         const double along = count > 1 ? double(index) / double(count - 1) : 0.0;
         const double hours = options.first_hour + along * (options.last_hour - options.first_hour);
         const double bearing = (kFirstBearingDeg + along * (kLastBearingDeg - kFirstBearingDeg)) * kPi / 180.0;
-        bench::TracedFrameRequest request;
-        request.view.position_enu = kLookAtEnu + glm::dvec3(kWalkRadiusM * std::sin(bearing),
-                                                            kWalkRadiusM * std::cos(bearing), 0.0);
-        request.view.position_enu.z = kEyeHeightM;
-        request.view.look_at_enu = kLookAtEnu;
-        request.view.horizontal_fov_deg = options.horizontal_fov_deg;
-        request.width = options.width;
-        request.height = options.height;
+        bench::BenchView view;
+        view.position_enu = kLookAtEnu + glm::dvec3(kWalkRadiusM * std::sin(bearing),
+                                                    kWalkRadiusM * std::cos(bearing), 0.0);
+        view.position_enu.z = kEyeHeightM;
+        view.look_at_enu = kLookAtEnu;
+        view.horizontal_fov_deg = options.horizontal_fov_deg;
         // Whole seconds, so that the track's ISO 8601 text (to the second) is the instant traced.
         const double utc_seconds = std::round(midnight_utc + hours * 3600.0);
-        request.condition = {utc_seconds, sampleCloudCover(hours)};
-        request.samples_per_pixel = options.samples_per_pixel;
-        request.include_building = false;  // the site as it stands: the camera the building is drawn into
-        request.denoise = true;
+        const bench::TracedFrameRequest request = bench::siteCameraRequest(
+            view, options.width, options.height, {utc_seconds, sampleCloudCover(hours)}, options.samples_per_pixel);
         bench::TracedFrame traced = renderer.render(request, /*use_cache=*/false);
         middle_grey_exposures.push_back(bake::middleGreyExposure(traced.denoised));
         linear_frames.push_back(std::move(traced.denoised));

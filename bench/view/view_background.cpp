@@ -48,16 +48,9 @@ const std::vector<uint8_t>& Background::frameFor(const bench::BenchView& view, c
                   view.look_at_enu.y,  view.look_at_enu.z,  view.horizontal_fov_deg, condition.utc_seconds,
                   condition.cloud_cover};
     if (const auto found = cache_.find(key); found != cache_.end()) return found->second;
-    // What gusuku-render's renderSampleCameraFrame does (bench/render/sample_camera.cpp), on a renderer kept open.
-    bench::TracedFrameRequest request;
-    request.view = view;
-    request.width = width_;
-    request.height = height_;
-    request.condition = condition;
-    request.samples_per_pixel = samples_;
-    request.include_building = false;  // the site as it stands: the camera the building is drawn into
-    request.denoise = true;
-    const bench::TracedFrame traced = renderer_->render(request, /*use_cache=*/false);
+    // As gusuku-render's renderSampleCameraFrame (bench/render/sample_camera.cpp), on a renderer kept open.
+    const bench::TracedFrame traced =
+        renderer_->render(bench::siteCameraRequest(view, width_, height_, condition, samples_), /*use_cache=*/false);
     seconds = traced.trace_seconds + traced.denoise_seconds;
     if (exposure_ <= 0.0f) exposure_ = bake::middleGreyExposure(traced.denoised);
     if (cache_.size() >= kCachedFrames) cache_.erase(cache_.begin());
