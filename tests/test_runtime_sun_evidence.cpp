@@ -28,6 +28,7 @@
 #include "gusuku/runtime/gusuku.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/colour_match.h"
+#include "gusuku/maths/sun_cue_choice.h"
 #include "gusuku/maths/sun_evidence.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/runtime/runtime_sun_evidence.h"
@@ -301,14 +302,23 @@ TEST_F(SunEvidenceGpu, AContrastyCameraResponseIsUndoneBeforeTheRatio) {
     }
 }
 
-TEST_F(SunEvidenceGpu, NoShadowInViewGivesNoCue) {
+// No shadow in view: the lit ground against the exposure (the metered ground), confidence 0 unless the app says its
+// exposure is metered. The frames' camera gain is 0.8, so a clear sun reads s = (0.8 (1 + q) - 1) / q, still out.
+TEST_F(SunEvidenceGpu, NoShadowInViewGivesTheMeteredGroundOnly) {
     const Readings readings = read(litPose(), 1.0);
     const SunEvidenceEstimate& estimate = readings.gpu.estimate;
-    EXPECT_EQ(estimate.cue, SunEvidenceCue::kNone);
+    EXPECT_EQ(estimate.cue, SunEvidenceCue::kMeteredGround);
     EXPECT_EQ(estimate.evidence.confidence, 0.0f);
+    EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f);
     EXPECT_GT(estimate.lit_samples, 500u);  // plenty of ground, none of it shadowed
     EXPECT_LT(estimate.shadowed_samples, kSunEvidenceMinSamples);
-    EXPECT_EQ(readings.cpu.cue, SunEvidenceCue::kNone);
+    EXPECT_EQ(readings.cpu.cue, SunEvidenceCue::kMeteredGround);
+    EXPECT_NEAR(estimate.strength, readings.cpu.strength, 0.05);
+    EXPECT_EQ(sunEvidenceForFilter(estimate, false).cue, SunEvidenceCue::kNone);
+    EXPECT_GT(sunEvidenceForFilter(estimate, true).evidence.confidence, 0.0f);
+    const Readings hidden = read(litPose(), 0.0);
+    EXPECT_EQ(hidden.gpu.estimate.cue, SunEvidenceCue::kMeteredGround);
+    EXPECT_LT(hidden.gpu.estimate.evidence.sun_out_probability, 0.05f);
 }
 
 TEST_F(SunEvidenceGpu, NothingBeforeTheFirstMeasurementAndTheFilterTakesTheReading) {

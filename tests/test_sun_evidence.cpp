@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gusuku/maths/sun_cue_choice.h"
 #include "gusuku/maths/sun_evidence.h"
 
 namespace gusuku {
@@ -140,7 +141,7 @@ TEST(SunEvidence, OutliersOnBothSidesMoveNeitherMedianFar) {
     EXPECT_GT(estimate.evidence.sun_out_probability, 0.95f);
 }
 
-TEST(SunEvidence, NoBoundaryInViewGivesNoCueAndNoConfidence) {
+TEST(SunEvidence, NoBoundaryInViewGivesNoConfidence) {
     SampleSet all_lit;
     all_lit.shadowed = 0;
     SampleSet all_shade;
@@ -149,12 +150,52 @@ TEST(SunEvidence, NoBoundaryInViewGivesNoCueAndNoConfidence) {
     a_few.shadowed = int(kSunEvidenceMinSamples) - 1;
     for (const SampleSet& set : {all_lit, all_shade, a_few}) {
         const SunEvidenceEstimate estimate = estimateSunEvidence(samplesOf(set));
-        EXPECT_EQ(estimate.cue, SunEvidenceCue::kNone);
+        // Lit ground alone is the metered ground's, which the filter takes only from an app with a metered exposure.
+        EXPECT_EQ(estimate.cue, set.lit > 0 ? SunEvidenceCue::kMeteredGround : SunEvidenceCue::kNone);
         EXPECT_EQ(estimate.evidence.confidence, 0.0f);
-        EXPECT_EQ(estimate.evidence.sun_out_probability, 0.5f);
-        EXPECT_LT(estimate.evidence.sun_strength, 0.0f);
+        EXPECT_EQ(sunEvidenceForFilter(estimate, false).cue, SunEvidenceCue::kNone);
+        EXPECT_EQ(sunEvidenceForFilter(estimate, false).evidence.confidence, 0.0f);
     }
-    EXPECT_EQ(estimateSunEvidence(std::vector<SunEvidenceSample>{}).cue, SunEvidenceCue::kNone);
+    const SunEvidenceEstimate nothing = estimateSunEvidence(std::vector<SunEvidenceSample>{});
+    EXPECT_EQ(nothing.cue, SunEvidenceCue::kNone);
+    EXPECT_EQ(nothing.evidence.sun_out_probability, 0.5f);
+    EXPECT_LT(nothing.evidence.sun_strength, 0.0f);
+    EXPECT_EQ(sunEvidenceForFilter(nothing, true).cue, SunEvidenceCue::kNone);
+}
+
+// No boundary in view: the lit ground against the exposure (g = 1, a metered camera) reads s itself, as
+// lit / predicted-without-sun = 1 + s q; a camera whose gain is off by 1.4 stops (g 0.37) is why it is opt-in.
+TEST(SunEvidence, LitGroundAloneIsReadAgainstAMeteredExposure) {
+    for (double strength : {1.0, 1.0 / 3.0, 0.0}) {
+        SampleSet metered;
+        metered.gain = 1.0;
+        metered.shadowed = 0;
+        metered.strength = strength;
+        const SunEvidenceEstimate estimate = estimateSunEvidence(samplesOf(metered));
+        EXPECT_EQ(estimate.cue, SunEvidenceCue::kMeteredGround) << strength;
+        EXPECT_NEAR(estimate.strength, strength, 0.05 + 0.1 * strength) << strength;
+        EXPECT_EQ(estimate.evidence.sun_out_probability >= 0.5f, strength > 0.0) << strength;
+        const SunCueChoice choice = sunEvidenceForFilter(estimate, true);
+        EXPECT_EQ(choice.cue, SunEvidenceCue::kMeteredGround) << strength;
+        EXPECT_GT(choice.evidence.confidence, 0.3f) << strength;
+        EXPECT_LE(choice.evidence.confidence, kMeteredGroundConfidence) << strength;
+        EXPECT_EQ(choice.evidence.sun_out_probability, estimate.evidence.sun_out_probability) << strength;
+    }
+    SampleSet unmetered;  // g 0.37: a clear sun's lit ground at 0.37 (1 + q) reads as a hidden sun
+    unmetered.shadowed = 0;
+    EXPECT_LT(estimateSunEvidence(samplesOf(unmetered)).evidence.sun_out_probability, 0.5f);
+}
+
+TEST(SunEvidence, TheBoundaryDecidesWhateverTheExposure) {
+    const SunEvidenceEstimate estimate = estimateSunEvidence(samplesOf({}));
+    for (bool metered : {false, true}) {
+        const SunCueChoice choice = sunEvidenceForFilter(estimate, metered);
+        EXPECT_EQ(choice.cue, SunEvidenceCue::kSiteShadowBoundary);
+        EXPECT_EQ(choice.evidence.confidence, estimate.evidence.confidence);
+        EXPECT_EQ(choice.evidence.sun_strength, estimate.evidence.sun_strength);
+    }
+    EXPECT_STREQ(sunEvidenceCueName(SunEvidenceCue::kMeteredGround), "metered ground");
+    EXPECT_STREQ(sunEvidenceCueName(SunEvidenceCue(7)), "unknown");
 }
 
 TEST(SunEvidence, FewerSamplesAndMoreNoiseGiveLessConfidence) {

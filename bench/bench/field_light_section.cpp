@@ -12,12 +12,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "bench_run.h"
+#include "gusuku/maths/sun_cue_choice.h"
 #include "gusuku/maths/sun_evidence.h"
 #include "gusuku/maths/sun_visibility.h"
 #include "gusuku/maths/weather_estimate.h"
@@ -92,20 +94,23 @@ SunReading readByShadows(Runtime& runtime, const FrameInput& input, const SunRea
         return reading;
     }
     const SunEvidenceEstimate& estimate = after->estimate;
-    reading.evidence = estimate.evidence;
+    // The bench's exposure is the frame's own metered one (its middle grey, bench_run.cpp), as a phone's EV100 is:
+    // the metered ground counts where no boundary is in view.
+    const SunCueChoice choice = sunEvidenceForFilter(estimate, /*exposure_is_metered=*/true);
+    reading.evidence = choice.evidence;
     reading.boundary_in_view =
         estimate.lit_samples >= kSunEvidenceMinSamples && estimate.shadowed_samples >= kSunEvidenceMinSamples;
     reading.lit_samples = estimate.lit_samples;
     reading.shadowed_samples = estimate.shadowed_samples;
-    if (estimate.cue == SunEvidenceCue::kNone) {
-        // No boundary in view: the estimate says nothing, and the app keeps its prior; here, today's statistics.
+    if (choice.cue == SunEvidenceCue::kNone) {
+        // No cue in view: the estimate says nothing, and the app keeps its prior; here, today's statistics.
         reading.cue = "none (statistics)";
         reading.sun_out = statistics.sun_out;
         reading.sun_strength = statistics.sun_strength;
         return reading;
     }
-    reading.cue = "site shadow boundary";
-    reading.sun_out = estimate.evidence.sun_out_probability >= 0.5f;
+    reading.cue = sunEvidenceCueName(choice.cue);
+    reading.sun_out = choice.evidence.sun_out_probability >= 0.5f;
     reading.sun_strength = estimate.strength;
     if (reading.sun_out) reading.cloud_cover = 0.0f;
     return reading;
@@ -116,8 +121,11 @@ struct Tally {
     size_t strength_frames = 0, strength_within_20 = 0;
     double excess_de00_sum = 0.0, excess_de00_max = 0.0;
     size_t excess_within_half = 0;
+    std::map<std::string, std::pair<size_t, size_t>> by_cue;  ///< the cue that decided: frames, state right
     void add(const SunReading& reading, const FieldSky& sky, bool boundary, double excess_de00) {
         const bool state_right = reading.sun_out == sky.sun_out;
+        ++by_cue[reading.cue].first;
+        by_cue[reading.cue].second += state_right;
         ++frames;
         right += state_right;
         if (boundary) ++boundary_frames, boundary_right += state_right;
@@ -129,8 +137,17 @@ struct Tally {
         excess_de00_max = std::max(excess_de00_max, excess_de00);
         excess_within_half += excess_de00 <= 0.5;
     }
+    std::string cueLine() const {
+        std::string line;
+        for (const auto& [cue, counts] : by_cue)
+            line += (line.empty() ? "" : "; ") + cue + " " + std::to_string(counts.second) + "/" +
+                    std::to_string(counts.first) + " right";
+        return line;
+    }
     Json json() const {
-        return {{"frames", frames}, {"state_right", right}, {"boundary_frames", boundary_frames},
+        Json cues = Json::object();
+        for (const auto& [cue, counts] : by_cue) cues[cue] = {{"frames", counts.first}, {"state_right", counts.second}};
+        return {{"by_cue", cues}, {"frames", frames}, {"state_right", right}, {"boundary_frames", boundary_frames},
                 {"boundary_state_right", boundary_right}, {"strength_frames", strength_frames},
                 {"strength_within_20_percent", strength_within_20},
                 {"mean_excess_de00", frames ? excess_de00_sum / double(frames) : 0.0},
@@ -292,6 +309,7 @@ Json runFieldLightUnder(Bench& bench, const SkySet& skies) {
     bench.say("| --- | --- | --- | --- | --- | --- | --- |");
     bench.say(statistics_tally.line("today's image statistics"));
     bench.say(shadows_tally.line("the site's shadows"));
+    bench.say("the cue that decided the site's shadows' reading, frames and state right: " + shadows_tally.cueLine());
     Json passing = clear_readings.evidence.empty() || hidden_readings.evidence.empty()
                        ? Json(nullptr)
                        : passingCloud(bench, clear_readings, hidden_readings);

@@ -235,7 +235,8 @@ void main() {
     lane_sums[lane] = sum;
     lane_kept[lane] = kept;
     barrier();
-    if (lane == 0u) shade_log2 = windowMean();
+    // Too little shade in view: the lit samples against the app's exposure, g = 1 (the metered ground, cue 2).
+    if (lane == 0u) shade_log2 = shadowed >= float(SUN_EVIDENCE_MIN_SAMPLES) ? windowMean() : 0.0;
     barrier();
     // 3. The lit samples' strengths against it: histogram, median's bin, quartiles.
     float level = shade_log2;
@@ -285,16 +286,19 @@ void main() {
     result.response_gamma = gamma;
     result.result_reserved1 = 0u;
     float fewest = min(shadowed, lit);
-    if (fewest >= float(SUN_EVIDENCE_MIN_SAMPLES)) {
+    bool boundary = shadowed >= float(SUN_EVIDENCE_MIN_SAMPLES);
+    if (lit >= float(SUN_EVIDENCE_MIN_SAMPLES)) {
         float strength = windowMean();
         float standard_error = 1.2533 * (interquartile / 1.349) / sqrt(lit);
         float width = max(SUN_EVIDENCE_MIN_WIDTH, standard_error);
         float probability = 1.0 / (1.0 + exp(-(strength - SUN_EVIDENCE_OUT_STRENGTH) / width));
         result.sun_out_probability = probability;
-        result.confidence = min(1.0, fewest / float(SUN_EVIDENCE_FULL_SAMPLES)) *
-                            clamp(1.0 - standard_error / SUN_EVIDENCE_OUT_STRENGTH, 0.0, 1.0);
+        // The metered ground's confidence stays 0: it holds only where the app's exposure is metered.
+        result.confidence = boundary ? min(1.0, fewest / float(SUN_EVIDENCE_FULL_SAMPLES)) *
+                                           clamp(1.0 - standard_error / SUN_EVIDENCE_OUT_STRENGTH, 0.0, 1.0)
+                                     : 0.0;
         result.sun_strength = probability >= 0.5 ? strength : -1.0;
-        result.cue = 1u;
+        result.cue = boundary ? 1u : 2u;
         result.shade_log2_ratio = level;
         result.strength = strength;
         result.strength_standard_error = standard_error;

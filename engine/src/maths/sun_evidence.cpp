@@ -202,7 +202,9 @@ SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
             shade_sum += ratioOf(sample);
             shade_kept += 1.0;
         }
-    const double shade_log2 = shade_kept > 0.0 ? shade_sum / shade_kept : 0.0;
+    // Too little shade in view (kMeteredGround): the lit samples are read against the app's exposure, g = 1.
+    const bool boundary_shade = shadowed >= double(kSunEvidenceMinSamples);
+    const double shade_log2 = boundary_shade && shade_kept > 0.0 ? shade_sum / shade_kept : 0.0;
 
     // Each lit sample's strength against the shade's level: ratio / g = 1 + s q.
     auto strengthOf = [&](const SunEvidenceSample& sample) {
@@ -219,7 +221,7 @@ SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
     estimate.shadowed_samples = uint32_t(shadowed);
     estimate.lit_samples = uint32_t(lit);
     const double fewest = std::min(shadowed, lit);
-    if (fewest < double(kSunEvidenceMinSamples)) return estimate;  // no boundary in view: the prior decides
+    if (lit < double(kSunEvidenceMinSamples)) return estimate;  // no lit ground in view: the prior decides
 
     const uint32_t strength_median = medianBin(strength);
     double strength_sum = 0.0, strength_kept = 0.0;
@@ -239,9 +241,12 @@ SunEvidenceEstimate estimateSunEvidence(ConstSpan<SunEvidenceSample> samples) {
     const double standard_error = 1.2533 * (interquartile / 1.349) / std::sqrt(lit);
     const double width = std::max(kSunEvidenceMinWidth, standard_error);
     const double probability = 1.0 / (1.0 + std::exp(-(s - kSunEvidenceOutStrength) / width));
-    const double confidence = std::min(1.0, fewest / double(kSunEvidenceFullSamples)) *
-                              std::clamp(1.0 - standard_error / kSunEvidenceOutStrength, 0.0, 1.0);
-    estimate.cue = SunEvidenceCue::kSiteShadowBoundary;
+    // The metered ground's confidence stays 0 here: it holds only for an app whose exposure is metered
+    // (sunEvidenceForFilter).
+    const double confidence = boundary_shade ? std::min(1.0, fewest / double(kSunEvidenceFullSamples)) *
+                                                   std::clamp(1.0 - standard_error / kSunEvidenceOutStrength, 0.0, 1.0)
+                                             : 0.0;
+    estimate.cue = boundary_shade ? SunEvidenceCue::kSiteShadowBoundary : SunEvidenceCue::kMeteredGround;
     estimate.shade_log2_ratio = float(shade_log2);
     estimate.strength = float(s);
     estimate.strength_standard_error = float(standard_error);

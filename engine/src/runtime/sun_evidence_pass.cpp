@@ -247,7 +247,7 @@ void SunEvidencePass::harvest(uint32_t slot) {
     estimate.evidence.sun_out_probability = result.sun_out_probability;
     estimate.evidence.confidence = result.confidence;
     estimate.evidence.sun_strength = result.sun_strength;
-    estimate.cue = result.cue == 1u ? SunEvidenceCue::kSiteShadowBoundary : SunEvidenceCue::kNone;
+    estimate.cue = result.cue <= 2u ? SunEvidenceCue(result.cue) : SunEvidenceCue::kNone;  // 2: the metered ground
     estimate.shadowed_samples = result.shadowed_samples;
     estimate.lit_samples = result.lit_samples;
     estimate.shade_log2_ratio = result.shade_log2_ratio;

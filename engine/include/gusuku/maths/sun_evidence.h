@@ -45,8 +45,14 @@
 // A sample whose ray meets the side of a step before it comes down onto its cell (sunEvidenceRayReachesCell) is left
 // out: the pixel shows a wall, not that cell's ground.
 //
-// Not here yet: walls of the photogrammetry mesh (only the ground grid's cells are sampled), and the fallbacks when
-// no boundary is in view (the sky near the sun): the cue is then kNone with confidence 0.
+// No boundary in view (fewer than kSunEvidenceMinSamples shadowed samples, at least that many lit): the lit samples
+// are read against the exposure the app passed instead of the shade, g taken as 1 (step 1 skipped), which holds
+// only where FrameInput::exposure is the camera's own metered exposure (its ISO, shutter and aperture, EV100;
+// gusuku/maths/exposure.h): the cue is kMeteredGround, with the probability and strength of steps 2-3 but
+// confidence 0 in `evidence`, so that an app whose exposure is a guess keeps its prior; sunEvidenceForFilter
+// (sun_cue_choice.h) gives it weight for an app that says its exposure is metered. Not here yet: walls of the
+// photogrammetry mesh (only the ground grid's cells are sampled) and the sky near the sun (the bake set holds no sky
+// radiance for the runtime to compare with).
 //
 // Pure and allocation-free but for the per-sample helpers' vectors (tests and tools).
 
@@ -110,6 +116,9 @@ inline constexpr uint32_t kSunEvidenceMaxCrossings = 128;
 enum class SunEvidenceCue : uint8_t {
     kNone = 0,                ///< no cue in view: confidence 0, the prior (weather report) decides
     kSiteShadowBoundary = 1,  ///< lit against site-shadowed ground in the camera frame
+    /// No boundary: the lit ground against the bake's prediction at the app's exposure (g taken as 1); confidence 0
+    /// in `evidence` (see above and sunEvidenceForFilter)
+    kMeteredGround = 2,
 };
 
 /// One camera sample as the estimator reads it (what sun_evidence.comp writes per sample).
@@ -127,7 +136,7 @@ struct SunEvidenceEstimate {
     SunEvidenceCue cue = SunEvidenceCue::kNone;
     uint32_t shadowed_samples = 0;  ///< in the shadowed median
     uint32_t lit_samples = 0;       ///< in the strength median (q >= kSunEvidenceMinSunShare)
-    float shade_log2_ratio = 0.0f;  ///< log2 g: the shadowed samples' trimmed mean (0 when too few)
+    float shade_log2_ratio = 0.0f;  ///< log2 g: the shadowed samples' trimmed mean (0 when too few: kMeteredGround)
     float strength = 0.0f;          ///< s, the trimmed mean (0 when too few); evidence.sun_strength is s where the
                                     ///< sun is out (p >= 0.5), else -1
     float strength_standard_error = 0.0f;
