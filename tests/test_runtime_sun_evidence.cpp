@@ -395,6 +395,23 @@ TEST_F(SunEvidenceGpu, TheCApiReadsWhatTheCxxApiReads) {
     EXPECT_EQ(reading.frame_index, 1u);
     EXPECT_EQ(reading.cue, 1u);
     EXPECT_EQ(reading.utc_unix_seconds, cxx_frame.utc_unix_seconds);
+    // The cue chosen for the filter: the boundary as read; the metered ground only for a metered exposure.
+    gusuku_sun_evidence_reading chosen{};
+    ASSERT_EQ(gusuku_sun_evidence_choose(&reading, 0, &chosen), GUSUKU_OK);
+    EXPECT_EQ(chosen.cue, 1u);
+    EXPECT_EQ(chosen.confidence, reading.confidence);
+    gusuku_sun_evidence_reading metered = reading;
+    metered.cue = 2u;
+    metered.confidence = 0.0f;
+    ASSERT_EQ(gusuku_sun_evidence_choose(&metered, 0, &chosen), GUSUKU_OK);
+    EXPECT_EQ(chosen.cue, 0u);
+    EXPECT_EQ(chosen.confidence, 0.0f);
+    ASSERT_EQ(gusuku_sun_evidence_choose(&metered, 1, &metered), GUSUKU_OK);  // in place
+    EXPECT_EQ(metered.cue, 2u);
+    EXPECT_GT(metered.confidence, 0.0f);
+    EXPECT_LE(metered.confidence, kMeteredGroundConfidence);
+    metered.struct_size = 4;
+    EXPECT_EQ(gusuku_sun_evidence_choose(&metered, 1, &chosen), GUSUKU_ERROR_INVALID_ARGUMENT);
     const SunEvidenceEstimate& expected = cxx.gpu.estimate;
     EXPECT_NEAR(reading.sun_out_probability, expected.evidence.sun_out_probability, 1e-6);
     EXPECT_NEAR(reading.sun_strength, expected.evidence.sun_strength, 1e-6);

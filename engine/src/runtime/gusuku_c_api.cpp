@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "gusuku/formats/bakeset_validate.h"
+#include "gusuku/maths/sun_cue_choice.h"
 #include "gusuku/runtime/runtime_sun_evidence.h"
 #include "gusuku/formats/input_error.h"
 #include "gusuku/runtime/runtime.h"
@@ -346,6 +347,32 @@ gusuku_result gusuku_runtime_sun_evidence(gusuku_runtime* runtime, gusuku_sun_ev
     } catch (...) {
         return failFromCurrentException("gusuku_runtime_sun_evidence", &runtime->last_error);
     }
+}
+
+gusuku_result gusuku_sun_evidence_choose(const gusuku_sun_evidence_reading* reading, int32_t exposure_is_metered,
+                                         gusuku_sun_evidence_reading* out_reading) {
+    if (reading == nullptr) return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_sun_evidence_choose: reading: is NULL");
+    if (out_reading == nullptr)
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, "gusuku_sun_evidence_choose: out_reading: is NULL");
+    if (reading->struct_size != sizeof(gusuku_sun_evidence_reading)) {
+        const std::string message = "gusuku_sun_evidence_choose: reading.struct_size: " +
+                                    std::to_string(reading->struct_size) + " is not " +
+                                    std::to_string(sizeof(gusuku_sun_evidence_reading));
+        return fail(GUSUKU_ERROR_INVALID_ARGUMENT, message.c_str());
+    }
+    gusuku::SunEvidenceEstimate estimate;
+    estimate.evidence = {reading->sun_out_probability, reading->confidence, reading->sun_strength};
+    estimate.cue = reading->cue <= 2u ? gusuku::SunEvidenceCue(reading->cue) : gusuku::SunEvidenceCue::kNone;
+    estimate.lit_samples = reading->lit_samples;
+    estimate.strength_standard_error = reading->strength_standard_error;
+    const gusuku::SunCueChoice choice = gusuku::sunEvidenceForFilter(estimate, exposure_is_metered != 0);
+    gusuku_sun_evidence_reading chosen = *reading;
+    chosen.sun_out_probability = choice.evidence.sun_out_probability;
+    chosen.confidence = choice.evidence.confidence;
+    chosen.sun_strength = choice.evidence.sun_strength;
+    chosen.cue = uint32_t(choice.cue);
+    *out_reading = chosen;
+    return GUSUKU_OK;
 }
 
 const char* gusuku_runtime_last_error(const gusuku_runtime* runtime) {

@@ -545,9 +545,11 @@ typedef struct gusuku_sun_evidence_reading {
     int32_t measured;               /* 1: a measurement has finished; 0: none yet (or the runtime cannot measure:
                                        no ground albedo, no site occluder, colour match off): the rest is zero */
     float sun_out_probability;      /* [0, 1] */
-    float confidence;               /* [0, 1]: 0 no shadow boundary in view (cue 0), the prior decides */
+    float confidence;               /* [0, 1]: 0 no shadow boundary in view (cue 0 or 2), the prior decides */
     float sun_strength;             /* E_sun / E_sky now over the bake's, where the sun is out; else -1 */
-    uint32_t cue;                   /* 0 none in view, 1 the site's shadow boundary on the ground */
+    uint32_t cue;                   /* 0 none in view, 1 the site's shadow boundary on the ground, 2 the metered
+                                       ground (no boundary: the lit ground against the frame's exposure; its
+                                       confidence 0 here, gusuku_sun_evidence_choose weighs it) */
     uint32_t shadowed_samples;      /* ground samples the site shadows, and lit ones, behind the reading */
     uint32_t lit_samples;
     float shade_log2_ratio;         /* log2 of the camera's gain on the shadowed ground against the bake */
@@ -563,6 +565,17 @@ typedef struct gusuku_sun_evidence_reading {
  * out_reading->struct_size must be sizeof(gusuku_sun_evidence_reading) (API version 5's), else
  * GUSUKU_ERROR_INVALID_ARGUMENT. O(1). */
 gusuku_result gusuku_runtime_sun_evidence(gusuku_runtime* runtime, gusuku_sun_evidence_reading* out_reading);
+
+/* The cue that decides the frame, and the evidence to feed gusuku_sun_filter_update (API version 6; the C++ API's
+ * sunEvidenceForFilter, gusuku/maths/sun_cue_choice.h): out_reading is reading with sun_out_probability,
+ * confidence, sun_strength and cue those of the cue chosen: the site's shadow boundary (cue 1) as read; the metered
+ * ground (cue 2) only when exposure_is_metered is 1 (the frame's exposure is the camera's own metered one, EV100
+ * from its ISO, shutter and aperture), at half the boundary's confidence; else cue 0, confidence 0,
+ * probability 0.5 and strength -1 (the filter's prior decides). The counts, medians, frame_index and
+ * utc_unix_seconds are copied. reading and out_reading may be the same struct. NULL, or a struct_size not
+ * sizeof(gusuku_sun_evidence_reading): GUSUKU_ERROR_INVALID_ARGUMENT. Allocates nothing; O(1). */
+gusuku_result gusuku_sun_evidence_choose(const gusuku_sun_evidence_reading* reading, int32_t exposure_is_metered,
+                                         gusuku_sun_evidence_reading* out_reading);
 
 /* ------------------------------------------------------------------------------------------------------------ */
 /* Cameras and weather (pure CPU, no runtime needed; runtime.h's helpers)                                        */

@@ -15,6 +15,8 @@
 //     const SunEvidence* evidence = reading ? &reading->estimate.evidence : nullptr;
 //     const SunVisibilityState& state = filter.update(now, regime, evidence);
 //     next_frame.weather.sun_scale = state.sun_visibility * state.sun_strength;
+// An app whose exposure is the camera's metered one feeds sunEvidenceForFilter(reading->estimate, true).evidence
+// instead (gusuku/maths/sun_cue_choice.h), which also weighs the metered ground where no boundary is in view.
 // The same reading may come back for several frames (it changes when a newer measurement finishes; frame_index
 // says which); feeding it to the filter each frame is right, as the filter weighs time, not calls.
 
