@@ -193,6 +193,17 @@ Json passingCloud(Bench& bench, const SkyReadings& clear, const SkyReadings& hid
     return {{"filter_changes", filter.state().changes}, {"statistics_changes", statistics_changes}};
 }
 
+// The goals' table: each estimate's tally over the frames, and which cue decided the shadows' reading.
+void sayTallies(Bench& bench, const Tally& statistics, const Tally& shadows) {
+    bench.say("");
+    bench.say("| estimate | sun state right, all frames (goal 85 %) | with a site shadow boundary (goal 95 %) | "
+              "strength within 20 % | mean dE00 over the true weather's | max | within 0.5 dE00 |");
+    bench.say("| --- | --- | --- | --- | --- | --- | --- |");
+    bench.say(statistics.line("today's image statistics"));
+    bench.say(shadows.line("the site's shadows"));
+    bench.say("the cue that decided the site's shadows' reading, frames and state right: " + shadows.cueLine());
+}
+
 }  // namespace
 
 Json runFieldLightUnder(Bench& bench, const SkySet& skies) {
@@ -303,13 +314,7 @@ Json runFieldLightUnder(Bench& bench, const SkySet& skies) {
         }
     }
     }
-    bench.say("");
-    bench.say("| estimate | sun state right, all frames (goal 85 %) | with a site shadow boundary (goal 95 %) | "
-              "strength within 20 % | mean dE00 over the true weather's | max | within 0.5 dE00 |");
-    bench.say("| --- | --- | --- | --- | --- | --- | --- |");
-    bench.say(statistics_tally.line("today's image statistics"));
-    bench.say(shadows_tally.line("the site's shadows"));
-    bench.say("the cue that decided the site's shadows' reading, frames and state right: " + shadows_tally.cueLine());
+    sayTallies(bench, statistics_tally, shadows_tally);
     Json passing = clear_readings.evidence.empty() || hidden_readings.evidence.empty()
                        ? Json(nullptr)
                        : passingCloud(bench, clear_readings, hidden_readings);
