@@ -36,7 +36,8 @@ namespace gusuku {
 inline constexpr uint32_t kSunEvidenceMeasurementInterval = 3;
 
 struct RuntimeSunEvidence {
-    /// evidence (for SunVisibilityFilter::update), the cue that decided (kNone: no boundary in view, confidence 0)
+    /// evidence (for SunVisibilityFilter::update), the cue that decided (kNone or kMeteredGround: no boundary in
+    /// view, confidence 0; sunEvidenceForFilter weighs the metered ground)
     /// and the sample counts and medians behind it.
     SunEvidenceEstimate estimate;
     uint64_t frame_index = 0;       ///< the frame measured: 1 for the runtime's first renderFrame, and so on
