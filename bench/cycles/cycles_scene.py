@@ -28,7 +28,9 @@ def start_cycles_scene(max_bounces, threads=2):
     scene.cycles.diffuse_bounces = max_bounces
     scene.cycles.glossy_bounces = 0
     scene.cycles.transmission_bounces = 0
-    scene.cycles.transparent_max_bounces = 0
+    # Passing through an alpha-masked card's hole is a transparent bounce (make_materials_lambertian): gusuku's
+    # traversal skips holes at no bounce, so allow many. No other material is transparent.
+    scene.cycles.transparent_max_bounces = 64
     scene.cycles.use_denoising = False
     scene.cycles.sample_clamp_direct = 0.0
     scene.cycles.sample_clamp_indirect = 0.0
@@ -139,6 +141,36 @@ def make_materials_lambertian(textures_in_linear_light=False):
                 tree.links.new(base_colour.links[0].from_socket, diffuse.inputs["Color"])
             else:
                 diffuse.inputs["Color"].default_value = base_colour.default_value
+            surface = diffuse.outputs["BSDF"]
+            cutout = alpha_cutout_socket(material, principled)
+            if cutout is not None:
+                surface = cut_out(tree, diffuse, cutout, material.alpha_threshold)
             for link in list(principled.outputs["BSDF"].links):
-                tree.links.new(diffuse.outputs["BSDF"], link.to_socket)
+                tree.links.new(surface, link.to_socket)
             tree.nodes.remove(principled)
+
+
+def alpha_cutout_socket(material, principled):
+    """The socket holding an alpha-masked (glTF alphaMode MASK) material's alpha, or None. Blender's glTF
+    importer feeds it to the Principled BSDF's Alpha and marks the material blend_method CLIP with the cutoff as
+    alpha_threshold; Cycles ignores both and reads Alpha as partial transparency, and replacing the Principled
+    node dropped it: the house's cut-out vine and tree cards were opaque quads in Cycles where gusuku's tracer
+    lets rays through their holes (bvh_alpha_mask.glsl)."""
+    if material.blend_method != "CLIP":
+        return None
+    alpha = principled.inputs["Alpha"]
+    return alpha.links[0].from_socket if alpha.is_linked else None
+
+
+def cut_out(tree, diffuse, alpha_socket, cutoff):
+    """Diffuse where alpha >= cutoff, a hole (Transparent BSDF) elsewhere, as gusuku's alpha test decides."""
+    below = tree.nodes.new("ShaderNodeMath")
+    below.operation = "LESS_THAN"
+    tree.links.new(alpha_socket, below.inputs[0])
+    below.inputs[1].default_value = cutoff
+    hole = tree.nodes.new("ShaderNodeBsdfTransparent")
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    tree.links.new(below.outputs["Value"], mix.inputs["Fac"])
+    tree.links.new(diffuse.outputs["BSDF"], mix.inputs[1])
+    tree.links.new(hole.outputs["BSDF"], mix.inputs[2])
+    return mix.outputs["Shader"]
