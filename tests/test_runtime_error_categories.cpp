@@ -33,7 +33,10 @@ thread_local size_t t_refused_from_bytes = SIZE_MAX;
 }  // namespace
 
 // The global replacement: libstdc++'s other forms (new[], nothrow) call this one, and its operator delete frees
-// with std::free, so malloc underneath keeps the two paired.
+// with std::free, so malloc underneath keeps the two paired. GCC inlines this delete where it sees a new-expression
+// and, knowing only the standard operator new, warns that free() meets a pointer from new (-Wmismatched-new-delete):
+// here they are one allocator, so the warning is off for this file.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t byte_count) {
     if (byte_count >= t_refused_from_bytes) throw std::bad_alloc();
     if (void* memory = std::malloc(byte_count == 0 ? 1 : byte_count)) return memory;
