@@ -58,12 +58,6 @@ GUSUKU_UNIFORM_BLOCK_BEGIN(FrameUniforms, RUNTIME_FRAME_SET, RUNTIME_FRAME_UNIFO
     float ground_pull_m;           // the ground pass moves towards the camera by this (m)
     int ground_columns;            // the ground grid's cells west to east (at least 1)
     int ground_rows;               // cells north to south (at least 1)
-    // Past the slots the building's own carry (engine/src/runtime/sky_carry.h); sky_weight 0: none this frame.
-    float sky_layer;               // lightmap layer of each texel's fitted sky part S
-    float sky_weight;              // the building's sunny weight, A's and B's (0: it reads slot_weights as the ground)
-    vec3 sky_sun_ratio;            // per channel: the sun on the ground now over the blend's slots', in [0, 1]
-    float sky_carried_weight_a;    // while sky_weight > 0: the building's weight of slot A, in place of slot_weights.x
-    float sky_carried_weight_b;    // ... and of slot B, in place of slot_weights.y
                                    // (the colour match's mode and gain live in its own state buffer)
 GUSUKU_UNIFORM_BLOCK_END(FrameUniforms, frame)
 

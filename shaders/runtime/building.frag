@@ -67,18 +67,10 @@ void main() {
         indirect_irradiance = frame.direct_only_ambient;
     } else {
         indirect_irradiance = vec3(0.0);
-        // Past the slots each texel's sun bounce fades with the sun and its own sky part S stays (sky_carry.h).
-        bool carried = frame.sky_weight > 0.0;
-        vec2 sunny_weights =
-            carried ? vec2(frame.sky_carried_weight_a, frame.sky_carried_weight_b) : frame.slot_weights.xy;
-        if (sunny_weights.x > 0.0)
-            indirect_irradiance += sunny_weights.x * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.x)).rgb;
-        if (sunny_weights.y > 0.0)
-            indirect_irradiance += sunny_weights.y * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.y)).rgb;
-        if (carried) {
-            vec3 sky = texture(lightmaps, vec3(lightmap_uv, frame.sky_layer)).rgb;
-            indirect_irradiance = mix(frame.sky_weight * sky, indirect_irradiance, frame.sky_sun_ratio);
-        }
+        if (frame.slot_weights.x > 0.0)
+            indirect_irradiance += frame.slot_weights.x * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.x)).rgb;
+        if (frame.slot_weights.y > 0.0)
+            indirect_irradiance += frame.slot_weights.y * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.y)).rgb;
         if (frame.slot_weights.z > 0.0)
             indirect_irradiance += frame.slot_weights.z * texture(lightmaps, vec3(lightmap_uv, frame.slot_layers.z)).rgb;
         indirect_irradiance *= frame.irradiance_scale;  // the lightmaps are stored scaled to fit half floats

@@ -36,8 +36,8 @@ SunBounceFit fitSunBounce(const BakeSetManifest& manifest, std::span<const glm::
     glm::dvec3 sum_m(0.0), sum_gm(0.0);
     for (size_t index = 0; index < manifest.slots.size() && index < slot_mean_indirect.size(); ++index) {
         const BakeSetSlot& slot = manifest.slots[index];
-        const double g = slotHorizontalSunLuminance(slot);
-        if (g < 0.0) continue;
+        if (!isSunnySlotWithSun(slot)) continue;
+        const double g = horizontalSunLuminance(slot.sun.irradiance_rgb, slot.sun.position->apparent_elevation_deg);
         const glm::dvec3 mean(slot_mean_indirect[index]);
         count += 1.0;
         sum_g += g;
@@ -59,29 +59,18 @@ SunBounceFit fitSunBounce(const BakeSetManifest& manifest, std::span<const glm::
     return fit;
 }
 
-namespace {
-
-glm::dvec3 horizontalSunRgb(const glm::dvec3& sun_rgb, double apparent_elevation_deg) {
-    if (!(apparent_elevation_deg > 0.0)) return glm::dvec3(0.0);
-    return glm::max(sun_rgb, glm::dvec3(0.0)) * std::sin(apparent_elevation_deg * std::numbers::pi / 180.0);
-}
-
-// The frame's blend of sunny slots: g of its slots' weighted sun (g_blend) and g of the clear sky's sun now carried
-// from them as computeFrameLighting carries E_sun (g_now), in luminance and per channel (the sun on the horizontal
-// ground, reddening as it sets); false when the frame has no sunny slot with a sun.
-struct BlendAndNow {
-    double g_blend = 0.0, g_now = 0.0;
-    glm::dvec3 blend_rgb{0.0}, now_rgb{0.0};
-};
-bool blendAndNowG(const BakeSetManifest& manifest, const FrameLighting& lighting, BlendAndNow& out) {
-    if (lighting.slot_a < 0) return false;
+double indirectCarry(const BakeSetManifest& manifest, const SunBounceFit& fit, const FrameLighting& lighting) {
+    if (!fit.fitted || lighting.slot_a < 0) return 1.0;
     const BakeSetSlot& slot_a = manifest.slots[size_t(lighting.slot_a)];
     const BakeSetSlot& slot_b = manifest.slots[size_t(std::max(lighting.slot_b, lighting.slot_a))];
-    if (!isSunnySlotWithSun(slot_a) || !isSunnySlotWithSun(slot_b)) return false;
+    if (!isSunnySlotWithSun(slot_a) || !isSunnySlotWithSun(slot_b)) return 1.0;
     const double t = lighting.slot_b_weight;
-    out.g_blend = (1.0 - t) * slotHorizontalSunLuminance(slot_a) + t * slotHorizontalSunLuminance(slot_b);
-    out.blend_rgb = (1.0 - t) * slotHorizontalSunRgb(slot_a) + t * slotHorizontalSunRgb(slot_b);
-    // The clear sky's sun now (the sunny slots' sky, sun_scale 1), carried from the blend's slots.
+    auto slotG = [](const BakeSetSlot& slot) {
+        return horizontalSunLuminance(slot.sun.irradiance_rgb, slot.sun.position->apparent_elevation_deg);
+    };
+    const double g_blend = (1.0 - t) * slotG(slot_a) + t * slotG(slot_b);
+    // The clear sky's sun now (the sunny slots' sky, sun_scale 1), carried from the blend's slots as
+    // computeFrameLighting carries E_sun.
     const double elevation = lighting.sun.apparent_elevation_deg;
     glm::dvec3 sun_now(0.0);
     if (elevation > 0.0) {
@@ -90,42 +79,11 @@ bool blendAndNowG(const BakeSetManifest& manifest, const FrameLighting& lighting
         };
         sun_now = (1.0 - t) * carried(slot_a) + t * carried(slot_b);
     }
-    out.g_now = std::min(horizontalSunLuminance(sun_now, elevation), out.g_blend);
-    out.now_rgb = horizontalSunRgb(sun_now, elevation);
-    return true;
-}
-
-}  // namespace
-
-double slotHorizontalSunLuminance(const BakeSetSlot& slot) {
-    if (!isSunnySlotWithSun(slot)) return -1.0;
-    return horizontalSunLuminance(slot.sun.irradiance_rgb, slot.sun.position->apparent_elevation_deg);
-}
-
-glm::dvec3 slotHorizontalSunRgb(const BakeSetSlot& slot) {
-    if (!isSunnySlotWithSun(slot)) return glm::dvec3(-1.0);
-    return horizontalSunRgb(slot.sun.irradiance_rgb, slot.sun.position->apparent_elevation_deg);
-}
-
-glm::dvec3 sunBounceRatio(const BakeSetManifest& manifest, const FrameLighting& lighting) {
-    BlendAndNow g;
-    // Carried only where the mean carry is (the sun on the ground below the blend's, in luminance): at and between
-    // the slots nothing changes.
-    if (!blendAndNowG(manifest, lighting, g) || !(g.g_blend > 0.0) || !(g.g_now < g.g_blend)) return glm::dvec3(1.0);
-    glm::dvec3 ratio(1.0);
-    for (int channel = 0; channel < 3; ++channel)
-        if (g.blend_rgb[channel] > 0.0)
-            ratio[channel] = std::clamp(g.now_rgb[channel] / g.blend_rgb[channel], 0.0, 1.0);
-    return ratio;
-}
-
-double indirectCarry(const BakeSetManifest& manifest, const SunBounceFit& fit, const FrameLighting& lighting) {
-    BlendAndNow g;
-    if (!fit.fitted || !blendAndNowG(manifest, lighting, g)) return 1.0;
+    const double g_now = std::min(horizontalSunLuminance(sun_now, elevation), g_blend);
     const double sky = luminance(fit.sky), per_sun = luminance(fit.per_sun);
-    const double held = sky + per_sun * g.g_blend;
-    if (!(held > 0.0) || !(g.g_now < g.g_blend)) return 1.0;
-    return std::clamp((sky + per_sun * g.g_now) / held, 0.0, 1.0);
+    const double held = sky + per_sun * g_blend;
+    if (!(held > 0.0) || !(g_now < g_blend)) return 1.0;
+    return std::clamp((sky + per_sun * g_now) / held, 0.0, 1.0);
 }
 
 }  // namespace gusuku

@@ -9,7 +9,6 @@
 #include "gusuku/maths/indirect_carry.h"
 #include "runtime_camera.h"
 #include "runtime_impl.h"
-#include "sky_carry.h"
 
 namespace gusuku::runtime_detail {
 
@@ -40,17 +39,12 @@ void RuntimeImpl::prepareSunEvidence(const FrameInput& frame, const SlotBlend& b
 
 FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     FrameLighting lighting;
-    SlotBlend uncarried_blend;
-    glm::dvec3 sun_bounce_ratio(1.0);
     try {
         const float cover = frame.weather.cloud_cover;
         const SkyAndSun sky_and_sun{cover, frame.weather.sun_scale < 0.0f ? 1.0f - cover : frame.weather.sun_scale};
         lighting = computeFrameLighting(manifest_, frameObserverFor(frame, manifest_.site), frame.utc_unix_seconds,
                                         sky_and_sun, frame.blend_slots);
-        // Past the slots the sun's bounce fades with the sun instead of being held (indirect_carry.h): by the
-        // building's mean for the ground and the colour match, texel by texel for the building (sky_carry.h).
-        uncarried_blend = slotBlendFor(lighting);
-        sun_bounce_ratio = sunBounceRatio(manifest_, lighting);
+        // Past the slots the sun's bounce fades with the sun instead of being held (indirect_carry.h).
         const SunBounceFit bounce = fitSunBounce(manifest_, scene_.slot_mean_indirect);
         lighting.sunny_weight *= float(indirectCarry(manifest_, bounce, lighting));
     } catch (const std::exception& error) {
@@ -73,10 +67,7 @@ FrameInfo RuntimeImpl::prepareFrame(const FrameInput& frame) {
     const SlotBlend blend = slotBlendFor(lighting);
     const FrameScene scene{scene_.scene_radius_m, scene_.irradiance_scale, scene_.slot_mean_indirect,
                            manifest_.ground_grid.grid};
-    shader_interface::FrameUniforms uniforms =
-        frameUniformsFor(frame, lighting, flags, blend, shadows_->fit(), options_, scene);
-    writeSkyCarry(uncarried_blend, sun_bounce_ratio, scene_.sky_layer, uniforms);
-    frame_set_->prepare(uniforms);
+    frame_set_->prepare(frameUniformsFor(frame, lighting, flags, blend, shadows_->fit(), options_, scene));
     colour_->prepare(frame, lighting, blend, flags.sun_shines);
     if (sun_evidence_)
         prepareSunEvidence(frame, blend, sun_evidence_enabled_ && evidence_possible && colour_->measuresGround());

@@ -17,7 +17,6 @@
 #include "gusuku/maths/texture_coverage.h"
 #include "ground_quads.h"
 #include "lightmap_format_choice.h"
-#include "sky_carry.h"
 
 namespace gusuku::runtime_detail {
 namespace {
@@ -219,15 +218,11 @@ void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float in
     const uint32_t slot_count = uint32_t(bake_set.slots.size());
     const int resolution = bake_set.manifest.building.lightmap_resolution;
     const formats::FormatRow& row = lightmapRow(format);
-    // Each texel's sky part for the carry past the slots, in the layer after them (sky_carry.h).
-    const BakeSetImage sky =
-        formats::isBlockCodec(row.codec) ? BakeSetImage{} : fitTexelSky(bake_set.manifest, bake_set.slots);
-    scene.sky_layer = sky.rgba.empty() ? -1 : int(slot_count);
     GpuImageDescription description;
     description.format = VkFormat(row.vk_format);
     description.width = uint32_t(resolution);
     description.height = uint32_t(resolution);
-    description.layers = slot_count + (sky.rgba.empty() ? 0u : 1u);
+    description.layers = slot_count;
     description.array_view = true;
     scene.lightmaps = GpuImage(gpu, description);
     for (uint32_t slot = 0; slot < slot_count; ++slot) {
@@ -236,10 +231,6 @@ void uploadLightmaps(const GpuDevice& gpu, const BakeSetData& bake_set, float in
                                                 ? bake_set.slots[slot].building_blocks.at(row.vk_format)
                                                 : lightmapTexels(bake_set.slots[slot].building, inverse_scale, row.codec);
         scene.lightmaps.upload(texels.data(), texels.size(), slot, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }
-    if (scene.sky_layer >= 0) {
-        const std::vector<uint8_t> texels = lightmapTexels(sky, inverse_scale, row.codec);
-        scene.lightmaps.upload(texels.data(), texels.size(), slot_count, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 }
 

@@ -67,9 +67,6 @@ struct GpuScene {
     std::vector<float> ground_slot_light;
     SiteHeightTiles site_heights;
     GpuImage lightmaps;          ///< lightmapVkFormat array, one layer per slot, RGB / irradiance_scale
-    /// The lightmaps' layer after the slots' holding each texel's fitted sky part (sky_carry.h); -1: none (the fit
-    /// cannot be made, or ASTC lightmaps), the building then carried past the slots by the mean factor.
-    int sky_layer = -1;
     /// RGBA16F array, layers 2 slot (with) and 2 slot + 1 (without), RGB / irradiance_scale. Alpha: 0 no ground,
     /// 1 ground; layer 0 only: 2 on ground where the building changes the baked light (any slot, above
     /// RuntimeOptions::ground_change_threshold).

@@ -41,9 +41,6 @@ struct SunBounceFit {
 /// 0 at or below the horizon.
 double horizontalSunLuminance(const glm::dvec3& sun_rgb, double apparent_elevation_deg);
 
-/// g of a slot the fit uses (a sunny slot with a sun), or -1 for one it leaves out.
-double slotHorizontalSunLuminance(const BakeSetSlot& slot);
-
 /// Fits S and B over the manifest's sunny slots with a sun (slot_mean_indirect: per manifest slot, the mean
 /// E_ind over the building's valid texels; a slot beyond its size is left out).
 SunBounceFit fitSunBounce(const BakeSetManifest& manifest, std::span<const glm::vec3> slot_mean_indirect);
@@ -51,15 +48,5 @@ SunBounceFit fitSunBounce(const BakeSetManifest& manifest, std::span<const glm::
 /// The carry above for the frame's light (its sunny slots, their blend and the sun's apparent elevation), in
 /// [0, 1]; 1 when the fit is not fitted or the frame has no sunny slot. Multiply FrameLighting::sunny_weight by it.
 double indirectCarry(const BakeSetManifest& manifest, const SunBounceFit& fit, const FrameLighting& lighting);
-
-/// g of a slot per channel, E_sun,c sin(h): the sun's irradiance on the horizontal ground in each channel, which
-/// reddens as the sun sets; -1 for a slot the fit leaves out.
-glm::dvec3 slotHorizontalSunRgb(const BakeSetSlot& slot);
-
-/// Per channel, g_now / g_blend of the sun on the horizontal ground, in [0, 1]; (1, 1, 1) at and between the slots
-/// (wherever the luminance's g_now is not below g_blend, as indirectCarry) and for a frame with no sunny slot; 0 at
-/// and below the horizon. The building's carry texel by texel (the runtime's sky_carry.h): each texel's sunny blend
-/// E becomes S + (E - S) ratio, S its own fitted sky part.
-glm::dvec3 sunBounceRatio(const BakeSetManifest& manifest, const FrameLighting& lighting);
 
 }  // namespace gusuku
