@@ -5,11 +5,13 @@
 // against the camera's sRGB-decoded pixel, and the sample is written with its log2 luminance-ratio bin (-1 when
 // it does not count). No shared memory, no barrier, no subgroup operation: llvmpipe runs a barrier as a switch
 // between invocations, so a per-workgroup histogram costs many times the Lab statistics;
-// colour_statistics_ground_reduce.comp bins the samples in one pass.
+// colour_statistics_ground_reduce.comp bins the samples in one pass. On the frames the sun-evidence estimator measures
+// (sun_frame.measure), each invocation also writes the estimator's sample from the same ray and pixel
+// (sun_evidence_ground.glsl), which sun_evidence_reduce.comp reads after the frame's site map is drawn.
 #extension GL_GOOGLE_include_directive : require
 
 #define GROUND_MATCH_KERNEL
-#include "colour_match_interface.h"
+#include "sun_evidence_interface.h"  // and colour_match_interface.h
 #include "colour.glsl"
 
 layout(local_size_x = COLOUR_STATISTICS_TILE, local_size_y = COLOUR_STATISTICS_TILE) in;
@@ -21,6 +23,10 @@ layout(std430, set = 0, binding = GROUND_MATCH_PARTIAL_BINDING) writeonly buffer
 layout(std430, set = 0, binding = GROUND_MATCH_CELL_BINDING) readonly buffer Cells { GroundMatchCellGpu cells[]; };
 layout(std430, set = 0, binding = GROUND_MATCH_IRRADIANCE_BINDING) readonly buffer Irradiance { vec4 without[]; };
 layout(std430, set = 0, binding = GROUND_MATCH_FRAME_BINDING) readonly buffer Frame { GroundMatchFrame view; };
+layout(std430, set = 0, binding = GROUND_MATCH_SUN_EVIDENCE_BINDING) buffer SunEvidence {
+    readonly SunEvidenceGroundFrame sun_frame;
+    writeonly SunEvidenceSampleGpu sun_samples[];
+};
 
 float luminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -70,6 +76,8 @@ vec3 predictedRadiance(int cell) {
     return view.exposure * cells[cell].albedo / kPi * irradiance;
 }
 
+#include "sun_evidence_ground.glsl"
+
 void main() {
     uvec2 sample_index = gl_GlobalInvocationID.xy;
     if (sample_index.x >= pc.samples_x || sample_index.y >= pc.samples_y) return;
@@ -79,8 +87,9 @@ void main() {
     float clipped = 0.0;
     uvec2 pixel = uvec2(pc.first_sample_offset) + sample_index * pc.stride;
     int cell = groundCellOfPixel(pixel);
+    uint word = 0u;
     if (cell >= 0) {
-        uint word = camera_rgba8[pixel.y * pc.frame_width + pixel.x];
+        word = camera_rgba8[pixel.y * pc.frame_width + pixel.x];
         uvec3 bytes = uvec3(word & 0xFFu, (word >> 8u) & 0xFFu, (word >> 16u) & 0xFFu);
         if (any(equal(bytes, uvec3(255u))) || all(equal(bytes, uvec3(0u)))) {
             clipped = 1.0;
@@ -100,4 +109,5 @@ void main() {
     samples[index].bin = bin;
     samples[index].predicted = predicted;
     samples[index].clipped = clipped;
+    if (sun_frame.measure != 0u) writeSunEvidenceSample(index, pixel, cell, word);
 }

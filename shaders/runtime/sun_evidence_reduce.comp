@@ -1,13 +1,18 @@
 #version 450
-// The sun-evidence estimator's second pass, one workgroup of SUN_EVIDENCE_BINS invocations over sun_evidence.comp's
-// samples (lane l takes samples l, l + 64, ...), as colour_statistics_ground_reduce.comp: each lane counts its
-// samples per bin in a private array, the counts meet in shared memory (one barrier) and invocation 0 takes the
-// quantile. First the camera response's power from each side's two halves (sun_evidence.h: the response), every
-// ratio then linearised through it; then two passes: the shadowed samples' median log2 ratio (the shade's level, log2 g), then the lit samples'
-// strengths s_i = (2^(r_i - log2 g) - 1) / q_i, whose median and quartiles give s, its standard error, the
-// probability that the sun is out and the confidence. CPU reference: estimateSunEvidence
-// (engine/include/gusuku/maths/sun_evidence.h). Writes the frame slot's SunEvidenceResult, read by the host after
-// the slot's fence.
+// The sun-evidence estimator's second pass, one workgroup of SUN_EVIDENCE_BINS invocations over the samples that
+// colour_statistics_ground.comp wrote (lane l takes samples l, l + 64, ...), after the frame's site map is drawn.
+// First each lane looks its SITE_LOOKUP samples up in the site map and writes their kind (lit, shadowed, or none in
+// the penumbra) in place; then the statistics of estimateSunEvidence (engine/include/gusuku/maths/sun_evidence.h,
+// the CPU reference): the camera response's power from each side's two halves (the response), every ratio then
+// linearised through it; the shadowed samples' trimmed mean log2 ratio about their median (the shade's level, log2
+// g; 0 with too little shade, the metered ground's g = 1); then the lit samples' strengths s_i = (2^(r_i - log2 g) -
+// 1) / q_i, whose median and quartiles give s, its standard error, the probability that the sun is out and the
+// confidence. Writes the frame slot's SunEvidenceResult, read by the host after the slot's fence.
+//
+// Cheap on llvmpipe, which runs a barrier as a switch between invocations: seven barriers in all, one per pass over
+// the samples. The histograms are counted by shared-memory atomics (integer counts, so their order does not matter),
+// and after each barrier every lane reads the same shared sums in the same lane order, so every lane holds the same
+// medians and means without a second barrier to hand them out.
 #extension GL_GOOGLE_include_directive : require
 
 #define SUN_EVIDENCE_REDUCE_KERNEL
@@ -15,24 +20,21 @@
 
 layout(local_size_x = SUN_EVIDENCE_BINS) in;
 
-layout(std430, set = 0, binding = SUN_EVIDENCE_REDUCE_SAMPLE_BINDING) readonly buffer Samples {
+layout(std430, set = 0, binding = SUN_EVIDENCE_REDUCE_SAMPLE_BINDING) buffer Samples {
+    SunEvidenceGroundFrame sun_frame;  // the ground kernel's; unread here
     SunEvidenceSampleGpu samples[];
 };
 layout(std430, set = 0, binding = SUN_EVIDENCE_REDUCE_RESULT_BINDING) buffer Results { SunEvidenceResult results[]; };
+layout(set = 0, binding = SUN_EVIDENCE_REDUCE_SITE_SHADOW_BINDING) uniform sampler2DShadow site_shadow;
 
-shared uint lane_counts[SUN_EVIDENCE_BINS][SUN_EVIDENCE_BINS];  // [lane][bin]
-shared float lane_sums[SUN_EVIDENCE_BINS];
-shared float lane_kept[SUN_EVIDENCE_BINS];
-shared uint median_bin;
-shared float shade_log2;
-shared float lane_fit[SUN_EVIDENCE_BINS][6];  // the response's sums per lane (main's step 0)
-shared float split_level;
-shared float side_samples[2];  // per side (shadowed, lit): responseSide's reading
-shared float side_level_apart[2];
-shared float side_ratio_apart[2];
-shared uint side_valid[2];
-shared uint side_median[2];
-shared float response_gamma;
+const uint kShade = 4u;  // histograms[kShade]: the shadowed samples' linearised ratios
+const uint kLit = 5u;    // histograms[kLit]: the lit samples' strengths
+// 0-3: the response's raw ratios per side (0 shadowed, 1 lit) and half (0 darker, 1 lighter): 2 side + half.
+shared uint histograms[6][SUN_EVIDENCE_BINS];
+shared float lane_sides[SUN_EVIDENCE_BINS][4];  // per side: samples, sum of log2 predicted
+shared float lane_fit[SUN_EVIDENCE_BINS][12];   // per side, per half: kept, sum of ratios, sum of levels
+shared float lane_shade[SUN_EVIDENCE_BINS][2];  // the shade's window: sum, kept
+shared float lane_lit[SUN_EVIDENCE_BINS][2];    // the strengths' window: sum, kept
 
 uint binOf(float value, float lowest, float span) {
     float index = floor((value - lowest) / span * float(SUN_EVIDENCE_BINS));
@@ -40,41 +42,39 @@ uint binOf(float value, float lowest, float span) {
     return uint(min(index, float(SUN_EVIDENCE_BINS - 1)));
 }
 
+uint ratioBin(float log2_ratio) {
+    return binOf(log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN);
+}
+
 bool inWindow(uint bin, uint median) {
     return bin + SUN_EVIDENCE_WINDOW_BINS >= median && bin <= median + SUN_EVIDENCE_WINDOW_BINS;
 }
 
-// Invocation 0: the lanes' counts summed per bin.
-uint bin_counts[SUN_EVIDENCE_BINS];
-float sumCounts() {
+// A histogram's count, summed in bin order.
+float totalOf(uint h) {
     float total = 0.0;
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) {
-        uint count = 0u;
-        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) count += lane_counts[l][b];
-        bin_counts[b] = count;
-        total += float(count);
-    }
+    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) total += float(histograms[h][b]);
     return total;
 }
 
 // The median's bin: the first whose cumulative count reaches half the total.
-uint medianBinOf(float total) {
+uint medianBinOf(uint h, float total) {
     float before = 0.0;
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) {
-        float count = float(bin_counts[b]);
+        float count = float(histograms[h][b]);
         if (count > 0.0 && before + count >= 0.5 * total) return b;
         before += count;
     }
     return 0u;
 }
 
-// sunEvidenceQuantile over bin_counts.
-float quantile(float total, float q, float lowest, float span) {
+// sunEvidenceQuantile over histogram h.
+float quantile(uint h, float total, float q, float lowest, float span) {
     if (!(total > 0.0)) return lowest;
     float target = q * total;
     float before = 0.0;
     for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) {
-        float count = float(bin_counts[b]);
+        float count = float(histograms[h][b]);
         if (count > 0.0 && before + count >= target) {
             float within = clamp((target - before) / count, 0.0, 1.0);
             return lowest + span * (float(b) + within) / float(SUN_EVIDENCE_BINS);
@@ -82,17 +82,6 @@ float quantile(float total, float q, float lowest, float span) {
         before += count;
     }
     return lowest + span;
-}
-
-// Invocation 0: the lanes' window sums added in lane order, over their count (0 when none).
-float windowMean() {
-    float sum = 0.0;
-    float kept = 0.0;
-    for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
-        sum += lane_sums[l];
-        kept += lane_kept[l];
-    }
-    return kept > 0.0 ? sum / kept : 0.0;
 }
 
 // The ratio linearised through the camera response's power (estimateSunEvidence's ratioOf).
@@ -109,154 +98,139 @@ float strengthOf(uint s, float level, float gamma) {
     return (exp2(ratioOf(s, gamma) - level) - 1.0) / samples[s].sun_share;
 }
 
-// The shadowed samples' histogram of ratioOf(s, gamma) into lane_counts (each lane its own row).
-void shadeHistogram(uint lane, float gamma) {
-    uint counts[SUN_EVIDENCE_BINS];
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED)
-            counts[binOf(ratioOf(s, gamma), SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN)] += 1u;
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
+// The side of a kind: 0 shadowed, 1 lit, 2 neither.
+uint sideOf(float kind) {
+    return kind == SUN_EVIDENCE_KIND_SHADOWED ? 0u : kind == SUN_EVIDENCE_KIND_LIT ? 1u : 2u;
 }
 
-// The raw ratios' histogram of one side's samples in one half (0: predicted level below split, 1: at or above).
-void sideHistogram(uint lane, float kind, uint side, float split) {
-    uint counts[SUN_EVIDENCE_BINS];
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == kind && (samples[s].log2_predicted >= split) == (side == 1u))
-            counts[binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN)] += 1u;
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
-}
-
-// One side's reading of the response (responseSide in sun_evidence.cpp) into side_*[slot]; every lane calls it.
-void responseSide(uint lane, float kind, uint slot) {
-    float count = 0.0;
-    float level = 0.0;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == kind) {
-            count += 1.0;
-            level += samples[s].log2_predicted;
-        }
-    lane_sums[lane] = level;
-    lane_kept[lane] = count;
-    barrier();
-    if (lane == 0u) {
-        float total_n = 0.0;
-        float total_x = 0.0;
-        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
-            total_n += lane_kept[l];
-            total_x += lane_sums[l];
-        }
-        side_samples[slot] = total_n;
-        split_level = total_n > 0.0 ? total_x / total_n : 0.0;
-    }
-    barrier();
-    float split = split_level;
-    for (uint side = 0u; side < 2u; ++side) {
-        sideHistogram(lane, kind, side, split);
-        barrier();
-        if (lane == 0u) side_median[side] = medianBinOf(sumCounts());
-        barrier();
-    }
-    float fit[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // kept, ratio, level: darker half, then lighter
+// 0. The site map's verdict on each SITE_LOOKUP sample (the bilinear compare at its cell's centre), written in
+//    place, and each side's samples and predicted levels (the response's split).
+void resolveKinds(uint lane) {
+    float sides[4] = float[4](0.0, 0.0, 0.0, 0.0);
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
-        if (samples[s].kind != kind) continue;
-        uint side = samples[s].log2_predicted >= split ? 1u : 0u;
-        if (!inWindow(binOf(samples[s].log2_ratio, SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
-                      side_median[side]))
-            continue;
-        fit[3u * side] += 1.0;
-        fit[3u * side + 1u] += samples[s].log2_ratio;
-        fit[3u * side + 2u] += samples[s].log2_predicted;
-    }
-    for (uint k = 0u; k < 6u; ++k) lane_fit[lane][k] = fit[k];
-    barrier();
-    if (lane == 0u) {
-        float total[6] = float[6](0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l)
-            for (uint k = 0u; k < 6u; ++k) total[k] += lane_fit[l][k];
-        float half_samples = 0.5 * float(SUN_EVIDENCE_MIN_SAMPLES);
-        uint valid = 0u;
-        side_level_apart[slot] = 0.0;
-        side_ratio_apart[slot] = 0.0;
-        if (side_samples[slot] >= float(SUN_EVIDENCE_MIN_SAMPLES) && total[0] >= half_samples &&
-            total[3] >= half_samples) {
-            side_level_apart[slot] = total[5] / total[3] - total[2] / total[0];
-            side_ratio_apart[slot] = total[4] / total[3] - total[1] / total[0];
-            valid = side_level_apart[slot] >= SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2 ? 1u : 0u;
+        float kind = samples[s].kind;
+        if (kind == SUN_EVIDENCE_KIND_SITE_LOOKUP) {
+            float visibility = texture(site_shadow, samples[s].site_coordinates);
+            kind = visibility <= SUN_EVIDENCE_SHADOWED_VISIBILITY ? SUN_EVIDENCE_KIND_SHADOWED
+                   : visibility >= SUN_EVIDENCE_LIT_VISIBILITY    ? SUN_EVIDENCE_KIND_LIT
+                                                                  : SUN_EVIDENCE_KIND_NONE;
+            samples[s].kind = kind;  // read back by this same invocation only
         }
-        side_valid[slot] = valid;
+        uint side = sideOf(kind);
+        if (side < 2u) {
+            sides[2u * side] += 1.0;
+            sides[2u * side + 1u] += samples[s].log2_predicted;
+        }
     }
-    barrier();
+    for (uint k = 0u; k < 4u; ++k) lane_sides[lane][k] = sides[k];
+}
+
+// The camera response's power (sun_evidence.h: responseGamma) from the fit's shared sums: per side, its halves'
+// trimmed means of ratio and level; the sides' slopes pooled by their samples and spread.
+float responseGamma(float side_samples[2]) {
+    float total[12];
+    for (uint k = 0u; k < 12u; ++k) total[k] = 0.0;
+    for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l)
+        for (uint k = 0u; k < 12u; ++k) total[k] += lane_fit[l][k];
+    float spread = 0.0;
+    float moved = 0.0;
+    float half_samples = 0.5 * float(SUN_EVIDENCE_MIN_SAMPLES);
+    for (uint side = 0u; side < 2u; ++side) {
+        uint f = 6u * side;
+        if (!(side_samples[side] >= float(SUN_EVIDENCE_MIN_SAMPLES) && total[f] >= half_samples &&
+              total[f + 3u] >= half_samples))
+            continue;
+        float level_apart = total[f + 5u] / total[f + 3u] - total[f + 2u] / total[f];
+        float ratio_apart = total[f + 4u] / total[f + 3u] - total[f + 1u] / total[f];
+        if (!(level_apart >= SUN_EVIDENCE_MIN_RESPONSE_SPREAD_LOG2)) continue;
+        spread += side_samples[side] * level_apart * level_apart;
+        moved += side_samples[side] * level_apart * ratio_apart;
+    }
+    return spread > 0.0 ? clamp(1.0 + moved / spread, SUN_EVIDENCE_MIN_RESPONSE_GAMMA, SUN_EVIDENCE_MAX_RESPONSE_GAMMA)
+                        : 1.0;
 }
 
 void main() {
     uint lane = gl_LocalInvocationIndex;
-    // 0. The camera response's power (sun_evidence.h: responseGamma): on each side its samples split at their mean
-    //    predicted level, each half's trimmed mean ratio about its median and the mean level of the samples kept;
-    //    the sides' slopes pooled by their samples and spread.
-    responseSide(lane, SUN_EVIDENCE_KIND_SHADOWED, 0u);
-    responseSide(lane, SUN_EVIDENCE_KIND_LIT, 1u);
-    if (lane == 0u) {
-        float spread = 0.0;
-        float moved = 0.0;
-        for (uint k = 0u; k < 2u; ++k)
-            if (side_valid[k] != 0u) {
-                spread += side_samples[k] * side_level_apart[k] * side_level_apart[k];
-                moved += side_samples[k] * side_level_apart[k] * side_ratio_apart[k];
-            }
-        response_gamma = spread > 0.0 ? clamp(1.0 + moved / spread, SUN_EVIDENCE_MIN_RESPONSE_GAMMA,
-                                              SUN_EVIDENCE_MAX_RESPONSE_GAMMA)
-                                      : 1.0;
+    for (uint h = 0u; h < 6u; ++h) histograms[h][lane] = 0u;
+    resolveKinds(lane);
+    barrier();
+    float side_samples[2];
+    float split[2];
+    for (uint side = 0u; side < 2u; ++side) {
+        float n = 0.0;
+        float x = 0.0;
+        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
+            n += lane_sides[l][2u * side];
+            x += lane_sides[l][2u * side + 1u];
+        }
+        side_samples[side] = n;
+        split[side] = n > 0.0 ? x / n : 0.0;
+    }
+
+    // 1. The response: each side's halves (split at the side's mean predicted level), their raw ratios' medians...
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
+        uint side = sideOf(samples[s].kind);
+        if (side == 2u) continue;
+        uint half_index = samples[s].log2_predicted >= split[side] ? 1u : 0u;
+        atomicAdd(histograms[2u * side + half_index][ratioBin(samples[s].log2_ratio)], 1u);
     }
     barrier();
-    float gamma = response_gamma;
-    // 1. The shade's histogram of the linearised ratios and the median's bin.
-    shadeHistogram(lane, gamma);
-    barrier();
-    float shadowed = 0.0;
-    if (lane == 0u) {
-        shadowed = sumCounts();
-        median_bin = medianBinOf(shadowed);
+    uint half_median[4];
+    for (uint h = 0u; h < 4u; ++h) half_median[h] = medianBinOf(h, totalOf(h));
+    // ... and the trimmed sums about them, then the power.
+    float fit[12];
+    for (uint k = 0u; k < 12u; ++k) fit[k] = 0.0;
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
+        uint side = sideOf(samples[s].kind);
+        if (side == 2u) continue;
+        uint half_index = samples[s].log2_predicted >= split[side] ? 1u : 0u;
+        if (!inWindow(ratioBin(samples[s].log2_ratio), half_median[2u * side + half_index])) continue;
+        uint f = 6u * side + 3u * half_index;
+        fit[f] += 1.0;
+        fit[f + 1u] += samples[s].log2_ratio;
+        fit[f + 2u] += samples[s].log2_predicted;
     }
+    for (uint k = 0u; k < 12u; ++k) lane_fit[lane][k] = fit[k];
     barrier();
-    // 2. Its trimmed mean: log2 g.
-    uint median = median_bin;
+    float gamma = responseGamma(side_samples);
+
+    // 2. The shade's histogram of the linearised ratios, its median's bin and trimmed mean: log2 g.
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED) atomicAdd(histograms[kShade][ratioBin(ratioOf(s, gamma))], 1u);
+    barrier();
+    float shadowed = totalOf(kShade);
+    uint median = medianBinOf(kShade, shadowed);
     float sum = 0.0;
     float kept = 0.0;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED &&
-            inWindow(binOf(ratioOf(s, gamma), SUN_EVIDENCE_LOWEST_LOG2_RATIO, SUN_EVIDENCE_LOG2_RATIO_SPAN),
-                     median)) {
+        if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED && inWindow(ratioBin(ratioOf(s, gamma)), median)) {
             sum += ratioOf(s, gamma);
             kept += 1.0;
         }
-    lane_sums[lane] = sum;
-    lane_kept[lane] = kept;
+    lane_shade[lane][0] = sum;
+    lane_shade[lane][1] = kept;
     barrier();
     // Too little shade in view: the lit samples against the app's exposure, g = 1 (the metered ground, cue 2).
-    if (lane == 0u) shade_log2 = shadowed >= float(SUN_EVIDENCE_MIN_SAMPLES) ? windowMean() : 0.0;
-    barrier();
-    // 3. The lit samples' strengths against it: histogram, median's bin, quartiles.
-    float level = shade_log2;
-    uint counts[SUN_EVIDENCE_BINS];
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) counts[b] = 0u;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
-        if (isLit(s)) counts[binOf(strengthOf(s, level, gamma), SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN)] += 1u;
-    for (uint b = 0u; b < SUN_EVIDENCE_BINS; ++b) lane_counts[lane][b] = counts[b];
-    barrier();
-    float lit = 0.0;
-    float interquartile = 0.0;
-    if (lane == 0u) {
-        lit = sumCounts();
-        median_bin = medianBinOf(lit);
-        interquartile = quantile(lit, 0.75, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN) -
-                        quantile(lit, 0.25, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN);
+    float level = 0.0;
+    if (shadowed >= float(SUN_EVIDENCE_MIN_SAMPLES)) {
+        sum = 0.0;
+        kept = 0.0;
+        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
+            sum += lane_shade[l][0];
+            kept += lane_shade[l][1];
+        }
+        level = kept > 0.0 ? sum / kept : 0.0;
     }
+
+    // 3. The lit samples' strengths against it: histogram, median's bin, quartiles, trimmed mean: s.
+    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+        if (isLit(s))
+            atomicAdd(histograms[kLit][binOf(strengthOf(s, level, gamma), SUN_EVIDENCE_LOWEST_STRENGTH,
+                                             SUN_EVIDENCE_STRENGTH_SPAN)], 1u);
     barrier();
-    // 4. Their trimmed mean: s.
-    median = median_bin;
+    float lit = totalOf(kLit);
+    median = medianBinOf(kLit, lit);
     sum = 0.0;
     kept = 0.0;
     for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
@@ -267,8 +241,8 @@ void main() {
                 kept += 1.0;
             }
         }
-    lane_sums[lane] = sum;
-    lane_kept[lane] = kept;
+    lane_lit[lane][0] = sum;
+    lane_lit[lane][1] = kept;
     barrier();
     if (lane != 0u) return;
 
@@ -288,7 +262,15 @@ void main() {
     float fewest = min(shadowed, lit);
     bool boundary = shadowed >= float(SUN_EVIDENCE_MIN_SAMPLES);
     if (lit >= float(SUN_EVIDENCE_MIN_SAMPLES)) {
-        float strength = windowMean();
+        sum = 0.0;
+        kept = 0.0;
+        for (uint l = 0u; l < SUN_EVIDENCE_BINS; ++l) {
+            sum += lane_lit[l][0];
+            kept += lane_lit[l][1];
+        }
+        float strength = kept > 0.0 ? sum / kept : 0.0;
+        float interquartile = quantile(kLit, lit, 0.75, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN) -
+                              quantile(kLit, lit, 0.25, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN);
         float standard_error = 1.2533 * (interquartile / 1.349) / sqrt(lit);
         float width = max(SUN_EVIDENCE_MIN_WIDTH, standard_error);
         float probability = 1.0 / (1.0 + exp(-(strength - SUN_EVIDENCE_OUT_STRENGTH) / width));

@@ -39,6 +39,7 @@ public:
     /// The statistics pass (null on a device without subgroup arithmetic), and whether this frame measures the ground:
     /// then the camera pack holds the ground grid's pixels, which the sun-evidence pass reads too.
     const ColourStatisticsPass* statistics() const { return statistics_.get(); }
+    ColourStatisticsPass* statistics() { return statistics_.get(); }
     bool measuresGround() const { return measures_ && mode_ == ColourMatchMode::kGround; }
 
 private:

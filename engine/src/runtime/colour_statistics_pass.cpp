@@ -24,6 +24,7 @@ using shader_interface::ColourStatisticsPushConstants;
 using shader_interface::GroundMatchCellGpu;
 using shader_interface::GroundMatchFrame;
 using shader_interface::GroundMatchSample;
+using shader_interface::SunEvidenceGroundFrame;
 using shader_interface::vec3;
 using shader_interface::vec4;
 
@@ -86,6 +87,8 @@ static_assert(offsetof(ColourStatisticsPartial, lab_m2) == 16);
 static_assert(offsetof(ColourStatisticsPartial, clipped_count) == 28);
 static_assert(sizeof(ColourStatisticsPartial) == 32);
 static_assert(uint32_t(ColourMatchMode::kOff) == COLOUR_MATCH_MODE_OFF);
+static_assert(sizeof(shader_interface::SunEvidenceGroundFrame) == SUN_EVIDENCE_SAMPLES_OFFSET);
+static_assert(GROUND_MATCH_SUN_EVIDENCE_BINDING == GROUND_MATCH_BINDING_COUNT);
 static_assert(uint32_t(ColourMatchMode::kReinhard) == COLOUR_MATCH_MODE_PAPER);
 static_assert(uint32_t(ColourMatchMode::kPreserve) == COLOUR_MATCH_MODE_PRESERVE);
 
@@ -206,10 +209,10 @@ std::vector<vec4> groundIrradianceFor(const GroundMatchScene& scene) {
 }  // namespace
 
 bool ColourStatisticsPass::deviceSupports(const GpuDevice& gpu) {
-    // The ground match's kernel reads 5 storage buffers, one more than Vulkan 1.0 promises a stage: a device
-    // with only 4 opens with the matches off, as one without subgroups does.
+    // The ground match's kernel reads 6 storage buffers (the sun evidence's included), more than the 4 Vulkan 1.0
+    // promises a stage: a device with fewer opens with the matches off, as one without subgroups does.
     return hasSubgroupArithmetic(querySubgroupProperties(gpu)) &&
-           gpu.limits().maxPerStageDescriptorStorageBuffers >= GROUND_MATCH_BINDING_COUNT;
+           gpu.limits().maxPerStageDescriptorStorageBuffers >= GROUND_MATCH_BINDING_COUNT + 1;
 }
 
 ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_width, uint32_t frame_height,
@@ -264,9 +267,14 @@ ColourStatisticsPass::ColourStatisticsPass(const GpuDevice& gpu, uint32_t frame_
     ground_frame_buffer_.upload(&no_view, sizeof no_view);
     ground_partial_buffer_ = GpuBuffer(gpu, size_t(sample_grid_ground_.sampleCount()) * sizeof(GroundMatchSample),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuMemory::kDeviceLocal);
+    // The sun evidence's frame (measure 0) until enableSunEvidence() gives it samples.
+    ground_sun_evidence_buffer_ = GpuBuffer(gpu, sizeof(SunEvidenceGroundFrame),
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                            GpuMemory::kDeviceLocal);
+    ground_sun_evidence_buffer_.upload(&sun_evidence_frame_, sizeof sun_evidence_frame_);
     ground_statistics_pipeline_ = std::make_unique<ComputePipeline>(
-        gpu, kColourStatisticsGroundCompSpirv, sizeof kColourStatisticsGroundCompSpirv, GROUND_MATCH_BINDING_COUNT,
-        sizeof(ColourStatisticsPushConstants));
+        gpu, kColourStatisticsGroundCompSpirv, sizeof kColourStatisticsGroundCompSpirv,
+        GROUND_MATCH_BINDING_COUNT + 1, sizeof(ColourStatisticsPushConstants));
     ground_reduce_pipeline_ = std::make_unique<ComputePipeline>(
         gpu, kColourStatisticsGroundReduceCompSpirv, sizeof kColourStatisticsGroundReduceCompSpirv,
         GROUND_REDUCE_BINDING_COUNT, sizeof(ColourReducePushConstants));
@@ -302,6 +310,22 @@ GroundMatchFrame ColourStatisticsPass::groundFrameFor(const GroundMatchView& vie
     return frame;
 }
 
+void ColourStatisticsPass::enableSunEvidence() {
+    const size_t bytes = sizeof(SunEvidenceGroundFrame) +
+                         size_t(sample_grid_ground_.sampleCount()) * sizeof(shader_interface::SunEvidenceSampleGpu);
+    if (!hasGround() || ground_sun_evidence_buffer_.size() >= bytes) return;
+    ground_sun_evidence_buffer_ = GpuBuffer(gpu_, bytes,
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                            GpuMemory::kDeviceLocal);
+    ground_sun_evidence_buffer_.upload(&sun_evidence_frame_, sizeof sun_evidence_frame_);
+    ground_bound_camera_buffer_ = VK_NULL_HANDLE;  // the next recordGround binds the new buffer
+}
+
+void ColourStatisticsPass::requestSunEvidence(const SunEvidenceGroundFrame& frame) {
+    sun_evidence_frame_ = frame;
+    sun_evidence_frame_.measure = 1u;
+}
+
 void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& camera_buffer,
                                         const GroundMatchView& view) {
     if (!hasGround())
@@ -313,13 +337,17 @@ void ColourStatisticsPass::recordGround(VkCommandBuffer cmd, const GpuBuffer& ca
                                " bytes, the frame needs " + std::to_string(size_t(frame_width_) * frame_height_ * 4));
     if (camera_buffer.handle() != ground_bound_camera_buffer_) {
         ground_statistics_pipeline_->bindBuffers({&camera_buffer, &ground_partial_buffer_, &ground_cell_buffer_,
-                                                  &ground_irradiance_buffer_, &ground_frame_buffer_});
+                                                  &ground_irradiance_buffer_, &ground_frame_buffer_,
+                                                  &ground_sun_evidence_buffer_});
         ground_bound_camera_buffer_ = camera_buffer.handle();
     }
     const GroundMatchFrame frame = groundFrameFor(view);
     // The earlier frames' kernels read the view before this write replaces it (write after read: execution only).
     recordMemoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
     vkCmdUpdateBuffer(cmd, ground_frame_buffer_.handle(), 0, sizeof frame, &frame);
+    // The sun evidence's frame: measure 1 on this frame only when requested since the last recordGround.
+    vkCmdUpdateBuffer(cmd, ground_sun_evidence_buffer_.handle(), 0, sizeof sun_evidence_frame_, &sun_evidence_frame_);
+    sun_evidence_frame_.measure = 0u;
 
     const VkPipelineStageFlags fragment = queue_has_graphics_ ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : 0;
     recordBeforeStatistics(cmd, fragment);

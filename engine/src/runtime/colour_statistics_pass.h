@@ -14,6 +14,7 @@
 #include <vulkan/vulkan.h>
 
 #include "colour_match_interface.h"
+#include "sun_evidence_interface.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/colour_match.h"
 #include "gusuku/gpu/gpu_compute.h"
@@ -68,6 +69,13 @@ public:
     const GpuBuffer& groundIrradianceBuffer() const { return ground_irradiance_buffer_; }
     /// The ground kernel's view of a frame (what recordGround writes into its buffer). Only when hasGround().
     shader_interface::GroundMatchFrame groundFrameFor(const GroundMatchView& view) const;
+    /// The sun-evidence estimator (sun_evidence_pass.h) shares the ground kernel's march and camera read: after
+    /// enableSunEvidence() (once, before recording; allocates sunEvidenceBuffer()'s samples), the next recordGround
+    /// after each requestSunEvidence(frame) also writes the estimator's samples there. Only when hasGround().
+    void enableSunEvidence();
+    void requestSunEvidence(const shader_interface::SunEvidenceGroundFrame& frame);
+    /// SunEvidenceGroundFrame, then SunEvidenceSampleGpu per sample of groundGrid() (sun_evidence_interface.h).
+    const GpuBuffer& sunEvidenceBuffer() const { return ground_sun_evidence_buffer_; }
 
     /// The next record() or recordGround() forgets the smoothed statistics and gain (a cut in the camera feed).
     void reset() { reset_pending_ = true; }
@@ -108,6 +116,8 @@ private:
     GpuBuffer ground_irradiance_buffer_;
     GpuBuffer ground_frame_buffer_;  // host-visible GroundMatchFrame
     GpuBuffer ground_partial_buffer_;
+    GpuBuffer ground_sun_evidence_buffer_;  // the frame alone until enableSunEvidence(), then the samples too
+    shader_interface::SunEvidenceGroundFrame sun_evidence_frame_{};  // measure 1: requested for the next recordGround
     std::unique_ptr<ComputePipeline> ground_statistics_pipeline_;
     std::unique_ptr<ComputePipeline> ground_reduce_pipeline_;
 };

@@ -153,10 +153,9 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
     ground_ = std::make_unique<GroundPass>(context, manifest_.ground_grid.grid, *frame_set_, options_.frames_in_flight,
                                            main_pass, targets_->samples());
     // The sun from the site's shadows: the ground match's samples and the site occluder's map.
-    if (const ColourStatisticsPass* statistics = colour_->statistics();
+    if (ColourStatisticsPass* statistics = colour_->statistics();
         statistics && statistics->hasGround() && scene_.occluder_index_count > 0)
-        sun_evidence_ = std::make_unique<SunEvidencePass>(context, *statistics, camera_->packedBuffer(), *shadows_,
-                                                          options_.frames_in_flight);
+        sun_evidence_ = std::make_unique<SunEvidencePass>(context, *statistics, *shadows_, options_.frames_in_flight);
     using T = PassTimings;
     passes_ = {{
         {frame_set_.get(), &T::upload_ms, nullptr, nullptr},
