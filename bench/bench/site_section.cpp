@@ -116,6 +116,15 @@ PoseAccuracy measurePose(Bench& bench, const NamedView& named, const SiteInstant
     const std::vector<uint8_t> edges = edgePixelMask(material, width, height);
     const std::vector<uint8_t> flat = flatBuildingMask(material, edges);
     for (uint8_t in : edges) pose.edge_pixels += in;
+    // Which pixels the edge figures read, to look at by hand beside the frames: red the edge pixels, green the
+    // building's material + 1 under each pixel's centre (0 where the occluder or nothing is first).
+    std::vector<uint8_t> edge_map(size_t(width) * height * 4, 255);
+    for (size_t i = 0; i < material.size(); ++i) {
+        edge_map[i * 4 + 0] = edges[i] ? 255 : 0;
+        edge_map[i * 4 + 1] = uint8_t(std::min(material[i] + 1, 255));
+        edge_map[i * 4 + 2] = 0;
+    }
+    bench.writePng(prefix + "edges.png", width, height, edge_map);
     for (const char* mode_name : {"proposed", "direct_only"}) {
         const FrameInput input = frameInputFor(runtimeModeNamed(mode_name), pose.camera, intrinsics, camera_pose,
                                                instant.utc_seconds, 0.0f, pose.exposure);

@@ -20,8 +20,9 @@ namespace gusuku {
 /// level's alpha is then scaled (by one factor a level, the result held to 1) so that the share of its texels at
 /// or above `coverage_alpha` is the nearest it can be to level 0's. A box filter alone moves that share: a
 /// foliage card whose leaves cover 40 % of level 0 averages to alpha 0.4 a few levels down and vanishes under a
-/// cutoff of 0.5, or goes solid if they cover 60 % (Castano 2010, "Computing alpha mipmaps"). RGB is the box
-/// filter's either way. Outside (0, 1], alpha is the plain box filter's.
+/// cutoff of 0.5, or goes solid if they cover 60 % (Castano 2010, "Computing alpha mipmaps"). RGB is then
+/// alpha-weighted (the box filter of RGB x alpha over alpha's): the colour of the footprint's opaque part, which is
+/// all a drawn pixel shows, not the holes' RGB (often black). Outside (0, 1], RGBA is the plain box filter's.
 std::vector<std::vector<uint8_t>> boxFilteredSrgbMipLevels(const uint8_t* rgba8, uint32_t width, uint32_t height,
                                                             uint32_t level_count, float coverage_alpha = -1.0f);
 
