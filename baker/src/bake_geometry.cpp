@@ -166,7 +166,8 @@ BakeGeometry prepareBakeGeometry(const SiteConfig& site, double lowest_sun_eleva
         geometry.warnings.push_back(std::to_string(geometry.cpuBvh().dropped_triangle_count) +
                                     " degenerate or non-finite triangles were left out of the trace");
 
-    geometry.ground_region = chooseGroundRegion(building_bounds, lowest_sun_elevation_deg, site.bake.ground_cell_m);
+    geometry.ground_region =
+        chooseSiteGroundRegion(building_bounds, site_mesh, lowest_sun_elevation_deg, site.bake.ground_cell_m);
     const Bounds3 scene_bounds = meshBounds(geometry.scene.mesh);
     geometry.ground_cells = sampleGround(geometry.ground_region, geometry.cpuBvh(), geometry.scene.mesh,
                                          kTriangleFlagBuilding, scene_bounds.max.z + 1.0f);

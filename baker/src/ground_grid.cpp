@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace gusuku::bake {
@@ -24,6 +25,49 @@ GroundRegion chooseGroundRegion(const Bounds3& building_bounds, double lowest_su
     region.cell_m = std::max(cell_m, std::max(width, depth) / double(max_cells_per_side));
     region.columns = std::max(1, int(std::ceil(width / region.cell_m)));
     region.rows = std::max(1, int(std::ceil(depth / region.cell_m)));
+    return region;
+}
+
+Bounds3 siteReliefBounds(const TriangleMesh& site_mesh, const Bounds3& building_bounds, double search_m) {
+    Bounds3 relief;
+    if (building_bounds.empty()) return relief;
+    const float reach = float(search_m);
+    for (size_t t = 0; t + 2 < site_mesh.indices.size(); t += 3) {
+        const glm::vec3 p0 = site_mesh.positions[site_mesh.indices[t]];
+        const glm::vec3 p1 = site_mesh.positions[site_mesh.indices[t + 1]];
+        const glm::vec3 p2 = site_mesh.positions[site_mesh.indices[t + 2]];
+        const glm::vec3 normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+        if (!std::isfinite(normal.z) || std::abs(normal.z) >= 0.5f) continue;  // not steep, or degenerate
+        const float low = std::min({p0.z, p1.z, p2.z}), high = std::max({p0.z, p1.z, p2.z});
+        if (double(high - low) < kSiteReliefMinHeightM) continue;  // a ripple's shadow is no boundary
+        const glm::vec3 centre = (p0 + p1 + p2) / 3.0f;
+        if (centre.x < building_bounds.min.x - reach || centre.x > building_bounds.max.x + reach ||
+            centre.y < building_bounds.min.y - reach || centre.y > building_bounds.max.y + reach)
+            continue;
+        for (const glm::vec3& p : {p0, p1, p2}) relief.extend(p);
+    }
+    return relief;
+}
+
+GroundRegion chooseSiteGroundRegion(const Bounds3& building_bounds, const TriangleMesh& site_mesh,
+                                    double lowest_sun_elevation_deg, double cell_m, int max_cells_per_side) {
+    const GroundRegion building =
+        chooseGroundRegion(building_bounds, lowest_sun_elevation_deg, cell_m, max_cells_per_side);
+    const Bounds3 relief_bounds = siteReliefBounds(site_mesh, building_bounds, kSiteReliefSearchM);
+    if (relief_bounds.empty()) return building;
+    // Each caster with its own reach: the relief's shadows are as long as the relief is tall, and the grid's
+    // extent also sets the runtime's shadow map's (docs/bakeset.md), so the building's height does not grow it.
+    const GroundRegion relief = chooseGroundRegion(relief_bounds, lowest_sun_elevation_deg, cell_m, max_cells_per_side);
+    auto farCorner = [](const GroundRegion& region) {
+        return region.origin_enu_m + glm::dvec2(region.columns, region.rows) * region.cell_m;
+    };
+    const glm::dvec2 low = glm::min(building.origin_enu_m, relief.origin_enu_m);
+    const glm::dvec2 high = glm::max(farCorner(building), farCorner(relief));
+    GroundRegion region;
+    region.origin_enu_m = low;
+    region.cell_m = std::max(cell_m, std::max(high.x - low.x, high.y - low.y) / double(max_cells_per_side));
+    region.columns = std::max(1, int(std::ceil((high.x - low.x) / region.cell_m - 1e-9)));
+    region.rows = std::max(1, int(std::ceil((high.y - low.y) / region.cell_m - 1e-9)));
     return region;
 }
 

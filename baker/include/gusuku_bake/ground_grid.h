@@ -1,6 +1,7 @@
 #pragma once
 // The ground grid (docs/design.md 3): a top-down grid over the region the building can shade or light (its
-// footprint plus the shadow reach at the lowest baked sun, plus a bounce margin), holding the real ground's
+// footprint plus the shadow reach at the lowest baked sun, plus a bounce margin; the site mesh's own relief near it
+// adds its own such region, so the site's shadows the runtime reads the sun from are inside too), holding the real ground's
 // height and normal (from the SfM mesh) and, per slot, the ground's sky-and-bounce irradiance with and without
 // the building. The runtime turns those into the shadow-catcher ratio.
 //
@@ -28,6 +29,24 @@ using GroundRegion = gusuku::GroundGrid;
 /// The cell size grows if needed so the grid has at most max_cells_per_side per side.
 GroundRegion chooseGroundRegion(const Bounds3& building_bounds, double lowest_sun_elevation_deg, double cell_m,
                                 int max_cells_per_side = 512);
+
+/// The site mesh's own relief near the building: the bounds of its steep faces (walls, steps, terrace edges:
+/// steeper than 60 degrees, at least kSiteReliefMinHeightM tall) whose centre lies within search_m of the
+/// building's footprint; empty where there is none (a flat stand-in). Such relief casts shadows of its own that
+/// the runtime reads the sun from (issue 41): the ground grid covers it and its shadow reach too, not only the
+/// building's, or the camera's site shadow boundaries fall outside the grid.
+inline constexpr double kSiteReliefMinHeightM = 0.2;
+Bounds3 siteReliefBounds(const TriangleMesh& site_mesh, const Bounds3& building_bounds, double search_m);
+
+/// How far from the building's footprint the site's relief counts: the ground a visitor near the building sees,
+/// without growing the grid over a whole photogrammetry block.
+inline constexpr double kSiteReliefSearchM = 20.0;
+
+/// The bake's region: the building's (chooseGroundRegion) joined with the site's relief's near it (siteReliefBounds
+/// within kSiteReliefSearchM, grown by the relief's own shadow reach), so the relief's own shadows at the lowest
+/// baked sun are inside; the building's region alone where there is no relief.
+GroundRegion chooseSiteGroundRegion(const Bounds3& building_bounds, const TriangleMesh& site_mesh,
+                                    double lowest_sun_elevation_deg, double cell_m, int max_cells_per_side = 512);
 
 struct GroundCell {
     bool valid = false;        ///< the SfM mesh lies under the cell centre
