@@ -76,7 +76,7 @@ GroundPass::GroundPass(const PassContext& context, const GroundGrid& grid, const
 
 void GroundPass::choose(const GroundRequest& request, const SlotBlend& blend, const glm::dvec3& sun_irradiance_rgb) {
     chosen_for_ = request;
-    index_count_ = shadow_index_count_ = 0;
+    index_count_ = shadow_index_count_ = quads_drawn_ = 0;
     if (request.wanted) {
         const GpuScene& scene = context_.scene;
         const GroundCells cells{grid_, scene.ground_cell_state, scene.ground_cell_height, scene.ground_cell_normal};
@@ -109,6 +109,7 @@ void GroundPass::choose(const GroundRequest& request, const SlotBlend& blend, co
                               pass_through_);
         index_count_ = selection.index_count;
         shadow_index_count_ = selection.shadow_index_count;
+        quads_drawn_ = selection.quads;
     }
     ++generation_;
 }

@@ -50,7 +50,7 @@ public:
     void prepare(uint32_t slot, GroundRequest request, const SlotBlend& blend, const glm::dvec3& sun_irradiance_rgb);
     void recordInMainPass(PassRecording& recording) override;
 
-    uint32_t quadsDrawn() const { return index_count_ / 6; }
+    uint32_t quadsDrawn() const { return quads_drawn_; }  ///< with at least one triangle drawn
     uint64_t memoryBytes() const;
 
 private:
@@ -69,8 +69,9 @@ private:
     Pipeline baked_pipeline_;    // quads only its baked light changes: no building shadow
     Pipeline sunless_pipeline_;  // the same with no sun at all: no shadow-map reads
     std::optional<GroundRequest> chosen_for_;  // what the quads were last chosen for
-    uint32_t index_count_ = 0;                 // all quads drawn, times 6
-    uint32_t shadow_index_count_ = 0;          // the first of them, which the building's shadow may reach
+    uint32_t index_count_ = 0;                 // all triangles drawn, times 3
+    uint32_t shadow_index_count_ = 0;          // the first of them, the quads the building's shadow may reach
+    uint32_t quads_drawn_ = 0;                 // quads with at least one triangle drawn
     uint64_t generation_ = 0;                  // counts the choices; each slot uploads the newest
     // The reused host arrays that choose them (no allocation per frame).
     std::vector<uint8_t> cell_marked_;

@@ -73,24 +73,30 @@ GroundQuadSelection selectGroundQuads(const GroundCells& cells, const glm::dvec3
     const double margin = groundShadowMarginM(grid.cell_m);
     markCells(cells, building_min - margin, building_max + margin, include_baked_changes, sun_shines, sun_direction,
               marked, shadow_candidate, pass_through);
-    // Quads the shadow may reach first (drawn with the shadow-reading shader), then the rest.
+    // Quads the shadow may reach first (drawn with the shadow-reading shader), then the rest. Of a quad, only the
+    // triangles with a marked corner: a triangle whose three corners are all unmarked interpolates only values the
+    // frame leaves alone (no shadow candidate, no baked change or one proved within the skip threshold), as an
+    // undrawn quad does, so it is left to the camera too. The triangles drawn are the quad's own (a c b, b c d),
+    // so what they write does not change.
     GroundQuadSelection selection;
-    uint32_t quads = 0;
+    uint32_t written = 0;
     for (int pass = 0; pass < 2; ++pass) {
         for (size_t row = 0; row + 1 < rows; ++row)
             for (size_t column = 0; column + 1 < columns; ++column) {
                 const uint32_t a = uint32_t(row * columns + column), b = a + 1, c = a + uint32_t(columns), d = c + 1;
-                if (!(marked[a] | marked[b] | marked[c] | marked[d])) continue;
+                const bool first = marked[a] | marked[c] | marked[b], second = marked[b] | marked[c] | marked[d];
+                if (!first && !second) continue;
                 const bool shadow =
                     shadow_candidate[a] + shadow_candidate[b] + shadow_candidate[c] + shadow_candidate[d] > 0.0f;
                 if (shadow != (pass == 0)) continue;
-                uint32_t* quad = &quad_indices[size_t(quads) * 6];
-                quad[0] = a, quad[1] = c, quad[2] = b, quad[3] = b, quad[4] = c, quad[5] = d;
-                ++quads;
+                uint32_t* triangle = &quad_indices[written];
+                if (first) triangle[0] = a, triangle[1] = c, triangle[2] = b, triangle += 3, written += 3;
+                if (second) triangle[0] = b, triangle[1] = c, triangle[2] = d, written += 3;
+                ++selection.quads;
             }
-        if (pass == 0) selection.shadow_index_count = quads * 6;
+        if (pass == 0) selection.shadow_index_count = written;
     }
-    selection.index_count = quads * 6;
+    selection.index_count = written;
     return selection;
 }
 

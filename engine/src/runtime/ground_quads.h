@@ -49,14 +49,16 @@ struct GroundCells {
 /// What the frame draws of the quads written: the first shadow_index_count indices are the quads the building's
 /// shadow may reach (drawn with the shadow-reading shader), the rest up to index_count the others.
 struct GroundQuadSelection {
-    uint32_t index_count = 0;         ///< all quads drawn, times 6
-    uint32_t shadow_index_count = 0;  ///< the first of them, times 6
+    uint32_t index_count = 0;         ///< all triangles drawn, times 3
+    uint32_t shadow_index_count = 0;  ///< the first of them (the shadow quads' triangles), times 3
+    uint32_t quads = 0;               ///< quads with at least one triangle drawn
 };
 
 /// Chooses the quads (see above). marked and shadow_candidate have one entry per cell; quad_indices room for
 /// every quad ((columns - 1)(rows - 1), 6 indices each: two triangles between four neighbouring cell centres).
 /// Writes marked (1: the cell makes its quads drawn), shadow_candidate (1.0: the building's shadow may fall on
-/// the cell, the ground pass's per-vertex stream) and the chosen quads' indices. Nothing is drawn, and nothing
+/// the cell, the ground pass's per-vertex stream) and the chosen quads' indices: of each quad only the triangles
+/// (a c b, b c d) with a marked corner. Nothing is drawn, and nothing
 /// written, when quad_indices is empty or the cells do not match the grid. pass_through (empty, or one entry per
 /// cell): 1 where the baked change leaves the ratio at exactly 1 in this frame's light (ground_sunlit.h), so the
 /// baked change does not mark the cell.
