@@ -8,7 +8,9 @@
 //     too bright without them, as the shadow map alone drew it);
 //   - the same roof without tiles and with its horizons: no acne (every pixel the same code but for rounding).
 // With GUSUKU_SUN_HORIZON_SWEEP=1: every elevation and azimuth, and the proposed frame's time with and without
-// horizons (the frame's cost: two gathers a sunlit fragment).
+// horizons (the frame's cost: two gathers a sunlit fragment). With GUSUKU_SUN_HORIZON_FRAME_BAKESET=DIR: that bake
+// set's proposed frame at the runtime's defaults (1280x720) with its horizons against the same set with a 1 x 1
+// open horizon (the path before horizons: no gathers, no shifted shadow test), fenced frames interleaved.
 
 #include <algorithm>
 #include <chrono>
@@ -23,10 +25,12 @@
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
+#include "gusuku/assets/bakeset_loader.h"
 #include "gusuku/formats/sun_horizon.h"
 #include "gusuku/maths/colour.h"
 #include "gusuku/maths/mesh.h"
 #include "gusuku/maths/sun.h"
+#include "gusuku/maths/time_utc.h"
 #include "gusuku/runtime/runtime.h"
 #include "gusuku/synthetic/synthetic_bakeset.h"
 #include "gusuku_bake/bvh.h"
@@ -383,6 +387,75 @@ TEST_F(RuntimeSunHorizon, FrameCostIsPrinted) {
     }
     std::printf("proposed frame %ux%u: %.2f ms with horizons, %.2f ms without (ratio %.3f)\n", kWidth, kHeight,
                 1e3 * seconds_with, 1e3 * seconds_without, seconds_with / seconds_without);
+}
+
+// The frame's cost of the horizons on a real bake set (a benchmark, not a check: skipped unless
+// GUSUKU_SUN_HORIZON_FRAME_BAKESET names one). The bench's front view (eye 2,-5,3.2 m looking at 2,3.5,3 m, 60
+// degrees across) into a grey camera frame, 1.5 h after the last sunny slot (a low sun: the horizons' case); the
+// same bake set opened twice, once with its horizons and once with them dropped (a 1 x 1 open horizon, as an older
+// bake set loads), and direct-only beside them; fenced frames (read back) one of each in turn, the order reversed
+// every round so that the shared machine's load falls on all alike; medians.
+TEST_F(RuntimeSunHorizon, FrameCostOnABakeSetIsPrinted) {
+    const char* folder = std::getenv("GUSUKU_SUN_HORIZON_FRAME_BAKESET");
+    if (folder == nullptr) GTEST_SKIP() << "GUSUKU_SUN_HORIZON_FRAME_BAKESET=DIR runs it";
+    const char* frames_text = std::getenv("GUSUKU_SUN_HORIZON_FRAMES");
+    const int frames = frames_text != nullptr ? std::max(1, std::atoi(frames_text)) : 60;
+    const BakeSetData with = loadBakeSet(folder);
+    ASSERT_FALSE(with.building_sun_horizon.empty()) << folder << ": the bake set has no sun horizons";
+    BakeSetData without = with;
+    without.building_sun_horizon = {};
+    without.manifest.building.sun_horizon.clear();
+    double last_slot_utc = 0.0;
+    for (const BakeSetSlot& slot : with.manifest.slots)
+        if (slot.sun.present) last_slot_utc = std::max(last_slot_utc, parseIso8601Utc(slot.utc));
+    ASSERT_GT(last_slot_utc, 0.0);
+    const RuntimeOptions options;  // the runtime's defaults: 1280x720, msaa 4, anisotropy 1
+    const std::unique_ptr<Runtime> runtime_with = Runtime::open(context(), with, options);
+    const std::unique_ptr<Runtime> runtime_without = Runtime::open(context(), without, options);
+    const std::vector<uint8_t> camera(size_t(options.frame_width) * options.frame_height * 4, 128);
+    std::vector<uint8_t> pixels(camera.size());
+    const double focal = options.frame_width / 2.0 / std::tan(glm::radians(30.0));
+    FrameInput frame;
+    frame.camera_rgba8 = camera.data();
+    frame.intrinsics = {focal, focal, options.frame_width / 2.0, options.frame_height / 2.0, options.frame_width,
+                        options.frame_height};
+    frame.pose = CameraPose::lookingAt({2.0, -5.0, 3.2}, {2.0, 3.5, 3.0});
+    frame.utc_unix_seconds = last_slot_utc + 5400.0;
+    frame.weather = Weather::sunny();
+    frame.exposure = 1.0f;
+    frame.colour_match = ColourMatch::kOff;
+    struct Variant {
+        const char* name;
+        Runtime* runtime;
+        RenderMode mode;
+        std::vector<double> ms;
+    };
+    std::vector<Variant> variants = {{"proposed with horizons", runtime_with.get(), RenderMode::kProposed, {}},
+                                     {"proposed, 1x1 open horizon", runtime_without.get(), RenderMode::kProposed, {}},
+                                     {"direct-only", runtime_with.get(), RenderMode::kDirectOnly, {}}};
+    FrameInfo info;
+    for (int round = -2; round < frames; ++round)  // two rounds of warm-up, not counted
+        for (size_t k = 0; k < variants.size(); ++k) {
+            Variant& variant = variants[round % 2 == 0 ? k : variants.size() - 1 - k];
+            frame.mode = variant.mode;
+            const auto start = std::chrono::steady_clock::now();
+            info = variant.runtime->renderFrame(frame, pixels.data());
+            const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (round >= 0) variant.ms.push_back(ms);
+        }
+    auto median = [](std::vector<double> values) {
+        std::sort(values.begin(), values.end());
+        return values[values.size() / 2];
+    };
+    std::printf("%s, sun %.1f deg high at azimuth %.1f, %ux%u msaa %u, %d fenced frames each, interleaved:\n", folder,
+                info.sun_apparent_elevation_deg, info.sun_azimuth_deg, options.frame_width, options.frame_height,
+                options.msaa_samples, frames);
+    for (const Variant& variant : variants)
+        std::printf("  %-28s median %8.2f ms\n", variant.name, median(variant.ms));
+    std::printf("  with horizons / 1x1 open horizon: %.3f; with horizons / direct-only: %.3f; open / direct-only: "
+                "%.3f\n",
+                median(variants[0].ms) / median(variants[1].ms), median(variants[0].ms) / median(variants[2].ms),
+                median(variants[1].ms) / median(variants[2].ms));
 }
 
 }  // namespace

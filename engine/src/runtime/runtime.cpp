@@ -136,7 +136,10 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
     targets_ = std::make_unique<MainTargets>(context, options_.frames_in_flight);
     submission_ = std::make_unique<FrameSubmission>(context, *targets_);
     materials_ = std::make_unique<MaterialSets>(context);
-    shadows_ = std::make_unique<ShadowPass>(context, *materials_);
+    // The occluder lowered by its simplification error in the camera's depth and the site's shadow map alike.
+    const float occluder_drop_m =
+        manifest_.occluder ? float(std::max(0.0, manifest_.occluder->simplification_error_m)) : 0.0f;
+    shadows_ = std::make_unique<ShadowPass>(context, *materials_, occluder_drop_m);
     camera_ = std::make_unique<CameraInput>(gpu_, options_, options_.frames_in_flight,
                                             ColourStatisticsPass::deviceSupports(gpu_));
     // Mode kGround's ground (null without ground albedo: older bake sets, the mode then refuses frames).
@@ -146,9 +149,7 @@ void RuntimeImpl::makePasses(const BakeSetData& bake_set) {
     frame_set_ = std::make_unique<FrameSet>(context, *shadows_, *materials_, colour_->stateBuffer());
     const VkRenderPass main_pass = targets_->renderPass(MainPassVariant::kWhole);
     camera_->createDrawPipeline(main_pass, targets_->samples());
-    occluder_ = std::make_unique<OccluderPass>(
-        context, main_pass, targets_->samples(),
-        manifest_.occluder ? float(std::max(0.0, manifest_.occluder->simplification_error_m)) : 0.0f);
+    occluder_ = std::make_unique<OccluderPass>(context, main_pass, targets_->samples(), occluder_drop_m);
     building_ = std::make_unique<BuildingPass>(context, *frame_set_, *materials_, main_pass, targets_->samples());
     ground_ = std::make_unique<GroundPass>(context, manifest_.ground_grid.grid, *frame_set_, options_.frames_in_flight,
                                            main_pass, targets_->samples());

@@ -21,7 +21,9 @@ class MaterialSets;
 class ShadowPass final : public FramePass {
 public:
     /// The maps (left in SHADER_READ_ONLY_OPTIMAL, cleared, for frames that skip them), their pass and pipelines.
-    ShadowPass(const PassContext& context, const MaterialSets& materials);
+    /// occluder_drop_m: how far the occluder is lowered in the site's map, as in the camera's occluder pass (its
+    /// simplification error: docs/design.md 3, "The building's foot").
+    ShadowPass(const PassContext& context, const MaterialSets& materials, float occluder_drop_m = 0.0f);
 
     /// Host side: the fit of the maps to the sun rounded (shadowSunDirectionFor), made again when it moved; which
     /// maps this frame renders (the building's when the sun shines, the site's when the site casts shadows).
@@ -47,6 +49,7 @@ private:
         const GpuBuffer& vertices;
         const GpuBuffer& indices;
         uint32_t index_count;
+        float drop_m = 0.0f;  // DepthOnlyPushConstants::drop_m
     };
     void createPipelines();
     void beginMap(VkCommandBuffer cmd, const ShadowMap& map, const Caster& caster) const;
@@ -54,6 +57,7 @@ private:
 
     const PassContext context_;
     const MaterialSets& materials_;
+    const float occluder_drop_m_;
     RenderPass render_pass_;
     ShadowMap building_, site_;
     PipelineLayout depth_layout_;         // DepthOnlyPushConstants
