@@ -10,7 +10,7 @@
 // confidence. Writes the frame slot's SunEvidenceResult, read by the host after the slot's fence.
 //
 // Cheap on llvmpipe, which runs a barrier as a switch between invocations: seven barriers in all, one per pass over
-// the samples. The histograms are counted by shared-memory atomics (integer counts, so their order does not matter),
+// the samples, and the passes after the first read only the shadowed and lit samples (packed by the first). The histograms are counted by shared-memory atomics (integer counts, so their order does not matter),
 // and after each barrier every lane reads the same shared sums in the same lane order, so every lane holds the same
 // medians and means without a second barrier to hand them out.
 #extension GL_GOOGLE_include_directive : require
@@ -103,26 +103,35 @@ uint sideOf(float kind) {
     return kind == SUN_EVIDENCE_KIND_SHADOWED ? 0u : kind == SUN_EVIDENCE_KIND_LIT ? 1u : 2u;
 }
 
-// 0. The site map's verdict on each SITE_LOOKUP sample (the bilinear compare at its cell's centre), written in
-//    place, and each side's samples and predicted levels (the response's split).
-void resolveKinds(uint lane) {
+// 0. The site map's verdict on each SITE_LOOKUP sample (the bilinear compare at its cell's centre); each side's
+//    samples and predicted levels (the response's split); and the lane's shadowed and lit samples packed, in their
+//    order, into its own slots lane, lane + 64, ... (the k-th at or before where it was read, so nothing unread is
+//    overwritten): the later passes read only those, `kept` of them. Returns kept.
+uint resolveKinds(uint lane) {
     float sides[4] = float[4](0.0, 0.0, 0.0, 0.0);
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
-        float kind = samples[s].kind;
+    uint kept = 0u;
+    for (uint r = lane; r < pc.sample_count; r += SUN_EVIDENCE_BINS) {
+        float kind = samples[r].kind;
         if (kind == SUN_EVIDENCE_KIND_SITE_LOOKUP) {
-            float visibility = texture(site_shadow, samples[s].site_coordinates);
+            float visibility = texture(site_shadow, samples[r].site_coordinates);
             kind = visibility <= SUN_EVIDENCE_SHADOWED_VISIBILITY ? SUN_EVIDENCE_KIND_SHADOWED
                    : visibility >= SUN_EVIDENCE_LIT_VISIBILITY    ? SUN_EVIDENCE_KIND_LIT
                                                                   : SUN_EVIDENCE_KIND_NONE;
-            samples[s].kind = kind;  // read back by this same invocation only
         }
         uint side = sideOf(kind);
-        if (side < 2u) {
-            sides[2u * side] += 1.0;
-            sides[2u * side + 1u] += samples[s].log2_predicted;
-        }
+        if (side == 2u) continue;
+        float log2_predicted = samples[r].log2_predicted;
+        sides[2u * side] += 1.0;
+        sides[2u * side + 1u] += log2_predicted;
+        uint packed = lane + kept * SUN_EVIDENCE_BINS;  // read back by this same invocation only
+        samples[packed].log2_ratio = samples[r].log2_ratio;
+        samples[packed].sun_share = samples[r].sun_share;
+        samples[packed].kind = kind;
+        samples[packed].log2_predicted = log2_predicted;
+        ++kept;
     }
     for (uint k = 0u; k < 4u; ++k) lane_sides[lane][k] = sides[k];
+    return kept;
 }
 
 // The camera response's power (sun_evidence.h: responseGamma) from the fit's shared sums: per side, its halves'
@@ -153,7 +162,7 @@ float responseGamma(float side_samples[2]) {
 void main() {
     uint lane = gl_LocalInvocationIndex;
     for (uint h = 0u; h < 6u; ++h) histograms[h][lane] = 0u;
-    resolveKinds(lane);
+    uint end = lane + resolveKinds(lane) * SUN_EVIDENCE_BINS;  // past the lane's packed samples
     barrier();
     float side_samples[2];
     float split[2];
@@ -169,7 +178,7 @@ void main() {
     }
 
     // 1. The response: each side's halves (split at the side's mean predicted level), their raw ratios' medians...
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS) {
         uint side = sideOf(samples[s].kind);
         if (side == 2u) continue;
         uint half_index = samples[s].log2_predicted >= split[side] ? 1u : 0u;
@@ -181,7 +190,7 @@ void main() {
     // ... and the trimmed sums about them, then the power.
     float fit[12];
     for (uint k = 0u; k < 12u; ++k) fit[k] = 0.0;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS) {
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS) {
         uint side = sideOf(samples[s].kind);
         if (side == 2u) continue;
         uint half_index = samples[s].log2_predicted >= split[side] ? 1u : 0u;
@@ -196,14 +205,14 @@ void main() {
     float gamma = responseGamma(side_samples);
 
     // 2. The shade's histogram of the linearised ratios, its median's bin and trimmed mean: log2 g.
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS)
         if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED) atomicAdd(histograms[kShade][ratioBin(ratioOf(s, gamma))], 1u);
     barrier();
     float shadowed = totalOf(kShade);
     uint median = medianBinOf(kShade, shadowed);
     float sum = 0.0;
     float kept = 0.0;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS)
         if (samples[s].kind == SUN_EVIDENCE_KIND_SHADOWED && inWindow(ratioBin(ratioOf(s, gamma)), median)) {
             sum += ratioOf(s, gamma);
             kept += 1.0;
@@ -224,7 +233,7 @@ void main() {
     }
 
     // 3. The lit samples' strengths against it: histogram, median's bin, quartiles, trimmed mean: s.
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS)
         if (isLit(s))
             atomicAdd(histograms[kLit][binOf(strengthOf(s, level, gamma), SUN_EVIDENCE_LOWEST_STRENGTH,
                                              SUN_EVIDENCE_STRENGTH_SPAN)], 1u);
@@ -233,7 +242,7 @@ void main() {
     median = medianBinOf(kLit, lit);
     sum = 0.0;
     kept = 0.0;
-    for (uint s = lane; s < pc.sample_count; s += SUN_EVIDENCE_BINS)
+    for (uint s = lane; s < end; s += SUN_EVIDENCE_BINS)
         if (isLit(s)) {
             float strength = strengthOf(s, level, gamma);
             if (inWindow(binOf(strength, SUN_EVIDENCE_LOWEST_STRENGTH, SUN_EVIDENCE_STRENGTH_SPAN), median)) {
