@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <optional>
 #include <vector>
 
@@ -428,7 +429,9 @@ TEST_F(SunEvidenceGpu, TheCApiReadsWhatTheCxxApiReads) {
 // the frame's time; profiled frames (renderFrameProfiled) give the estimator's own: its hooks are one submission of
 // their own, waited for alone, counted in statistics_ms with the colour match's, and without the estimator that
 // submission is still made but empty, so the statistics figure's difference is the estimator's work alone (its
-// view's upload, barriers and two dispatches), not a submission's overhead. Medians of 40 frames each.
+// kernel's share, barriers and the reduce's dispatch), not a submission's overhead. Medians of 40 frames each. The
+// process's CPU time over each profiled frame too (every lavapipe thread's): unlike the wall time it does not grow
+// with other work on the machine, so its paired difference is the estimator's work itself.
 TEST_F(SunEvidenceGpu, DISABLED_CostAt640x360) {
     auto* impl = dynamic_cast<runtime_detail::RuntimeImpl*>(runtime_.get());
     ASSERT_NE(impl, nullptr);
@@ -439,7 +442,12 @@ TEST_F(SunEvidenceGpu, DISABLED_CostAt640x360) {
     const std::vector<uint8_t> camera = renderFrame(scene_, viewOf(frame.pose, info), 1.0);
     frame.camera_rgba8 = camera.data();
     using Clock = std::chrono::steady_clock;
-    std::vector<double> frame_ms, with_ms, without_ms;
+    std::vector<double> frame_ms, with_ms, without_ms, with_cpu_ms, without_cpu_ms;
+    auto cpuMs = [] {
+        timespec now{};
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+        return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
+    };
     for (int i = 0; i < 43; ++i)
         for (bool enabled : {true, false}) {
             impl->setSunEvidenceEnabled(enabled);
@@ -449,10 +457,13 @@ TEST_F(SunEvidenceGpu, DISABLED_CostAt640x360) {
             const double whole = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
             PassTimings timings{};
             runtime_->resetColourStatistics();
+            const double cpu_start = cpuMs();
             runtime_->renderFrameProfiled(frame, output.data(), timings);
+            const double cpu = cpuMs() - cpu_start;
             if (i < 3) continue;  // warm-up
             if (enabled) frame_ms.push_back(whole);
             (enabled ? with_ms : without_ms).push_back(timings.statistics_ms);
+            (enabled ? with_cpu_ms : without_cpu_ms).push_back(cpu);
         }
     impl->setSunEvidenceEnabled(true);
     auto median = [](std::vector<double> values) {
@@ -461,13 +472,18 @@ TEST_F(SunEvidenceGpu, DISABLED_CostAt640x360) {
     };
     // The pairs' differences too: a pair's two frames run a few milliseconds apart, so a load that drifts over
     // the run (other builds on the machine) cancels in each pair where it does not between two medians.
-    std::vector<double> paired_ms;
-    for (size_t i = 0; i < with_ms.size(); ++i) paired_ms.push_back(with_ms[i] - without_ms[i]);
+    std::vector<double> paired_ms, paired_cpu_ms;
+    for (size_t i = 0; i < with_ms.size(); ++i) {
+        paired_ms.push_back(with_ms[i] - without_ms[i]);
+        paired_cpu_ms.push_back(with_cpu_ms[i] - without_cpu_ms[i]);
+    }
     ASSERT_TRUE(latestSunEvidence(*runtime_).has_value());
     std::printf("640x360: frame %.2f ms; statistics %.2f ms with the sun evidence, %.2f ms without: the estimator "
                 "%.2f ms, paired %.2f ms (medians of %zu frames each)\n",
                 median(frame_ms), median(with_ms), median(without_ms), median(with_ms) - median(without_ms),
                 median(paired_ms), with_ms.size());
+    std::printf("640x360, CPU time of the profiled frame (all threads): %.2f ms with, %.2f ms without, paired %.2f ms\n",
+                median(with_cpu_ms), median(without_cpu_ms), median(paired_cpu_ms));
     // Spread as the runtime runs it: one frame in kColourStatisticsInterval x kSunEvidenceMeasurementInterval
     // measures, and the others record nothing of the estimator (MeasuresOneGroundMeasurementInThreeAndAfterAReset).
     // A block of frames measured directly drowns it in the colour match's own frame-to-frame noise.
