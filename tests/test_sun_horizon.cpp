@@ -140,6 +140,49 @@ TEST(SunHorizon, BakedVisibilityMatchesTheLitShareOfTheWall) {
     EXPECT_LT(worst_decoded, kTraceToleranceDeg + 0.5 * kSunHorizonDegPerCode);
 }
 
+// A plain wall 2 m square facing 20 degrees east of north, nothing else: no sun in front of it is hidden. Stored
+// as absolute elevations, its horizon at the stored azimuth 135 (behind the wall) was 90 degrees and at 90 (in
+// front) 0, and interpolated between them a sun at azimuth 100, grazing the wall from in front, read a horizon of
+// 20 degrees and was hidden below that; what rises above the wall's own horizon is 0 at both, and the wall's own
+// plane is added back at the sun's azimuth exactly.
+TEST(SunHorizon, AWallFacingBetweenTheStoredAzimuthsIsLitByEverySunInFrontOfIt) {
+    const double facing = 20.0 / kDegPerRad;
+    const glm::vec3 normal(float(std::sin(facing)), float(std::cos(facing)), 0.0f);
+    const glm::vec3 along(float(std::cos(facing)), float(-std::sin(facing)), 0.0f);
+    TriangleMesh mesh;
+    mesh.materials.resize(1);
+    mesh.has_uv1 = true;
+    for (int corner = 0; corner < 4; ++corner) {
+        const float s = (corner & 1) ? 1.0f : -1.0f, height = (corner & 2) ? 2.0f : 0.0f;
+        mesh.positions.push_back(s * along + glm::vec3(0.0f, 0.0f, height));
+        mesh.normals.push_back(normal);
+        mesh.uv0.emplace_back(0.0f);
+        mesh.uv1.emplace_back(0.5f * (s + 1.0f), 1.0f - 0.5f * height);
+    }
+    for (uint32_t index : {0u, 3u, 1u, 0u, 2u, 3u}) mesh.indices.push_back(index);
+    mesh.triangle_material = {0, 0};
+    const Bvh bvh = buildBvh(mesh, {});
+    constexpr int kResolution = 16;
+    const std::vector<LightmapTexel> texels = rasterizeLightmapTexels(mesh, kResolution);
+    ASSERT_GT(texels.size(), 100u);
+    ASSERT_GT(glm::dot(texels.front().geometric_normal, normal), 0.999f);  // the winding faces the normal
+    const BakeSetSunHorizon horizon = bakeSunHorizons(bvh, texels, kResolution, {});
+    const size_t layer_bytes = size_t(kResolution) * kResolution * 4;
+    double darkest = 1.0;
+    for (const LightmapTexel& texel : texels) {
+        const size_t index = (size_t(texel.y) * kResolution + size_t(texel.x)) * 4;
+        double horizons[kSunHorizonAzimuths];
+        for (int k = 0; k < kSunHorizonAzimuths; ++k)
+            horizons[k] = decodeSunHorizonDeg(horizon.rgba8[size_t(k / 4) * layer_bytes + index + k % 4]);
+        for (double off_normal : {-85.0, -60.0, -30.0, 0.0, 30.0, 60.0, 80.0, 85.0})
+            for (double elevation : {10.0, 15.0, 20.0, 25.0})
+                darkest = std::min(darkest, sunHorizonVisibility(horizons, sunHorizonDirection(20.0 + off_normal,
+                                                                                                elevation),
+                                                                 glm::dvec3(normal)));
+    }
+    EXPECT_EQ(darkest, 1.0);
+}
+
 TEST(SunHorizon, OpenHorizonIsFullyVisibleAndTheTransitionIsCentredOnTheHorizon) {
     const double open[kSunHorizonAzimuths] = {};
     EXPECT_EQ(sunHorizonVisibility(open, sunHorizonDirection(123.0, 0.5)), 1.0);

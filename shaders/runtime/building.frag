@@ -87,7 +87,7 @@ void main() {
         // blocker counts twice: it tests the point moved that far towards the sun. Direct-only draws what AR apps
         // draw: the shadow map alone.
         bool horizons = !direct_only && hasSunHorizons();
-        float visibility = horizons ? sunHorizonVisibility(lightmap_uv, frame.sun_direction) : 1.0;
+        float visibility = horizons ? sunHorizonVisibility(lightmap_uv, frame.sun_direction, normal) : 1.0;
         vec2 uv;
         float depth;
         if (visibility > 0.0 && shadowLookup(position_enu, normal, uv, depth)) {

@@ -76,6 +76,17 @@ inline void sunHorizonAngles(const glm::dvec3& sun_direction, double& azimuth_de
     elevation_deg = std::asin(std::clamp(sun_direction.z, -1.0, 1.0)) * kSunHorizonDegPerRadian;
 }
 
+/// The elevation (degrees, in [0, 90]) at which the plane through a surface of unit normal `normal` cuts the vertical
+/// half-plane at `azimuth_deg` east of north: directions at that azimuth below it are behind the surface (90 for
+/// every azimuth behind a wall, the pitch behind a roof, 0 in front of either). d(e) = cos e h + sin e up meets the
+/// plane where cos e (h . n) + sin e n_z = 0; clamping atan2(-(h . n), n_z) to [0, 90] covers walls (n_z = 0) and
+/// faces turned down (n_z < 0) alike.
+inline double surfaceHorizonDeg(const glm::dvec3& normal, double azimuth_deg) {
+    const double azimuth = azimuth_deg / kSunHorizonDegPerRadian;
+    const double across = std::sin(azimuth) * normal.x + std::cos(azimuth) * normal.y;
+    return std::clamp(std::atan2(-across, normal.z) * kSunHorizonDegPerRadian, 0.0, 90.0);
+}
+
 /// The visibility of a sun `elevation_deg` high over a horizon `horizon_deg` high: 0.5 with the sun's centre on it,
 /// a linear ramp kSunHorizonTransitionDeg wide across it; 1 over an open horizon (0 or below).
 inline double sunVisibilityOverHorizon(double horizon_deg, double elevation_deg) {
@@ -84,16 +95,29 @@ inline double sunVisibilityOverHorizon(double horizon_deg, double elevation_deg)
 }
 
 /// The sun's visibility over a point's eight horizons (degrees, azimuth 0 first) for the unit direction towards
-/// the sun: the horizon interpolated linearly between the two stored azimuths either side of the sun's, then
-/// sunVisibilityOverHorizon.
-inline double sunHorizonVisibility(const double (&horizon_deg)[kSunHorizonAzimuths], const glm::dvec3& sun_direction) {
+/// the sun and the unit normal of the surface drawn there: what rises above the surface's own horizon at the two
+/// stored azimuths either side of the sun's, interpolated linearly, the surface's own horizon at the sun's azimuth
+/// added back, then sunVisibilityOverHorizon (1 where nothing rises above the surface: the cosine settles the rest).
+/// The surface's own part is taken out before interpolating because it jumps: a wall's horizon is 0 on its sunny
+/// side and 90 degrees behind it, and interpolated between stored azimuths 45 degrees apart it hid a sun grazing the
+/// wall from in front (a wall facing between two stored azimuths read up to 45 degrees there). At a stored azimuth
+/// this is the stored horizon itself wherever the sun is in front of the surface; with the normal straight up, the
+/// stored horizons interpolated.
+inline double sunHorizonVisibility(const double (&horizon_deg)[kSunHorizonAzimuths], const glm::dvec3& sun_direction,
+                                   const glm::dvec3& normal = glm::dvec3(0.0, 0.0, 1.0)) {
     double azimuth_deg = 0.0, elevation_deg = 0.0;
     sunHorizonAngles(sun_direction, azimuth_deg, elevation_deg);
     const double position = azimuth_deg / kSunHorizonAzimuthStepDeg;
-    const int below = int(std::floor(position)) % kSunHorizonAzimuths;
+    const int below = int(std::floor(position)) % kSunHorizonAzimuths, above_index = (below + 1) % kSunHorizonAzimuths;
     const double t = position - std::floor(position);
-    const double horizon = (1.0 - t) * horizon_deg[below] + t * horizon_deg[(below + 1) % kSunHorizonAzimuths];
-    return sunVisibilityOverHorizon(horizon, elevation_deg);
+    auto aboveSurface = [&](int k) {
+        return std::max(0.0, horizon_deg[k] - surfaceHorizonDeg(normal, k * kSunHorizonAzimuthStepDeg));
+    };
+    const double above = (1.0 - t) * aboveSurface(below) + t * aboveSurface(above_index);
+    if (above <= 0.0) return 1.0;
+    // The sun overhead has no azimuth, and nothing rises above it (the GLSL twin's rule too).
+    const bool overhead = std::hypot(sun_direction.x, sun_direction.y) < 1e-6;
+    return sunVisibilityOverHorizon((overhead ? 0.0 : surfaceHorizonDeg(normal, azimuth_deg)) + above, elevation_deg);
 }
 
 /// What the runtime draws at lightmap coordinates `uv` (shaders/include/sun_horizon.glsl, its twin): each of the
@@ -103,7 +127,8 @@ inline double sunHorizonVisibility(const double (&horizon_deg)[kSunHorizonAzimut
 /// shadow edge where the sun's elevation crosses it (too far towards the lit side under a low sun, too far
 /// towards the groove under a high one) rather than between the texels. An empty horizon: 1.
 inline double sunHorizonVisibilityAt(const BakeSetSunHorizon& horizon, double u, double v,
-                                     const glm::dvec3& sun_direction) {
+                                     const glm::dvec3& sun_direction,
+                                     const glm::dvec3& normal = glm::dvec3(0.0, 0.0, 1.0)) {
     if (horizon.empty()) return 1.0;
     const double x = u * horizon.width - 0.5, y = v * horizon.height - 0.5;
     const double fx = x - std::floor(x), fy = y - std::floor(y);
@@ -116,7 +141,7 @@ inline double sunHorizonVisibilityAt(const BakeSetSunHorizon& horizon, double u,
         double horizons[kSunHorizonAzimuths];
         for (int k = 0; k < kSunHorizonAzimuths; ++k)
             horizons[k] = decodeSunHorizonDeg(horizon.rgba8[size_t(k / 4) * layer_bytes + texel + size_t(k % 4)]);
-        return sunHorizonVisibility(horizons, sun_direction);
+        return sunHorizonVisibility(horizons, sun_direction, normal);
     };
     return (1.0 - fy) * ((1.0 - fx) * visibility(x0, y0) + fx * visibility(x0 + 1, y0)) +
            fy * ((1.0 - fx) * visibility(x0, y0 + 1) + fx * visibility(x0 + 1, y0 + 1));
