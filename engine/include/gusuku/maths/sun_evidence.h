@@ -1,9 +1,10 @@
 #pragma once
-// Whether the sun is out, and how strong, read from the real site's own shadows in the camera frame (issue 41 items
-// 1 and 2; the cue of Madsen & Nielsen 2008 and Bertolini & Madsen 2020: lit against shadowed surfaces in the video).
-// This header is the CPU reference of what the runtime's GPU estimator does (shaders/runtime/sun_evidence.comp and
-// sun_evidence_reduce.comp, recorded by the runtime's private SunEvidencePass); tests/test_sun_evidence.cpp pins it
-// on analytic cases and tests/test_runtime_sun_evidence.cpp holds the GPU to it.
+// Whether the sun is out, and how strong, read from the real site's own shadows in the camera frame (issue 41 items 1
+// and 2; the cue of Madsen & Nielsen 2008 and Bertolini & Madsen 2020: lit against shadowed surfaces in the video).
+// This header is the CPU reference of what the runtime's GPU estimator does (the ground colour match's kernel,
+// shaders/runtime/colour_statistics_ground.comp with shaders/include/sun_evidence_ground.glsl, classifies the samples;
+// shaders/runtime/sun_evidence_reduce.comp, recorded by the runtime's private SunEvidencePass, reduces them);
+// tests/test_sun_evidence.cpp pins it on analytic cases and tests/test_runtime_sun_evidence.cpp holds the GPU to it.
 //
 // The model. The camera samples of the ground colour match (colour_match.h: each sampled pixel's ray followed onto
 // the ground grid's height field) land on cells whose albedo rho and baked irradiance without the sun, E_without
@@ -121,7 +122,7 @@ enum class SunEvidenceCue : uint8_t {
     kMeteredGround = 2,
 };
 
-/// One camera sample as the estimator reads it (what sun_evidence.comp writes per sample).
+/// One camera sample as the estimator reads it (what the ground kernel's sun_evidence_ground.glsl writes per sample).
 enum class SunEvidenceSampleKind : uint8_t { kNone = 0, kShadowed = 1, kLit = 2 };
 struct SunEvidenceSample {
     SunEvidenceSampleKind kind = SunEvidenceSampleKind::kNone;
@@ -168,11 +169,11 @@ bool sunEvidenceRayReachesCell(const GroundMatchScene& scene, const glm::dvec3& 
 /// The highest height of a cell with ground (-infinity without any).
 double sunEvidenceGroundTop(const GroundMatchScene& scene);
 
-/// The per-sample records of a frame (reference of sun_evidence.comp): the colour match's sample grid at stride,
-/// each ray onto the ground (groundMatchCellOfPixel), the cell's prediction without the sun (view's slots and
-/// exposure), and the clear-sky E_sun `clear_sun_irradiance_rgb` (bake set units, before any sun_scale) along
-/// view.sun_direction_enu for q. The site's visibility is looked up at the cell's centre (its height). A sun
-/// below the horizon makes every sample kNone. Allocates the result.
+/// The per-sample records of a frame (reference of the ground kernel's classification, sun_evidence_ground.glsl): the
+/// colour match's sample grid at stride, each ray onto the ground (groundMatchCellOfPixel), the cell's prediction
+/// without the sun (view's slots and exposure), and the clear-sky E_sun `clear_sun_irradiance_rgb` (bake set units,
+/// before any sun_scale) along view.sun_direction_enu for q. The site's visibility is looked up at the cell's centre
+/// (its height). A sun below the horizon makes every sample kNone. Allocates the result.
 std::vector<SunEvidenceSample> sunEvidenceSamples(ConstSpan<uint8_t> rgba8, uint32_t width, uint32_t height,
                                                   uint32_t stride, const GroundMatchScene& scene,
                                                   const GroundMatchView& view,

@@ -30,9 +30,9 @@ namespace gusuku {
 
 /// The runtime measures the sun on one of the colour match's measurements in this many (one frame in
 /// kColourStatisticsInterval x this: 12, a reading every 0.4 s at 30 frames a second), and on the first after
-/// resetColourStatistics: its cost is 3 ms a measurement on lavapipe at 640x360, 0.25 ms a frame so spread
-/// (docs/platform-light.md). SunVisibilityFilter holds its state between the readings (its 0.5 s hold and 1.5 s fade
-/// are longer than the gap).
+/// resetColourStatistics: its cost is about 4 ms of lavapipe's CPU a measurement at 640x360, about 0.35 ms a frame so
+/// spread (docs/platform-light.md, "Cost"). SunVisibilityFilter holds its state between the readings (its 0.5 s hold
+/// and 1.5 s fade are longer than the gap).
 inline constexpr uint32_t kSunEvidenceMeasurementInterval = 3;
 
 struct RuntimeSunEvidence {
