@@ -54,6 +54,74 @@ double frameInstant(const RenderRequest& request, const BakeSetManifest& manifes
     return bench_common::bakeDateMidnightUtc(request.bake_set, manifest, "--time") + 12 * 3600.0;
 }
 
+// The camera frame under the composite: the sample site traced without the building, or a photograph.
+struct RenderCamera {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba8;
+    float exposure = kImageCameraExposure;
+};
+
+RenderCamera renderCamera(const RenderRequest& request, VulkanContext& context, const std::string& sample_site_json,
+                          double utc_seconds) {
+    RenderCamera out;
+    out.width = request.width;
+    out.height = request.height;
+    out.exposure = request.exposure.value_or(kImageCameraExposure);
+    if (request.camera == "sample") {
+        const Clock::time_point start = Clock::now();
+        const bench::BenchView view{request.position_enu, request.look_at_enu, request.horizontal_fov_deg};
+        SampleCameraFrame frame = renderSampleCameraFrame(
+            context, sample_site_json, view, out.width, out.height, {utc_seconds, request.cloud_cover},
+            request.camera_samples, request.exposure.value_or(0.0f));
+        std::printf("camera frame:    path-traced and denoised, %u spp, %.1f s\n", request.camera_samples,
+                    millisecondsSince(start) / 1000.0);
+        out.rgba8 = std::move(frame.rgba8);
+        out.exposure = frame.exposure;
+    } else {
+        CameraImage image = readCameraImage(request.camera);
+        out.width = image.width;
+        out.height = image.height;
+        out.rgba8 = std::move(image.srgb_rgba8);
+    }
+    return out;
+}
+
+// Both modes' frame times, each on a runtime of its own, interleaved ABBA.
+struct ModeTimings {
+    std::vector<double> proposed_ms, direct_ms, proposed_cpu_ms, direct_cpu_ms;  // fenced frames, wall and CPU
+    std::vector<double> pair_ratios, pair_cpu_ratios;                             // each pair's proposed / direct
+    std::vector<PassTimings> passes, direct_passes;                               // the profiled frames' passes
+};
+
+void printModeTimings(const ModeTimings& timings, uint32_t timed_frames) {
+    auto passMedian = [&](double PassTimings::*field, const std::vector<PassTimings>& of) {
+        std::vector<double> values;
+        for (const PassTimings& pass_timings : of) values.push_back(pass_timings.*field);
+        return spreadOf(values).median;
+    };
+    const Spread proposed = spreadOf(timings.proposed_ms), baseline = spreadOf(timings.direct_ms);
+    std::printf("frame (fenced):  proposed %.2f ms [%.2f, %.2f], direct-only %.2f ms [%.2f, %.2f], ratio %.3f\n",
+                proposed.median, proposed.low, proposed.high, baseline.median, baseline.low, baseline.high,
+                proposed.median / baseline.median);
+    const Spread proposed_cpu = spreadOf(timings.proposed_cpu_ms), baseline_cpu = spreadOf(timings.direct_cpu_ms);
+    std::printf("frame CPU time:  proposed %.2f ms [%.2f, %.2f], direct-only %.2f ms [%.2f, %.2f], ratio %.3f (all "
+                "threads; steadier than the wall clock under load)\n",
+                proposed_cpu.median, proposed_cpu.low, proposed_cpu.high, baseline_cpu.median, baseline_cpu.low,
+                baseline_cpu.high, proposed_cpu.median / baseline_cpu.median);
+    std::printf("frame pairs:     median of each pair's proposed / direct-only: wall %.3f, CPU time %.3f\n",
+                spreadOf(timings.pair_ratios).median, spreadOf(timings.pair_cpu_ratios).median);
+    for (int mode = 0; mode < 2; ++mode) {
+        const std::vector<PassTimings>& of = mode == 0 ? timings.passes : timings.direct_passes;
+        std::printf("passes, %-11s (profiling mode, medians of %u): upload %.2f, statistics %.2f, shadows %.2f, "
+                    "occluder %.2f, building %.2f, ground %.2f, readback %.2f ms\n",
+                    mode == 0 ? "proposed" : "direct-only", timed_frames,
+                    passMedian(&PassTimings::upload_ms, of), passMedian(&PassTimings::statistics_ms, of),
+                    passMedian(&PassTimings::shadow_ms, of), passMedian(&PassTimings::occluder_ms, of),
+                    passMedian(&PassTimings::building_ms, of), passMedian(&PassTimings::ground_ms, of),
+                    passMedian(&PassTimings::readback_ms, of));
+    }
+}
+
 int run(const RenderRequest& request) {
     const BakeSetData bake_set = loadBakeSet(request.bake_set);
     const std::string sample_site_json =
@@ -65,26 +133,11 @@ int run(const RenderRequest& request) {
     std::fprintf(stderr, "gusuku-render: device %s\n", context.deviceDescription().c_str());
 
     // The camera frame.
-    uint32_t width = request.width, height = request.height;
-    std::vector<uint8_t> camera;
-    float exposure = request.exposure.value_or(kImageCameraExposure);
+    RenderCamera camera_frame = renderCamera(request, context, sample_site_json, utc_seconds);
+    const uint32_t width = camera_frame.width, height = camera_frame.height;
+    const std::vector<uint8_t>& camera = camera_frame.rgba8;
+    const float exposure = camera_frame.exposure;
     const CameraPose pose = lookAtPose(request.position_enu, request.look_at_enu);
-    if (request.camera == "sample") {
-        const Clock::time_point start = Clock::now();
-        const bench::BenchView view{request.position_enu, request.look_at_enu, request.horizontal_fov_deg};
-        SampleCameraFrame frame = renderSampleCameraFrame(
-            context, sample_site_json, view, width,
-            height, {utc_seconds, request.cloud_cover}, request.camera_samples, request.exposure.value_or(0.0f));
-        std::printf("camera frame:    path-traced and denoised, %u spp, %.1f s\n", request.camera_samples,
-                    millisecondsSince(start) / 1000.0);
-        camera = std::move(frame.rgba8);
-        exposure = frame.exposure;
-    } else {
-        CameraImage image = readCameraImage(request.camera);
-        width = image.width;
-        height = image.height;
-        camera = std::move(image.srgb_rgba8);
-    }
     if (request.camera_png) writePngRgba8(*request.camera_png, int(width), int(height), camera);
 
     RuntimeOptions options;
@@ -117,7 +170,9 @@ int run(const RenderRequest& request) {
     }
     // Interleaved, the order swapped every pair (ABBA), so the shared machine's drift lands on both alike; the
     // ratio is what to read, and the median of each pair's own ratio is the steadiest under load.
-    std::vector<double> proposed_ms, direct_ms, proposed_cpu_ms, direct_cpu_ms, pair_ratios, pair_cpu_ratios;
+    ModeTimings timings;
+    std::vector<double>&proposed_ms = timings.proposed_ms, &direct_ms = timings.direct_ms,
+                       &proposed_cpu_ms = timings.proposed_cpu_ms, &direct_cpu_ms = timings.direct_cpu_ms;
     auto timeFrame = [&](Runtime& target, const FrameInput& input, uint8_t* out, std::vector<double>& wall_ms,
                          std::vector<double>& cpu_ms) {
         const Clock::time_point start = Clock::now();
@@ -134,28 +189,24 @@ int run(const RenderRequest& request) {
             timeFrame(*direct_runtime, direct_only, direct.data(), direct_ms, direct_cpu_ms);
             timeFrame(*runtime, frame, composite.data(), proposed_ms, proposed_cpu_ms);
         }
-        pair_ratios.push_back(proposed_ms.back() / direct_ms.back());
-        pair_cpu_ratios.push_back(proposed_cpu_ms.back() / direct_cpu_ms.back());
+        timings.pair_ratios.push_back(proposed_ms.back() / direct_ms.back());
+        timings.pair_cpu_ratios.push_back(proposed_cpu_ms.back() / direct_cpu_ms.back());
     }
     // Each pass alone, both modes interleaved in the same way.
-    std::vector<PassTimings> passes(request.timed_frames), direct_passes(request.timed_frames);
+    std::vector<PassTimings>&passes = timings.passes, &direct_passes = timings.direct_passes;
+    passes.resize(request.timed_frames);
+    direct_passes.resize(request.timed_frames);
     std::vector<uint8_t> profiled(camera.size());
     for (uint32_t index = 0; index < request.timed_frames; ++index) {
         if (index % 2 == 0) runtime->renderFrameProfiled(frame, profiled.data(), passes[index]);
         direct_runtime->renderFrameProfiled(direct_only, profiled.data(), direct_passes[index]);
         if (index % 2 == 1) runtime->renderFrameProfiled(frame, profiled.data(), passes[index]);
     }
-    auto passMedian = [&](double PassTimings::*field, const std::vector<PassTimings>& of) {
-        std::vector<double> values;
-        for (const PassTimings& timings : of) values.push_back(timings.*field);
-        return spreadOf(values).median;
-    };
     info = runtime->renderFrame(frame, composite.data());  // the proposed runtime's own figures (quads drawn)
 
     writePngRgba8(request.output_png, int(width), int(height), composite);
     if (request.direct_only_png) writePngRgba8(*request.direct_only_png, int(width), int(height), direct);
 
-    const Spread proposed = spreadOf(proposed_ms), baseline = spreadOf(direct_ms);
     std::printf("composite:       %s (%u x %u)\n", request.output_png.c_str(), width, height);
     std::printf("time (UTC):      %s\n", formatIso8601(utc_seconds, 0).c_str());
     std::printf("sun:             azimuth %.2f deg, elevation %.2f deg%s\n", info.sun_azimuth_deg,
@@ -166,26 +217,7 @@ int run(const RenderRequest& request) {
                 slotName(info.slot_b).c_str(),
                 info.slot_b >= 0 ? (1.0 - info.overcast_weight) * info.slot_b_weight : 0.0,
                 slotName(info.overcast_slot).c_str(), double(info.overcast_weight), double(request.cloud_cover));
-    std::printf("frame (fenced):  proposed %.2f ms [%.2f, %.2f], direct-only %.2f ms [%.2f, %.2f], ratio %.3f\n",
-                proposed.median, proposed.low, proposed.high, baseline.median, baseline.low, baseline.high,
-                proposed.median / baseline.median);
-    const Spread proposed_cpu = spreadOf(proposed_cpu_ms), baseline_cpu = spreadOf(direct_cpu_ms);
-    std::printf("frame CPU time:  proposed %.2f ms [%.2f, %.2f], direct-only %.2f ms [%.2f, %.2f], ratio %.3f (all "
-                "threads; steadier than the wall clock under load)\n",
-                proposed_cpu.median, proposed_cpu.low, proposed_cpu.high, baseline_cpu.median, baseline_cpu.low,
-                baseline_cpu.high, proposed_cpu.median / baseline_cpu.median);
-    std::printf("frame pairs:     median of each pair's proposed / direct-only: wall %.3f, CPU time %.3f\n",
-                spreadOf(pair_ratios).median, spreadOf(pair_cpu_ratios).median);
-    for (int mode = 0; mode < 2; ++mode) {
-        const std::vector<PassTimings>& of = mode == 0 ? passes : direct_passes;
-        std::printf("passes, %-11s (profiling mode, medians of %u): upload %.2f, statistics %.2f, shadows %.2f, "
-                    "occluder %.2f, building %.2f, ground %.2f, readback %.2f ms\n",
-                    mode == 0 ? "proposed" : "direct-only", request.timed_frames,
-                    passMedian(&PassTimings::upload_ms, of), passMedian(&PassTimings::statistics_ms, of),
-                    passMedian(&PassTimings::shadow_ms, of), passMedian(&PassTimings::occluder_ms, of),
-                    passMedian(&PassTimings::building_ms, of), passMedian(&PassTimings::ground_ms, of),
-                    passMedian(&PassTimings::readback_ms, of));
-    }
+    printModeTimings(timings, request.timed_frames);
     std::printf("ground ratio:    %u of %u grid quads drawn (the rest of the frame is not touched)\n",
                 info.ground_quads_drawn, info.ground_quads_total);
     std::printf("GPU memory:      %.1f MiB held by the runtime\n", double(runtime->deviceMemoryBytes()) / (1 << 20));
