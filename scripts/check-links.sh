@@ -55,7 +55,11 @@ normalise() {
 exists() {  # a tracked file or folder, or a wildcard pattern matching a tracked file
   local path="${1%/}"
   if [[ "$path" == *"*"* ]]; then
-    git ls-files -- "$path" | grep -q . && return 0
+    # Read whole, not piped into `grep -q`: grep's early exit can kill git with SIGPIPE, and pipefail then calls a
+    # wildcard that matches many files (engine/*.h) missing, at random (it failed one CI run that way).
+    local matches
+    matches="$(git ls-files -- "$path")"
+    [[ -n "$matches" ]] && return 0
     compgen -G "$path" >/dev/null && return 0
     return 1
   fi
