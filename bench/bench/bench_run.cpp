@@ -5,19 +5,6 @@
 
 namespace gusuku::bench {
 
-TracedFrameRequest truthRequest(const BenchView& view, uint32_t width, uint32_t height,
-                                const BenchCondition& condition, uint32_t samples, uint32_t seed) {
-    TracedFrameRequest request;
-    request.view = view;
-    request.width = width;
-    request.height = height;
-    request.condition = condition;
-    request.samples_per_pixel = samples;
-    request.seed = seed;
-    request.include_building = true;
-    return request;
-}
-
 ConditionFrames traceCondition(TruthRenderer& renderer, const BenchView& view, uint32_t width, uint32_t height,
                                const BenchCondition& condition, uint32_t samples) {
     TracedFrameRequest request = truthRequest(view, width, height, condition, samples, 1);

@@ -122,11 +122,6 @@ struct RespondedFrames {
 };
 RespondedFrames respondedFrames(const ConditionFrames& frames, const CameraResponse& response);
 
-/// The truth's request (the building in) for this view, size, condition, samples and seed: seed 2 is the
-/// second estimate that measures the truth's own noise.
-TracedFrameRequest truthRequest(const BenchView& view, uint32_t width, uint32_t height,
-                                const BenchCondition& condition, uint32_t samples, uint32_t seed);
-
 // One pair of skies the weather sections run under: the path tracer of the site under them and the runtime with
 // the bake set baked under them, at the sweep size.
 struct SkySet {

@@ -52,16 +52,26 @@ struct TracedFrameRequest {
     bool denoise = false;  ///< also return the filtered frame (gusuku_bake/camera_denoise.h)
 };
 
-/// A camera frame of the site as it stands, without the building and denoised: the background gusuku-render's
-/// --camera sample and gusuku-view draw the building into.
-inline TracedFrameRequest siteCameraRequest(const BenchView& view, uint32_t width, uint32_t height,
-                                            const BenchCondition& condition, uint32_t samples_per_pixel) {
+/// The truth's request (the building in) for this view, size, condition, samples and seed: seed 2 is the
+/// second estimate that measures the truth's own noise.
+inline TracedFrameRequest truthRequest(const BenchView& view, uint32_t width, uint32_t height,
+                                       const BenchCondition& condition, uint32_t samples, uint32_t seed) {
     TracedFrameRequest request;
     request.view = view;
     request.width = width;
     request.height = height;
     request.condition = condition;
-    request.samples_per_pixel = samples_per_pixel;
+    request.samples_per_pixel = samples;
+    request.seed = seed;
+    request.include_building = true;
+    return request;
+}
+
+/// A camera frame of the site as it stands, without the building and denoised: the background gusuku-render's
+/// --camera sample and gusuku-view draw the building into (the truth's request, seed 1, the building out).
+inline TracedFrameRequest siteCameraRequest(const BenchView& view, uint32_t width, uint32_t height,
+                                            const BenchCondition& condition, uint32_t samples_per_pixel) {
+    TracedFrameRequest request = truthRequest(view, width, height, condition, samples_per_pixel, 1);
     request.include_building = false;
     request.denoise = true;
     return request;
